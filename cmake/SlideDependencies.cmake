@@ -1,0 +1,33 @@
+# System dependencies, all from Debian packages (see tools/commands/setup.sh).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(LCM REQUIRED IMPORTED_TARGET lcm)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(Ceres REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(spdlog REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(GTest REQUIRED)
+find_package(Threads REQUIRED)
+find_package(Java COMPONENTS Development QUIET)
+find_program(LCM_GEN lcm-gen REQUIRED)
+
+# PCL is heavy to compile against: only targets that call slide_use_pcl() see its headers.
+macro(slide_use_pcl target)
+  find_package(PCL 1.10 QUIET REQUIRED COMPONENTS common kdtree search segmentation)
+  target_include_directories(${target} SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
+  target_link_libraries(${target} PRIVATE ${PCL_LIBRARIES})
+  target_compile_definitions(${target} PRIVATE ${PCL_DEFINITIONS})
+endmacro()
+
+# Real data (KITTI, SemanticKITTI, robot maps, forest inventories, TLS) read in place by tests
+# and benchmarks; override with -DSLIDE_DATA_DIR=... or the SLIDE_DATA environment variable.
+if(DEFINED ENV{SLIDE_DATA})
+  set(_data_default $ENV{SLIDE_DATA})
+elseif(EXISTS ${PROJECT_SOURCE_DIR}/../shared/data)
+  get_filename_component(_data_default ${PROJECT_SOURCE_DIR}/../shared/data ABSOLUTE)
+else()
+  set(_data_default /work/shared/data)
+endif()
+set(SLIDE_DATA_DIR ${_data_default} CACHE PATH "Folder holding the shared real data sets")
+add_compile_definitions(SLIDE_DATA_DIR="${SLIDE_DATA_DIR}")

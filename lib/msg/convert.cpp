@@ -1,0 +1,90 @@
+#include "msg/convert.h"
+
+#include <stdexcept>
+
+namespace slide {
+
+namespace {
+template <typename T>
+Eigen::Vector3d vec(const T* v) {
+  return {v[0], v[1], v[2]};
+}
+template <typename T>
+void put(const Eigen::Vector3d& v, T* out) {
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<T>(v[i]);
+}
+}  // namespace
+
+pose3_t toMsg(const Pose& T) {
+  pose3_t m;
+  put(T.translation(), m.position);
+  const Eigen::Quaterniond q(T.linear());
+  m.orientation[0] = q.w();
+  m.orientation[1] = q.x();
+  m.orientation[2] = q.y();
+  m.orientation[3] = q.z();
+  return m;
+}
+
+Pose fromMsg(const pose3_t& m) {
+  return poseFromPositionQuaternion(vec(m.position),
+                                    Eigen::Quaterniond(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]));
+}
+
+object_t toMsg(const Object& o) {
+  object_t m;
+  m.id = o.id;
+  m.class_id = static_cast<int16_t>(o.class_id);
+  m.confidence = static_cast<float>(o.confidence);
+  m.num_observations = o.num_observations;
+  m.num_cuboid = m.num_cylinder = m.num_ellipsoid = 0;
+  if (const auto* c = std::get_if<Cuboid>(&o.model)) {
+    cuboid_t cm;
+    cm.pose = toMsg(c->pose);
+    put(c->dims, cm.dims);
+    m.cuboid.push_back(cm);
+    m.num_cuboid = 1;
+  } else if (const auto* c = std::get_if<Cylinder>(&o.model)) {
+    cylinder_t cm;
+    put(c->root, cm.root);
+    put(c->axis, cm.axis);
+    cm.radius = static_cast<float>(c->radius);
+    cm.length = static_cast<float>(c->length);
+    m.cylinder.push_back(cm);
+    m.num_cylinder = 1;
+  } else {
+    const auto& e = std::get<Ellipsoid>(o.model);
+    ellipsoid_t em;
+    put(e.centroid, em.centroid);
+    em.radius = static_cast<float>(e.radius);
+    em.height = static_cast<float>(e.height);
+    m.ellipsoid.push_back(em);
+    m.num_ellipsoid = 1;
+  }
+  return m;
+}
+
+Object fromMsg(const object_t& m) {
+  if (m.num_cuboid + m.num_cylinder + m.num_ellipsoid != 1 || m.num_cuboid < 0 || m.num_cylinder < 0 ||
+      m.num_ellipsoid < 0)
+    throw std::invalid_argument("object_t id " + std::to_string(m.id) + ": expected exactly one of cuboid, cylinder, "
+                                "ellipsoid, got " + std::to_string(m.num_cuboid) + "/" + std::to_string(m.num_cylinder) +
+                                "/" + std::to_string(m.num_ellipsoid));
+  Object o;
+  o.id = m.id;
+  o.class_id = m.class_id;
+  o.confidence = m.confidence;
+  o.num_observations = m.num_observations;
+  if (m.num_cuboid) {
+    o.model = Cuboid{fromMsg(m.cuboid[0].pose), vec(m.cuboid[0].dims)};
+  } else if (m.num_cylinder) {
+    const cylinder_t& c = m.cylinder[0];
+    o.model = Cylinder{vec(c.root), vec(c.axis).normalized(), c.radius, c.length};
+  } else {
+    const ellipsoid_t& e = m.ellipsoid[0];
+    o.model = Ellipsoid{vec(e.centroid), e.radius, e.height};
+  }
+  return o;
+}
+
+}  // namespace slide

@@ -1,0 +1,46 @@
+#pragma once
+// The one table of object classes (config/classes.yaml) shared by every stage: shape model,
+// association thresholds, plausible sizes and the external labels that mean each class.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "objects/object.h"
+
+namespace slide {
+
+struct ClassInfo {
+  int id = 0;
+  std::string name;
+  Shape shape = Shape::Ellipsoid;
+  double association_distance = 1.0;  // metres between centres (cylinders: to the axis)
+  double model_difference = 1.0;      // metres, see modelDifference()
+  Eigen::Vector3d size_min = Eigen::Vector3d::Zero();  // bounding-box extents, see Object::extent()
+  Eigen::Vector3d size_max = Eigen::Vector3d::Constant(1e9);
+  std::vector<int> semantickitti;     // SemanticKITTI class ids of this class
+  std::vector<int> map_labels;        // labels meaning this class in object-map text files
+  Eigen::Vector3i color{128, 128, 128};  // RGB for plots
+};
+
+class ClassTable {
+ public:
+  // Loads config/classes.yaml-style files; throws ConfigError naming file, key and problem.
+  static ClassTable load(const std::string& path);
+  // The table shipped in config/classes.yaml of the source tree.
+  static ClassTable loadDefault();
+
+  void add(const ClassInfo& info);  // throws std::invalid_argument on a duplicate id or name
+  const ClassInfo* find(int id) const;
+  const ClassInfo& at(int id) const;  // throws std::out_of_range naming the unknown id
+  const ClassInfo* findByName(const std::string& name) const;
+  std::optional<int> fromSemanticKitti(int semantic_label) const;
+  std::optional<int> fromMapLabel(int label) const;
+  std::vector<int> ids() const;
+  bool sizePlausible(const Object& o) const;  // extents inside the class's size range
+
+ private:
+  std::map<int, ClassInfo> classes_;
+};
+
+}  // namespace slide

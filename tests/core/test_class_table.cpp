@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "config/config.h"
+#include "objects/class_table.h"
+
+using namespace slide;
+
+namespace {
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Runs f, expecting a ConfigError whose message contains every fragment.
+template <typename F>
+void expectError(F f, std::initializer_list<const char*> fragments) {
+  try {
+    f();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    for (const char* frag : fragments) EXPECT_NE(std::string(e.what()).find(frag), std::string::npos) << e.what();
+  }
+}
+
+const char* kGood = R"(classes:
+  - id: 10
+    name: car
+    shape: cuboid
+    association_distance: 3.0
+    model_difference: 2.0
+    size_min: [2.5, 1.3, 1.0]
+    size_max: [6.5, 2.6, 2.8]
+    semantickitti: [10, 252]
+    map_labels: [-2]
+)";
+}  // namespace
+
+TEST(ClassTable, LoadsShippedTable) {
+  const ClassTable t = ClassTable::loadDefault();
+  EXPECT_EQ(t.at(10).name, "car");
+  EXPECT_EQ(t.at(10).shape, Shape::Cuboid);
+  EXPECT_EQ(t.at(71).shape, Shape::Cylinder);
+  EXPECT_EQ(t.at(1).shape, Shape::Ellipsoid);
+  EXPECT_EQ(t.fromSemanticKitti(252), 10);
+  EXPECT_EQ(t.fromSemanticKitti(80), 80);
+  EXPECT_FALSE(t.fromSemanticKitti(40).has_value());  // road is not an object
+  EXPECT_EQ(t.fromMapLabel(-1), 71);
+  EXPECT_EQ(t.fromMapLabel(3), 3);
+  EXPECT_EQ(t.findByName("trunk")->id, 71);
+  EXPECT_THROW(t.at(12345), std::out_of_range);
+}
+
+TEST(ClassTable, SizePlausibility) {
+  const ClassTable t = ClassTable::loadDefault();
+  Object o;
+  o.class_id = 10;
+  o.model = Cuboid{Pose::Identity(), {4.5, 1.8, 1.5}};
+  EXPECT_TRUE(t.sizePlausible(o));
+  o.model = Cuboid{Pose::Identity(), {12, 1.8, 1.5}};
+  EXPECT_FALSE(t.sizePlausible(o));
+  o.class_id = 999;
+  EXPECT_FALSE(t.sizePlausible(o));
+}
+
+TEST(ClassTable, GoodFileLoads) {
+  const ClassTable t = ClassTable::load(writeTemp("good.yaml", kGood));
+  EXPECT_EQ(t.ids(), std::vector<int>{10});
+}
+
+TEST(ClassTable, ErrorsNameFileKeyAndExpectation) {
+  expectError([] { ClassTable::load("/nonexistent/classes.yaml"); }, {"/nonexistent/classes.yaml", "cannot open"});
+  std::string missing = kGood;
+  missing.erase(missing.find("    model_difference"), std::string("    model_difference: 2.0\n").size());
+  expectError([&] { ClassTable::load(writeTemp("missing.yaml", missing)); },
+              {"missing.yaml", "classes[0].model_difference", "missing key"});
+  std::string wrong_type = kGood;
+  wrong_type.replace(wrong_type.find("3.0"), 3, "far");
+  expectError([&] { ClassTable::load(writeTemp("type.yaml", wrong_type)); },
+              {"classes[0].association_distance", "expected a number", "'far'", "line 5"});
+  std::string bad_shape = kGood;
+  bad_shape.replace(bad_shape.find("cuboid"), 6, "box");
+  expectError([&] { ClassTable::load(writeTemp("shape.yaml", bad_shape)); },
+              {"classes[0].shape", "cuboid, cylinder, ellipsoid", "'box'"});
+  std::string bad_value = kGood;
+  bad_value.replace(bad_value.find("3.0"), 3, "-1");
+  expectError([&] { ClassTable::load(writeTemp("value.yaml", bad_value)); },
+              {"association_distance", "must be positive"});
+  std::string short_list = kGood;
+  short_list.replace(short_list.find("[2.5, 1.3, 1.0]"), 15, "[2.5, 1.3]");
+  expectError([&] { ClassTable::load(writeTemp("list.yaml", short_list)); }, {"size_min", "expected 3 values, got 2"});
+  expectError([&] { ClassTable::load(writeTemp("dup.yaml", std::string(kGood) + std::string(kGood).substr(9))); },
+              {"classes[1]", "duplicate class id 10"});
+  expectError([&] { ClassTable::load(writeTemp("syntax.yaml", "classes: [1, 2\n")); }, {"syntax.yaml", "syntax error", "line"});
+}
+
+TEST(Config, OptionalAndNested) {
+  const ConfigNode c = ConfigNode::parse("a: 1\nb:\n  c: [1, 2]\n  d: yes\n", "inline");
+  EXPECT_EQ(c.get<int>("a"), 1);
+  EXPECT_EQ(c.get<double>("zz", 2.5), 2.5);
+  EXPECT_EQ(c.child("b").getList<int>("c"), (std::vector<int>{1, 2}));
+  EXPECT_TRUE(c.child("b").get<bool>("d"));
+  expectError([&] { c.child("b").get<int>("d"); }, {"inline: b.d: expected an integer"});
+  expectError([&] { c.child("a"); }, {"inline: a: expected a map or a list"});
+}
