@@ -51,7 +51,9 @@ class Parser {
   const PmdToken& expect(PmdToken::Type type, const std::string& what) {
     const PmdToken& t = next();
     if (t.type != type) {
-      const std::string found = t.type == PmdToken::kEof ? "end of file" : std::string(describe(t.type)) + " '" + t.text + "'";
+      const bool named = t.type == PmdToken::kIdent || t.type == PmdToken::kInteger;
+      const std::string found = t.type == PmdToken::kString ? "string \"" + t.text + "\""
+                                : named ? std::string(describe(t.type)) + " '" + t.text + "'" : describe(t.type);
       fail(t, "expected " + what + ", found " + found);
     }
     return t;

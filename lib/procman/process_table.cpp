@@ -18,7 +18,7 @@ Action ProcessTable::startAction(ManagedCommand& c) {
 }
 
 void ProcessTable::scheduleRespawn(ManagedCommand& c, int64_t now_us) {
-  c.respawn_at_us = now_us + c.backoff.delayMs() * 1000;
+  c.respawn_at_us = now_us + c.backoff.onExit(now_us) * 1000;
 }
 
 std::vector<Action> ProcessTable::applyOrders(const std::vector<DesiredCommand>& orders,

@@ -1,6 +1,6 @@
 #pragma once
-// Delay before an auto-respawn: doubles each time a command is started again soon after its
-// previous start (it keeps crashing), capped; falls back to the minimum once a run lasted.
+// Delay before an auto-respawn: doubles with each exit that follows its start quickly (the
+// command keeps crashing), capped; falls back to the minimum once a run lasted settled_ms.
 #include <cstdint>
 
 namespace slide::procman {
@@ -14,9 +14,9 @@ struct BackoffParams {
 class RespawnBackoff {
  public:
   explicit RespawnBackoff(BackoffParams p = {}) : p_(p), delay_ms_(p.min_ms) {}
-  // Records a start at now_us and updates the delay for the next respawn.
-  void onStart(int64_t now_us);
-  int64_t delayMs() const { return delay_ms_; }
+  void onStart(int64_t now_us) { last_start_us_ = now_us; }
+  // The delay before respawning a command that exited (or failed to start) at now_us.
+  int64_t onExit(int64_t now_us);
 
  private:
   BackoffParams p_;

@@ -1,8 +1,18 @@
 #include "procman/script_runner.h"
 
+#include <sys/wait.h>
+
 #include <algorithm>
 
 namespace slide::procman {
+namespace {
+
+std::string describeExit(int st) {
+  if (WIFSIGNALED(st)) return "signal " + std::to_string(WTERMSIG(st));
+  return "status " + std::to_string(WEXITSTATUS(st));
+}
+
+}  // namespace
 
 ScriptRunner::ScriptRunner(const PmdConfig& cfg, SheriffModel& model, const std::string& script,
                            double wait_timeout_s)
@@ -65,7 +75,7 @@ ScriptRunner::Result ScriptRunner::checkWait(const std::vector<std::size_t>& tar
     all = false;
     const SheriffCommand& c = model_.commands()[i];
     if (w == WaitStatus::kRunning && model_.exitedForGood(i))
-      bad.push_back(c.deputy + "/" + c.spec.id + " exited (status " + std::to_string(c.report.exit_code) + ")");
+      bad.push_back(c.deputy + "/" + c.spec.id + " exited (" + describeExit(c.report.exit_code) + ")");
   }
   if (all) return Result::kDone;
   if (bad.empty() && now_us < deadline_us_) return Result::kRunning;

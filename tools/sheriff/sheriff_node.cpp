@@ -37,9 +37,13 @@ void SheriffNode::onInfo(const lcm::ReceiveBuffer*, const std::string&, const pr
 
 void SheriffNode::onOutput(const lcm::ReceiveBuffer*, const std::string&, const procman_lcm::output_t* m) {
   for (int i = 0; i < m->num_commands; ++i) {
-    std::string text = m->text[i];
-    if (!text.empty() && text.back() == '\n') text.pop_back();
-    std::printf("[%s/%s] %s\n", m->deputy_id.c_str(), m->command_ids[i].c_str(), text.c_str());
+    const std::string& text = m->text[i];
+    for (std::size_t b = 0; b < text.size();) {
+      std::size_t e = text.find('\n', b);
+      if (e == std::string::npos) e = text.size();
+      std::printf("[%s/%s] %s\n", m->deputy_id.c_str(), m->command_ids[i].c_str(), text.substr(b, e - b).c_str());
+      b = e + 1;
+    }
   }
   std::fflush(stdout);
 }
