@@ -10,7 +10,8 @@
 namespace slide::procman {
 
 PmdError::PmdError(const std::string& file, SourcePos p, const std::string& what)
-    : std::runtime_error(file + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) + ": " + what),
+    : std::runtime_error(p.line > 0 ? file + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) + ": " + what
+                                     : file + ": " + what),
       pos(p) {}
 
 const PmdScript* PmdConfig::findScript(const std::string& name) const {
