@@ -1,6 +1,7 @@
 #include "sheriff_node.h"
 
 #include <sys/time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 
 #include "msg/procman_convert.h"
+#include "procman_lcm/discovery_t.hpp"
 #include "procman/status_table.h"
 
 namespace slide {
@@ -61,6 +63,12 @@ void SheriffNode::sendOrders(int64_t now) {
 }
 
 int SheriffNode::run() {
+  // Deputies answer PM_DISCOVER with PM_INFO at once, so the table fills without waiting.
+  procman_lcm::discovery_t hello;
+  hello.utime = nowUs();
+  hello.transmitter_id = opts_.id;
+  hello.nonce = getpid();
+  lcm_.publish("PM_DISCOVER", &hello);
   if (opts_.script.empty()) {
     spin(opts_.listen_s);
     std::fputs(procman::formatStatusTable(model_).c_str(), stdout);
