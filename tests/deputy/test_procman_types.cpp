@@ -9,6 +9,7 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <unistd.h>
 
 #include "procman_lcm/cmd_desired_t.hpp"
 #include "procman_lcm/cmd_status_t.hpp"
@@ -60,12 +61,18 @@ uint64_t fingerprint(const std::map<std::string, TypeHash>& types, const std::st
   return (h << 1) + ((h >> 63) & 1);
 }
 
+// A per-process scratch folder (tests of several build trees may run at once).
+fs::path scratch(const std::string& name) {
+  return fs::temp_directory_path() / ("slide_procman_" + name + "_" + std::to_string(getpid()));
+}
+
 const fs::path kFixtures = fs::path(SLIDE_SOURCE_DIR) / "tests/deputy/fixtures/procman_lcm";
 
 }  // namespace
 
 TEST(ProcmanTypes, FingerprintsMatchProcman) {
-  const auto ref = generate(kFixtures, fs::temp_directory_path() / "slide_procman_ref");
+  const auto ref = generate(kFixtures, scratch("ref"));
+  fs::remove_all(scratch("ref"));
   ASSERT_EQ(ref.size(), 7u);
   EXPECT_EQ(fingerprint(ref, "cmd_t"), uint64_t(procman_lcm::cmd_t::getHash()));
   EXPECT_EQ(fingerprint(ref, "cmd_desired_t"), uint64_t(procman_lcm::cmd_desired_t::getHash()));
@@ -78,7 +85,7 @@ TEST(ProcmanTypes, FingerprintsMatchProcman) {
 
 TEST(ProcmanTypes, ALayoutChangeChangesTheFingerprint) {
   // Guards the comparison above: one renamed field must show.
-  const fs::path dir = fs::temp_directory_path() / "slide_procman_changed";
+  const fs::path dir = scratch("changed");
   fs::remove_all(dir);
   fs::create_directories(dir);
   fs::copy(kFixtures, dir, fs::copy_options::overwrite_existing | fs::copy_options::recursive);
@@ -89,7 +96,9 @@ TEST(ProcmanTypes, ALayoutChangeChangesTheFingerprint) {
   std::string text = ss.str();
   text.replace(text.find("exec_str"), 8, "exec_cmd");
   std::ofstream(dir / "cmd_t.lcm") << text;
-  const auto changed = generate(dir, fs::temp_directory_path() / "slide_procman_changed_out");
+  const auto changed = generate(dir, scratch("changed_out"));
+  fs::remove_all(dir);
+  fs::remove_all(scratch("changed_out"));
   EXPECT_NE(fingerprint(changed, "cmd_t"), uint64_t(procman_lcm::cmd_t::getHash()));
   EXPECT_NE(fingerprint(changed, "orders_t"), uint64_t(procman_lcm::orders_t::getHash()));
 }
