@@ -17,6 +17,8 @@ options:
   --stop-script NAME   script run at the end (default stop; "" for none)
   --schedule SPEC      link events, ';'-separated or one per line in a file:
                          <seconds> cut <host> | restore <host> | loss <host> <percent> | clear <host>
+                         | crash <host> <text>  (SIGKILL the host's processes whose command line
+                           holds <text>; the deputy respawns those with auto_respawn)
                        seconds count from the end of the start script, e.g.
                          "2 cut 2; 6 restore 2; 8 loss 3 30; 12 clear 3"
   --duration SEC       total time after the start script (default: last event + 3, at least 3)
@@ -119,6 +121,7 @@ netlab_follow_schedule() {
       restore) log "t=${t}s: restore host $host"; nl_link "$host" up ;;
       loss) log "t=${t}s: ${arg}% loss on host $host"; nl_loss "$host" "${arg:?loss needs a percent}" ;;
       clear) log "t=${t}s: clear host $host"; nl_clear "$host" ;;
+      crash) log "t=${t}s: crash '$arg' on host $host"; nl_crash "$host" "${arg:?crash needs a text}" ;;
       *) die "netlab: unknown schedule action '$action' in '$ev'" ;;
     esac
   done

@@ -69,3 +69,15 @@ nl_teardown() {
   for ((i = 0; i <= n; i++)); do ip netns del "$(nl_ns "$i")" 2>/dev/null || true; done
   ip netns del "$NL_PREFIX-br" 2>/dev/null || true
 }
+
+# nl_crash I TEXT: SIGKILLs the processes of host I whose command line contains TEXT (never
+# the deputy itself), to show the deputy respawning them, links up or down.
+nl_crash() {
+  local i=$1 text=$2 pid cmdline hits=0
+  for pid in $(ip netns pids "$(nl_ns "$i")"); do
+    cmdline=$(tr '\0' ' ' <"/proc/$pid/cmdline" 2>/dev/null) || continue
+    [[ "$cmdline" == *"$text"* && "$cmdline" != *slide-deputy* ]] || continue
+    kill -KILL "$pid" 2>/dev/null && hits=$((hits + 1))
+  done
+  log "host $i: killed $hits process(es) matching '$text'"
+}
