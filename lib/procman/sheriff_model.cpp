@@ -40,10 +40,11 @@ void SheriffModel::onDeputyInfo(const std::string& deputy, const std::vector<Com
       if (!c.ordered) c.force_quit = true;
       continue;
     }
-    if (!c.ordered && !c.reported) {
+    if (!c.ordered && !c.adopted) {
       c.desired_runid = it->actual_runid;
       c.force_quit = it->pid == 0 && !c.spec.auto_respawn;
     }
+    c.adopted = true;
     c.reported = true;
     c.report = *it;
   }

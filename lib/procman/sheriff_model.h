@@ -20,6 +20,7 @@ struct SheriffCommand {
   bool force_quit = false;
   bool ordered = false;   // the sheriff has changed its desired state
   bool reported = false;  // a deputy report for it has arrived
+  bool adopted = false;   // its deputy has reported it (run id taken over unless ordered)
   CommandReport report;
 };
 

@@ -121,6 +121,8 @@ TEST(ScriptRunner, RejectsUnknownNamesAndRecursion) {
 TEST(SheriffModel, AdoptsRunningCommandsWithoutRestart) {
   const PmdConfig cfg = parsePmd(kConfig, "t.pmd");
   SheriffModel model(cfg.commands);
+  model.onDeputyInfo("d1", {});  // not there yet: it shows as stopped
+  EXPECT_EQ(model.state(0), CommandState::kStoppedOk);
   CommandReport a;
   a.spec = cfg.commands[0].spec;
   a.pid = 42;
