@@ -19,6 +19,7 @@ options:
                          <seconds> cut <host> | restore <host> | loss <host> <percent> | clear <host>
                          | crash <host> <text>  (SIGKILL the host's processes whose command line
                            holds <text>; the deputy respawns those with auto_respawn)
+                         | script <name>  (run another sheriff script of the config)
                        seconds count from the end of the start script, e.g.
                          "2 cut 2; 6 restore 2; 8 loss 3 30; 12 clear 3"
   --duration SEC       total time after the start script (default: last event + 3, at least 3)
@@ -51,7 +52,7 @@ main() {
   [[ -f "$schedule" ]] && schedule=$(grep -v '^\s*#' "$schedule" | tr '\n' ';')
   [[ -x "$SLIDE_BIN/slide-deputy" && -x "$SLIDE_BIN/slide-sheriff" ]] || ensure_built
 
-  NL_PREFIX="slnl$$" NL_HOSTS=$hosts NL_DEPUTIES=()
+  NL_PREFIX="slnl$$" NL_HOSTS=$hosts NL_DEPUTIES=() NL_WAIT_TIMEOUT=$wait_timeout
   NL_LOGDIR="$SLIDE_BUILD/netlab/$(date +%Y%m%d-%H%M%S)-$$"
   local logdir=$NL_LOGDIR
   mkdir -p "$logdir"
@@ -113,7 +114,7 @@ netlab_follow_schedule() {
   for ev in "${events[@]}"; do
     read -r t action host arg <<<"$ev"
     [[ -z "$t" ]] && continue
-    [[ "$host" =~ ^[0-9]+$ ]] || die "netlab: bad schedule event '$ev' (host number expected)"
+    [[ "$action" == script || "$host" =~ ^[0-9]+$ ]] || die "netlab: bad schedule event '$ev' (host number expected)"
     now=$(date +%s.%N)
     nl_sleep "$(awk -v s="$start" -v t="$t" -v n="$now" 'BEGIN{d=s+t-n; print (d>0)?d:0}')"
     case "$action" in
@@ -121,6 +122,9 @@ netlab_follow_schedule() {
       restore) log "t=${t}s: restore host $host"; nl_link "$host" up ;;
       loss) log "t=${t}s: ${arg}% loss on host $host"; nl_loss "$host" "${arg:?loss needs a percent}" ;;
       clear) log "t=${t}s: clear host $host"; nl_clear "$host" ;;
+      script) log "t=${t}s: sheriff script '$host'"
+              sheriff -s "$host" --wait-timeout "$NL_WAIT_TIMEOUT" 2>&1 | tee -a "$NL_LOGDIR/sheriff_events.log" ||
+                log "netlab: script '$host' failed" ;;
       crash) log "t=${t}s: crash '$arg' on host $host"; nl_crash "$host" "${arg:?crash needs a text}" ;;
       *) die "netlab: unknown schedule action '$action' in '$ev'" ;;
     esac
