@@ -1,0 +1,7 @@
+#include "place/place_result.h"
+
+namespace slide {
+
+const char* methodName(PlaceMethod m) { return m == PlaceMethod::SlideGraph ? "slidegraph" : "slidematch"; }
+
+}  // namespace slide

@@ -1,0 +1,114 @@
+#include "place/slidegraph.h"
+
+#include <algorithm>
+#include <chrono>
+#include <unordered_map>
+
+#include "place/alignment.h"
+#include "place/simplex_descriptor.h"
+
+namespace slide {
+
+namespace {
+std::vector<Triangle> triangulate(const std::vector<Landmark>& lms) {
+  std::vector<Eigen::Vector2d> xy;
+  xy.reserve(lms.size());
+  for (const Landmark& l : lms) xy.push_back(l.p.head<2>());
+  return delaunay2d(xy);
+}
+
+struct Vote {
+  std::uint32_t votes = 0;
+  double best = 1e300;  // smallest descriptor distance among its triangle pairs
+};
+
+// Vertex associations from descriptor matches, strongest first, at most max_associations.
+std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, const std::vector<SimplexDescriptor>& db,
+                                   const SlideGraphParams& params) {
+  std::vector<Eigen::Vector3d> keys;
+  keys.reserve(db.size());
+  for (const SimplexDescriptor& d : db) keys.push_back(d.distances);
+  const KdTree<3> tree(std::move(keys));
+  std::unordered_map<std::uint64_t, Vote> votes;
+  std::vector<std::pair<double, std::size_t>> hits;
+  for (const SimplexDescriptor& d : da) {
+    hits.clear();
+    for (std::size_t j : tree.radius(d.distances, params.descriptor_radius)) {
+      if (params.use_classes && db[j].classes != d.classes) continue;
+      hits.emplace_back((db[j].distances - d.distances).norm(), j);
+    }
+    if (hits.size() > params.neighbors_per_simplex) {
+      std::partial_sort(hits.begin(), hits.begin() + params.neighbors_per_simplex, hits.end());
+      hits.resize(params.neighbors_per_simplex);
+    }
+    for (const auto& [dist, j] : hits)
+      for (int k = 0; k < 3; ++k) {
+        Vote& v = votes[(static_cast<std::uint64_t>(d.vertices[k]) << 32) | db[j].vertices[k]];
+        ++v.votes;
+        v.best = std::min(v.best, dist);
+      }
+  }
+  std::vector<std::pair<std::uint64_t, Vote>> ranked(votes.begin(), votes.end());
+  std::sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) {
+    if (x.second.votes != y.second.votes) return x.second.votes > y.second.votes;
+    if (x.second.best != y.second.best) return x.second.best < y.second.best;
+    return x.first < y.first;
+  });
+  if (ranked.size() > params.max_associations) ranked.resize(params.max_associations);
+  std::vector<Association> out;
+  out.reserve(ranked.size());
+  for (const auto& [key, v] : ranked)
+    out.push_back({static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu)});
+  return out;
+}
+}  // namespace
+
+PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PlaceResult res;
+  auto finish = [&]() {
+    res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return res;
+  };
+  for (const auto& [lms, name] : {std::pair{&a, "map A"}, std::pair{&b, "map B"}}) {
+    res.reason = unusableReason(*lms, std::max<std::size_t>(3, params.min_landmarks), name);
+    if (!res.reason.empty()) return finish();
+  }
+  const std::vector<Triangle> ta = triangulate(a), tb = triangulate(b);
+  if (ta.empty() || tb.empty()) {
+    res.reason = std::string(ta.empty() ? "map A" : "map B") + " has no triangles (collinear or duplicate points)";
+    return finish();
+  }
+  const std::vector<Association> assoc = associate(describeTriangles(a, ta), describeTriangles(b, tb), params);
+  res.associations = assoc.size();
+  if (assoc.size() < 3) {
+    res.reason = "only " + std::to_string(assoc.size()) + " associations from simplex descriptors";
+    return finish();
+  }
+  std::vector<Eigen::Vector3d> pa, pb;
+  for (const Landmark& l : a) pa.push_back(l.p);
+  for (const Landmark& l : b) pb.push_back(l.p);
+  const ClipperResult cl = clipper(pa, pb, assoc, params.clipper);
+  res.clipper_edges = cl.edges;
+  res.clipper_peak_bytes = cl.peak_bytes;
+  res.score = static_cast<double>(cl.selected.size());
+  if (cl.selected.size() < 3) {
+    res.reason = "CLIPPER kept " + std::to_string(cl.selected.size()) + " consistent associations, fewer than 3";
+    return finish();
+  }
+  std::vector<Eigen::Vector3d> sa, sb;
+  for (std::size_t k : cl.selected) {
+    sa.push_back(pa[assoc[k].a]);
+    sb.push_back(pb[assoc[k].b]);
+  }
+  const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
+  if (!seed.ok) {
+    res.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
+    return finish();
+  }
+  const LandmarkIndex index_a(a);
+  refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, res);
+  return finish();
+}
+
+}  // namespace slide
