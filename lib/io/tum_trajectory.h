@@ -1,0 +1,18 @@
+#pragma once
+// TUM trajectory files: "timestamp tx ty tz qx qy qz qw" per line, '#' comments.
+#include <string>
+#include <vector>
+
+#include "geometry/pose.h"
+
+namespace slide {
+
+struct StampedPose {
+  double t = 0;
+  Pose pose = Pose::Identity();
+};
+
+std::vector<StampedPose> readTum(const std::string& path);
+void writeTum(const std::string& path, const std::vector<StampedPose>& trajectory);
+
+}  // namespace slide

@@ -1,0 +1,52 @@
+#include <gtest/gtest.h>
+
+#include "eval/ate.h"
+
+using namespace slide;
+
+namespace {
+std::vector<Pose> square() {
+  return {poseFromXyzYaw(0, 0, 0, 0), poseFromXyzYaw(10, 0, 0, 0), poseFromXyzYaw(10, 10, 1, 0),
+          poseFromXyzYaw(0, 10, 2, 0)};
+}
+}  // namespace
+
+TEST(Ate, ZeroForARigidlyMovedCopy) {
+  const Pose T = poseFromXyzRpy({5, -3, 2}, 0.1, -0.2, 1.0);
+  std::vector<Pose> est;
+  for (const Pose& p : square()) est.push_back(T * p);
+  for (Alignment a : {Alignment::Se3, Alignment::Sim3}) {
+    const AteResult r = absoluteTrajectoryError(est, square(), a);
+    EXPECT_NEAR(r.rmse, 0, 1e-9);
+    EXPECT_TRUE(r.alignment.T.isApprox(T.inverse(), 1e-9));
+  }
+  // Yaw-only alignment recovers a yaw + translation exactly...
+  std::vector<Pose> est4;
+  for (const Pose& p : square()) est4.push_back(poseFromXyzYaw(5, -3, 2, 1.0) * p);
+  EXPECT_NEAR(absoluteTrajectoryError(est4, square(), Alignment::Yaw4Dof).rmse, 0, 1e-9);
+  // ...and no alignment leaves the full offset.
+  EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::None).rmse, 1.0);
+}
+
+TEST(Ate, HandComputedErrors) {
+  // Without alignment: errors 0, 3, 4, 0 -> rmse sqrt((9+16)/4) = 2.5.
+  std::vector<Pose> est = square();
+  est[1].translation().y() += 3;
+  est[2].translation().x() += 4;
+  const AteResult r = absoluteTrajectoryError(est, square(), Alignment::None);
+  EXPECT_NEAR(r.rmse, 2.5, 1e-12);
+  EXPECT_NEAR(r.max, 4, 1e-12);
+  EXPECT_NEAR(r.mean, 1.75, 1e-12);
+}
+
+TEST(Ate, Sim3RecoversScale) {
+  std::vector<Pose> est;
+  for (Pose p : square()) {
+    p.translation() *= 0.5;
+    est.push_back(p);
+  }
+  const AteResult r = absoluteTrajectoryError(est, square(), Alignment::Sim3);
+  EXPECT_NEAR(r.alignment.scale, 2.0, 1e-9);
+  EXPECT_NEAR(r.rmse, 0, 1e-9);
+  EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::Se3).rmse, 1.0);
+}
