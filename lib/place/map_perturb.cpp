@@ -16,7 +16,6 @@ std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& 
     l.p = T_b_a * a[i].p + p.position_sigma * Eigen::Vector3d(n(rng), n(rng), n(rng));
     if (p.size_sigma > 0 && !l.size.isZero())
       for (int k = 0; k < 3; ++k) l.size[k] = std::max(0.01, l.size[k] + p.size_sigma * n(rng));
-    l.index = i;
     out.push_back(l);
   }
   return out;

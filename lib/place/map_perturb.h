@@ -13,8 +13,8 @@ struct PerturbParams {
   double drop_fraction = 0.0;    // chance of leaving each landmark out
 };
 
-// Landmarks of `a` expressed in frame B (T_a_b maps B into A), perturbed. `index` of each
-// output landmark keeps the index into `a` of the landmark it copies.
+// Landmarks of `a` expressed in frame B (T_a_b maps B into A), perturbed. Each output landmark
+// keeps the `index` of the landmark it copies (ground truth for checking matches).
 std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& T_a_b, const PerturbParams& p,
                                     std::mt19937& rng);
 
