@@ -1,5 +1,6 @@
 #include "place/landmark_index.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slide {
@@ -13,6 +14,16 @@ LandmarkIndex::LandmarkIndex(const std::vector<Landmark>& lms) {
       members[key].push_back(i);
     }
   for (auto& [key, p] : pts) trees_[key] = Tree{KdTree<3>(std::move(p)), std::move(members[key])};
+  std::vector<double> nn;
+  if (const auto it = trees_.find(kAnyClass); it != trees_.end())
+    for (const Landmark& l : lms) {
+      const auto k = it->second.tree.nearest(l.p, 2);
+      if (k.size() == 2) nn.push_back(std::sqrt(k[1].second));
+    }
+  if (!nn.empty()) {
+    std::nth_element(nn.begin(), nn.begin() + nn.size() / 2, nn.end());
+    median_spacing_ = nn[nn.size() / 2];
+  }
 }
 
 std::vector<std::size_t> LandmarkIndex::radius(const Eigen::Vector3d& p, double r, int class_id) const {

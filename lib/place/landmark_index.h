@@ -19,6 +19,8 @@ class LandmarkIndex {
   std::pair<std::size_t, double> nearest(const Eigen::Vector3d& p, int class_id) const;
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   std::size_t count(int class_id) const;
+  // Median distance from a landmark to its nearest other landmark (any class); 0 below two.
+  double medianSpacing() const { return median_spacing_; }
 
  private:
   struct Tree {
@@ -26,6 +28,7 @@ class LandmarkIndex {
     std::vector<std::size_t> members;
   };
   std::map<int, Tree> trees_;
+  double median_spacing_ = 0;
 };
 
 }  // namespace slide

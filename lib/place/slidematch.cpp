@@ -149,33 +149,47 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     if (tops.size() >= params.refine_candidates) break;
   }
   const ClassGrid grid(a, params.verify.match_radius);
-  Candidate best;
+  std::vector<Candidate> refined;
   for (const Candidate& t : tops) {
     Candidate c = refineAround(grid, b, t, yaw_step / 2, bin / 2, 2, params.verify);
-    c = refineAround(grid, b, c, yaw_step / 8, bin / 8, 2, params.verify);
-    if (c.score > best.score) best = c;
+    refined.push_back(refineAround(grid, b, c, yaw_step / 8, bin / 8, 2, params.verify));
   }
-  res.score = best.score;
-  if (best.score <= 0) {
+  std::stable_sort(refined.begin(), refined.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+  if (refined.empty() || refined.front().score <= 0) {
     res.reason = "no class-consistent match at any searched transform";
     return finish();
   }
-  // Back to the maps' own frames; z from the matched pairs (median height offset).
-  const Eigen::Matrix3d R = rotZ(best.yaw);
-  std::vector<double> dz;
-  for (const Landmark& l : b) {
-    const Eigen::Vector3d q = R * l.p + Eigen::Vector3d(best.tx, best.ty, 0);
-    const long i = grid.nearestWithin(l.class_id, q.x(), q.y(), params.verify.match_radius, l.size,
-                                      params.verify.size_tolerance);
-    if (i >= 0) dz.push_back(a[i].p.z() - q.z());
-  }
-  std::nth_element(dz.begin(), dz.begin() + dz.size() / 2, dz.end());
-  Pose T = Pose::Identity();
-  T.linear() = R;
-  T.translation() = ca + Eigen::Vector3d(best.tx, best.ty, dz[dz.size() / 2]) - R * cb;
+  // Verify the refined candidates best first; the first accepted wins (in aliased scenes the
+  // highest grid score can belong to a wrong alignment that the acceptance test rejects).
   const LandmarkIndex index_a(a_in);
-  refineAndDecide(a_in, index_a, b_in, T, params.verify, res);
-  if (!res.found && res.budget_exhausted)
+  PlaceResult first;
+  for (std::size_t k = 0; k < refined.size(); ++k) {
+    const Candidate& best = refined[k];
+    // Back to the maps' own frames; z from the matched pairs (median height offset).
+    const Eigen::Matrix3d R = rotZ(best.yaw);
+    std::vector<double> dz;
+    for (const Landmark& l : b) {
+      const Eigen::Vector3d q = R * l.p + Eigen::Vector3d(best.tx, best.ty, 0);
+      const long i = grid.nearestWithin(l.class_id, q.x(), q.y(), params.verify.match_radius, l.size,
+                                        params.verify.size_tolerance);
+      if (i >= 0) dz.push_back(a[i].p.z() - q.z());
+    }
+    if (dz.empty()) continue;
+    std::nth_element(dz.begin(), dz.begin() + dz.size() / 2, dz.end());
+    Pose T = Pose::Identity();
+    T.linear() = R;
+    T.translation() = ca + Eigen::Vector3d(best.tx, best.ty, dz[dz.size() / 2]) - R * cb;
+    PlaceResult trial = res;
+    trial.score = best.score;
+    refineAndDecide(a_in, index_a, b_in, T, params.verify, trial);
+    if (trial.found) {
+      res = std::move(trial);
+      return finish();
+    }
+    if (k == 0) first = std::move(trial);
+  }
+  res = std::move(first);
+  if (res.budget_exhausted)
     res.reason += " (time budget ran out after " + std::to_string(visited) + " of " + std::to_string(n_yaw) + " yaws)";
   return finish();
 }

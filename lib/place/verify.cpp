@@ -34,34 +34,11 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
   return out;
 }
 
-namespace {
-// Coverage radius: three times A's median nearest-neighbour spacing, at least 4 match radii.
-double coverageRadius(const std::vector<Landmark>& a, const LandmarkIndex& index_a, double match_radius) {
-  std::vector<double> nn;
-  nn.reserve(a.size());
-  // k-d tree query of the 2 nearest (the first is the point itself).
-  KdTree<3> tree([&] {
-    std::vector<Eigen::Vector3d> p;
-    for (const Landmark& l : a) p.push_back(l.p);
-    return p;
-  }());
-  for (const Landmark& l : a) {
-    const auto k = tree.nearest(l.p, 2);
-    if (k.size() == 2) nn.push_back(std::sqrt(k[1].second));
-  }
-  double med = 0;
-  if (!nn.empty()) {
-    std::nth_element(nn.begin(), nn.begin() + nn.size() / 2, nn.end());
-    med = nn[nn.size() / 2];
-  }
-  return std::max(3.0 * med, 4.0 * match_radius);
-}
-}  // namespace
-
 Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
                   const Pose& T_a_b, double match_radius) {
   Overlap o;
-  const double R = coverageRadius(a, index_a, match_radius);
+  // Coverage radius: three times A's median landmark spacing, at least four match radii.
+  const double R = std::max(3.0 * index_a.medianSpacing(), 4.0 * match_radius);
   const double ratio = (match_radius * match_radius) / (R * R);
   for (const Landmark& l : b) {
     const Eigen::Vector3d q = T_a_b * l.p;

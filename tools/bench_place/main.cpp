@@ -7,12 +7,19 @@
 #include "app/app.h"
 #include "bench/report.h"
 #include "bench/stats.h"
+#include "mapio/object_map_text.h"
 #include "scenarios.h"
 
 using namespace slide;
 using namespace slide::bench;
 
 namespace {
+void writeLandmarks(const std::string& path, const std::vector<Landmark>& lms, const ClassTable& classes) {
+  ObjectMap map;
+  for (const Landmark& l : lms) map.add(objectFromCentre(l.class_id, l.p, l.size, classes));
+  writeObjectMapText(path, map, classes);
+}
+
 struct Paper {
   std::optional<double> graph_ms, match_ms, trans, yaw;
   std::optional<double> target_graph_ms, target_match_ms, target_trans, target_yaw;
@@ -67,12 +74,14 @@ int main(int argc, char** argv) {
   int repeats = 3;
   unsigned seed = 1;
   std::vector<std::string> only;
+  std::string dump;
   app.add_option("--json", json, "Write the results as JSON to this file");
   app.add_option("--data", data, "Folder of the shared data sets")->capture_default_str();
   app.add_option("--config", config_path, "Place-recognition parameters (default: config/place.yaml)");
   app.add_option("--repeats", repeats, "Timed runs per pair")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "Seed of the procedural worlds and noise")->capture_default_str();
   app.add_option("--only", only, "Scenarios to run (default all): indoor urban forest kitti05 kitti07 parking_real indoor_real");
+  app.add_option("--dump", dump, "Write every pair's maps as DIR/<scenario>_<k>_{a,b}.txt (for ./slide match)");
   return runApp(app, common, argc, argv, [&]() {
     const PlaceConfig config = config_path.empty() ? loadDefaultPlaceConfig() : loadPlaceConfig(config_path);
     const std::set<std::string> want(only.begin(), only.end());
@@ -86,6 +95,18 @@ int main(int argc, char** argv) {
     if (wanted("parking_real")) scenarios.push_back(realScenario(data, "parking", seed));
     if (wanted("indoor_real")) scenarios.push_back(realScenario(data, "indoor", seed));
 
+    if (!dump.empty()) {
+      const ClassTable classes = ClassTable::loadDefault();
+      for (const Scenario& s : scenarios)
+        for (std::size_t k = 0; k < s.pairs.size(); ++k) {
+          const std::string stem = dump + "/" + s.name + "_" + std::to_string(k);
+          writeLandmarks(stem + "_a.txt", s.pairs[k].a.lms, classes);
+          writeLandmarks(stem + "_b.txt", s.pairs[k].b.lms, classes);
+          const Eigen::Vector4d t = xyzYawOf(truthBetween(s.pairs[k].a, s.pairs[k].b));
+          spdlog::info("{}: truth x {:.3f} y {:.3f} z {:.3f} yaw {:.3f} deg{}", stem, t[0], t[1], t[2], t[3] * 180 / M_PI,
+                       s.pairs[k].overlapping ? "" : " (disjoint: no transform expected)");
+        }
+    }
     BenchReport rep("place");
     for (const Scenario& s : scenarios) {
       std::size_t na = 0, nb = 0, shared = 0;
