@@ -17,7 +17,7 @@ struct ClipperParams {
   std::uint32_t seed = 7;
   int max_outer = 40;        // penalty increases
   int max_inner = 200;       // gradient steps per penalty value
-  double tol_f = 1e-9;       // relative change of the objective that ends the inner loop
+  double tol_f = 1e-6;       // relative change of the objective that ends the inner loop
   double support_eps = 1e-3; // entries below this fraction of max(u) are outside the support
 };
 

@@ -45,6 +45,9 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     read(n, "sigma", c.slidegraph.clipper.consistency.sigma);
     read(n, "epsilon", c.slidegraph.clipper.consistency.epsilon);
     read(n, "seed", c.slidegraph.clipper.seed);
+    read(n, "max_outer", c.slidegraph.clipper.max_outer);
+    read(n, "max_inner", c.slidegraph.clipper.max_inner);
+    read(n, "tol_f", c.slidegraph.clipper.tol_f);
     positive(n, "sigma", c.slidegraph.clipper.consistency.sigma);
     positive(n, "epsilon", c.slidegraph.clipper.consistency.epsilon);
   }
@@ -54,6 +57,8 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     read(n, "neighbors_per_simplex", c.slidegraph.neighbors_per_simplex);
     read(n, "max_associations", c.slidegraph.max_associations);
     read(n, "use_classes", c.slidegraph.use_classes);
+    read(n, "min_votes", c.slidegraph.min_votes);
+    read(n, "min_voted", c.slidegraph.min_voted);
     read(n, "min_landmarks", c.slidegraph.min_landmarks);
     positive(n, "descriptor_radius", c.slidegraph.descriptor_radius);
   }

@@ -55,6 +55,8 @@ std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, con
     return x.first < y.first;
   });
   if (ranked.size() > params.max_associations) ranked.resize(params.max_associations);
+  const auto weak = std::find_if(ranked.begin(), ranked.end(), [&](const auto& r) { return r.second.votes < params.min_votes; });
+  if (static_cast<std::size_t>(weak - ranked.begin()) >= params.min_voted) ranked.erase(weak, ranked.end());
   std::vector<Association> out;
   out.reserve(ranked.size());
   for (const auto& [key, v] : ranked)
@@ -65,9 +67,17 @@ std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, con
 
 PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = threadCpuMs();
+  double cpu_mark = cpu0;
   PlaceResult res;
+  auto stage = [&](const char* name) {
+    const double now = threadCpuMs();
+    res.stage_cpu_ms.emplace_back(name, now - cpu_mark);
+    cpu_mark = now;
+  };
   auto finish = [&]() {
     res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    res.cpu_ms = threadCpuMs() - cpu0;
     return res;
   };
   for (const auto& [lms, name] : {std::pair{&a, "map A"}, std::pair{&b, "map B"}}) {
@@ -75,12 +85,14 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
     if (!res.reason.empty()) return finish();
   }
   const std::vector<Triangle> ta = triangulate(a), tb = triangulate(b);
+  stage("triangulate");
   if (ta.empty() || tb.empty()) {
     res.reason = std::string(ta.empty() ? "map A" : "map B") + " has no triangles (collinear or duplicate points)";
     return finish();
   }
   const std::vector<Association> assoc = associate(describeTriangles(a, ta), describeTriangles(b, tb), params);
   res.associations = assoc.size();
+  stage("associate");
   if (assoc.size() < 3) {
     res.reason = "only " + std::to_string(assoc.size()) + " associations from simplex descriptors";
     return finish();
@@ -88,7 +100,10 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   std::vector<Eigen::Vector3d> pa, pb;
   for (const Landmark& l : a) pa.push_back(l.p);
   for (const Landmark& l : b) pb.push_back(l.p);
-  const ClipperResult cl = clipper(pa, pb, assoc, params.clipper);
+  const ConsistencyGraph graph(pa, pb, assoc, params.clipper.consistency);
+  stage("consistency_graph");
+  const ClipperResult cl = solveClipper(graph, params.clipper);
+  stage("clipper");
   res.clipper_edges = cl.edges;
   res.clipper_peak_bytes = cl.peak_bytes;
   res.score = static_cast<double>(cl.selected.size());
@@ -108,6 +123,7 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   }
   const LandmarkIndex index_a(a);
   refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, res);
+  stage("verify");
   return finish();
 }
 

@@ -10,8 +10,10 @@ namespace slide {
 
 struct SlideGraphParams {
   double descriptor_radius = 0.4;         // metres in descriptor space
-  std::size_t neighbors_per_simplex = 6;  // candidate B triangles kept per A triangle
+  std::size_t neighbors_per_simplex = 3;  // candidate B triangles kept per A triangle
   std::size_t max_associations = 2500;    // strongest (most voted) associations given to CLIPPER
+  std::uint32_t min_votes = 2;            // associations seen in fewer triangle pairs are dropped...
+  std::size_t min_voted = 40;             // ...unless fewer than this many would remain
   bool use_classes = true;                // vertex classes must agree
   std::size_t min_landmarks = 4;          // per map
   ClipperParams clipper;

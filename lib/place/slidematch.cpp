@@ -57,9 +57,11 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
                        const SlideMatchParams& params) {
   const auto t0 = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
+  const double cpu0 = threadCpuMs();
   PlaceResult res;
   auto finish = [&]() {
     res.ms = elapsed();
+    res.cpu_ms = threadCpuMs() - cpu0;
     return res;
   };
   for (const auto& [lms, name] : {std::pair{&a_in, "map A"}, std::pair{&b_in, "map B"}}) {
@@ -138,6 +140,7 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     }
   }
 
+  res.stage_cpu_ms.emplace_back("coarse_voting", threadCpuMs() - cpu0);
   // Fine stage on the strongest distinct peaks.
   std::sort(peaks.begin(), peaks.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
   std::vector<Candidate> tops;

@@ -52,11 +52,13 @@ void report(BenchReport& rep, const Scenario& s, PlaceMethod m, const MethodFigu
   t.note = of + (p.err_note.empty() ? "" : "; " + p.err_note);
   auto& y = rep.add(prefix + "yaw_err_deg", f.yaw_err.empty() ? nan : median(f.yaw_err), "deg", true, p.target_yaw, p.yaw);
   y.note = t.note;
-  auto& ms = rep.add(prefix + "ms", median(f.ms), "ms", true, graph ? p.target_graph_ms : p.target_match_ms,
+  auto& ms = rep.add(prefix + "ms", median(f.cpu_ms), "ms", true, graph ? p.target_graph_ms : p.target_match_ms,
                      graph ? p.graph_ms : p.match_ms);
-  ms.note = "median of " + std::to_string(f.ms.size()) + " runs (" + std::to_string(repeats) + " per pair)" +
+  ms.note = "thread CPU time, median of " + std::to_string(f.ms.size()) + " runs (" + std::to_string(repeats) + " per pair)" +
             ((graph ? p.graph_ms_note : p.match_ms_note).empty() ? "" : "; " + (graph ? p.graph_ms_note : p.match_ms_note));
-  rep.add(prefix + "ms.p90", quantile(f.ms, 0.9), "ms").note = "90th percentile";
+  rep.add(prefix + "ms.p90", quantile(f.cpu_ms, 0.9), "ms").note = "thread CPU time, 90th percentile";
+  rep.add(prefix + "wall_ms", median(f.ms), "ms").note = "wall time, median (inflated when the machine is loaded)";
+  for (const auto& [stage, v] : f.stage_cpu_ms) rep.add(prefix + "stage_ms." + stage, median(v), "ms").note = "thread CPU time, median";
   rep.add(prefix + "recall", f.overlapping ? double(f.correct) / f.overlapping : nan, "", false, 1.0).note =
       "correct transforms / overlapping pairs (" + std::to_string(f.missed) + " missed, " + std::to_string(f.wrong) + " wrong)";
   rep.add(prefix + "wrong", f.wrong + f.false_positives, "", true, 0.0).note =

@@ -114,6 +114,8 @@ MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConf
     for (int r = 0; r < repeats; ++r) {
       PlaceResult res = recognizePlace(method, c.a.lms, c.b.lms, config);
       f.ms.push_back(res.ms);
+      f.cpu_ms.push_back(res.cpu_ms);
+      for (const auto& [name, ms] : res.stage_cpu_ms) f.stage_cpu_ms[name].push_back(ms);
       if (r == 0) first = std::move(res);
     }
     f.peak_bytes = std::max(f.peak_bytes, first.clipper_peak_bytes);

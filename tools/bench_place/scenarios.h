@@ -1,6 +1,8 @@
 #pragma once
 // The place benchmark's scenarios as lists of map pairs with ground truth, and the figures
 // of running a method over them.
+#include <map>
+
 #include "place/place_config.h"
 #include "worlds.h"
 
@@ -25,7 +27,8 @@ Scenario kittiScenario(const std::string& data_dir, const std::string& seq, unsi
 Scenario realScenario(const std::string& data_dir, const std::string& set, unsigned seed);
 
 struct MethodFigures {
-  std::vector<double> trans_err, yaw_err, ms;  // errors of correct results; times of every run
+  std::vector<double> trans_err, yaw_err, ms, cpu_ms;  // errors of correct results; times of every run
+  std::map<std::string, std::vector<double>> stage_cpu_ms;
   int overlapping = 0, correct = 0, wrong = 0, missed = 0, disjoint = 0, false_positives = 0;
   std::size_t peak_bytes = 0, max_associations = 0;
 };
