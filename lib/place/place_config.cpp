@@ -58,6 +58,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     read(n, "max_associations", c.slidegraph.max_associations);
     read(n, "use_classes", c.slidegraph.use_classes);
     read(n, "min_votes", c.slidegraph.min_votes);
+    read(n, "hypotheses", c.slidegraph.hypotheses);
     read(n, "min_voted", c.slidegraph.min_voted);
     read(n, "min_landmarks", c.slidegraph.min_landmarks);
     positive(n, "descriptor_radius", c.slidegraph.descriptor_radius);

@@ -100,30 +100,55 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   std::vector<Eigen::Vector3d> pa, pb;
   for (const Landmark& l : a) pa.push_back(l.p);
   for (const Landmark& l : b) pb.push_back(l.p);
-  const ConsistencyGraph graph(pa, pb, assoc, params.clipper.consistency);
-  stage("consistency_graph");
-  const ClipperResult cl = solveClipper(graph, params.clipper);
-  stage("clipper");
-  res.clipper_edges = cl.edges;
-  res.clipper_peak_bytes = cl.peak_bytes;
-  res.score = static_cast<double>(cl.selected.size());
-  if (cl.selected.size() < 3) {
-    res.reason = "CLIPPER kept " + std::to_string(cl.selected.size()) + " consistent associations, fewer than 3";
-    return finish();
-  }
-  std::vector<Eigen::Vector3d> sa, sb;
-  for (std::size_t k : cl.selected) {
-    sa.push_back(pa[assoc[k].a]);
-    sb.push_back(pb[assoc[k].b]);
-  }
-  const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
-  if (!seed.ok) {
-    res.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
-    return finish();
-  }
   const LandmarkIndex index_a(a);
-  refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, res);
-  stage("verify");
+  // Hypotheses: CLIPPER's densest consistent set, verified; when rejected, CLIPPER again
+  // without those associations (aliased scenes can hold several consistent sets).
+  std::vector<Association> remaining = assoc;
+  PlaceResult first;
+  for (int h = 0; h < std::max(1, params.hypotheses) && remaining.size() >= 3; ++h) {
+    const ConsistencyGraph graph(pa, pb, remaining, params.clipper.consistency);
+    stage("consistency_graph");
+    const ClipperResult cl = solveClipper(graph, params.clipper);
+    stage("clipper");
+    PlaceResult trial = res;
+    trial.clipper_edges = std::max(res.clipper_edges, cl.edges);
+    trial.clipper_peak_bytes = std::max(res.clipper_peak_bytes, cl.peak_bytes);
+    trial.score = static_cast<double>(cl.selected.size());
+    res.clipper_edges = trial.clipper_edges;
+    res.clipper_peak_bytes = trial.clipper_peak_bytes;
+    if (cl.selected.size() < 3) {
+      trial.reason = "CLIPPER kept " + std::to_string(cl.selected.size()) + " consistent associations, fewer than 3";
+      if (h == 0) first = trial;
+      break;
+    }
+    std::vector<Eigen::Vector3d> sa, sb;
+    for (std::size_t k : cl.selected) {
+      sa.push_back(pa[remaining[k].a]);
+      sb.push_back(pb[remaining[k].b]);
+    }
+    const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
+    if (seed.ok) {
+      refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, trial);
+    } else {
+      trial.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
+    }
+    stage("verify");
+    if (trial.found) {
+      res = std::move(trial);
+      return finish();
+    }
+    if (h == 0) first = trial;
+    std::vector<char> drop(remaining.size(), 0);
+    for (std::size_t k : cl.selected) drop[k] = 1;
+    std::vector<Association> next;
+    for (std::size_t k = 0; k < remaining.size(); ++k)
+      if (!drop[k]) next.push_back(remaining[k]);
+    remaining.swap(next);
+  }
+  first.stage_cpu_ms = res.stage_cpu_ms;
+  first.clipper_edges = res.clipper_edges;
+  first.clipper_peak_bytes = res.clipper_peak_bytes;
+  res = std::move(first);
   return finish();
 }
 

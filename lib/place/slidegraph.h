@@ -16,6 +16,7 @@ struct SlideGraphParams {
   std::size_t min_voted = 40;             // ...unless fewer than this many would remain
   bool use_classes = true;                // vertex classes must agree
   std::size_t min_landmarks = 4;          // per map
+  int hypotheses = 3;                     // CLIPPER sets tried (each without the previous ones)
   ClipperParams clipper;
   VerifyParams verify;
 };

@@ -149,12 +149,14 @@ Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod
   const int links[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   Cycle c;
   for (int k = 0; k < 3; ++k) {
+    // Either direction will do (the acceptance test is not symmetric): T_b_a inverted.
     const PlaceResult r = recognizePlace(method, maps[links[k][0]], maps[links[k][1]], config);
-    if (!r.found) {
+    const PlaceResult back = r.found ? r : recognizePlace(method, maps[links[k][1]], maps[links[k][0]], config);
+    if (!r.found && !back.found) {
       c.why = "robot" + std::to_string(links[k][0]) + "-robot" + std::to_string(links[k][1]) + ": " + r.reason;
       return c;
     }
-    T[k] = r.T_a_b;
+    T[k] = r.found ? r.T_a_b : back.T_a_b.inverse();
   }
   const Pose loop = T[0] * T[1] * T[2];
   c.ok = true;
