@@ -2,7 +2,12 @@
 
 #include <random>
 
+#include <fstream>
+
+#include "config/config.h"
+#include "mapio/object_map_text.h"
 #include "place/map_perturb.h"
+#include "place/place_config.h"
 #include "place/slidegraph.h"
 #include "place/slidematch.h"
 
@@ -106,4 +111,41 @@ TEST(SlideMatch, AnytimeBudgetStillReturnsADecision) {
   EXPECT_TRUE(r.budget_exhausted);
   EXPECT_FALSE(r.found);  // the true yaw is 2.2 rad away from the only yaw searched
   EXPECT_NE(r.reason.find("budget"), std::string::npos) << r.reason;
+}
+
+TEST(PlaceRecognition, RealParkingMapAgainstAMovedCopy) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const std::vector<Landmark> a =
+      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt", classes).map);
+  const Pose truth = poseFromXyzYaw(-31.0, 12.5, 1.0, -1.9);
+  std::mt19937 rng(21);
+  const std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.15}, rng);
+  const PlaceConfig config = loadDefaultPlaceConfig();
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    const PlaceResult r = recognizePlace(m, a, b, config);
+    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+    const TransformError e = transformError(r.T_a_b, truth);
+    EXPECT_LT(e.trans_m, 0.1) << methodName(m);
+    EXPECT_LT(e.yaw_deg, 0.2) << methodName(m);
+    for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
+  }
+}
+
+TEST(PlaceConfig, LoadsTheShippedFileAndNamesBadKeys) {
+  const PlaceConfig c = loadDefaultPlaceConfig();
+  EXPECT_EQ(c.slidegraph.neighbors_per_simplex, 3u);
+  EXPECT_DOUBLE_EQ(c.slidematch.verify.match_radius, c.slidegraph.verify.match_radius);
+  const std::string path = ::testing::TempDir() + "bad_place.yaml";
+  {
+    std::ofstream f(path);
+    f << "clipper:\n  sigma: -1\n";
+  }
+  try {
+    loadPlaceConfig(path);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad_place.yaml"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parsePlaceMethod("icp"), std::invalid_argument);
 }
