@@ -15,6 +15,11 @@ ClassGrid::ClassGrid(const std::vector<Landmark>& lms, double cell) : lms_(lms),
     x1 = std::max(x1, l.p.x());
     y1 = std::max(y1, l.p.y());
   }
+  // Cells grow when the extent would need more than kMaxCells (stray far objects): queries
+  // stay exact, only slower, and memory stays bounded.
+  constexpr double kMaxCells = 4e6;
+  cell_ = std::max(cell_, std::sqrt((x1 - x0_) * (y1 - y0_) / kMaxCells) * 1.01);
+  cell_ = std::max({cell_, (x1 - x0_) / kMaxCells, (y1 - y0_) / kMaxCells});
   nx_ = static_cast<long>((x1 - x0_) / cell_) + 1;
   ny_ = static_cast<long>((y1 - y0_) / cell_) + 1;
   std::map<int, std::vector<std::pair<long, std::uint32_t>>> cells;

@@ -67,6 +67,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     const ConfigNode n = root.child("slidematch");
     read(n, "budget_ms", c.slidematch.budget_ms);
     read(n, "coarse_bin", c.slidematch.coarse_bin);
+    read(n, "max_coarse_bins", c.slidematch.max_coarse_bins);
     read(n, "min_yaw_step_deg", c.slidematch.min_yaw_step_deg);
     read(n, "max_yaw_step_deg", c.slidematch.max_yaw_step_deg);
     read(n, "refine_candidates", c.slidematch.refine_candidates);

@@ -83,7 +83,9 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
   for (const Landmark& l : b) rb.push_back(l.p.head<2>().norm());
   std::sort(rb.begin(), rb.end());
   const double rb_max = rb.back(), rb_90 = rb[(rb.size() * 9) / 10];
-  const double bin = params.coarse_bin;
+  // The coarse bin grows when the region would need more than max_coarse_bins bins (huge maps).
+  const double region = (ax1 - ax0 + 2 * rb_max) * (ay1 - ay0 + 2 * rb_max);
+  const double bin = std::max(params.coarse_bin, std::sqrt(region / static_cast<double>(params.max_coarse_bins)) + 1e-9);
   const double tx0 = ax0 - rb_max - bin, ty0 = ay0 - rb_max - bin;
   const long nx = static_cast<long>((ax1 - ax0 + 2 * rb_max + 2 * bin) / bin) + 1;
   const long ny = static_cast<long>((ay1 - ay0 + 2 * rb_max + 2 * bin) / bin) + 1;

@@ -15,6 +15,7 @@ namespace slide {
 struct SlideMatchParams {
   double budget_ms = 5000;        // wall-time budget of the coarse search
   double coarse_bin = 1.2;        // metres, translation bin of the voting stage
+  std::size_t max_coarse_bins = 4'000'000;  // bins of the voting grid; larger regions get coarser bins
   double min_yaw_step_deg = 0.5;  // bounds of the automatic yaw step
   double max_yaw_step_deg = 5.0;
   std::size_t refine_candidates = 6;  // coarse peaks rescored on the fine grid

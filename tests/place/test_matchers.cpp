@@ -149,3 +149,15 @@ TEST(PlaceConfig, LoadsTheShippedFileAndNamesBadKeys) {
   }
   EXPECT_THROW(parsePlaceMethod("icp"), std::invalid_argument);
 }
+
+TEST(SlideMatch, AHugeExtentCoarsensTheGridInsteadOfExhaustingMemory) {
+  Case c = movedCopy(4);
+  Landmark far = c.a.front();
+  far.p = {2e6, -3e6, 0};  // one stray object thousands of kilometres away
+  c.a.push_back(far);
+  const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
+  EXPECT_TRUE(r.found || !r.reason.empty());
+  if (r.found) {
+    EXPECT_LT(transformError(r.T_a_b, c.truth).trans_m, 1.0);  // never a wrong transform
+  }
+}
