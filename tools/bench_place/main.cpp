@@ -130,8 +130,22 @@ int main(int argc, char** argv) {
               std::to_string(f.max_associations) + ")";
         }
       }
-      if (s.name == "forest") rep.add("forest.false_positives", fp, "", true, 0.0).note =
-          "both methods: transforms on disjoint pairs plus wrong ones on overlapping pairs";
+      if (s.name == "forest") {
+        rep.add("forest.false_positives", fp, "", true, 0.0).note =
+            "both methods: transforms on disjoint pairs plus wrong ones on overlapping pairs";
+        const ClipperStress cs = clipperStress(s.pairs.front(), 40, config.slidegraph.clipper, seed);
+        const std::string m = std::to_string(cs.associations);
+        rep.add("forest.clipper.stress.associations", cs.associations, "").note =
+            std::to_string(cs.true_associations) + " true, the rest random (40 per landmark of B)";
+        rep.add("forest.clipper.stress.peak_mb", cs.peak_bytes / 1e6, "MB").note =
+            std::to_string(cs.edges) + " consistent pairs; a dense m x m double matrix would take " +
+            std::to_string(static_cast<long>(8.0 * cs.associations * cs.associations / 1e6)) + " MB";
+        rep.add("forest.clipper.stress.ms", cs.ms, "ms").note = "thread CPU time, graph + solve, one run";
+        rep.add("forest.clipper.stress.precision", cs.selected ? double(cs.selected_true) / cs.selected : 0, "", false).note =
+            std::to_string(cs.selected_true) + " true of " + std::to_string(cs.selected) + " selected";
+        rep.add("forest.clipper.stress.recall", double(cs.selected_true) / std::max<std::size_t>(1, cs.true_associations), "",
+                false);
+      }
       if (s.name == "parking_real" || s.name == "indoor_real") {
         const std::string set = s.name == "parking_real" ? "parking" : "indoor";
         for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {

@@ -1,6 +1,7 @@
 #include "scenarios.h"
 
 #include <cmath>
+#include <map>
 
 #include "mapio/object_map_text.h"
 
@@ -140,6 +141,38 @@ MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConf
     }
   }
   return f;
+}
+
+ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const ClipperParams& params, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(c.a.lms.size() - 1));
+  std::map<std::size_t, std::uint32_t> a_of_id;
+  for (std::uint32_t i = 0; i < c.a.lms.size(); ++i) a_of_id[c.a.lms[i].index] = i;
+  std::vector<Association> assoc;
+  ClipperStress s;
+  for (std::uint32_t j = 0; j < c.b.lms.size(); ++j) {
+    const auto it = a_of_id.find(c.b.lms[j].index);
+    if (it != a_of_id.end()) {
+      assoc.push_back({it->second, j});
+      ++s.true_associations;
+    }
+    for (int k = 0; k < outliers_per_landmark; ++k) {
+      const std::uint32_t i = pick(rng);
+      if (it == a_of_id.end() || i != it->second) assoc.push_back({i, j});
+    }
+  }
+  std::vector<Eigen::Vector3d> pa, pb;
+  for (const Landmark& l : c.a.lms) pa.push_back(l.p);
+  for (const Landmark& l : c.b.lms) pb.push_back(l.p);
+  const double t0 = threadCpuMs();
+  const ClipperResult r = clipper(pa, pb, assoc, params);
+  s.ms = threadCpuMs() - t0;
+  s.associations = assoc.size();
+  s.selected = r.selected.size();
+  for (std::size_t k : r.selected) s.selected_true += c.a.lms[assoc[k].a].index == c.b.lms[assoc[k].b].index;
+  s.edges = r.edges;
+  s.peak_bytes = r.peak_bytes;
+  return s;
 }
 
 Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod method, const PlaceConfig& config) {

@@ -37,6 +37,14 @@ struct MethodFigures {
 // correct within 1 m and 2 degrees of the truth; otherwise (or on a disjoint pair) it is wrong.
 MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConfig& config, int repeats);
 
+// CLIPPER alone on a large association set: for every landmark of B its true partner in A
+// (when A has it) plus `outliers_per_landmark` random landmarks of A.
+struct ClipperStress {
+  std::size_t associations = 0, true_associations = 0, selected = 0, selected_true = 0, edges = 0, peak_bytes = 0;
+  double ms = 0;
+};
+ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const ClipperParams& params, unsigned seed);
+
 // Real robot maps: T01 * T12 * T20 for the three robots of `set`; false when a link is missing.
 struct Cycle {
   bool ok = false;
