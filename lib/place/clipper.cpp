@@ -33,11 +33,12 @@ double objective(const Vec& u, const Vec& Mu, const Vec& Bu, double d) {
   return f;
 }
 
-// Projection onto {u >= 0, |u| = 1}; false when nothing positive is left.
-bool project(Vec& u) {
+// Projection onto {u >= 0, |u| = 1, u_i = 0 unless active}; false when nothing positive is left.
+bool project(Vec& u, const std::vector<char>* active) {
   double n2 = 0;
-  for (double& x : u) {
-    x = std::max(0.0, x);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    double& x = u[i];
+    x = (active && !(*active)[i]) ? 0.0 : std::max(0.0, x);
     n2 += x * x;
   }
   if (!(n2 > 0)) return false;
@@ -47,18 +48,18 @@ bool project(Vec& u) {
 }
 }  // namespace
 
-ClipperResult solveClipper(const ConsistencyGraph& g, const ClipperParams& params) {
+ClipperResult solveClipper(const ConsistencyGraph& g, const ClipperParams& params, const std::vector<char>* active) {
   ClipperResult res;
   const std::size_t m = g.size();
   res.edges = g.numEdges();
   res.peak_bytes = g.peakBytes() + 6 * m * sizeof(double);
-  if (m == 0) return res;
+  if (m == 0 || (active && std::find(active->begin(), active->end(), 1) == active->end())) return res;
 
   std::mt19937 rng(params.seed);
   std::uniform_real_distribution<double> uni(0.1, 1.0);
   Vec u(m), Mu(m), Bu(m), grad(m), next(m), Mn(m), Bn(m);
   for (double& x : u) x = uni(rng);
-  project(u);
+  project(u, active);
 
   double d = 0;
   for (int outer = 0; outer < params.max_outer; ++outer) {
@@ -74,7 +75,7 @@ ClipperResult solveClipper(const ConsistencyGraph& g, const ClipperParams& param
       double fn = f;
       for (int tries = 0; tries < 30; ++tries, alpha *= 0.5) {
         for (std::size_t i = 0; i < m; ++i) next[i] = u[i] + alpha * grad[i];
-        if (!project(next)) continue;
+        if (!project(next, active)) continue;
         multiply(g, next, Mn, Bn);
         fn = objective(next, Mn, Bn, d);
         if (fn > f) {
@@ -110,7 +111,9 @@ ClipperResult solveClipper(const ConsistencyGraph& g, const ClipperParams& param
   // Rounding: the top association, then its neighbours by decreasing u, each kept when
   // consistent with every association kept so far (the result is a clique).
   const std::size_t top = static_cast<std::size_t>(std::max_element(u.begin(), u.end()) - u.begin());
-  std::vector<std::size_t> order(g.neighborsBegin(top), g.neighborsEnd(top));
+  std::vector<std::size_t> order;
+  for (const std::uint32_t* j = g.neighborsBegin(top); j != g.neighborsEnd(top); ++j)
+    if (!active || (*active)[*j]) order.push_back(*j);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return u[x] > u[y]; });
   res.selected.push_back(top);
   for (std::size_t c : order) {

@@ -29,8 +29,10 @@ struct ClipperResult {
   double density = 0;                 // u'Mu at the solution
 };
 
-// Solves on a built graph.
-ClipperResult solveClipper(const ConsistencyGraph& graph, const ClipperParams& params);
+// Solves on a built graph; when `active` is given, only associations with active[i] != 0 take
+// part (the others are treated as removed, without rebuilding the graph).
+ClipperResult solveClipper(const ConsistencyGraph& graph, const ClipperParams& params,
+                           const std::vector<char>* active = nullptr);
 
 // Builds the graph of `assoc` over positions pa (map A) and pb (map B), then solves.
 ClipperResult clipper(const std::vector<Eigen::Vector3d>& pa, const std::vector<Eigen::Vector3d>& pb,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <unordered_map>
 
 #include "place/alignment.h"
@@ -25,28 +26,34 @@ struct Vote {
 // Vertex associations from descriptor matches, strongest first, at most max_associations.
 std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, const std::vector<SimplexDescriptor>& db,
                                    const SlideGraphParams& params) {
-  std::vector<Eigen::Vector3d> keys;
-  keys.reserve(db.size());
-  for (const SimplexDescriptor& d : db) keys.push_back(d.distances);
-  const KdTree<3> tree(std::move(keys));
+  // One k-d tree per vertex-class triple of B (a single one when classes are ignored).
+  struct Group {
+    std::vector<Eigen::Vector3d> keys;
+    std::vector<std::size_t> members;
+    KdTree<3> tree;
+  };
+  std::map<std::array<int, 3>, Group> groups;
+  const std::array<int, 3> any{0, 0, 0};
+  for (std::size_t j = 0; j < db.size(); ++j) {
+    Group& g = groups[params.use_classes ? db[j].classes : any];
+    g.keys.push_back(db[j].distances);
+    g.members.push_back(j);
+  }
+  for (auto& [key, g] : groups) g.tree = KdTree<3>(g.keys);
   std::unordered_map<std::uint64_t, Vote> votes;
-  std::vector<std::pair<double, std::size_t>> hits;
+  const double r2 = params.descriptor_radius * params.descriptor_radius;
   for (const SimplexDescriptor& d : da) {
-    hits.clear();
-    for (std::size_t j : tree.radius(d.distances, params.descriptor_radius)) {
-      if (params.use_classes && db[j].classes != d.classes) continue;
-      hits.emplace_back((db[j].distances - d.distances).norm(), j);
-    }
-    if (hits.size() > params.neighbors_per_simplex) {
-      std::partial_sort(hits.begin(), hits.begin() + params.neighbors_per_simplex, hits.end());
-      hits.resize(params.neighbors_per_simplex);
-    }
-    for (const auto& [dist, j] : hits)
-      for (int k = 0; k < 3; ++k) {
-        Vote& v = votes[(static_cast<std::uint64_t>(d.vertices[k]) << 32) | db[j].vertices[k]];
-        ++v.votes;
-        v.best = std::min(v.best, dist);
+    const auto it = groups.find(params.use_classes ? d.classes : any);
+    if (it == groups.end()) continue;
+    for (const auto& [k, dist2] : it->second.tree.nearest(d.distances, params.neighbors_per_simplex)) {
+      if (dist2 > r2) break;  // nearest first
+      const SimplexDescriptor& e = db[it->second.members[k]];
+      for (int v = 0; v < 3; ++v) {
+        Vote& vote = votes[(static_cast<std::uint64_t>(d.vertices[v]) << 32) | e.vertices[v]];
+        ++vote.votes;
+        vote.best = std::min(vote.best, std::sqrt(dist2));
       }
+    }
   }
   std::vector<std::pair<std::uint64_t, Vote>> ranked(votes.begin(), votes.end());
   std::sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) {
@@ -101,21 +108,20 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   for (const Landmark& l : a) pa.push_back(l.p);
   for (const Landmark& l : b) pb.push_back(l.p);
   const LandmarkIndex index_a(a);
-  // Hypotheses: CLIPPER's densest consistent set, verified; when rejected, CLIPPER again
-  // without those associations (aliased scenes can hold several consistent sets).
-  std::vector<Association> remaining = assoc;
+  // Hypotheses: CLIPPER's densest consistent set, verified; when rejected (and not already
+  // smaller than an acceptable inlier set), CLIPPER again without those associations: aliased
+  // scenes can hold several consistent sets.
+  const ConsistencyGraph graph(pa, pb, assoc, params.clipper.consistency);
+  stage("consistency_graph");
+  res.clipper_edges = graph.numEdges();
+  std::vector<char> active(assoc.size(), 1);
   PlaceResult first;
-  for (int h = 0; h < std::max(1, params.hypotheses) && remaining.size() >= 3; ++h) {
-    const ConsistencyGraph graph(pa, pb, remaining, params.clipper.consistency);
-    stage("consistency_graph");
-    const ClipperResult cl = solveClipper(graph, params.clipper);
+  for (int h = 0; h < std::max(1, params.hypotheses); ++h) {
+    const ClipperResult cl = solveClipper(graph, params.clipper, &active);
     stage("clipper");
+    res.clipper_peak_bytes = std::max(res.clipper_peak_bytes, cl.peak_bytes);
     PlaceResult trial = res;
-    trial.clipper_edges = std::max(res.clipper_edges, cl.edges);
-    trial.clipper_peak_bytes = std::max(res.clipper_peak_bytes, cl.peak_bytes);
     trial.score = static_cast<double>(cl.selected.size());
-    res.clipper_edges = trial.clipper_edges;
-    res.clipper_peak_bytes = trial.clipper_peak_bytes;
     if (cl.selected.size() < 3) {
       trial.reason = "CLIPPER kept " + std::to_string(cl.selected.size()) + " consistent associations, fewer than 3";
       if (h == 0) first = trial;
@@ -123,8 +129,8 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
     }
     std::vector<Eigen::Vector3d> sa, sb;
     for (std::size_t k : cl.selected) {
-      sa.push_back(pa[remaining[k].a]);
-      sb.push_back(pb[remaining[k].b]);
+      sa.push_back(pa[assoc[k].a]);
+      sb.push_back(pb[assoc[k].b]);
     }
     const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
     if (seed.ok) {
@@ -138,12 +144,8 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
       return finish();
     }
     if (h == 0) first = trial;
-    std::vector<char> drop(remaining.size(), 0);
-    for (std::size_t k : cl.selected) drop[k] = 1;
-    std::vector<Association> next;
-    for (std::size_t k = 0; k < remaining.size(); ++k)
-      if (!drop[k]) next.push_back(remaining[k]);
-    remaining.swap(next);
+    if (cl.selected.size() < params.verify.min_inliers) break;  // later sets are no denser
+    for (std::size_t k : cl.selected) active[k] = 0;
   }
   first.stage_cpu_ms = res.stage_cpu_ms;
   first.clipper_edges = res.clipper_edges;

@@ -58,7 +58,7 @@ void report(BenchReport& rep, const Scenario& s, PlaceMethod m, const MethodFigu
             ((graph ? p.graph_ms_note : p.match_ms_note).empty() ? "" : "; " + (graph ? p.graph_ms_note : p.match_ms_note));
   rep.add(prefix + "ms.p90", quantile(f.cpu_ms, 0.9), "ms").note = "thread CPU time, 90th percentile";
   rep.add(prefix + "wall_ms", median(f.ms), "ms").note = "wall time, median (inflated when the machine is loaded)";
-  for (const auto& [stage, v] : f.stage_cpu_ms) rep.add(prefix + "stage_ms." + stage, median(v), "ms").note = "thread CPU time, median";
+  for (const auto& [stage, v] : f.stage_cpu_ms) rep.add(prefix + "stage_ms." + stage, median(v), "ms").note = "thread CPU time per run, median";
   rep.add(prefix + "recall", f.overlapping ? double(f.correct) / f.overlapping : nan, "", false, 1.0).note =
       "correct transforms / overlapping pairs (" + std::to_string(f.missed) + " missed, " + std::to_string(f.wrong) + " wrong)";
   rep.add(prefix + "wrong", f.wrong + f.false_positives, "", true, 0.0).note =
@@ -111,13 +111,13 @@ int main(int argc, char** argv) {
     }
     BenchReport rep("place");
     for (const Scenario& s : scenarios) {
-      std::size_t na = 0, nb = 0, shared = 0;
+      std::size_t na = 0, nb = 0, shared = 0, overlapping = 0;
       for (const PairCase& c : s.pairs) {
         na += c.a.lms.size(), nb += c.b.lms.size();
-        if (c.overlapping) shared += sharedLandmarks(c.a, c.b);
+        if (c.overlapping) shared += sharedLandmarks(c.a, c.b), ++overlapping;
       }
       spdlog::info("{}: {} pairs, mean {} x {} landmarks, {} shared per overlapping pair; {}", s.name, s.pairs.size(),
-                   na / s.pairs.size(), nb / s.pairs.size(), shared / std::max<std::size_t>(1, s.pairs.size()), s.description);
+                   na / s.pairs.size(), nb / s.pairs.size(), shared / std::max<std::size_t>(1, overlapping), s.description);
       int fp = 0;
       for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
         const MethodFigures f = runScenario(s, m, config, repeats);
