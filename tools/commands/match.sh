@@ -13,6 +13,6 @@ Example: ./slide match ../shared/data/slideslam_maps/parking/robot0.txt ../share
 USAGE
     return 0
   fi
-  ensure_built
+  ensure_built >&2  # keep stdout for the one JSON object
   "$SLIDE_BIN/slide-match" "$@"
 }
