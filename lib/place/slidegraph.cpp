@@ -1,0 +1,157 @@
+#include "place/slidegraph.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <unordered_map>
+
+#include "place/alignment.h"
+#include "place/simplex_descriptor.h"
+
+namespace slide {
+
+namespace {
+std::vector<Triangle> triangulate(const std::vector<Landmark>& lms) {
+  std::vector<Eigen::Vector2d> xy;
+  xy.reserve(lms.size());
+  for (const Landmark& l : lms) xy.push_back(l.p.head<2>());
+  return delaunay2d(xy);
+}
+
+struct Vote {
+  std::uint32_t votes = 0;
+  double best = 1e300;  // smallest descriptor distance among its triangle pairs
+};
+
+// Vertex associations from descriptor matches, strongest first, at most max_associations.
+std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, const std::vector<SimplexDescriptor>& db,
+                                   const SlideGraphParams& params) {
+  // One k-d tree per vertex-class triple of B (a single one when classes are ignored).
+  struct Group {
+    std::vector<Eigen::Vector3d> keys;
+    std::vector<std::size_t> members;
+    KdTree<3> tree;
+  };
+  std::map<std::array<int, 3>, Group> groups;
+  const std::array<int, 3> any{0, 0, 0};
+  for (std::size_t j = 0; j < db.size(); ++j) {
+    Group& g = groups[params.use_classes ? db[j].classes : any];
+    g.keys.push_back(db[j].distances);
+    g.members.push_back(j);
+  }
+  for (auto& [key, g] : groups) g.tree = KdTree<3>(g.keys);
+  std::unordered_map<std::uint64_t, Vote> votes;
+  const double r2 = params.descriptor_radius * params.descriptor_radius;
+  for (const SimplexDescriptor& d : da) {
+    const auto it = groups.find(params.use_classes ? d.classes : any);
+    if (it == groups.end()) continue;
+    for (const auto& [k, dist2] : it->second.tree.nearest(d.distances, params.neighbors_per_simplex)) {
+      if (dist2 > r2) break;  // nearest first
+      const SimplexDescriptor& e = db[it->second.members[k]];
+      for (int v = 0; v < 3; ++v) {
+        Vote& vote = votes[(static_cast<std::uint64_t>(d.vertices[v]) << 32) | e.vertices[v]];
+        ++vote.votes;
+        vote.best = std::min(vote.best, std::sqrt(dist2));
+      }
+    }
+  }
+  std::vector<std::pair<std::uint64_t, Vote>> ranked(votes.begin(), votes.end());
+  std::sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) {
+    if (x.second.votes != y.second.votes) return x.second.votes > y.second.votes;
+    if (x.second.best != y.second.best) return x.second.best < y.second.best;
+    return x.first < y.first;
+  });
+  if (ranked.size() > params.max_associations) ranked.resize(params.max_associations);
+  const auto weak = std::find_if(ranked.begin(), ranked.end(), [&](const auto& r) { return r.second.votes < params.min_votes; });
+  if (static_cast<std::size_t>(weak - ranked.begin()) >= params.min_voted) ranked.erase(weak, ranked.end());
+  std::vector<Association> out;
+  out.reserve(ranked.size());
+  for (const auto& [key, v] : ranked)
+    out.push_back({static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu)});
+  return out;
+}
+}  // namespace
+
+PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = threadCpuMs();
+  double cpu_mark = cpu0;
+  PlaceResult res;
+  auto stage = [&](const char* name) {
+    const double now = threadCpuMs();
+    res.stage_cpu_ms.emplace_back(name, now - cpu_mark);
+    cpu_mark = now;
+  };
+  auto finish = [&]() {
+    res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    res.cpu_ms = threadCpuMs() - cpu0;
+    return res;
+  };
+  for (const auto& [lms, name] : {std::pair{&a, "map A"}, std::pair{&b, "map B"}}) {
+    res.reason = unusableReason(*lms, std::max<std::size_t>(3, params.min_landmarks), name);
+    if (!res.reason.empty()) return finish();
+  }
+  const std::vector<Triangle> ta = triangulate(a), tb = triangulate(b);
+  stage("triangulate");
+  if (ta.empty() || tb.empty()) {
+    res.reason = std::string(ta.empty() ? "map A" : "map B") + " has no triangles (collinear or duplicate points)";
+    return finish();
+  }
+  const std::vector<Association> assoc = associate(describeTriangles(a, ta), describeTriangles(b, tb), params);
+  res.associations = assoc.size();
+  stage("associate");
+  if (assoc.size() < 3) {
+    res.reason = "only " + std::to_string(assoc.size()) + " associations from simplex descriptors";
+    return finish();
+  }
+  std::vector<Eigen::Vector3d> pa, pb;
+  for (const Landmark& l : a) pa.push_back(l.p);
+  for (const Landmark& l : b) pb.push_back(l.p);
+  const LandmarkIndex index_a(a);
+  // Hypotheses: CLIPPER's densest consistent set, verified; when rejected (and not already
+  // smaller than an acceptable inlier set), CLIPPER again without those associations: aliased
+  // scenes can hold several consistent sets.
+  const ConsistencyGraph graph(pa, pb, assoc, params.clipper.consistency);
+  stage("consistency_graph");
+  res.clipper_edges = graph.numEdges();
+  std::vector<char> active(assoc.size(), 1);
+  PlaceResult first;
+  for (int h = 0; h < std::max(1, params.hypotheses); ++h) {
+    const ClipperResult cl = solveClipper(graph, params.clipper, &active);
+    stage("clipper");
+    res.clipper_peak_bytes = std::max(res.clipper_peak_bytes, cl.peak_bytes);
+    PlaceResult trial = res;
+    trial.score = static_cast<double>(cl.selected.size());
+    if (cl.selected.size() < 3) {
+      trial.reason = "CLIPPER kept " + std::to_string(cl.selected.size()) + " consistent associations, fewer than 3";
+      if (h == 0) first = trial;
+      break;
+    }
+    std::vector<Eigen::Vector3d> sa, sb;
+    for (std::size_t k : cl.selected) {
+      sa.push_back(pa[assoc[k].a]);
+      sb.push_back(pb[assoc[k].b]);
+    }
+    const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
+    if (seed.ok) {
+      refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, trial);
+    } else {
+      trial.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
+    }
+    stage("verify");
+    if (trial.found) {
+      res = std::move(trial);
+      return finish();
+    }
+    if (h == 0) first = trial;
+    if (cl.selected.size() < params.verify.min_inliers) break;  // later sets are no denser
+    for (std::size_t k : cl.selected) active[k] = 0;
+  }
+  first.stage_cpu_ms = res.stage_cpu_ms;
+  first.clipper_edges = res.clipper_edges;
+  first.clipper_peak_bytes = res.clipper_peak_bytes;
+  res = std::move(first);
+  return finish();
+}
+
+}  // namespace slide
