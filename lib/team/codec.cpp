@@ -155,7 +155,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects) {
     w.u8(tag);
     w.svarint(o.id - prev_id);
     prev_id = o.id;
-    w.svarint(o.class_id);
+    w.varint(static_cast<std::uint16_t>(o.class_id));  // int16 on the robot bus
     if (!(tag & kUnitConfidence)) w.f32(conf);
     if (!(tag & kOneObservation)) w.svarint(o.num_observations);
     if (const auto* b = std::get_if<Cuboid>(&o.model)) {
@@ -195,9 +195,9 @@ bool readObjects(ByteReader& r, std::vector<Object>* out) {
     }
     o.id = prev_id + r.svarint();
     prev_id = o.id;
-    const std::int64_t cls = r.svarint();
-    if (cls < -32768 || cls > 32767) r.fail("object " + std::to_string(i) + ": class id out of int16 range");
-    o.class_id = static_cast<int>(cls);
+    const std::uint64_t cls = r.varint();
+    if (cls > 0xffff) r.fail("object " + std::to_string(i) + ": class id out of int16 range");
+    o.class_id = static_cast<std::int16_t>(static_cast<std::uint16_t>(cls));
     o.confidence = (tag & kUnitConfidence) ? 1.0 : readScalar(r, "confidence");
     if (tag & kOneObservation) {
       o.num_observations = 1;

@@ -19,11 +19,11 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n) {
   c.map_refresh_s = n.get<double>("map_refresh_s", c.map_refresh_s);
   c.rate_limit_bytes_per_s = n.get<double>("rate_limit_bytes_per_s", c.rate_limit_bytes_per_s);
   c.burst_bytes = n.get<double>("burst_bytes", c.burst_bytes);
-  c.max_chunk_bytes = n.get<std::size_t>("max_chunk_bytes", c.max_chunk_bytes);
-  c.max_ranges_per_origin = n.get<std::size_t>("max_ranges_per_origin", c.max_ranges_per_origin);
-  c.max_sends_per_tick = n.get<std::size_t>("max_sends_per_tick", c.max_sends_per_tick);
+  c.max_chunk_bytes = n.get<unsigned>("max_chunk_bytes", static_cast<unsigned>(c.max_chunk_bytes));
+  c.max_ranges_per_origin = n.get<unsigned>("max_ranges_per_origin", static_cast<unsigned>(c.max_ranges_per_origin));
+  c.max_sends_per_tick = n.get<unsigned>("max_sends_per_tick", static_cast<unsigned>(c.max_sends_per_tick));
   c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
-  c.reassembly_bytes = n.get<std::size_t>("reassembly_bytes", c.reassembly_bytes);
+  c.reassembly_bytes = n.get<unsigned>("reassembly_bytes", static_cast<unsigned>(c.reassembly_bytes));
   c.reassembly_timeout_s = n.get<double>("reassembly_timeout_s", c.reassembly_timeout_s);
   try {
     c.validate();
