@@ -5,9 +5,9 @@
 
 namespace slide::team {
 
-SyncConfig SyncConfig::fromConfig(const ConfigNode& n) {
+SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_t> robot) {
   SyncConfig c;
-  c.robot = n.get<std::int32_t>("robot", c.robot);
+  c.robot = robot ? *robot : n.get<std::int32_t>("robot");
   c.team = n.getList<std::int32_t>("team");
   c.team_key = n.get<std::string>("team_key");
   c.heartbeat_period_s = n.get<double>("heartbeat_period_s", c.heartbeat_period_s);

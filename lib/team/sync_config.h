@@ -1,6 +1,7 @@
 #pragma once
 // Parameters of the peer-sync protocol (times in seconds, sizes in bytes).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,9 @@ struct SyncConfig {
   std::size_t reassembly_bytes = 4 << 20;   // space for partly received payloads
   double reassembly_timeout_s = 30.0;
 
-  // Throws ConfigError naming the file and key on a missing or invalid value. `robot` may be
-  // absent from the file (the daemon passes it on the command line).
-  static SyncConfig fromConfig(const ConfigNode& node);
+  // Throws ConfigError naming the file and key on a missing or invalid value. `robot`, when
+  // given (the daemon's --robot), replaces the file's optional `robot` key.
+  static SyncConfig fromConfig(const ConfigNode& node, std::optional<std::int32_t> robot = std::nullopt);
   // Throws std::invalid_argument explaining the first inconsistent value.
   void validate() const;
 };
