@@ -243,8 +243,8 @@ TickOutput PeerSyncNode::tick(Micros now) {
     next_heartbeat_ = now + secs(cfg_.heartbeat_period_s);
   }
   for (auto& [id, p] : peers_) {
-    if (!p.ack_pending || now < p.ack_due) continue;
-    if (!heartbeat) {  // a heartbeat just sent says the same to everyone
+    if (!p.ack_pending || (now < p.ack_due && !heartbeat)) continue;
+    if (!heartbeat) {  // a heartbeat just sent says the same to everyone: it acknowledges all
       Ack a;
       a.sender = cfg_.robot;
       a.receiver = id;
@@ -313,7 +313,12 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       auto k = p.known.find(origin);
       const auto missing = set.minus(k == p.known.end() ? kNone : k->second, cfg_.max_sends_per_tick);
       const bool relay = origin != cfg_.robot && origin != id && inReach(origin, now);
+      // A robot holds its own bundles: only fill gaps below what it says it holds (it lost some).
+      const bool own_to_origin = origin == id;
+      const std::int32_t origin_max =
+          own_to_origin && k != p.known.end() && !k->second.empty() ? k->second.max() : INT32_MIN;
       for (std::int32_t seq : missing) {
+        if (own_to_origin && seq >= origin_max) break;
         const Key key{origin, seq};
         const Micros lacking = p.lacking_since.emplace(key, now).first->second;
         // The origin itself is in reach and sends its own data; relay only what stays missing.

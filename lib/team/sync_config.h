@@ -15,7 +15,7 @@ struct SyncConfig {
   std::string team_key;            // HMAC key shared by the team
 
   double heartbeat_period_s = 2.0;
-  double ack_delay_s = 0.3;          // acknowledgements are coalesced this long
+  double ack_delay_s = 1.0;          // acknowledgements are coalesced this long (a heartbeat acks all)
   double resend_timeout_s = 3.0;     // unacknowledged data is sent again after this
   double relay_delay_s = 3.0;        // a third robot's bundle is relayed once a peer lacked it this long
   double peer_timeout_s = 6.0;       // a peer is in reach while heard within this
