@@ -141,10 +141,22 @@ Eigen::Vector3d readAxis(ByteReader& r) {
   return a.normalized();
 }
 
-void writeObjects(ByteWriter& w, const std::vector<Object>& objects) {
+// `for_place_recognition`: only what place recognition uses (class, id, position, size,
+// yaw): confidence, observation counts, cylinder tilt and cuboid roll/pitch are left out.
+void writeObjects(ByteWriter& w, const std::vector<Object>& objects, bool for_place_recognition = false) {
   w.varint(objects.size());
   std::int64_t prev_id = 0;
-  for (const Object& o : objects) {
+  for (const Object& original : objects) {
+    Object o = original;
+    if (for_place_recognition) {
+      o.confidence = 1.0;
+      o.num_observations = 1;
+      if (auto* c = std::get_if<Cylinder>(&o.model)) c->axis = Eigen::Vector3d::UnitZ();
+      if (auto* b = std::get_if<Cuboid>(&o.model)) {
+        const Eigen::Vector3d t = b->pose.translation();
+        b->pose = poseFromXyzYaw(t.x(), t.y(), t.z(), yawOf(b->pose.linear()));
+      }
+    }
     std::uint8_t tag = static_cast<std::uint8_t>(o.model.index());
     const float conf = static_cast<float>(o.confidence);
     if (conf == 1.0f) tag |= kUnitConfidence;
@@ -283,7 +295,7 @@ Bytes encodeMap(const SharedMap& m) {
   w.u8(kMapFormat);
   w.svarint(m.utime);
   w.svarint(m.frame_robot);
-  writeObjects(w, m.objects);
+  writeObjects(w, m.objects, true);
   return w.take();
 }
 

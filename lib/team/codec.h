@@ -16,6 +16,8 @@ Bytes encodeBundle(const Bundle& b);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
 std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error);
 
+// Maps carry what place recognition uses: class, id, position, size and yaw (confidence,
+// observation counts, cylinder tilt and cuboid roll/pitch are dropped).
 Bytes encodeMap(const SharedMap& m);
 std::optional<SharedMap> decodeMap(const Bytes& data, std::int32_t robot, std::int32_t version, std::string* error);
 

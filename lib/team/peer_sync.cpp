@@ -242,22 +242,38 @@ TickOutput PeerSyncNode::tick(Micros now) {
     out.heartbeats.push_back(std::move(h));
     next_heartbeat_ = now + secs(cfg_.heartbeat_period_s);
   }
+  // Acknowledgements due: one message for every peer waiting (receiver -1 when several); a
+  // heartbeat just sent says the same to everyone, so it acknowledges all.
+  std::vector<std::int32_t> ack_to;
+  std::set<std::int32_t> ack_origins;
   for (auto& [id, p] : peers_) {
     if (!p.ack_pending || (now < p.ack_due && !heartbeat)) continue;
-    if (!heartbeat) {  // a heartbeat just sent says the same to everyone: it acknowledges all
-      Ack a;
-      a.sender = cfg_.robot;
-      a.receiver = id;
-      a.counter = counters_.nextOwn();
-      a.acked = truncated(db_.held(), &p.ack_origins);
-      auth_.sign(a);
-      const std::size_t bytes = encodedSize(a) + lcmPacketOverhead(channels_.ack);
-      limiter_.force(static_cast<double>(bytes), now);
-      traffic_.sent({id}, bytes);
-      out.acks.push_back(std::move(a));
+    if (!heartbeat) {
+      ack_to.push_back(id);
+      ack_origins.insert(p.ack_origins.begin(), p.ack_origins.end());
     }
     p.ack_pending = false;
     p.ack_origins.clear();
+  }
+  if (!ack_to.empty()) {
+    // Peers with an acknowledgement pending but not yet due ride along.
+    for (auto& [id, p] : peers_) {
+      if (!p.ack_pending) continue;
+      ack_to.push_back(id);
+      ack_origins.insert(p.ack_origins.begin(), p.ack_origins.end());
+      p.ack_pending = false;
+      p.ack_origins.clear();
+    }
+    Ack a;
+    a.sender = cfg_.robot;
+    a.receiver = ack_to.size() == 1 ? ack_to[0] : -1;
+    a.counter = counters_.nextOwn();
+    a.acked = truncated(db_.held(), &ack_origins);
+    auth_.sign(a);
+    const std::size_t bytes = encodedSize(a) + lcmPacketOverhead(channels_.ack);
+    limiter_.force(static_cast<double>(bytes), now);
+    traffic_.sent(ack_to, bytes);
+    out.acks.push_back(std::move(a));
   }
   sendMap(now, out);
   sendBundles(now, out);

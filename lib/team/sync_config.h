@@ -19,8 +19,8 @@ struct SyncConfig {
   double resend_timeout_s = 3.0;     // unacknowledged data is sent again after this
   double relay_delay_s = 3.0;        // a third robot's bundle is relayed once a peer lacked it this long
   double peer_timeout_s = 6.0;       // a peer is in reach while heard within this
-  double map_period_s = 10.0;        // own map sent at most this often when it changed
-  double map_refresh_s = 60.0;       // and again this often when unchanged
+  double map_period_s = 30.0;        // own map sent at most this often when it changed
+  double map_refresh_s = 120.0;      // and again this often when unchanged
   double rate_limit_bytes_per_s = 20000;
   double burst_bytes = 8000;
   std::size_t max_chunk_bytes = 1024;       // payload bytes per chunk

@@ -26,6 +26,7 @@ struct Scenario {
   bool cuts = false;      // each link down half the time
   bool restarts = false;  // random restarts of any node
   bool line = false;      // robots 0 and 2 never hear each other
+  bool default_timing = false;  // SyncConfig defaults instead of the quick test timings
 };
 
 std::string freshDir(const std::string& name) {
@@ -39,7 +40,16 @@ class SimRun {
  public:
   SimRun(const Scenario& s, const std::string& name) : s_(s), dir_(freshDir(name)), rng_(static_cast<unsigned>(s.seed)) {
     std::vector<SyncConfig> cfgs;
-    for (auto id : kIds) cfgs.push_back(teamConfig(id, kTeam));
+    for (auto id : kIds) {
+      cfgs.push_back(teamConfig(id, kTeam));
+      if (s.default_timing) {
+        SyncConfig d;
+        d.robot = id;
+        d.team = kTeam;
+        d.team_key = cfgs.back().team_key;
+        cfgs.back() = d;
+      }
+    }
     SimLinkModel link;
     link.loss = s.loss;
     link.duplicate = s.duplicate;
@@ -121,9 +131,13 @@ class SimRun {
 
 }  // namespace
 
-TEST(PeerSyncSim, LosslessDeliversEverythingOnceAndSendsEachBundleAboutOnce) {
+class PeerSyncTiming : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(QuickAndDefault, PeerSyncTiming, ::testing::Values(false, true));
+
+TEST_P(PeerSyncTiming, LosslessDeliversEverythingOnceAndSendsEachBundleOnce) {
   Scenario s;
-  SimRun run(s, "lossless");
+  s.default_timing = GetParam();
+  SimRun run(s, std::string("lossless") + (s.default_timing ? "_default" : ""));
   std::size_t bundle_chunks = 0;
   run.net().on_send = [&](std::size_t, const TeamMessage& m) {
     if (auto* c = std::get_if<Chunk>(&m)) bundle_chunks += c->kind == ChunkKind::Bundle;

@@ -27,7 +27,7 @@ std::vector<WorldObject> forest(std::mt19937_64& rng, double size) {
 }
 
 std::vector<WorldObject> urban(std::mt19937_64& rng, double size, double block) {
-  std::uniform_real_distribution<double> gap(6, 14), side(0, 1), jitter(-0.3, 0.3);
+  std::uniform_real_distribution<double> gap(2.5, 7), side(0, 1), jitter(-0.3, 0.3);
   std::vector<WorldObject> w;
   auto add = [&](Object o) {
     o.id = static_cast<std::int64_t>(w.size());
