@@ -31,8 +31,8 @@ struct Channels {
 
 class PeerSyncDaemon {
  public:
-  PeerSyncDaemon(PeerSyncNode& node, lcm::LCM& robot_bus, lcm::LCM& team_bus, Channels ch)
-      : node_(node), robot_(robot_bus), team_(team_bus), ch_(std::move(ch)) {
+  PeerSyncDaemon(PeerSyncNode& node, lcm::LCM& robot_bus, lcm::LCM& team_bus, Channels ch, int max_deliveries)
+      : node_(node), robot_(robot_bus), team_(team_bus), ch_(std::move(ch)), max_deliveries_(max_deliveries) {
     robot_.subscribe(ch_.own_bundle, &PeerSyncDaemon::onOwnBundle, this);
     robot_.subscribe(ch_.own_map, &PeerSyncDaemon::onOwnMap, this);
     team_.subscribe(ch_.team.heartbeat, &PeerSyncDaemon::onTeam<sync_heartbeat_t>, this);
@@ -75,9 +75,15 @@ class PeerSyncDaemon {
     for (const auto& h : out.heartbeats) publish(ch_.team.heartbeat, toLcm(h));
     for (const auto& a : out.acks) publish(ch_.team.ack, toLcm(a));
     for (const auto& c : out.chunks) publish(ch_.team.chunk, toLcm(c));
-    while (auto b = node_.nextDelivery()) {
+    // Paced: a burst (after a link comes back) must not overrun the subscribers' UDP buffers.
+    for (int k = 0; k < max_deliveries_; ++k) {
+      auto b = node_.nextDelivery();
+      if (!b) break;
       const keypose_bundle_t m = toLcm(*b);
-      robot_.publish(ch_.peer_bundle, &m);
+      if (robot_.publish(ch_.peer_bundle, &m) != 0) {  // not recorded: tried again next step
+        spdlog::warn("{}: publish of bundle {}/{} failed", ch_.peer_bundle, b->origin, b->seq);
+        break;
+      }
       node_.confirmDelivered(b->origin, b->seq);
       spdlog::debug("delivered bundle {}/{}", b->origin, b->seq);
     }
@@ -107,6 +113,7 @@ class PeerSyncDaemon {
   lcm::LCM& robot_;
   lcm::LCM& team_;
   Channels ch_;
+  int max_deliveries_;
 };
 
 }  // namespace
@@ -146,6 +153,8 @@ int main(int argc, char** argv) {
     if (state_dir.empty()) state_dir = cfg.get<std::string>("state_dir") + "/robot" + std::to_string(robot);
     const double tick_s = cfg.get<double>("tick_period_s", 0.05);
     const double stats_s = cfg.get<double>("stats_period_s", 10.0);
+    const int max_deliveries = cfg.get<int>("max_deliveries_per_tick", 4);
+    if (max_deliveries < 1) cfg.fail("max_deliveries_per_tick", "must be at least 1");
     if (!(tick_s > 0) || !(stats_s > 0)) cfg.fail("tick_period_s", "tick_period_s and stats_period_s must be positive");
     std::filesystem::create_directories(state_dir);
 
@@ -158,7 +167,7 @@ int main(int argc, char** argv) {
                  rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
                                                  rec.damaged_copy)
                                    : std::string());
-    PeerSyncDaemon daemon(node, robot_bus, team_bus, ch);
+    PeerSyncDaemon daemon(node, robot_bus, team_bus, ch, max_deliveries);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
 

@@ -37,16 +37,17 @@ inline std::string writeTestConfig(const std::string& dir, const std::string& te
                          "state_dir: \"" << dir << "\"\n"
                          "channels: {own_bundle: KEYPOSE_BUNDLE, own_map: OBJECT_MAP, peer_bundle: PEER_BUNDLE,\n"
                          "           peer_map: PEER_MAP, heartbeat: TEAM_HEARTBEAT, chunk: TEAM_CHUNK, ack: TEAM_ACK}\n"
-                         "tick_period_s: 0.02\nstats_period_s: 5\nheartbeat_period_s: 0.3\nack_delay_s: 0.05\n"
+                         "tick_period_s: 0.02\nstats_period_s: 3\nheartbeat_period_s: 0.3\nack_delay_s: 0.05\n"
                          "resend_timeout_s: 0.6\nrelay_delay_s: 0.6\npeer_timeout_s: 2.0\n"
                          "rate_limit_bytes_per_s: 200000\nburst_bytes: 50000\n";
   return path;
 }
 
-// Runs `argv` (optionally through `prefix`, e.g. "ip netns exec ns1") as a child process.
-inline pid_t spawn(const std::vector<std::string>& argv) {
+// Runs `argv` as a child process (stderr appended to `log` when given).
+inline pid_t spawn(const std::vector<std::string>& argv, const std::string& log = "") {
   const pid_t pid = fork();
   if (pid == 0) {
+    if (!log.empty() && !std::freopen(log.c_str(), "a", stderr)) _exit(126);
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
@@ -102,11 +103,10 @@ inline ::testing::AssertionResult deliveredExactlyOnceInOrder(const std::vector<
     std::vector<int> expect(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) expect[static_cast<std::size_t>(i)] = i;
     if (per[o] != expect) {
-      auto& v = per[o];
-      return ::testing::AssertionFailure() << "robot " << self << " from " << o << ": got " << v.size()
-                                           << " deliveries, expected 0.." << n - 1
-                                           << (v.empty() ? "" : ", first " + std::to_string(v.front()) + " last " +
-                                                                    std::to_string(v.back()));
+      std::string seqs;
+      for (int s : per[o]) seqs += " " + std::to_string(s);
+      return ::testing::AssertionFailure() << "robot " << self << " from " << o << ": got " << per[o].size()
+                                           << " deliveries, expected 0.." << n - 1 << ":" << seqs;
     }
   }
   return ::testing::AssertionSuccess();
