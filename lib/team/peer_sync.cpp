@@ -112,9 +112,14 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m),
              encodedSize(m) + lcmPacketOverhead(channels_.heartbeat)))
     return;
+  const bool was_in_reach = inReach(m.sender, now);
   Peer& p = peers_[m.sender];
+  // Back in reach after a silence: relays wait relay_delay_s again, so the origin (or whoever
+  // hears the peer too) gets the first chance and relays do not pile up on the same bundles.
+  if (!was_in_reach) p.lacking_since.clear();
   p.heard_heartbeat = true;
   p.last_heard = now;
+  p.last_heartbeat = now;
   p.known = m.held;
   p.map_version = m.map_version;
   forgetKnown(p);
@@ -328,7 +333,9 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       static const RangeSet kNone;
       auto k = p.known.find(origin);
       const auto missing = set.minus(k == p.known.end() ? kNone : k->second, cfg_.max_sends_per_tick);
-      const bool relay = origin != cfg_.robot && origin != id && inReach(origin, now);
+      // A third robot's bundle: its origin (or another holder) gets the first chance; whoever
+      // still sees the peer lacking it after relay_delay_s relays it.
+      const bool relay = origin != cfg_.robot && origin != id;
       // A robot holds its own bundles: only fill gaps below what it says it holds (it lost some).
       const bool own_to_origin = origin == id;
       const std::int32_t origin_max =
@@ -337,10 +344,14 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
         if (own_to_origin && seq >= origin_max) break;
         const Key key{origin, seq};
         const Micros lacking = p.lacking_since.emplace(key, now).first->second;
-        // The origin itself is in reach and sends its own data; relay only what stays missing.
         if (relay && now - lacking < secs(cfg_.relay_delay_s)) continue;
+        // Sent before: send again only when a heartbeat that left the peer well after our send
+        // still lacks it (the send was lost), and not more often than resend_timeout_s. While
+        // the link is down nothing is heard, so nothing is wasted on it.
         auto s = p.sent.find(key);
-        if (s != p.sent.end() && now - s->second < secs(cfg_.resend_timeout_s)) continue;
+        if (s != p.sent.end() && (now - s->second < secs(cfg_.resend_timeout_s) ||
+                                  p.last_heartbeat < s->second + secs(cfg_.loss_grace_s)))
+          continue;
         due[origin][seq].push_back(id);
       }
     }

@@ -78,6 +78,7 @@ class PeerSyncNode {
   struct Peer {
     bool heard_heartbeat = false;
     Micros last_heard = 0;
+    Micros last_heartbeat = 0;          // when its latest heartbeat arrived
     OriginRanges known;                 // last heartbeat's holdings plus later acknowledgements
     std::map<Key, Micros> sent;         // last time it was sent to this peer (by anyone)
     std::map<Key, Micros> lacking_since;

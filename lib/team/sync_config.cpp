@@ -14,6 +14,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.ack_delay_s = n.get<double>("ack_delay_s", c.ack_delay_s);
   c.resend_timeout_s = n.get<double>("resend_timeout_s", c.resend_timeout_s);
   c.relay_delay_s = n.get<double>("relay_delay_s", c.relay_delay_s);
+  c.loss_grace_s = n.get<double>("loss_grace_s", c.loss_grace_s);
   c.peer_timeout_s = n.get<double>("peer_timeout_s", c.peer_timeout_s);
   c.map_period_s = n.get<double>("map_period_s", c.map_period_s);
   c.map_refresh_s = n.get<double>("map_refresh_s", c.map_refresh_s);
@@ -45,7 +46,8 @@ void SyncConfig::validate() const {
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");
-  if (ack_delay_s < 0 || relay_delay_s < 0) throw std::invalid_argument("ack_delay_s and relay_delay_s must be >= 0");
+  if (ack_delay_s < 0 || relay_delay_s < 0 || loss_grace_s < 0)
+    throw std::invalid_argument("ack_delay_s, relay_delay_s and loss_grace_s must be >= 0");
   if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)
     throw std::invalid_argument("max_chunk_bytes must be within 64..60000 (LCM's UDP limit is ~64 KB)");
   if (max_ranges_per_origin < 1 || max_ranges_per_origin > 4096)

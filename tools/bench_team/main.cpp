@@ -213,6 +213,14 @@ int main(int argc, char** argv) {
     for (const auto& rs : sc.robots) metres += rs.metres;
     rep.add("lossy.bytes_per_metre", bad.bytes / metres, "bytes", true).note = "30% loss, links down half the time";
     rep.add("lossy.clean_bytes_per_metre", clean.bytes / metres, "bytes", true);
+    std::size_t keyposes_total = 0;
+    for (const auto& rs : sc.robots) keyposes_total += rs.bundles.size();
+    rep.add("lossy.bundle_sends_per_bundle", static_cast<double>(bad.bundle_chunks) / keyposes_total, "", true)
+        .note = "bundle chunks put on the medium per bundle (1 = each sent once to everyone)";
+    rep.add("lossy.share.bundles", bad.traffic.bundle / bad.bytes, "", true);
+    rep.add("lossy.share.heartbeats", bad.traffic.heartbeat / bad.bytes, "", true);
+    rep.add("lossy.share.acks", bad.traffic.ack / bad.bytes, "", true);
+    rep.add("lossy.share.maps", bad.traffic.map / bad.bytes, "", true);
     rep.add("lossy.converge_s", bad.converge_s, "s", true).note = "after links heal at the end of the run";
     rep.add("lossy.drops_counted", static_cast<double>(bad.drops_total), "", true).note =
         "duplicates and replays caught by the receivers (normal under duplication and resends)";
