@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "daemon_harness.h"
+#include "team/message_auth.h"
 
 using namespace slide;
 using namespace slide::team;
@@ -87,6 +88,25 @@ TEST(PeerSyncProcesses, ThreeDaemonsExactlyOnceAcrossKillAndRestart) {
   };
   auto count = [&](std::size_t i) { return buses[i]->got().size(); };
   for (int id : kTeam) publish(id, 0, n / 2);
+  {
+    // Garbage and forgeries on the team bus: random bytes, truncated messages, a wrong key.
+    lcm::LCM team(kTeamUrl);
+    std::vector<std::uint8_t> junk(300);
+    for (auto& b : junk) b = static_cast<std::uint8_t>(rng());
+    for (const char* ch : {"TEAM_CHUNK", "TEAM_HEARTBEAT", "TEAM_ACK"}) team.publish(ch, junk.data(), 300);
+    Chunk forged;
+    forged.sender = 2;
+    forged.counter = 1LL << 40;
+    forged.origin = 2;
+    forged.seq = n / 2;
+    forged.data = encodeBundle(randomBundle(rng, 2, n / 2));
+    MessageAuth("wrong-key").sign(forged);
+    const sync_chunk_t m = toLcm(forged);
+    team.publish("TEAM_CHUNK", &m);
+    std::vector<std::uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+    m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+    team.publish("TEAM_CHUNK", buf.data(), static_cast<unsigned>(buf.size() / 2));
+  }
   EXPECT_TRUE(waitFor(buses, [&] { return count(0) == n && count(1) == n && count(2) == n; }, 20));
 
   // kill -9 robot 2's daemon; the others go on; then it comes back from its journal.
