@@ -18,7 +18,7 @@ struct RayHit {
 class RayCaster {
  public:
   // Freezes `world` at time t (moving objects placed at t). cell_size in metres.
-  explicit RayCaster(const World& world, double t = 0.0, double cell_size = 2.0);
+  explicit RayCaster(const World& world, double t = 0.0, double cell_size = 4.0);
 
   // Nearest surface along the unit ray (origin, dir) closer than max_range.
   bool cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double max_range, RayHit* hit) const;
@@ -44,7 +44,11 @@ class RayCaster {
   Eigen::Vector2d grid_min_ = Eigen::Vector2d::Zero();
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> cell_start_;  // CSR: cell i holds cell_items_[cell_start_[i] .. cell_start_[i+1])
-  std::vector<uint32_t> cell_items_;
+  struct CellItem {
+    uint32_t prim;
+    float zmin, zmax;  // copied from the primitive so the z test stays in cache
+  };
+  std::vector<CellItem> cell_items_;
   double scene_zmax_ = 0;
 };
 
