@@ -101,13 +101,14 @@ LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sens
   scan.intensity.reserve(capacity);
   scan.semantic.reserve(capacity);
   scan.instance.reserve(capacity);
+  const OriginView view(caster, o, model.max_range);
   RayHit hit;
   for (int c = 0; c < model.columns; ++c) {
     const double az = 2 * M_PI * c / model.columns;
     const double ca = std::cos(az), sa = std::sin(az);
     for (int b = 0; b < model.beams(); ++b) {
       const Eigen::Vector3d dir_s(ce[b] * ca, ce[b] * sa, se[b]);
-      if (!caster.cast(o, R * dir_s, model.max_range, &hit)) continue;
+      if (!view.cast(R * dir_s, model.max_range, &hit)) continue;
       if (hit.range < model.min_range) continue;
       if (model.dropout > 0 && u(fast) < model.dropout) continue;
       const double r = std::max(model.min_range, hit.range + noise(fast));

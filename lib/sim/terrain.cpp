@@ -87,7 +87,7 @@ double Terrain::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, do
     if (d.z() < -1e-12) t_ground = (base_z - o.z()) / d.z();
     if (t_ground < t_start) t_ground = kInf;
   } else {
-    // Lipschitz marching (the ray cannot meet the ground closer than g / L), then bisection.
+    // Lipschitz marching (the ray cannot meet the ground closer than g / L), then false position.
     double amp = 0, slope = 0;
     for (const TerrainWave& w : waves) {
       amp += std::abs(w.amplitude);
@@ -109,18 +109,22 @@ double Terrain::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, do
     } else if (d.z() > 1e-12) {
       t1 = std::min(max_range, (zmax - o.z()) / d.z());
     }
-    const double lipschitz = std::abs(d.z()) + slope * std::hypot(d.x(), d.y()) + 1e-9;
+    const double lipschitz = std::abs(d.z()) + slope * std::sqrt(d.x() * d.x() + d.y() * d.y()) + 1e-9;
     double a = t0, ga = g(a);
     while (a < t1) {
       const double b = std::min(a + std::max(ga / lipschitz, std::max(0.4, 0.04 * a)), t1);
       const double gb = g(b);
       if (gb <= 0) {
-        double lo = a, hi = b;
-        for (int i = 0; i < 30 && hi - lo > 1e-3; ++i) {
-          const double m = 0.5 * (lo + hi);
-          (g(m) > 0 ? lo : hi) = m;
+        // False position (the ground is smooth), bisection as a fallback.
+        double lo = a, hi = b, glo = ga, ghi = gb, t = b;
+        for (int i = 0; i < 12 && hi - lo > 1e-3; ++i) {
+          t = i < 4 ? lo + (hi - lo) * glo / (glo - ghi) : 0.5 * (lo + hi);
+          const double gt = g(t);
+          if (std::abs(gt) < 1e-3) break;
+          if (gt > 0) lo = t, glo = gt;
+          else hi = t, ghi = gt;
         }
-        t_ground = 0.5 * (lo + hi);
+        t_ground = t;
         break;
       }
       a = b, ga = gb;
