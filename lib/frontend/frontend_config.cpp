@@ -49,6 +49,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "coverage_bin", p.coverage_bin, 0.05);
     opt(c, "min_coverage", p.min_coverage, 0.0);
     opt(c, "min_top", p.min_top, 0.0);
+    opt(c, "ceiling_margin", p.ceiling_margin, 0.0);
     opt(c, "max_height", p.max_height, 0.5);
     opt(c, "margin", p.margin, 0.0);
     opt(c, "min_points", p.min_points, 1);
@@ -68,6 +69,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_length", p.min_length, 0.0);
     opt(c, "max_length", p.max_length, p.min_length);
     opt(c, "max_width", p.max_width, 0.0);
+    opt(c, "max_roughness", p.max_roughness, 0.0);
   }
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }

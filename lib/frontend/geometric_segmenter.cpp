@@ -52,6 +52,20 @@ Footprint footprintOf(const Cloud& cloud, const std::vector<int>& idx) {
   return {std::max(r.size.width, r.size.height), std::min(r.size.width, r.size.height)};
 }
 
+// Median second difference of ranges over consecutive scan-order triplets in the cluster;
+// NaN when there are too few.
+double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<int>& mark, int label) {
+  for (int i : idx) mark[i] = label;
+  std::vector<double> d;
+  const int n = static_cast<int>(cloud.size());
+  for (int i : idx) {
+    if (i == 0 || i + 1 >= n || mark[i - 1] != label || mark[i + 1] != label) continue;
+    if ((cloud[i - 1] - cloud[i]).squaredNorm() > 0.25f || (cloud[i + 1] - cloud[i]).squaredNorm() > 0.25f) continue;
+    d.push_back(std::abs(double(cloud[i - 1].norm()) - 2.0 * cloud[i].norm() + cloud[i + 1].norm()));
+  }
+  return d.size() < 10 ? std::nan("") : quantileInPlace(d, 0.5);
+}
+
 double quantileOf(const std::vector<float>& values, const std::vector<int>& idx, double q) {
   std::vector<double> v;
   v.reserve(idx.size());
@@ -100,6 +114,12 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
   for (int i : above)
     if (h[i] >= cp.band_low && h[i] <= cp.band_high) band.push_back(i);
   const PlanarBuckets buckets(cloud, above, 0.5);
+  // Highest elevation angle seen (beyond 3 m): columns need not reach above what is visible.
+  double tan_elev = -1e9;
+  for (int i : above) {
+    const double r = std::hypot(cloud[i].x(), cloud[i].y());
+    if (r > 3.0) tan_elev = std::max(tan_elev, cloud[i].z() / r);
+  }
   const int num_bins = std::max(1, static_cast<int>(std::ceil((cp.band_high - cp.band_low) / cp.coverage_bin)));
   if (!band.empty()) {
     for (const auto& group : clusterGrid(cloud, band, {cp.cell, true, cp.min_points})) {
@@ -119,14 +139,15 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
       if (covered < cp.min_coverage * num_bins) continue;
       c = {0.5 * (min_x + max_x), 0.5 * (min_y + max_y)};
       const double radius = 0.5 * std::hypot(max_x - min_x, max_y - min_y) + cp.margin;
-      std::vector<int> column, canopy_zone;
-      double top = 0;
+      std::vector<int> column;
+      double top = 0, ground_z = 0;
       for (int i : buckets.near(c, radius)) {
         if (taken[i] || h[i] > cp.max_height) continue;
         column.push_back(i);
-        top = std::max<double>(top, h[i]);
+        if (h[i] > top) top = h[i], ground_z = cloud[i].z() - h[i];
       }
-      if (top < cp.min_top) continue;
+      const double ceiling = c.norm() * tan_elev - ground_z - cp.ceiling_margin;
+      if (top < std::min(cp.min_top, ceiling)) continue;
       // Canopy: points above the band spreading well beyond the axis.
       int canopy = 0, high = 0;
       for (int i : buckets.near(c, cp.canopy_radius + 2.0)) {
@@ -148,7 +169,11 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
   for (int i : above)
     if (!taken[i] && h[i] <= kp.height_cap) low.push_back(i);
   if (!low.empty()) {
+    std::vector<int> mark(cloud.size(), -1);
+    int label = 0;
     for (const auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) {
+      const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
+      if (rough > kp.max_roughness) continue;
       const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
       if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
       const Footprint f = footprintOf(cloud, cl);

@@ -19,7 +19,8 @@ struct ColumnParams {
   double max_diameter = 1.2;     // footprint of a column in the band
   double coverage_bin = 0.25;    // vertical bins of the band ...
   double min_coverage = 0.5;     // ... this fraction of which must hold points
-  double min_top = 2.5;          // the column must reach this high (pedestrians do not)
+  double min_top = 2.5;          // the column must reach this high (pedestrians do not), or
+  double ceiling_margin = 0.3;   // ... to within this of the highest visible point at its range
   double max_height = 8.0;       // column points kept up to this height
   double margin = 0.12;          // metres added to the band radius when collecting points
   int min_points = 8;            // band points
@@ -36,6 +37,10 @@ struct CarParams {
   double max_bottom = 0.8;       // 5th percentile of height above ground
   double min_length = 1.2, max_length = 6.5;
   double max_width = 2.8;
+  // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
+  // car bodies are smooth (~2 cm), vegetation is not (~8 cm). 0 disables; clusters with
+  // fewer than 10 consecutive triplets (unordered scans) skip the test.
+  double max_roughness = 0.045;
 };
 
 struct GeometricSegmenterParams {
