@@ -27,3 +27,15 @@ std::string InputIssues::summary() const {
 }
 
 }  // namespace slide
+
+namespace slide {
+
+std::optional<std::string> IssueWindow::due(double now_s) {
+  if (pending_.empty() || now_s - last_s_ < interval_s_) return std::nullopt;
+  last_s_ = now_s;
+  std::string s = "skipped bad input: " + pending_.summary() + " (total " + std::to_string(total_.total()) + ")";
+  pending_.clear();
+  return s;
+}
+
+}  // namespace slide
