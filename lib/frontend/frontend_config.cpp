@@ -97,6 +97,7 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "low_percentile", p.low_percentile, 0.0);
     opt(c, "high_percentile", p.high_percentile, p.low_percentile);
     opt(c, "footprint_cell", p.footprint_cell, 1e-3);
+    opt(c, "yaw_step_deg", p.yaw_step_deg, 0.0);
     opt(c, "min_visible_fraction", p.min_visible_fraction, 0.0);
     opt(c, "size_tolerance", p.size_tolerance, 1.0);
     opt(c, "min_points", p.min_points, 3);

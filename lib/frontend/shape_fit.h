@@ -29,6 +29,7 @@ struct CuboidFitParams {
   double low_percentile = 0.02;    // robust extents along each axis
   double high_percentile = 0.98;
   double footprint_cell = 0.05;    // footprint thinning before the rectangle search
+  double yaw_step_deg = 1.0;       // heading search step (0: minimum-area rectangle instead)
   double min_visible_fraction = 0.4;  // visible length / class min length required
   double size_tolerance = 1.1;     // fitted extents may exceed the class maximum by this factor
   int min_points = 30;
