@@ -50,6 +50,7 @@ class SegmenterNode {
     if (auto text = window_.due(nowSeconds())) spdlog::warn("{}", *text);
   }
   int published() const { return published_; }
+  const InputIssues& issues() const { return window_.total(); }
 
  private:
   using Frame = std::variant<lidar_scan_t, rgbd_frame_t>;
@@ -149,10 +150,11 @@ int main(int argc, char** argv) {
     spdlog::info("robot {}: {} + {} + {} -> {} on {} (lidar mode {})", robot, scan_ch, rgbd_ch, odom_ch, out_ch, url,
                  cfg.lidar_mode);
     while (!g_stop) {
-      if (lcm.handleTimeout(200) < 0) throw std::runtime_error("LCM receive failed on " + url);
+      if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
     }
-    spdlog::info("stopping after {} frames", node.published());
+    spdlog::info("stopping after {} frames; skipped bad input: {}", node.published(),
+                 node.issues().empty() ? "none" : node.issues().summary());
     return 0;
   });
 }

@@ -41,6 +41,7 @@ class TrackerNode {
     if (auto text = window_.due(nowSeconds())) spdlog::warn("{}", *text);
   }
   int bundles() const { return bundler_.nextSeq(); }
+  const InputIssues& issues() const { return window_.total(); }
 
  private:
   lcm::LCM& lcm_;
@@ -78,10 +79,11 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, [](int) { g_stop = true; });
     spdlog::info("robot {}: {} -> {} on {} (key pose every {} m)", robot, in_ch, out_ch, url, cfg.keypose.distance);
     while (!g_stop) {
-      if (lcm.handleTimeout(200) < 0) throw std::runtime_error("LCM receive failed on " + url);
+      if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
     }
-    spdlog::info("stopping after {} key poses", node.bundles());
+    spdlog::info("stopping after {} key poses; skipped bad input: {}", node.bundles(),
+                 node.issues().empty() ? "none" : node.issues().summary());
     return 0;
   });
 }

@@ -1,5 +1,7 @@
 #include "frontend_msg/frontend_convert.h"
 
+#include <limits>
+
 #include "msg/convert.h"
 
 namespace slide {
@@ -8,7 +10,10 @@ LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues) {
   LabelledScan s;
   const std::size_t n = std::min<std::size_t>(m.xyz.size(), static_cast<std::size_t>(std::max(0, m.num_points)));
   s.xyz.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) s.xyz.emplace_back(m.xyz[i][0], m.xyz[i][1], m.xyz[i][2]);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (m.xyz[i].size() == 3) s.xyz.emplace_back(m.xyz[i][0], m.xyz[i][1], m.xyz[i][2]);
+    else s.xyz.emplace_back(Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN()));
+  }
   s.intensity.assign(m.intensity.begin(), m.intensity.begin() + std::min(n, m.intensity.size()));
   if (m.has_labels) {
     if (m.num_labels != m.num_points || m.semantic.size() != n || m.instance.size() != n) {
@@ -29,7 +34,7 @@ lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header) {
   lidar_scan_t m;
   m.header = header;
   m.num_points = static_cast<int32_t>(scan.size());
-  m.xyz.resize(scan.size());
+  m.xyz.assign(scan.size(), std::vector<float>(3, 0.0f));
   m.intensity.resize(scan.size(), 0.0f);
   for (std::size_t i = 0; i < scan.size(); ++i) {
     for (int k = 0; k < 3; ++k) m.xyz[i][k] = scan.xyz[i][k];
@@ -87,7 +92,7 @@ frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header
     o.class_id = static_cast<int16_t>(inst.class_id);
     o.confidence = inst.confidence;
     o.num_points = static_cast<int32_t>(inst.points.size());
-    o.xyz.resize(inst.points.size());
+    o.xyz.assign(inst.points.size(), std::vector<float>(3, 0.0f));
     for (std::size_t i = 0; i < inst.points.size(); ++i)
       for (int k = 0; k < 3; ++k) o.xyz[i][k] = inst.points[i][k];
     m.instances.push_back(std::move(o));
@@ -105,7 +110,8 @@ FrameInstances instancesFromMsg(const frame_instances_t& m) {
     inst.class_id = o.class_id;
     inst.confidence = o.confidence;
     inst.points.reserve(o.xyz.size());
-    for (const auto& p : o.xyz) inst.points.emplace_back(p[0], p[1], p[2]);
+    for (const auto& p : o.xyz)
+      if (p.size() == 3) inst.points.emplace_back(p[0], p[1], p[2]);
     f.instances.push_back(std::move(inst));
   }
   return f;
