@@ -58,13 +58,17 @@ BackendConfig loadBackendConfig(const std::string& path) {
   if (root.has("association")) {
     const ConfigNode n = root.child("association");
     read(n, "min_observations", c.min_observations);
+    read(n, "association_sigmas", c.association_sigmas);
+    if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
   }
   if (root.has("incremental")) {
     const ConfigNode n = root.child("incremental");
     read(n, "window_poses", c.window_poses);
     read(n, "local_iterations", c.local_iterations);
+    read(n, "settled_observations", c.settled_observations);
     read(n, "full_iterations", c.full_iterations);
+    read(n, "final_iterations", c.final_iterations);
     read(n, "full_every", c.full_every);
     read(n, "loop_gap", c.loop_gap);
     read(n, "min_full_gap", c.min_full_gap);

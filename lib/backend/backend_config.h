@@ -41,13 +41,17 @@ struct BackendConfig {
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
   double robust_loss_scale = 1.0;   // Huber threshold on whitened object residuals
 
-  // Association and confirmation.
+  // Association and confirmation. The class table's distance threshold is widened by
+  // association_sigmas times the detection's own position sigma (range-bearing model).
   int min_observations = 3;
+  double association_sigmas = 2.0;
 
   // Incremental solving.
   int window_poses = 3;            // own latest poses optimized in each local solve
+  int settled_observations = 8;    // landmarks seen this often stay fixed in local solves
   int local_iterations = 3;
-  int full_iterations = 10;
+  int full_iterations = 3;         // full solves during updates (warm-started)
+  int final_iterations = 100;      // full solves on request / at the end (to convergence)
   int full_every = 250;            // key poses between periodic full solves
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop
   int min_full_gap = 60;           // key poses between loop-triggered full solves

@@ -8,17 +8,24 @@
 
 namespace slide {
 
+// A detection in the landmarks' frame, with the extra distance its own uncertainty allows
+// (e.g. a few bearing sigmas times its range) on top of the class threshold.
+struct Detection {
+  Object object;
+  double slack = 0.0;
+};
+
 struct LandmarkCandidate {
   int index = -1;                  // caller's landmark index
   const Object* object = nullptr;  // landmark in the same frame as the detections
 };
 
-// Cost of pairing a detection with a landmark: distance / class threshold + model difference
-// / class threshold (each <= 1 when associable); negative when not associable.
-double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes);
+// Cost of pairing a detection with a landmark: distance / (class threshold + slack) + model
+// difference / class threshold (each <= 1 when associable); negative when not associable.
+double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack = 0.0);
 
 // For each detection, the index of its landmark or -1 (a new landmark).
-std::vector<int> associateDetections(const std::vector<Object>& detections,
+std::vector<int> associateDetections(const std::vector<Detection>& detections,
                                      const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes);
 
 }  // namespace slide

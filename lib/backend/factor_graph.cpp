@@ -30,7 +30,9 @@ SolveReport report(const ceres::Solver::Summary& s) {
 
 ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance, int num_threads) {
   ceres::Solver::Options o;
-  o.linear_solver_type = ceres::SPARSE_SCHUR;
+  o.linear_solver_type = getenv("SLIDE_SNC") ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::SPARSE_SCHUR;
+  if (getenv("SLIDE_EIGEN")) o.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  if (getenv("SLIDE_CX")) o.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
   o.max_num_iterations = max_iterations;
   o.function_tolerance = function_tolerance;
   o.gradient_tolerance = 1e-10;
@@ -63,8 +65,8 @@ ceres::Manifold* FactorGraph::manifoldFor(BlockKind kind) const {
 
 ceres::LossFunction* FactorGraph::lossFor(const Factor& f) const { return f.robust ? loss_.get() : nullptr; }
 
-int FactorGraph::addVariable(BlockKind kind, const double* init, bool landmark) {
-  Variable v{kind, landmark, {}, {}, {}};
+int FactorGraph::addVariable(BlockKind kind, const double* init, bool eliminate_first) {
+  Variable v{kind, eliminate_first, {}, {}, {}};
   v.value.fill(0);
   std::copy(init, init + blockSize(kind), v.value.begin());
   v.initial = v.value;
@@ -128,7 +130,7 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
     for (int v : factors_[id].vars) {
       double* b = vars_[v].value.data();
       if (!is_active[v]) problem.SetParameterBlockConstant(b);
-      ordering->AddElementToGroup(b, vars_[v].landmark ? 0 : 1);
+      ordering->AddElementToGroup(b, vars_[v].eliminate_first ? 0 : 1);
     }
   ceres::Solver::Options o;
   o.linear_solver_type = ceres::DENSE_SCHUR;
@@ -144,10 +146,11 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
 SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance, int num_threads) {
   ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads);
   auto* ordering = new ceres::ParameterBlockOrdering;
-  for (auto& v : vars_) ordering->AddElementToGroup(v.value.data(), v.landmark ? 0 : 1);
-  o.linear_solver_ordering.reset(ordering);
+  for (auto& v : vars_) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);
+  if (o.linear_solver_type == ceres::SPARSE_SCHUR) o.linear_solver_ordering.reset(ordering); else delete ordering;
   ceres::Solver::Summary s;
   ceres::Solve(o, global_.get(), &s);
+  if (getenv("SLIDE_CERES_DEBUG")) fprintf(stderr, "%s\n", s.FullReport().c_str());
   return report(s);
 }
 
@@ -162,7 +165,7 @@ FactorGraph::Values FactorGraph::solveBatch(int max_iterations, double function_
   ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads);
   auto* ordering = new ceres::ParameterBlockOrdering;
   for (std::size_t i = 0; i < vars_.size(); ++i)
-    if (problem.HasParameterBlock(values[i].data())) ordering->AddElementToGroup(values[i].data(), vars_[i].landmark ? 0 : 1);
+    if (problem.HasParameterBlock(values[i].data())) ordering->AddElementToGroup(values[i].data(), vars_[i].eliminate_first ? 0 : 1);
   o.linear_solver_ordering.reset(ordering);
   ceres::Solver::Summary s;
   ceres::Solve(o, &problem, &s);

@@ -37,8 +37,10 @@ class FactorGraph {
   FactorGraph(const FactorGraph&) = delete;
   FactorGraph& operator=(const FactorGraph&) = delete;
 
-  // A landmark variable is eliminated first in Schur solves; `init` has the block's size.
-  int addVariable(BlockKind kind, const double* init, bool landmark);
+  // Schur solves eliminate group 0 (landmark blocks, which never share a factor) first, then
+  // the rest (key poses, and landmark blocks that accompany a group-0 block such as cuboid
+  // dims). `init` has the block's size.
+  int addVariable(BlockKind kind, const double* init, bool eliminate_first);
   // Takes ownership of `cost`; its parameter blocks are `vars` in order.
   int addFactor(ceres::CostFunction* cost, std::vector<int> vars, bool robust);
   void removeFactor(int factor);
@@ -48,7 +50,7 @@ class FactorGraph {
   const std::vector<int>& factorsOf(int var) const { return vars_[var].factors; }
   std::size_t numVariables() const { return vars_.size(); }
   std::size_t numFactors() const { return factors_.size() - removed_; }
-  bool isLandmark(int var) const { return vars_[var].landmark; }
+  bool eliminatedFirst(int var) const { return vars_[var].eliminate_first; }
 
   // Solves over `active` variables with every factor that touches one of them.
   SolveReport solveLocal(const std::vector<int>& active, int max_iterations);
@@ -64,7 +66,7 @@ class FactorGraph {
  private:
   struct Variable {
     BlockKind kind;
-    bool landmark;
+    bool eliminate_first;
     std::array<double, 7> value;
     std::array<double, 7> initial;
     std::vector<int> factors;

@@ -46,7 +46,7 @@ int Optimizer::addLandmark(const Object& w) {
   lm.shape = w.shape();
   if (const auto* c = std::get_if<Cuboid>(&w.model)) {
     lm.var = graph_.addVariable(BlockKind::Pose, toPoseBlock(c->pose).data(), true);
-    lm.dims_var = graph_.addVariable(BlockKind::Vector3, c->dims.data(), true);
+    lm.dims_var = graph_.addVariable(BlockKind::Vector3, c->dims.data(), false);
   } else if (const auto* c = std::get_if<Cylinder>(&w.model)) {
     const Eigen::Vector3d axis = c->axis.normalized();
     const double block[7] = {c->root.x(), c->root.y(), c->root.z(), axis.x(), axis.y(), axis.z(), c->radius};

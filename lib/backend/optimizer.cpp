@@ -105,12 +105,13 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   ++step_;
 
   // Association in the host frame against landmarks near each detection.
-  std::vector<Object> world;
+  std::vector<Detection> world;
   world.reserve(objects.size());
   std::vector<int> near;
   for (const Object& o : objects) {
-    world.push_back(transformObject(T_w_b, o));
-    grid_.near(world.back().position(), max_association_distance_ + 2.0, near);
+    const double sigma = std::max(cfg_.range_sigma, cfg_.bearing_sigma * o.position().head<2>().norm());
+    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * sigma});
+    grid_.near(world.back().object.position(), max_association_distance_ + world.back().slack + 1.0, near);
   }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
@@ -124,7 +125,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   for (std::size_t i = 0; i < objects.size(); ++i) {
     int index = match[i];
     if (index < 0) {
-      index = addLandmark(world[i]);
+      index = addLandmark(world[i].object);
     } else if (step_ - landmarks_[index].last_step > cfg_.loop_gap) {
       loop = true;
     }
@@ -141,13 +142,14 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   const int since_full = step_ - last_full_step_;
   if ((full_pending_ && since_full >= cfg_.min_full_gap) || since_full >= cfg_.full_every) {
     r.full_solve = true;
-    return fullSolve();
+    return solveAll(cfg_.full_iterations);
   }
   std::vector<int> active;
   const auto& kps = robots_[robot].keyposes;
   for (int k = static_cast<int>(kps.size()) - 1; k >= 0 && k >= static_cast<int>(kps.size()) - cfg_.window_poses; --k)
     active.push_back(keyposes_[kps[k]].var);
   for (int i : touched) {
+    if (landmarks_[i].observations > cfg_.settled_observations) continue;
     active.push_back(landmarks_[i].var);
     if (landmarks_[i].dims_var >= 0) active.push_back(landmarks_[i].dims_var);
   }
@@ -158,8 +160,10 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   return s;
 }
 
-SolveReport Optimizer::fullSolve() {
-  const SolveReport s = graph_.solveFull(cfg_.full_iterations, cfg_.full_function_tolerance, cfg_.num_threads);
+SolveReport Optimizer::fullSolve() { return solveAll(cfg_.final_iterations); }
+
+SolveReport Optimizer::solveAll(int max_iterations) {
+  const SolveReport s = graph_.solveFull(max_iterations, cfg_.full_function_tolerance, cfg_.num_threads);
   full_pending_ = false;
   last_full_step_ = step_;
   afterSolve({}, true);
@@ -205,7 +209,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   }
   if (!robot.keyposes.empty()) {
     r.full_solve = true;
-    r.solve = fullSolve();
+    r.solve = solveAll(cfg_.full_iterations);
   }
   r.accepted = true;
   r.update_ms = msSince(t0);
@@ -227,7 +231,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   loop_factors_[key] = graph_.addFactor(
       relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, true);
   r.full_solve = true;
-  r.solve = fullSolve();
+  r.solve = solveAll(cfg_.full_iterations);
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;

@@ -50,7 +50,7 @@ class Optimizer {
   // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
   // A repeated (robot, seq_a, seq_b) replaces the earlier one.
   UpdateResult addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b);
-  // Full solve to convergence over the whole graph.
+  // Full solve to convergence over the whole graph (at most final_iterations).
   SolveReport fullSolve();
 
   // Landmarks in the host frame (ids are the landmark ids), confirmed ones or all.
@@ -113,6 +113,7 @@ class Optimizer {
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
+  SolveReport solveAll(int max_iterations);
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
