@@ -39,7 +39,7 @@ struct BackendConfig {
   double cylinder_axis_sigma = 0.1;
   double cylinder_radius_sigma = 0.05;
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
-  double robust_loss_scale = 1.0;   // Huber threshold on whitened object residuals
+  double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)
 
   // Association and confirmation. The class table's distance threshold is widened by
   // association_sigmas times the detection's own position sigma (range-bearing model).
@@ -54,7 +54,7 @@ struct BackendConfig {
   int final_iterations = 100;      // full solves on request / at the end (to convergence)
   int full_every = 250;            // key poses between periodic full solves
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop
-  int min_full_gap = 60;           // key poses between loop-triggered full solves
+  int min_full_gap = 120;          // key poses between loop-triggered full solves
   double full_function_tolerance = 1e-6;
   int num_threads = 1;
 };

@@ -3,6 +3,8 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 #include "backend/factors.h"
 
@@ -44,7 +46,7 @@ ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance
 }  // namespace
 
 FactorGraph::FactorGraph(double robust_loss_scale)
-    : loss_(new ceres::HuberLoss(robust_loss_scale)),
+    : robust_scale_(robust_loss_scale),
       pose_manifold_(newPoseManifold()),
       cylinder_manifold_(newCylinderManifold()) {
   ceres::Problem::Options o = sharedOptions();
@@ -63,7 +65,11 @@ ceres::Manifold* FactorGraph::manifoldFor(BlockKind kind) const {
   return nullptr;
 }
 
-ceres::LossFunction* FactorGraph::lossFor(const Factor& f) const { return f.robust ? loss_.get() : nullptr; }
+ceres::LossFunction* FactorGraph::lossFor(const Factor& f) const {
+  if (!f.robust) return nullptr;
+  const int n = f.cost->num_residuals();
+  return losses_.at(n).get();
+}
 
 int FactorGraph::addVariable(BlockKind kind, const double* init, bool eliminate_first) {
   Variable v{kind, eliminate_first, {}, {}, {}};
@@ -91,6 +97,9 @@ int FactorGraph::addFactor(ceres::CostFunction* cost, std::vector<int> vars, boo
   f.cost.reset(cost);
   f.vars = std::move(vars);
   f.robust = robust;
+  const int n = f.cost->num_residuals();
+  if (static_cast<int>(losses_.size()) <= n) losses_.resize(n + 1);
+  if (!losses_[n]) losses_[n] = std::make_unique<ceres::HuberLoss>(robust_scale_ * std::sqrt(static_cast<double>(n)));
   std::vector<double*> blocks;
   for (int v : f.vars) blocks.push_back(vars_[v].value.data());
   f.global_id = global_->AddResidualBlock(f.cost.get(), lossFor(f), blocks);
@@ -111,6 +120,14 @@ void FactorGraph::removeFactor(int id) {
   f.removed = true;
   f.cost.reset();
   ++removed_;
+}
+
+void FactorGraph::removeVariable(int var) {
+  Variable& v = vars_[var];
+  if (v.removed) return;
+  if (!v.factors.empty()) throw std::logic_error("FactorGraph::removeVariable: variable still has factors");
+  global_->RemoveParameterBlock(v.value.data());
+  v.removed = true;
 }
 
 SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iterations) {
@@ -146,7 +163,8 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
 SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance, int num_threads) {
   ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads);
   auto* ordering = new ceres::ParameterBlockOrdering;
-  for (auto& v : vars_) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);
+  for (auto& v : vars_)
+    if (!v.removed) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);
   if (o.linear_solver_type == ceres::SPARSE_SCHUR) o.linear_solver_ordering.reset(ordering); else delete ordering;
   ceres::Solver::Summary s;
   ceres::Solve(o, global_.get(), &s);

@@ -31,8 +31,10 @@ class FactorGraph {
  public:
   using Values = std::vector<std::array<double, 7>>;
 
-  // Robust losses on object factors: Huber with this threshold on whitened residuals.
-  explicit FactorGraph(double robust_loss_scale = 1.0);
+  // Robust losses on object factors: Huber on the whitened residual norm with threshold
+  // robust_loss_scale * sqrt(number of residuals), so a block whose error matches its noise
+  // model keeps its full (quadratic) weight whatever its dimension.
+  explicit FactorGraph(double robust_loss_scale = 1.5);
   ~FactorGraph();
   FactorGraph(const FactorGraph&) = delete;
   FactorGraph& operator=(const FactorGraph&) = delete;
@@ -44,6 +46,8 @@ class FactorGraph {
   // Takes ownership of `cost`; its parameter blocks are `vars` in order.
   int addFactor(ceres::CostFunction* cost, std::vector<int> vars, bool robust);
   void removeFactor(int factor);
+  // Drops a variable no factor uses any more (e.g. a landmark merged into another).
+  void removeVariable(int var);
 
   double* value(int var) { return vars_[var].value.data(); }
   const double* value(int var) const { return vars_[var].value.data(); }
@@ -70,6 +74,7 @@ class FactorGraph {
     std::array<double, 7> value;
     std::array<double, 7> initial;
     std::vector<int> factors;
+    bool removed = false;
   };
   struct Factor {
     std::unique_ptr<ceres::CostFunction> cost;
@@ -85,7 +90,8 @@ class FactorGraph {
   std::deque<Variable> vars_;  // deque: block addresses stay valid as variables are added
   std::vector<Factor> factors_;
   std::size_t removed_ = 0;
-  std::unique_ptr<ceres::LossFunction> loss_;
+  double robust_scale_;
+  std::vector<std::unique_ptr<ceres::LossFunction>> losses_;  // by residual count
   std::unique_ptr<ceres::Manifold> pose_manifold_, cylinder_manifold_;
   std::unique_ptr<ceres::Problem> global_;
 };

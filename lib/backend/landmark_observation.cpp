@@ -1,6 +1,8 @@
 // Landmarks of the optimizer: creation, observation factors and their current models.
+#include <algorithm>
 #include <cmath>
 
+#include "backend/data_association.h"
 #include "backend/factors.h"
 #include "backend/optimizer.h"
 #include "backend/pose_block.h"
@@ -66,6 +68,7 @@ int Optimizer::addLandmark(const Object& w) {
 
 void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o, Landmark& lm) {
   const double a = cfg_.ellipsoid_size_ema;
+  int factor = -1;
   if (const auto* c = std::get_if<Cuboid>(&o.model)) {
     const Pose predicted = T_w_b.inverse() * fromPoseBlock(graph_.value(lm.var));
     const auto [pose, dims] = closestCuboidSymmetry(*c, predicted);
@@ -73,20 +76,21 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o,
     const double t_sigma = std::max({cfg_.position_sigma_floor, cfg_.range_sigma, cfg_.bearing_sigma * range});
     PoseSigma sigma;
     sigma << t_sigma, t_sigma, t_sigma, cfg_.cuboid_rotation_sigma, cfg_.cuboid_rotation_sigma, cfg_.cuboid_rotation_sigma;
-    graph_.addFactor(cuboidFactor(pose, dims, sigma, Eigen::Vector3d::Constant(cfg_.cuboid_dims_sigma)),
-                     {pose_var, lm.var, lm.dims_var}, true);
+    factor = graph_.addFactor(cuboidFactor(pose, dims, sigma, Eigen::Vector3d::Constant(cfg_.cuboid_dims_sigma)),
+                              {pose_var, lm.var, lm.dims_var}, true);
   } else if (const auto* c = std::get_if<Cylinder>(&o.model)) {
     CylinderNoise n;
     n.position_sqrt_info = rangeBearingSqrtInfo(c->root + 0.5 * c->length * c->axis.normalized(), cfg_);
     n.along_axis_sigma = cfg_.cylinder_along_axis_sigma;
     n.axis_sigma = cfg_.cylinder_axis_sigma;
     n.radius_sigma = cfg_.cylinder_radius_sigma;
-    graph_.addFactor(cylinderFactor(c->root, c->axis.normalized(), c->radius, n), {pose_var, lm.var}, true);
+    factor = graph_.addFactor(cylinderFactor(c->root, c->axis.normalized(), c->radius, n), {pose_var, lm.var}, true);
     if (lm.observations > 0) lm.length = (1 - a) * lm.length + a * c->length;
   } else {
     const auto& e = std::get<Ellipsoid>(o.model);
-    graph_.addFactor(ellipsoidFactor(e.centroid, std::max(cfg_.position_sigma_floor, cfg_.range_sigma), cfg_.bearing_sigma),
-                     {pose_var, lm.var}, true);
+    factor = graph_.addFactor(
+        ellipsoidFactor(e.centroid, std::max(cfg_.position_sigma_floor, cfg_.range_sigma), cfg_.bearing_sigma),
+        {pose_var, lm.var}, true);
     if (lm.observations > 0) {
       lm.radius = (1 - a) * lm.radius + a * e.radius;
       lm.height = (1 - a) * lm.height + a * e.height;
@@ -94,6 +98,47 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o,
   }
   ++lm.observations;
   lm.last_step = step_;
+  lm.seen.push_back({factor, pose_var, o});
+}
+
+void Optimizer::moveObservations(Landmark& from, Landmark& to) {
+  const int last_step = std::max(from.last_step, to.last_step);
+  for (const Observation& obs : from.seen) {
+    graph_.removeFactor(obs.factor);
+    addObservation(obs.pose_var, fromPoseBlock(graph_.value(obs.pose_var)), obs.body, to);
+  }
+  to.last_step = last_step;
+  from.seen.clear();
+  from.observations = 0;
+  from.alive = false;
+  graph_.removeVariable(from.var);
+  if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
+}
+
+int Optimizer::mergeDuplicates() {
+  int merged = 0;
+  std::vector<int> near;
+  for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+    if (!landmarks_[i].alive) continue;
+    const Object oi = landmarkObject(landmarks_[i]);
+    near.clear();
+    grid_.near(oi.position(), max_association_distance_, near);
+    for (int j : near) {
+      Landmark& a = landmarks_[i];
+      Landmark& b = landmarks_[j];
+      if (j <= static_cast<int>(i) || !b.alive || b.class_id != a.class_id) continue;
+      if (associationCost(landmarkObject(b), oi, classes_) < 0) continue;
+      bool shared = false;
+      for (const Observation& x : a.seen)
+        for (const Observation& y : b.seen) shared = shared || x.pose_var == y.pose_var;
+      if (shared) continue;
+      // The older landmark (lower index) keeps its id.
+      moveObservations(b, a);
+      ++merged;
+    }
+  }
+  merges_ += merged;
+  return merged;
 }
 
 Object Optimizer::landmarkObject(const Landmark& lm, const FactorGraph::Values* values) const {

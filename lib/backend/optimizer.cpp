@@ -119,7 +119,8 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   candidate_objects.reserve(near.size());
   for (int i : near) candidate_objects.push_back(landmarkObject(landmarks_[i]));
   std::vector<LandmarkCandidate> candidates;
-  for (std::size_t k = 0; k < near.size(); ++k) candidates.push_back({near[k], &candidate_objects[k]});
+  for (std::size_t k = 0; k < near.size(); ++k)
+    if (landmarks_[near[k]].alive) candidates.push_back({near[k], &candidate_objects[k]});
   const std::vector<int> match = associateDetections(world, candidates, classes_);
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -160,19 +161,25 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   return s;
 }
 
-SolveReport Optimizer::fullSolve() { return solveAll(cfg_.final_iterations); }
+SolveReport Optimizer::fullSolve() {
+  SolveReport s = solveAll(cfg_.final_iterations);
+  for (int round = 0; round < 3 && mergeDuplicates() > 0; ++round) s = solveAll(cfg_.final_iterations);
+  return s;
+}
 
 SolveReport Optimizer::solveAll(int max_iterations) {
   const SolveReport s = graph_.solveFull(max_iterations, cfg_.full_function_tolerance, cfg_.num_threads);
   full_pending_ = false;
   last_full_step_ = step_;
   afterSolve({}, true);
+  if (max_iterations < cfg_.final_iterations && mergeDuplicates() > 0) afterSolve({}, true);
   return s;
 }
 
 void Optimizer::afterSolve(const std::vector<int>& moved, bool all) {
   if (all) {
-    for (std::size_t i = 0; i < landmarks_.size(); ++i) grid_.move(static_cast<int>(i), landmarkObject(landmarks_[i]).position());
+    for (std::size_t i = 0; i < landmarks_.size(); ++i)
+      if (landmarks_[i].alive) grid_.move(static_cast<int>(i), landmarkObject(landmarks_[i]).position());
   } else {
     for (int i : moved) grid_.move(i, landmarkObject(landmarks_[i]).position());
   }
@@ -230,8 +237,14 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   if (it != loop_factors_.end()) graph_.removeFactor(it->second);
   loop_factors_[key] = graph_.addFactor(
       relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, true);
-  r.full_solve = true;
-  r.solve = solveAll(cfg_.full_iterations);
+  // A full solve now, or (rate-limited) as soon as min_full_gap key poses have passed.
+  full_pending_ = true;
+  if (step_ - last_full_step_ >= cfg_.min_full_gap) {
+    r.full_solve = true;
+    r.solve = solveAll(cfg_.full_iterations);
+  } else {
+    r.solve = graph_.solveLocal({a->var, b->var}, cfg_.local_iterations);
+  }
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;
@@ -240,13 +253,13 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
 std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
   std::vector<Object> out;
   for (const Landmark& lm : landmarks_)
-    if (!confirmed_only || lm.observations >= cfg_.min_observations) out.push_back(landmarkObject(lm));
+    if (lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations)) out.push_back(landmarkObject(lm));
   return out;
 }
 
 int Optimizer::numLandmarks(bool confirmed_only) const {
   int n = 0;
-  for (const Landmark& lm : landmarks_) n += !confirmed_only || lm.observations >= cfg_.min_observations;
+  for (const Landmark& lm : landmarks_) n += lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations);
   return n;
 }
 
@@ -286,7 +299,7 @@ Optimizer::Batch Optimizer::solveBatch() const {
   for (const auto& [id, r] : robots_)
     for (int k : r.keyposes) b.trajectories[id].push_back({keyposes_[k].seq, keyposes_[k].utime, poseOf(keyposes_[k].var, &values)});
   for (const Landmark& lm : landmarks_)
-    if (lm.observations >= cfg_.min_observations) b.landmarks.push_back(landmarkObject(lm, &values));
+    if (lm.alive && lm.observations >= cfg_.min_observations) b.landmarks.push_back(landmarkObject(lm, &values));
   return b;
 }
 

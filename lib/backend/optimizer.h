@@ -64,6 +64,7 @@ class Optimizer {
   int numPeersMerged() const;
   int numHeld() const;
   int rejected() const { return rejected_; }
+  int merges() const { return merges_; }
   const std::map<std::string, int>& rejections() const { return rejections_; }
   double cost() const { return graph_.cost(); }
   const FactorGraph& graph() const { return graph_; }
@@ -84,8 +85,15 @@ class Optimizer {
     int var;
     Pose odom_pose;
   };
+  struct Observation {
+    int factor;
+    int pose_var;
+    Object body;  // the measurement, in the key pose's body frame
+  };
   struct Landmark {
     std::int64_t id;
+    bool alive = true;  // false once merged into another landmark
+    std::vector<Observation> seen;
     int class_id;
     Shape shape;
     int var, dims_var = -1;
@@ -114,6 +122,10 @@ class Optimizer {
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
   SolveReport solveAll(int max_iterations);
+  // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
+  // the poses): same class, associable, never seen from the same key pose. Returns merges.
+  int mergeDuplicates();
+  void moveObservations(Landmark& from, Landmark& to);
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
@@ -132,6 +144,7 @@ class Optimizer {
   int last_full_step_ = 0;
   bool full_pending_ = false;
   int rejected_ = 0;
+  int merges_ = 0;
   std::map<std::string, int> rejections_;
 };
 

@@ -48,6 +48,20 @@ std::vector<Pose> pathAlongWaypoints(const std::vector<Eigen::Vector2d>& waypoin
 ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::vector<Object>& landmarks,
                             const ScenarioNoise& noise, std::mt19937& rng, std::int64_t utime0 = 0);
 
+// An intra-robot loop closure as a place-recognition stage would report it once key pose
+// seq_b exists: the pose of seq_b's body in seq_a's body, with noise.
+struct ScenarioLoopClosure {
+  int robot = 0;
+  int seq_a = 0, seq_b = 0;
+  Pose T_a_b = Pose::Identity();
+};
+
+// Loop closures of one robot: whenever it is within `radius` of a true pose at least
+// `min_gap` key poses older, at most one per `every` key poses; noise in metres / radians.
+std::vector<ScenarioLoopClosure> simulateLoopClosures(const ScenarioRobot& robot, double radius = 4.0,
+                                                      int min_gap = 150, int every = 50, double metres = 0.05,
+                                                      double radians = 0.005, std::uint32_t seed = 7);
+
 // Indoor: 10 x 20 m room, 150 key poses, 70 furniture ellipsoids, range 4 m.
 Scenario makeIndoorScenario(std::uint32_t seed = 1);
 // Urban: 200 x 200 m, 300 key poses over 715 m, 250 cars/poles/other, range 15 m.

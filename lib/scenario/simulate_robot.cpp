@@ -108,4 +108,27 @@ ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::v
   return robot;
 }
 
+std::vector<ScenarioLoopClosure> simulateLoopClosures(const ScenarioRobot& robot, double radius, int min_gap,
+                                                      int every, double metres, double radians, std::uint32_t seed) {
+  std::mt19937 rng(seed + robot.id);
+  std::vector<ScenarioLoopClosure> out;
+  int last = -every;
+  const int n = static_cast<int>(robot.truth.size());
+  for (int b = min_gap; b < n; ++b) {
+    if (b - last < every) continue;
+    int best = -1;
+    double best_d = radius;
+    for (int a = 0; a + min_gap <= b; ++a) {
+      const double d = (robot.truth[a].translation() - robot.truth[b].translation()).norm();
+      if (d < best_d) best_d = d, best = a;
+    }
+    if (best < 0) continue;
+    Vector6d xi;
+    for (int i = 0; i < 6; ++i) xi[i] = gauss(rng, i < 3 ? metres : radians);
+    out.push_back({robot.id, best, b, robot.truth[best].inverse() * robot.truth[b] * expSE3(xi)});
+    last = b;
+  }
+  return out;
+}
+
 }  // namespace slide

@@ -1,5 +1,7 @@
 #include "scenario_run.h"
 
+#include <time.h>
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -11,6 +13,12 @@ namespace slide {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+
+double cpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
 
 Pose perturb(const Pose& T, double metres, double degrees, std::mt19937& rng) {
   std::normal_distribution<double> g(0, 1);
@@ -50,24 +58,43 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   std::size_t longest = 0;
   for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
   std::map<int, Pose> given;  // last transform given per peer
+  std::map<int, std::map<int, std::vector<ScenarioLoopClosure>>> closures;  // robot -> seq_b -> closures
+  for (const auto& r : s.robots)
+    for (const auto& lc : simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
   int objects = 0;
   for (std::size_t k = 0; k < longest; ++k) {
     for (const ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
+      const double c0 = cpuMs();
       const UpdateResult u = opt.addBundle(r.bundles[k]);
+      const double cpu = cpuMs() - c0;
       objects += static_cast<int>(r.bundles[k].objects.size());
       if (!u.accepted) ++out.rejected;
-      if (!u.held) out.update_ms.push_back(u.update_ms);
+      if (!u.held) {
+        out.update_ms.push_back(u.update_ms);
+        out.update_cpu_ms.push_back(cpu);
+      }
       out.full_solves += u.full_solve;
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
+      if (!opt.merged(r.id)) continue;
+      for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
+        const double c1 = cpuMs();
+        const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
+        out.update_cpu_ms.push_back(cpuMs() - c1);
+        out.update_ms.push_back(l.update_ms);
+        out.full_solves += l.full_solve;
+        ++out.loop_closures;
+      }
     }
     for (std::size_t p = 1; p < s.robots.size(); ++p) {
       const bool first = k == longest / 2, refine = k == 3 * longest / 4;
       if (!first && !refine) continue;
       const Pose truth = s.robots[0].truth.front().inverse() * s.robots[p].truth.front();
       given[s.robots[p].id] = first ? perturb(truth, 0.3, 1.0, rng) : perturb(truth, 0.05, 0.2, rng);
+      const double c0 = cpuMs();
       const UpdateResult u = opt.addRobotTransform(s.robots[p].id, given[s.robots[p].id]);
+      out.update_cpu_ms.push_back(cpuMs() - c0);
       // Ids of landmarks the merged bundles joined are not reported per object; votes come
       // from later updates.
       out.update_ms.push_back(u.update_ms);
@@ -75,7 +102,9 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
     }
   }
   const auto t0 = Clock::now();
+  const double c0 = cpuMs();
   opt.fullSolve();
+  out.final_solve_cpu_ms = cpuMs() - c0;
   out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.incremental_cost = opt.cost();
   out.keyposes = opt.numKeyPoses();
@@ -124,7 +153,9 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   for (char c : seen) out.true_landmarks_seen += c;
 
   if (with_batch) {
+    const double cb = cpuMs();
     const Optimizer::Batch b = opt.solveBatch();
+    out.batch_cpu_ms = cpuMs() - cb;
     out.batch_ms = b.ms;
     out.batch_cost = b.report.final_cost;
     Pairs bp;
