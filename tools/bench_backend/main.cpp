@@ -46,6 +46,8 @@ void report(BenchReport& rep, const std::string& name, const ScenarioRunResult& 
   rep.add(name + ".landmarks", r.landmarks, "", false).note =
       std::to_string(r.true_landmarks_seen) + " true landmarks seen";
   rep.add(name + ".landmark_rmse_m", r.landmark_rmse_m, "m");
+  rep.add(name + ".wrong_associations", r.wrong_association_fraction, "").note =
+      "fraction of detections joined to another object's landmark";
   rep.add(name + ".keyposes", r.keyposes, "", false).note =
       std::to_string(r.objects_per_keypose).substr(0, 4) + " objects per key pose";
 }

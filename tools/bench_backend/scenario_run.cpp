@@ -146,6 +146,14 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
     ++n;
   }
   out.landmark_rmse_m = n ? std::sqrt(sq / n) : 0;
+  int total = 0, wrong = 0;
+  for (const auto& [id, counts] : votes) {
+    int best = 0, sum = 0;
+    for (const auto& [i, c] : counts) best = std::max(best, c), sum += c;
+    total += sum;
+    wrong += sum - best;
+  }
+  out.wrong_association_fraction = total ? static_cast<double>(wrong) / total : 0;
   std::vector<char> seen(s.landmarks.size(), 0);
   for (const auto& r : s.robots)
     for (const auto& list : r.seen)

@@ -20,7 +20,8 @@ struct ScenarioRunResult {
   int landmarks = 0;
   int true_landmarks_seen = 0;
   int full_solves = 0;
-  int loop_closures = 0;  // intra-robot closures given (simulated loop closer)
+  int loop_closures = 0;
+  double wrong_association_fraction = 0;  // detections not of their landmark's majority object  // intra-robot closures given (simulated loop closer)
   int keyposes = 0;
   double objects_per_keypose = 0;
   int rejected = 0;
