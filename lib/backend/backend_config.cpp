@@ -73,6 +73,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     read(n, "loop_gap", c.loop_gap);
     read(n, "min_full_gap", c.min_full_gap);
     read(n, "full_function_tolerance", c.full_function_tolerance);
+    read(n, "final_function_tolerance", c.final_function_tolerance);
     read(n, "num_threads", c.num_threads);
     for (const auto& k : n.keys())
       if (!(n.get<double>(k) > 0)) n.fail(k, "must be positive");

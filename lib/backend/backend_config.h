@@ -56,6 +56,7 @@ struct BackendConfig {
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop
   int min_full_gap = 120;          // key poses between loop-triggered full solves
   double full_function_tolerance = 1e-6;
+  double final_function_tolerance = 1e-10;
   int num_threads = 1;
 };
 

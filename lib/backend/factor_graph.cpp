@@ -32,9 +32,7 @@ SolveReport report(const ceres::Solver::Summary& s) {
 
 ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance, int num_threads) {
   ceres::Solver::Options o;
-  o.linear_solver_type = getenv("SLIDE_SNC") ? ceres::SPARSE_NORMAL_CHOLESKY : ceres::SPARSE_SCHUR;
-  if (getenv("SLIDE_EIGEN")) o.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-  if (getenv("SLIDE_CX")) o.sparse_linear_algebra_library_type = ceres::CX_SPARSE;
+  o.linear_solver_type = ceres::SPARSE_SCHUR;
   o.max_num_iterations = max_iterations;
   o.function_tolerance = function_tolerance;
   o.gradient_tolerance = 1e-10;
@@ -165,10 +163,9 @@ SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance
   auto* ordering = new ceres::ParameterBlockOrdering;
   for (auto& v : vars_)
     if (!v.removed) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);
-  if (o.linear_solver_type == ceres::SPARSE_SCHUR) o.linear_solver_ordering.reset(ordering); else delete ordering;
+  o.linear_solver_ordering.reset(ordering);
   ceres::Solver::Summary s;
   ceres::Solve(o, global_.get(), &s);
-  if (getenv("SLIDE_CERES_DEBUG")) fprintf(stderr, "%s\n", s.FullReport().c_str());
   return report(s);
 }
 

@@ -143,7 +143,7 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   const int since_full = step_ - last_full_step_;
   if ((full_pending_ && since_full >= cfg_.min_full_gap) || since_full >= cfg_.full_every) {
     r.full_solve = true;
-    return solveAll(cfg_.full_iterations);
+    return solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
   }
   std::vector<int> active;
   const auto& kps = robots_[robot].keyposes;
@@ -162,13 +162,14 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
 }
 
 SolveReport Optimizer::fullSolve() {
-  SolveReport s = solveAll(cfg_.final_iterations);
-  for (int round = 0; round < 3 && mergeDuplicates() > 0; ++round) s = solveAll(cfg_.final_iterations);
+  SolveReport s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
+  for (int round = 0; round < 3 && mergeDuplicates() > 0; ++round)
+    s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
   return s;
 }
 
-SolveReport Optimizer::solveAll(int max_iterations) {
-  const SolveReport s = graph_.solveFull(max_iterations, cfg_.full_function_tolerance, cfg_.num_threads);
+SolveReport Optimizer::solveAll(int max_iterations, double function_tolerance) {
+  const SolveReport s = graph_.solveFull(max_iterations, function_tolerance, cfg_.num_threads);
   full_pending_ = false;
   last_full_step_ = step_;
   afterSolve({}, true);
@@ -216,7 +217,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   }
   if (!robot.keyposes.empty()) {
     r.full_solve = true;
-    r.solve = solveAll(cfg_.full_iterations);
+    r.solve = solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
   }
   r.accepted = true;
   r.update_ms = msSince(t0);
@@ -241,7 +242,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   full_pending_ = true;
   if (step_ - last_full_step_ >= cfg_.min_full_gap) {
     r.full_solve = true;
-    r.solve = solveAll(cfg_.full_iterations);
+    r.solve = solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
   } else {
     r.solve = graph_.solveLocal({a->var, b->var}, cfg_.local_iterations);
   }

@@ -121,7 +121,7 @@ class Optimizer {
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
-  SolveReport solveAll(int max_iterations);
+  SolveReport solveAll(int max_iterations, double function_tolerance);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
   // the poses): same class, associable, never seen from the same key pose. Returns merges.
   int mergeDuplicates();
