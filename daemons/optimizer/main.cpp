@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", robot, url, ch.bundle, ch.peer_bundle,
                  ch.loop_closure, ch.object_map, ch.trajectory, ch.status);
     while (!g_stop) {
-      if (lcm.handleTimeout(100) < 0) throw std::runtime_error("LCM receive failed on " + url);
+      if (lcm.handleTimeout(100) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       if (g_write && !out_dir.empty()) {
         g_write = 0;
         node.writeTrajectories(out_dir);
