@@ -1,0 +1,88 @@
+// slide-optimizer: the back-end daemon of one robot. Key-pose bundles (own and peers'),
+// loop closures and inter-robot transforms in; object map, trajectories and status out.
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <lcm/lcm-cpp.hpp>
+
+#include "app/app.h"
+#include "backend/backend_config.h"
+#include "optimizer_node.h"
+
+using namespace slide;
+
+namespace {
+volatile std::sig_atomic_t g_stop = 0;
+volatile std::sig_atomic_t g_write = 0;
+
+struct Receiver {
+  OptimizerNode* node;
+  void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    node->handle(channel, rbuf->data, static_cast<int>(rbuf->data_size));
+  }
+};
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Back-end optimizer: keeps the robot's factor graph of key poses and object landmarks "
+               "optimized, merges peers once their transform is known, publishes map and trajectories"};
+  CommonOptions common;
+  int robot = 0;
+  std::string url, config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
+  std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
+  std::string journal_path, out_dir;
+  int publish_every = 1;
+  OptimizerChannels ch;
+  app.add_option("--robot", robot, "this robot's id")->capture_default_str();
+  app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
+  app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
+  app.add_option("--journal", journal_path,
+                 "LCM log of every accepted input: replayed at start, appended while running");
+  app.add_option("--out-dir", out_dir, "write TUM trajectories here at exit and on SIGUSR1");
+  app.add_option("--publish-every", publish_every, "publish map and trajectories every N updates (and on full solves)")
+      ->capture_default_str();
+  app.add_option("--bundle-channel", ch.bundle)->capture_default_str();
+  app.add_option("--peer-bundle-channel", ch.peer_bundle)->capture_default_str();
+  app.add_option("--loop-closure-channel", ch.loop_closure)->capture_default_str();
+  app.add_option("--object-map-channel", ch.object_map)->capture_default_str();
+  app.add_option("--trajectory-channel", ch.trajectory)->capture_default_str();
+  app.add_option("--status-channel", ch.status)->capture_default_str();
+  addCommonOptions(app, common);
+  return runApp(app, common, argc, argv, [&]() {
+    if (url.empty()) url = "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0";
+    const BackendConfig cfg = loadBackendConfig(config_path);
+    const ClassTable classes = ClassTable::load(classes_path);
+    lcm::LCM lcm(url);
+    if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
+    OptimizerNode node(cfg, classes, robot, ch,
+                       [&](const std::string& c, const std::vector<uint8_t>& b) {
+                         lcm.publish(c, b.data(), static_cast<unsigned>(b.size()));
+                       },
+                       publish_every);
+    if (!journal_path.empty()) {
+      node.openJournal(journal_path);
+      node.publishAll();
+    }
+    Receiver rx{&node};
+    for (const std::string& c : {ch.bundle, ch.peer_bundle, ch.loop_closure}) lcm.subscribe(c, &Receiver::onMessage, &rx);
+    std::signal(SIGINT, [](int) { g_stop = 1; });
+    std::signal(SIGTERM, [](int) { g_stop = 1; });
+    std::signal(SIGUSR1, [](int) { g_write = 1; });
+    spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", robot, url, ch.bundle, ch.peer_bundle,
+                 ch.loop_closure, ch.object_map, ch.trajectory, ch.status);
+    while (!g_stop) {
+      if (lcm.handleTimeout(100) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
+      if (g_write && !out_dir.empty()) {
+        g_write = 0;
+        node.writeTrajectories(out_dir);
+      }
+    }
+    if (!out_dir.empty()) node.writeTrajectories(out_dir);
+    node.publishAll();
+    const Optimizer& o = node.optimizer();
+    spdlog::info("stopping: {} key poses, {} landmarks, {} peers merged, {} inputs rejected", o.numKeyPoses(),
+                 o.numLandmarks(), o.numPeersMerged(), o.rejected());
+    return 0;
+  });
+}

@@ -1,0 +1,180 @@
+#include "optimizer_node.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+
+#include "bundle_messages.h"
+#include "io/tum_trajectory.h"
+#include "slide/optimizer_status_t.hpp"
+
+namespace slide {
+
+namespace {
+// Journal channel names are fixed, whatever the bus's channel names are.
+const char* journalChannel(int kind) {
+  static const char* names[] = {"KEYPOSE_BUNDLE", "PEER_BUNDLE", "LOOP_CLOSURE"};
+  return names[kind];
+}
+
+template <typename M>
+std::vector<uint8_t> encode(const M& m) {
+  std::vector<uint8_t> buf(m.getEncodedSize());
+  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+void logResult(const UpdateResult& r, const std::string& what) {
+  for (const auto& w : r.warnings) spdlog::warn("{}", w);
+  if (!r.accepted) spdlog::warn("rejected {}: {}", what, r.reason);
+}
+}  // namespace
+
+OptimizerNode::OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot,
+                             OptimizerChannels channels, Publisher publish, int publish_every)
+    : optimizer_(config, classes, robot),
+      channels_(std::move(channels)),
+      publish_(std::move(publish)),
+      publish_every_(std::max(1, publish_every)) {}
+
+OptimizerNode::~OptimizerNode() = default;
+
+std::int64_t OptimizerNode::now() const {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+int OptimizerNode::openJournal(const std::string& path) {
+  int replayed = 0;
+  if (std::filesystem::exists(path)) {
+    lcm::LogFile in(path, "r");
+    if (!in.good()) throw std::runtime_error("cannot read journal " + path);
+    replaying_ = true;
+    while (const lcm::LogEvent* e = in.readNextEvent()) {
+      for (int kind = 0; kind < 3; ++kind)
+        if (e->channel == journalChannel(kind)) {
+          process(static_cast<Input>(kind), e->data, e->datalen);
+          ++replayed;
+        }
+    }
+    replaying_ = false;
+    spdlog::info("journal {}: replayed {} inputs ({} key poses, {} landmarks)", path, replayed,
+                 optimizer_.numKeyPoses(), optimizer_.numLandmarks());
+  }
+  journal_ = std::make_unique<lcm::LogFile>(path, "a");
+  if (!journal_->good()) throw std::runtime_error("cannot append to journal " + path);
+  return replayed;
+}
+
+void OptimizerNode::journal(Input kind, const void* data, int size) {
+  if (!journal_ || replaying_) return;
+  lcm::LogEvent e;
+  e.timestamp = now();
+  e.channel = journalChannel(static_cast<int>(kind));
+  e.datalen = size;
+  e.data = const_cast<void*>(data);
+  if (journal_->writeEvent(&e) != 0) throw std::runtime_error("journal write failed");
+  std::fflush(journal_->getFilePtr());
+}
+
+void OptimizerNode::handle(const std::string& channel, const void* data, int size) {
+  Input kind;
+  if (channel == channels_.bundle) kind = Input::Bundle;
+  else if (channel == channels_.peer_bundle) kind = Input::PeerBundle;
+  else if (channel == channels_.loop_closure) kind = Input::LoopClosure;
+  else return;
+  if (process(kind, data, size)) journal(kind, data, size);
+}
+
+bool OptimizerNode::process(Input kind, const void* data, int size) {
+  UpdateResult r;
+  if (kind == Input::LoopClosure) {
+    loop_closure_t m;
+    if (m.decode(data, 0, size) < 0) {
+      ++decode_errors_;
+      spdlog::warn("undecodable loop_closure_t on {} ({} bytes)", channels_.loop_closure, size);
+      return false;
+    }
+    const Pose T = poseFromXyzYaw(m.x, m.y, m.z, m.yaw);
+    const int host = optimizer_.hostRobot();
+    if (m.robot_a == m.robot_b) {
+      r = optimizer_.addLoopClosure(m.robot_a, m.keypose_a, m.keypose_b, T);
+    } else if (m.robot_a == host) {
+      r = optimizer_.addRobotTransform(m.robot_b, T);
+    } else if (m.robot_b == host) {
+      r = optimizer_.addRobotTransform(m.robot_a, T.inverse());
+    } else {
+      spdlog::debug("loop closure between robots {} and {} does not involve robot {}", m.robot_a, m.robot_b, host);
+      return false;
+    }
+    logResult(r, "loop closure " + std::to_string(m.robot_a) + "/" + std::to_string(m.robot_b));
+  } else {
+    keypose_bundle_t m;
+    const std::string& channel = kind == Input::Bundle ? channels_.bundle : channels_.peer_bundle;
+    if (m.decode(data, 0, size) < 0) {
+      ++decode_errors_;
+      spdlog::warn("undecodable keypose_bundle_t on {} ({} bytes)", channel, size);
+      return false;
+    }
+    const bool own = m.header.robot == optimizer_.hostRobot();
+    if (own != (kind == Input::Bundle)) {
+      spdlog::warn("ignored bundle of robot {} on {}: {} carries {} bundles only", m.header.robot, channel, channel,
+                   kind == Input::Bundle ? "this robot's" : "peers'");
+      return false;
+    }
+    std::vector<std::string> warnings;
+    const KeyPoseBundle b = fromMsg(m, warnings);
+    for (const auto& w : warnings) spdlog::warn("malformed object dropped: {}", w);
+    r = optimizer_.addBundle(b);
+    logResult(r, "bundle of robot " + std::to_string(b.robot) + " key pose " + std::to_string(b.seq));
+  }
+  if (!r.accepted) {
+    if (!replaying_) publishStatus(r);
+    return false;
+  }
+  ++updates_;
+  if (!replaying_) {
+    publishStatus(r);
+    if (updates_ % publish_every_ == 0 || r.full_solve) publishAll();
+  }
+  return true;
+}
+
+void OptimizerNode::publishStatus(const UpdateResult& r) {
+  if (!publish_) return;
+  optimizer_status_t s;
+  s.utime = now();
+  s.robot = optimizer_.hostRobot();
+  s.num_keyposes = optimizer_.numKeyPoses();
+  s.num_landmarks = optimizer_.numLandmarks();
+  s.num_peers_merged = optimizer_.numPeersMerged();
+  s.full_solve = r.full_solve;
+  s.update_ms = r.update_ms;
+  s.final_cost = r.solve.final_cost;
+  s.rejected_inputs = optimizer_.rejected();
+  publish_(channels_.status, encode(s));
+}
+
+void OptimizerNode::publishAll() {
+  if (!publish_) return;
+  const std::int64_t t = now();
+  const int host = optimizer_.hostRobot();
+  publish_(channels_.object_map, encode(objectMapMsg(t, host, optimizer_.landmarks())));
+  for (int r : optimizer_.robots()) publish_(channels_.trajectory, encode(trajectoryMsg(t, r, host, optimizer_.trajectory(r))));
+}
+
+void OptimizerNode::writeTrajectories(const std::string& dir) {
+  optimizer_.fullSolve();
+  std::filesystem::create_directories(dir);
+  for (int r : optimizer_.robots()) {
+    std::vector<StampedPose> poses;
+    for (const TrajectoryPose& p : optimizer_.trajectory(r)) poses.push_back({p.utime * 1e-6, p.pose});
+    const std::string path = dir + "/trajectory_robot" + std::to_string(r) + ".txt";
+    writeTum(path, poses);
+    spdlog::info("wrote {} poses of robot {} to {}", poses.size(), r, path);
+  }
+}
+
+}  // namespace slide

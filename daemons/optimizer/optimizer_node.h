@@ -1,0 +1,67 @@
+#pragma once
+// The optimizer daemon's logic without the LCM loop: decodes input messages, feeds the
+// back-end, journals every accepted input to an LCM log (replayed at start, so a restarted
+// daemon rebuilds the same state), and publishes map, trajectories and status.
+#include <lcm/lcm-cpp.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "backend/optimizer.h"
+#include "slide/keypose_bundle_t.hpp"
+#include "slide/loop_closure_t.hpp"
+
+namespace slide {
+
+struct OptimizerChannels {
+  std::string bundle = "KEYPOSE_BUNDLE";
+  std::string peer_bundle = "PEER_BUNDLE";
+  std::string loop_closure = "LOOP_CLOSURE";
+  std::string object_map = "OBJECT_MAP";
+  std::string trajectory = "TRAJECTORY";
+  std::string status = "OPTIMIZER_STATUS";
+};
+
+class OptimizerNode {
+ public:
+  // Publishes through `publish(channel, bytes)`; an empty function publishes nothing.
+  using Publisher = std::function<void(const std::string&, const std::vector<uint8_t>&)>;
+
+  OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot, OptimizerChannels channels,
+                Publisher publish, int publish_every = 1);
+  ~OptimizerNode();
+
+  // Replays the journal at `path` (if it exists) through the same handlers without
+  // publishing, then keeps appending accepted inputs to it. Returns the events replayed.
+  // Throws std::runtime_error naming the path when it cannot be opened or written.
+  int openJournal(const std::string& path);
+
+  // Raw LCM input on `channel` (one of the three input channels). Undecodable data and
+  // rejected inputs are counted and logged as warnings.
+  void handle(const std::string& channel, const void* data, int size);
+
+  void publishAll();
+  // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot.
+  void writeTrajectories(const std::string& dir);
+  const Optimizer& optimizer() const { return optimizer_; }
+  int decodeErrors() const { return decode_errors_; }
+
+ private:
+  enum class Input { Bundle, PeerBundle, LoopClosure };
+  bool process(Input kind, const void* data, int size);
+  void journal(Input kind, const void* data, int size);
+  void publishStatus(const UpdateResult& r);
+  std::int64_t now() const;
+
+  Optimizer optimizer_;
+  OptimizerChannels channels_;
+  Publisher publish_;
+  int publish_every_;
+  int updates_ = 0;
+  int decode_errors_ = 0;
+  bool replaying_ = false;
+  std::unique_ptr<lcm::LogFile> journal_;
+};
+
+}  // namespace slide

@@ -1,0 +1,64 @@
+#pragma once
+// LCM input messages for the optimizer node made from a two-robot indoor scenario: robot 0's
+// bundles, robot 1's (peer) bundles interleaved, the inter-robot transform half-way and an
+// intra-robot loop closure near the end.
+#include <string>
+#include <vector>
+
+#include "bundle_messages.h"
+#include "scenario/scenario.h"
+#include "slide/loop_closure_t.hpp"
+
+namespace slide::testing {
+
+struct RawMessage {
+  std::string channel;
+  std::vector<uint8_t> bytes;
+};
+
+template <typename M>
+std::vector<uint8_t> encodeMsg(const M& m) {
+  std::vector<uint8_t> buf(m.getEncodedSize());
+  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+inline std::vector<RawMessage> twoRobotMessages() {
+  Scenario s = makeIndoorScenario(6);
+  const std::vector<Pose> path = s.robots[0].truth;
+  std::mt19937 rng(3);
+  const ScenarioRobot a = simulateRobot(0, {path.begin(), path.begin() + 80}, s.landmarks, s.noise, rng);
+  const ScenarioRobot b = simulateRobot(1, {path.begin() + 50, path.begin() + 130}, s.landmarks, s.noise, rng, 7000000);
+  std::vector<RawMessage> out;
+  for (std::size_t k = 0; k < a.bundles.size(); ++k) {
+    out.push_back({"KEYPOSE_BUNDLE", encodeMsg(toMsg(a.bundles[k]))});
+    out.push_back({"PEER_BUNDLE", encodeMsg(toMsg(b.bundles[k]))});
+    if (k == 40) {
+      const Pose T = a.truth[0].inverse() * b.truth[0];
+      loop_closure_t lc{};
+      lc.robot_a = 0;
+      lc.robot_b = 1;
+      lc.x = T.translation().x();
+      lc.y = T.translation().y();
+      lc.z = T.translation().z();
+      lc.yaw = yawOf(T.linear());
+      lc.num_inliers = 0;
+      out.push_back({"LOOP_CLOSURE", encodeMsg(lc)});
+    }
+    if (k == 70) {
+      const Pose T = a.truth[5].inverse() * a.truth[70];
+      loop_closure_t lc{};
+      lc.robot_a = lc.robot_b = 0;
+      lc.keypose_a = 5;
+      lc.keypose_b = 70;
+      lc.x = T.translation().x();
+      lc.y = T.translation().y();
+      lc.z = T.translation().z();
+      lc.yaw = yawOf(T.linear());
+      out.push_back({"LOOP_CLOSURE", encodeMsg(lc)});
+    }
+  }
+  return out;
+}
+
+}  // namespace slide::testing

@@ -1,0 +1,67 @@
+// Data association: class and threshold gates, at most one detection per landmark, and an
+// optimal (not greedy) assignment; plus the private assignment solver on small cases.
+#include <gtest/gtest.h>
+
+#include "backend/assignment.h"
+#include "backend/data_association.h"
+
+using namespace slide;
+
+namespace {
+Object chair(double x, double y, double radius = 0.3) {
+  Object o;
+  o.class_id = 1;
+  o.model = Ellipsoid{{x, y, 0.45}, radius, 0.9};
+  return o;
+}
+Object table(double x, double y) {
+  Object o;
+  o.class_id = 2;
+  o.model = Ellipsoid{{x, y, 0.4}, 0.6, 0.75};
+  return o;
+}
+}  // namespace
+
+TEST(BackendAssignment, MinimizesTotalCostNotGreedy) {
+  // Greedy row by row would take (0,0) at cost 1 and then (1,1) at 10: total 11.
+  Eigen::MatrixXd c(2, 2);
+  c << 1, 2, 3, 10;
+  const std::vector<int> a = backend::minCostAssignment(c);
+  EXPECT_EQ(a, (std::vector<int>{1, 0}));  // total 5
+}
+
+TEST(BackendAssignment, RectangularAndForbidden) {
+  Eigen::MatrixXd c(3, 2);
+  c << 5, backend::kForbidden, backend::kForbidden, backend::kForbidden, 1, 4;
+  const std::vector<int> a = backend::minCostAssignment(c);
+  EXPECT_EQ(a[0], 0);
+  EXPECT_EQ(a[1], -1);  // nothing allowed
+  EXPECT_EQ(a[2], 1);
+  EXPECT_TRUE(backend::minCostAssignment(Eigen::MatrixXd(0, 3)).empty());
+}
+
+TEST(BackendAssociation, GatesOnClassDistanceAndModel) {
+  const ClassTable classes = ClassTable::loadDefault();
+  EXPECT_GE(associationCost(chair(0, 0), chair(0.3, 0), classes), 0.0);
+  EXPECT_LT(associationCost(chair(0, 0), chair(0.9, 0), classes), 0.0);        // chair threshold 0.6 m
+  EXPECT_GE(associationCost(chair(0, 0), chair(0.9, 0), classes, 0.5), 0.0);   // widened by slack
+  EXPECT_LT(associationCost(chair(0, 0), table(0.1, 0), classes), 0.0);        // other class
+  EXPECT_LT(associationCost(chair(0, 0, 0.3), chair(0, 0, 1.0), classes), 0.0);  // model differs by 0.7 > 0.5
+}
+
+TEST(BackendAssociation, OneDetectionPerLandmarkOptimally) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const Object l0 = chair(0, 0), l1 = chair(1.0, 0);
+  const std::vector<LandmarkCandidate> landmarks = {{10, &l0}, {11, &l1}};
+  // Detection a is nearest to landmark 10 but b can only be landmark 10; the optimum gives
+  // a to 11 and b to 10 (greedy first-match would leave b unmatched).
+  const std::vector<Detection> dets = {{chair(0.45, 0), 0}, {chair(-0.2, 0), 0}};
+  const std::vector<int> m = associateDetections(dets, landmarks, classes);
+  EXPECT_EQ(m[0], 11);
+  EXPECT_EQ(m[1], 10);
+  // Two detections of one landmark: only one gets it, the other starts a new landmark.
+  const std::vector<LandmarkCandidate> one = {{5, &l0}};
+  const std::vector<int> m2 = associateDetections({{chair(0.05, 0), 0}, {chair(0.2, 0), 0}}, one, classes);
+  EXPECT_EQ(m2[0], 5);
+  EXPECT_EQ(m2[1], -1);
+}

@@ -1,0 +1,158 @@
+// The optimizer on small scenarios: incremental equals batch after a full solve, bad input is
+// rejected with a reason and leaves the graph usable, and a peer merges through a transform.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "backend/optimizer.h"
+#include "scenario/scenario.h"
+
+using namespace slide;
+
+namespace {
+
+// The indoor world, driven by two robots: robot 0 the first 90 key poses, robot 1 poses
+// 60..149 (their paths overlap), each in its own odometry frame.
+Scenario twoRobotIndoor() {
+  Scenario s = makeIndoorScenario(4);
+  const std::vector<Pose> path = s.robots[0].truth;
+  std::mt19937 rng(9);
+  s.robots.clear();
+  s.robots.push_back(simulateRobot(0, {path.begin(), path.begin() + 90}, s.landmarks, s.noise, rng));
+  s.robots.push_back(simulateRobot(1, {path.begin() + 60, path.end()}, s.landmarks, s.noise, rng, 50000000));
+  return s;
+}
+
+double maxTranslationGap(const std::vector<TrajectoryPose>& a, const std::vector<TrajectoryPose>& b) {
+  double gap = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) gap = std::max(gap, (a[i].pose.translation() - b[i].pose.translation()).norm());
+  return gap;
+}
+
+}  // namespace
+
+TEST(BackendOptimizer, IncrementalEqualsBatchAfterFullSolve) {
+  const Scenario s = makeIndoorScenario(1);
+  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  int full = 0;
+  for (const KeyPoseBundle& b : s.robots[0].bundles) {
+    const UpdateResult r = opt.addBundle(b);
+    ASSERT_TRUE(r.accepted) << r.reason;
+    full += r.full_solve;
+  }
+  EXPECT_GE(full, 1);  // the lap closes: at least one full solve on the way
+  opt.fullSolve();
+  const Optimizer::Batch batch = opt.solveBatch();
+  EXPECT_NEAR(opt.cost(), batch.report.final_cost, 1e-6 * batch.report.final_cost);
+  const auto inc = opt.trajectory(0);
+  ASSERT_EQ(inc.size(), batch.trajectories.at(0).size());
+  EXPECT_LT(maxTranslationGap(inc, batch.trajectories.at(0)), 1e-3);
+  const auto lms = opt.landmarks();
+  ASSERT_EQ(lms.size(), batch.landmarks.size());
+  for (std::size_t i = 0; i < lms.size(); ++i) EXPECT_LT((lms[i].position() - batch.landmarks[i].position()).norm(), 1e-3);
+  // Every true landmark is mapped once, close to the truth (the host frame is the world's
+  // frame shifted by the first pose).
+  EXPECT_NEAR(static_cast<double>(lms.size()), static_cast<double>(s.landmarks.size()), 3.0);
+}
+
+TEST(BackendOptimizer, RejectsBadInputAndStaysConsistent) {
+  const Scenario s = makeIndoorScenario(2);
+  const auto& in = s.robots[0].bundles;
+  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  for (int k = 0; k < 10; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
+  const int poses = opt.numKeyPoses();
+
+  KeyPoseBundle nan = in[10];
+  nan.relative_odom.translation().x() = std::nan("");
+  UpdateResult r = opt.addBundle(nan);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("non-finite"), std::string::npos) << r.reason;
+
+  KeyPoseBundle jump = in[10];
+  jump.relative_odom.translation() += Eigen::Vector3d(500, 0, 0);
+  r = opt.addBundle(jump);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("odometry jump"), std::string::npos) << r.reason;
+
+  r = opt.addBundle(in[9]);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("duplicate key pose"), std::string::npos) << r.reason;
+
+  KeyPoseBundle early = in[10];
+  early.utime = in[9].utime - 1;
+  r = opt.addBundle(early);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.reason.find("timestamp out of order"), std::string::npos) << r.reason;
+  EXPECT_EQ(opt.numKeyPoses(), poses);
+  EXPECT_EQ(opt.rejected(), 4);
+
+  // Bad objects are dropped with a warning; the rest of the bundle is used.
+  KeyPoseBundle mixed = in[10];
+  ASSERT_GE(mixed.objects.size(), 2u);
+  mixed.objects[0].class_id = 999;
+  std::get<Ellipsoid>(mixed.objects[1].model).centroid.y() = INFINITY;
+  r = opt.addBundle(mixed);
+  ASSERT_TRUE(r.accepted) << r.reason;
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings[0].find("unknown class"), std::string::npos) << r.warnings[0];
+  EXPECT_NE(r.warnings[1].find("non-finite"), std::string::npos) << r.warnings[1];
+  EXPECT_EQ(r.landmark_ids[0], -1);
+  EXPECT_EQ(r.landmark_ids[1], -1);
+  EXPECT_GE(r.landmark_ids[2], 0);
+
+  // A missing key pose is bridged with the odometry poses; the graph keeps working.
+  r = opt.addBundle(in[12]);
+  ASSERT_TRUE(r.accepted) << r.reason;
+  EXPECT_EQ(opt.numKeyPoses(), poses + 2);
+  EXPECT_FALSE(opt.addLoopClosure(0, 3, 77, Pose::Identity()).accepted);
+  opt.fullSolve();
+  EXPECT_TRUE(std::isfinite(opt.cost()));
+  EXPECT_LT((opt.trajectory(0).back().pose.translation() -
+             (s.robots[0].truth[0].inverse() * s.robots[0].truth[12]).translation()).norm(), 0.2);
+}
+
+TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
+  const Scenario s = twoRobotIndoor();
+  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const auto& a = s.robots[0].bundles;
+  const auto& b = s.robots[1].bundles;
+  for (const auto& x : a) ASSERT_TRUE(opt.addBundle(x).accepted);
+  for (std::size_t k = 0; k < 40; ++k) {
+    const UpdateResult r = opt.addBundle(b[k]);
+    ASSERT_TRUE(r.accepted);
+    EXPECT_TRUE(r.held);
+  }
+  EXPECT_EQ(opt.numHeld(), 40);
+  EXPECT_EQ(opt.robots(), (std::vector<int>{0}));
+  const int landmarks_before = opt.numLandmarks(false);
+
+  const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
+  const UpdateResult m = opt.addRobotTransform(1, truth * poseFromXyzYaw(0.2, -0.1, 0, 0.01));
+  ASSERT_TRUE(m.accepted);
+  EXPECT_TRUE(m.full_solve);
+  EXPECT_EQ(opt.numHeld(), 0);
+  EXPECT_EQ(opt.robots(), (std::vector<int>{0, 1}));
+  for (std::size_t k = 40; k < b.size(); ++k) ASSERT_TRUE(opt.addBundle(b[k]).accepted);
+  const std::size_t factors = opt.graph().numFactors();
+  opt.addRobotTransform(1, truth);  // refinement replaces the anchor
+  EXPECT_EQ(opt.graph().numFactors(), factors);
+  opt.fullSolve();
+
+  // Shared objects are one landmark: the peer adds only what robot 0 never saw.
+  std::vector<char> seen0(s.landmarks.size(), 0), seen_any(s.landmarks.size(), 0);
+  for (const auto& list : s.robots[0].seen)
+    for (int i : list) seen0[i] = seen_any[i] = 1;
+  for (const auto& list : s.robots[1].seen)
+    for (int i : list) seen_any[i] = 1;
+  const int new_objects = std::count(seen_any.begin(), seen_any.end(), 1) - std::count(seen0.begin(), seen0.end(), 1);
+  EXPECT_LE(opt.numLandmarks(false) - landmarks_before, new_objects + 3);
+
+  // The peer's trajectory lands where it truly was, in the host's frame.
+  const auto peer = opt.trajectory(1);
+  ASSERT_EQ(peer.size(), b.size());
+  double worst = 0;
+  for (const auto& p : peer)
+    worst = std::max(worst, (p.pose.translation() -
+                             (s.robots[0].truth[0].inverse() * s.robots[1].truth[p.seq]).translation()).norm());
+  EXPECT_LT(worst, 0.3);
+}
