@@ -82,7 +82,7 @@ std::vector<Object> readText(std::ifstream& in, const std::string& path, const C
 }
 
 std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const std::string& header,
-                            const ClassTable& classes) {
+                            const ClassTable& classes, int default_class) {
   std::map<std::string, std::size_t> col;
   const auto names = splitCsv(header);
   for (std::size_t i = 0; i < names.size(); ++i) col[names[i]] = i;
@@ -93,7 +93,8 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
   };
   const auto c_class = find({"class_id", "class"});
   const auto c_x = find({"x"}), c_y = find({"y"}), c_z = find({"z"});
-  if (!c_class || !c_x || !c_y || !c_z) throw IoError(path, "CSV header needs columns class_id, x, y, z");
+  if ((!c_class && default_class < 0) || !c_x || !c_y)
+    throw IoError(path, "CSV header needs columns class_id, x, y (and optionally z)");
   const auto c_id = find({"id"}), c_shape = find({"shape"}), c_yaw = find({"yaw"}), c_conf = find({"confidence"});
   const auto c_sx = find({"size_x", "length"}), c_sy = find({"size_y", "width"}), c_sz = find({"size_z", "height"});
   const auto c_r = find({"radius"});
@@ -112,7 +113,7 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
       if (!parseNumber(cells[*c], v)) throw IoError(where, std::string("field ") + field + ": '" + cells[*c] + "' is not a number");
       return v;
     };
-    const ClassInfo& cls = classForLabel(classes, *num(c_class, "class_id"), where);
+    const ClassInfo& cls = classForLabel(classes, c_class ? *num(c_class, "class_id") : default_class, where);
     Shape shape = cls.shape;
     if (c_shape) {
       if (*c_shape >= cells.size()) throw IoError(where, "missing field shape");
@@ -126,7 +127,7 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
     if (auto v = num(c_sy, "size_y")) extent.y() = *v;
     if (auto v = num(c_sz, "size_z")) extent.z() = *v;
     if ((extent.array() < 0).any()) throw IoError(where, "negative size");
-    Object o = makeObject(cls, shape, {*num(c_x, "x"), *num(c_y, "y"), *num(c_z, "z")}, extent,
+    Object o = makeObject(cls, shape, {*num(c_x, "x"), *num(c_y, "y"), num(c_z, "z").value_or(0.0)}, extent,
                           num(c_yaw, "yaw").value_or(0.0));
     o.id = c_id ? static_cast<std::int64_t>(*num(c_id, "id")) : static_cast<std::int64_t>(out.size());
     o.confidence = num(c_conf, "confidence").value_or(1.0);
@@ -159,7 +160,7 @@ Object makeObject(const ClassInfo& cls, Shape shape, const Eigen::Vector3d& cent
   return o;
 }
 
-std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable& classes) {
+std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable& classes, int default_class) {
   std::ifstream in(path);
   if (!in) throw IoError(path, "cannot open file");
   std::string first;
@@ -172,7 +173,7 @@ std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable&
   }
   const std::string t = trim(first);
   const bool csv = t.find(',') != std::string::npos;
-  if (csv) return readCsv(in, path, t, classes);
+  if (csv) return readCsv(in, path, t, classes, default_class);
   in.clear();
   in.seekg(start);
   return readText(in, path, classes);

@@ -8,7 +8,7 @@
 //   2r 2r length, ellipsoid 2r 2r height); when absent the class's typical size is used
 //   (per axis, the geometric mean of size_min and size_max). yaw: radians (cuboids).
 // CSV: a header line naming columns, then one object per line. Required: class_id (or
-//   class), x, y, z. Optional: id, shape (cuboid|cylinder|ellipsoid; default the class's),
+//   class; may be absent when a default class is given), x, y. z defaults to 0. Optional: id, shape (cuboid|cylinder|ellipsoid; default the class's),
 //   yaw, size_x size_y size_z (or length width height), radius (sets size_x = size_y = 2r),
 //   confidence. Unknown columns are ignored. writeObjectMapCsv writes
 //   "id,class_id,shape,x,y,z,yaw,size_x,size_y,size_z,confidence".
@@ -21,7 +21,9 @@
 
 namespace slide {
 
-std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable& classes);
+// default_class: the class of objects in CSV files without a class column (e.g. "x,y" pole
+// lists); -1 means such files are an error.
+std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable& classes, int default_class = -1);
 void writeObjectMapCsv(const std::string& path, const std::vector<Object>& objects);
 
 // An object of class `class_id` (shape from the table unless given) centred at `centre`

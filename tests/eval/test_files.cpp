@@ -76,6 +76,16 @@ TEST_F(Files, CsvRoundTripAndHeaderAliases) {
   EXPECT_TRUE(o[0].position().isApprox(Eigen::Vector3d(1, 2, 3)));
 }
 
+TEST_F(Files, PoleListWithDefaultClass) {
+  const auto p = std::string(SLIDE_DATA_DIR) + "/kitti/poles/05.csv";
+  EXPECT_THROW(readObjectMapFile(p, classes_), IoError);
+  const auto poles = readObjectMapFile(p, classes_, 80);
+  EXPECT_EQ(poles.size(), 321u);
+  EXPECT_EQ(poles[0].class_id, 80);
+  EXPECT_NEAR(poles[0].position().x(), 32.4410, 1e-9);
+  EXPECT_NEAR(poles[0].position().z(), 0.0, 1e-9);
+}
+
 TEST_F(Files, BadMapsNameFileAndLine) {
   auto expectError = [&](const std::string& name, const std::string& text, const std::string& needle) {
     const auto p = write(name, text);
@@ -92,6 +102,7 @@ TEST_F(Files, BadMapsNameFileAndLine) {
   expectError("b.txt", "999 0 0 0\n", "label 999");
   expectError("c.txt", "1 2 3\n", "label x y z");
   expectError("d.csv", "id,x,y\n1,2,3\n", "class_id");
+  expectError("d2.csv", "id,x\n1,2\n", "class_id, x, y");
   expectError("e.csv", "class_id,x,y,z,shape\n10,1,2,3,cube\n", "shape");
   expectError("f.csv", "class_id,x,y,z\n10,1,2\n", "missing field z");
   EXPECT_THROW(readObjectMapFile((dir_ / "none.txt").string(), classes_), IoError);
