@@ -54,4 +54,16 @@ std::vector<StampedPose> readTrajectory(const std::string& path, TrajectoryForma
   return out;
 }
 
+std::vector<StampedPose> readTrajectory(const std::string& path, const TrajectoryReadOptions& opts) {
+  std::vector<StampedPose> t = readTrajectory(path, opts.format, opts.kitti_times);
+  if (opts.kitti_lidar) {
+    std::vector<Pose> cam;
+    for (const auto& p : t) cam.push_back(p.pose);
+    const auto lidar = kittiLidarPoses(cam, kittiVeloToCamTr0410());
+    for (std::size_t i = 0; i < t.size(); ++i) t[i].pose = lidar[i];
+  }
+  for (auto& p : t) p.pose = opts.placement * p.pose;
+  return t;
+}
+
 }  // namespace slide

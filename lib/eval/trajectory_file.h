@@ -19,4 +19,13 @@ TrajectoryFormat parseTrajectoryFormat(const std::string& s);
 std::vector<StampedPose> readTrajectory(const std::string& path, TrajectoryFormat format = TrajectoryFormat::Auto,
                                         const std::string& kitti_times_path = "");
 
+struct TrajectoryReadOptions {
+  TrajectoryFormat format = TrajectoryFormat::Auto;
+  std::string kitti_times;   // KITTI times file; empty: frame index
+  bool kitti_lidar = false;  // KITTI camera poses -> LiDAR frame (x forward, z up), 04-10 calibration
+  Pose placement = Pose::Identity();  // applied last: placement * pose
+};
+
+std::vector<StampedPose> readTrajectory(const std::string& path, const TrajectoryReadOptions& opts);
+
 }  // namespace slide

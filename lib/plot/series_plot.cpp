@@ -23,7 +23,7 @@ Canvas plotSeries(const std::vector<Series>& series, const SeriesPlotOptions& op
 
   constexpr double kLegendWidth = 230;
   Canvas c(opts.width, opts.height);
-  const PixelRect area{80, 70, opts.width - 80 - kLegendWidth - 20.0, opts.height - 70 - 65.0};
+  const PixelRect area{80, 80, opts.width - 80 - kLegendWidth - 20.0, opts.height - 80 - 65.0};
   const Viewport vp(frame, area, false);
   drawAxes(c, vp, opts.x_label, opts.y_label);
 

@@ -10,7 +10,6 @@
 #include "eval/placed_file.h"
 #include "eval/time_association.h"
 #include "eval/trajectory_file.h"
-#include "io/kitti_poses.h"
 #include "plot/map_plot.h"
 #include "plot/palette.h"
 #include "plot/series_plot.h"
@@ -35,15 +34,12 @@ void addTrajectoryOptions(CLI::App* cmd, TrajectoryArgs& a) {
 }
 
 std::vector<StampedPose> loadTrajectory(const std::string& path, const TrajectoryArgs& a, const Pose& placement) {
-  std::vector<StampedPose> t = readTrajectory(path, parseTrajectoryFormat(a.format), a.times);
-  if (a.kitti_lidar) {
-    std::vector<Pose> cam;
-    for (const auto& p : t) cam.push_back(p.pose);
-    const auto lidar = kittiLidarPoses(cam, kittiVeloToCamTr0410());
-    for (std::size_t i = 0; i < t.size(); ++i) t[i].pose = lidar[i];
-  }
-  for (auto& p : t) p.pose = placement * p.pose;
-  return t;
+  TrajectoryReadOptions o;
+  o.format = parseTrajectoryFormat(a.format);
+  o.kitti_times = a.times;
+  o.kitti_lidar = a.kitti_lidar;
+  o.placement = placement;
+  return readTrajectory(path, o);
 }
 
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
