@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -48,18 +49,56 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
-// Lines of a metre grid on the ground plane z = ground, covering the x-y box.
-void drawGroundGrid(Canvas& c, const Viewport& vp, const View& view, const Eigen::AlignedBox3d& box) {
-  const double step = niceStep(std::max(box.sizes().x(), box.sizes().y()), 10);
-  const double z = box.min().z();
-  const double x0 = std::floor(box.min().x() / step) * step, x1 = std::ceil(box.max().x() / step) * step;
-  const double y0 = std::floor(box.min().y() / step) * step, y1 = std::ceil(box.max().y() / step) * step;
+struct Grid {
+  double step, z, x0, x1, y0, y1;
+};
+
+// A ground grid of round step on the plane z = lowest point, covering the x-y box.
+Grid groundGrid(const Eigen::AlignedBox3d& box) {
+  Grid g;
+  g.step = niceStep(std::max(box.sizes().x(), box.sizes().y()), 10);
+  g.z = box.min().z();
+  g.x0 = std::floor(box.min().x() / g.step) * g.step;
+  g.x1 = std::ceil(box.max().x() / g.step) * g.step;
+  g.y0 = std::floor(box.min().y() / g.step) * g.step;
+  g.y1 = std::ceil(box.max().y() / g.step) * g.step;
+  return g;
+}
+
+// The part of segment a-b inside the rectangle (Liang-Barsky); false when none is.
+bool clipSegment(Eigen::Vector2d& a, Eigen::Vector2d& b, const PixelRect& r) {
+  const Eigen::Vector2d d = b - a;
+  double t0 = 0, t1 = 1;
+  const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+  const double q[4] = {a.x() - r.x, r.x + r.w - a.x(), a.y() - r.y, r.y + r.h - a.y()};
+  for (int i = 0; i < 4; ++i) {
+    if (std::abs(p[i]) < 1e-12) {
+      if (q[i] < 0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0) t0 = std::max(t0, t);
+    else t1 = std::min(t1, t);
+  }
+  if (t0 > t1) return false;
+  const Eigen::Vector2d a0 = a;
+  a = a0 + t0 * d;
+  b = a0 + t1 * d;
+  return true;
+}
+
+void drawGroundGrid(Canvas& c, const Viewport& vp, const View& view, const Grid& g) {
+  const double step = g.step, z = g.z, x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
   Style grid;
   grid.stroke = {215, 215, 215};
-  for (double x : ticks(x0, x1, step))
-    c.polyline({vp.toPixel(view.project({x, y0, z})), vp.toPixel(view.project({x, y1, z}))}, grid);
-  for (double y : ticks(y0, y1, step))
-    c.polyline({vp.toPixel(view.project({x0, y, z})), vp.toPixel(view.project({x1, y, z}))}, grid);
+  auto line = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    Eigen::Vector2d a = vp.toPixel(view.project(p)), b = vp.toPixel(view.project(q));
+    if (clipSegment(a, b, vp.area())) c.polyline({a, b}, grid);
+  };
+  // Extend the grid well beyond the objects; clipping keeps it inside the picture.
+  const double span = std::max(x1 - x0, y1 - y0);
+  for (double x : ticks(x0 - span, x1 + span, step)) line({x, y0 - span, z}, {x, y1 + span, z});
+  for (double y : ticks(y0 - span, y1 + span, step)) line({x0 - span, y, z}, {x1 + span, y, z});
   c.text({vp.area().x + vp.area().w - 10, vp.area().y + vp.area().h - 12}, "grid " + tickLabel(step, step) + " m", 10,
          {120, 120, 120}, TextAnchor::End);
 }
@@ -106,6 +145,10 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
       box3.extend(p);
     }
   }
+  std::optional<Grid> grid;
+  if (!view.isTop() && !box3.isEmpty()) {
+    grid = groundGrid(box3);
+  }
   if (!frame.isEmpty()) {
     const Eigen::Vector2d pad = (0.04 * frame.sizes()).cwiseMax(Eigen::Vector2d::Constant(1.0));
     frame.extend(frame.min() - pad);
@@ -117,8 +160,22 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
   const Viewport vp(frame, area, true);
   if (view.isTop()) {
     drawAxes(c, vp, "x [m]", "y [m]");
-  } else if (!box3.isEmpty()) {
-    drawGroundGrid(c, vp, view, box3);
+  } else if (grid) {
+    drawGroundGrid(c, vp, view, *grid);
+    // Shadows: each object's footprint on the ground, so heights read at a glance.
+    Style shadow;
+    shadow.filled = true;
+    shadow.fill = {200, 200, 200};
+    shadow.fill_opacity = 0.6;
+    shadow.stroke_width = 0;
+    for (const auto& m : maps)
+      for (const Object& o : m.objects) {
+        if (m.ground_truth) continue;
+        std::vector<Eigen::Vector2d> px;
+        for (const auto& p : objectFacets(o, View::top()).silhouette)
+          px.push_back(vp.toPixel(view.project({p.x(), p.y(), grid->z})));
+        c.polygon(px, shadow);
+      }
   }
 
   // Objects, far first; estimated maps filled, ground truth outlined on top.

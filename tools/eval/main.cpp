@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   std::string json_path;
   app.add_option("--json", json_path, "Also write the results as JSON to this file");
   app.require_subcommand(1);
+  app.fallthrough();  // --json and --log-level also after the subcommand
   std::vector<std::pair<CLI::App*, EvalCommand>> commands;
   auto add = [&](const char* name, const char* help, EvalCommand (*adder)(CLI::App*)) {
     CLI::App* sub = app.add_subcommand(name, help);
@@ -30,8 +31,6 @@ int main(int argc, char** argv) {
       addTransformCommand);
   add("bandwidth", "Bytes per landmark and per metre travelled", addBandwidthCommand);
   add("timing", "Per-stage runtime statistics (median, 99th percentile) from 'stage value' lines", addTimingCommand);
-  // --json is accepted after the subcommand as well.
-  for (auto& [sub, cmd] : commands) sub->add_option("--json", json_path, "Also write the results as JSON to this file");
   return runApp(app, common, argc, argv, [&] {
     for (auto& [sub, cmd] : commands) {
       if (!sub->parsed()) continue;

@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   CommonOptions common;
   addCommonOptions(app, common);
   app.require_subcommand(1);
+  app.fallthrough();  // --log-level also after the subcommand
 
   // map
   CLI::App* map_cmd = app.add_subcommand("map", "Object maps and trajectories, top or oblique view");
