@@ -54,12 +54,19 @@ void drawScaleBar(Canvas& c, const Viewport& vp, const std::string& unit) {
   c.text({x0 + px / 2, y0 - 9}, tickLabel(len, len) + " " + unit, 12, kInk, TextAnchor::Middle);
 }
 
+constexpr double kRow = 20, kSize = 11;
+
+Eigen::Vector2d legendSize(const std::vector<LegendEntry>& entries) {
+  double width = 0;
+  for (const auto& e : entries)
+    width = std::max(width, Canvas::textWidth(e.label, kSize) + (e.kind == LegendEntry::Header ? 0 : 30));
+  return {width + 18, entries.size() * kRow + 10};
+}
+
 void drawLegend(Canvas& c, double x, double y, const std::vector<LegendEntry>& entries) {
   if (entries.empty()) return;
-  constexpr double kRow = 20, kSize = 11;
-  double width = 0;
-  for (const auto& e : entries) width = std::max(width, Canvas::textWidth(e.label, kSize));
-  const double w = width + 48, h = entries.size() * kRow + 10;
+  const Eigen::Vector2d size = legendSize(entries);
+  const double w = size.x(), h = size.y();
   Style box;
   box.stroke = {190, 190, 190};
   box.filled = true;

@@ -20,6 +20,8 @@ struct LegendEntry {
   Style style;
 };
 
+// Width and height in pixels of the legend box for these entries.
+Eigen::Vector2d legendSize(const std::vector<LegendEntry>& entries);
 // Entries stacked downwards from (x, y), the top-left corner of the legend box.
 void drawLegend(Canvas& c, double x, double y, const std::vector<LegendEntry>& entries);
 

@@ -305,10 +305,10 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
   truth_style.stroke = kTruth;
   truth_style.stroke_width = 1.4;
   truth_style.dashed = true;
-  if (gt_objects) legend.push_back({LegendEntry::Patch, "objects (" + std::to_string(gt_objects) + "; small: rings)", truth_style});
+  if (gt_objects) legend.push_back({LegendEntry::Patch, "objects (" + std::to_string(gt_objects) + ")", truth_style});
   if (gt_traj) legend.push_back({LegendEntry::Line, "trajectory", truth_style});
   if (any_robot) legend.push_back({LegendEntry::Header, "circle: start, square: end", {}});
-  drawLegend(c, opts.width - kLegendWidth - 10, area.y, legend);
+  drawLegend(c, std::min(opts.width - kLegendWidth - 10, opts.width - legendSize(legend).x() - 8), area.y, legend);
 
   std::string subtitle = opts.subtitle;
   if (subtitle.empty()) {

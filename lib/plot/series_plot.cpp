@@ -56,7 +56,7 @@ Canvas plotSeries(const std::vector<Series>& series, const SeriesPlotOptions& op
     }
     legend.push_back({LegendEntry::Line, label.str(), line});
   }
-  drawLegend(c, opts.width - kLegendWidth - 10, area.y, legend);
+  drawLegend(c, std::min(opts.width - kLegendWidth - 10, opts.width - legendSize(legend).x() - 8), area.y, legend);
   drawTitle(c, opts.title, opts.subtitle);
   return c;
 }
