@@ -98,6 +98,7 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
   const auto c_id = find({"id"}), c_shape = find({"shape"}), c_yaw = find({"yaw"}), c_conf = find({"confidence"});
   const auto c_sx = find({"size_x", "length"}), c_sy = find({"size_y", "width"}), c_sz = find({"size_z", "height"});
   const auto c_r = find({"radius"});
+  const auto c_ax = find({"axis_x"}), c_ay = find({"axis_y"}), c_az = find({"axis_z"});
 
   std::vector<Object> out;
   std::string line;
@@ -129,6 +130,13 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
     if ((extent.array() < 0).any()) throw IoError(where, "negative size");
     Object o = makeObject(cls, shape, {*num(c_x, "x"), *num(c_y, "y"), num(c_z, "z").value_or(0.0)}, extent,
                           num(c_yaw, "yaw").value_or(0.0));
+    if (auto* cyl = std::get_if<Cylinder>(&o.model); cyl && c_ax && c_ay && c_az) {
+      const Eigen::Vector3d axis(*num(c_ax, "axis_x"), *num(c_ay, "axis_y"), *num(c_az, "axis_z"));
+      if (axis.norm() < 1e-9) throw IoError(where, "cylinder axis is zero");
+      const Eigen::Vector3d centre = o.position();
+      cyl->axis = axis.normalized();
+      cyl->root = centre - 0.5 * cyl->length * cyl->axis;
+    }
     o.id = c_id ? static_cast<std::int64_t>(*num(c_id, "id")) : static_cast<std::int64_t>(out.size());
     o.confidence = num(c_conf, "confidence").value_or(1.0);
     out.push_back(o);
@@ -182,12 +190,18 @@ std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable&
 void writeObjectMapCsv(const std::string& path, const std::vector<Object>& objects) {
   std::ofstream out(path);
   if (!out) throw IoError(path, "cannot write file");
-  out << "id,class_id,shape,x,y,z,yaw,size_x,size_y,size_z,confidence\n" << std::setprecision(9);
+  out << "id,class_id,shape,x,y,z,yaw,length,width,height,radius,axis_x,axis_y,axis_z,confidence\n"
+      << std::setprecision(9);
   for (const Object& o : objects) {
     const Eigen::Vector3d p = o.position(), e = o.extent();
-    const double yaw = o.shape() == Shape::Cuboid ? yawOf(std::get<Cuboid>(o.model).pose.linear()) : 0.0;
+    double yaw = 0, radius = 0;
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+    if (const auto* c = std::get_if<Cuboid>(&o.model)) yaw = yawOf(c->pose.linear());
+    if (const auto* c = std::get_if<Cylinder>(&o.model)) radius = c->radius, axis = c->axis;
+    if (const auto* c = std::get_if<Ellipsoid>(&o.model)) radius = c->radius;
     out << o.id << ',' << o.class_id << ',' << shapeName(o.shape()) << ',' << p.x() << ',' << p.y() << ',' << p.z()
-        << ',' << yaw << ',' << e.x() << ',' << e.y() << ',' << e.z() << ',' << o.confidence << '\n';
+        << ',' << yaw << ',' << e.x() << ',' << e.y() << ',' << e.z() << ',' << radius << ',' << axis.x() << ','
+        << axis.y() << ',' << axis.z() << ',' << o.confidence << '\n';
   }
   if (!out) throw IoError(path, "write failed");
 }

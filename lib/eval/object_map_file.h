@@ -9,9 +9,11 @@
 //   (per axis, the geometric mean of size_min and size_max). yaw: radians (cuboids).
 // CSV: a header line naming columns, then one object per line. Required: class_id (or
 //   class; may be absent when a default class is given), x, y. z defaults to 0. Optional: id, shape (cuboid|cylinder|ellipsoid; default the class's),
-//   yaw, size_x size_y size_z (or length width height), radius (sets size_x = size_y = 2r),
-//   confidence. Unknown columns are ignored. writeObjectMapCsv writes
-//   "id,class_id,shape,x,y,z,yaw,size_x,size_y,size_z,confidence".
+//   yaw, length width height (or size_x size_y size_z: the extents above), radius (sets
+//   length = width = 2r unless those are given), axis_x axis_y axis_z (cylinders), confidence.
+//   Unknown columns (semantic, vx, vy, ...) are ignored, so the simulator's ground-truth
+//   objects.csv (io/ground_truth_objects.h) reads as it is. writeObjectMapCsv writes
+//   "id,class_id,shape,x,y,z,yaw,length,width,height,radius,axis_x,axis_y,axis_z,confidence".
 // '#' starts a comment line in both. Errors throw IoError naming file, line and field.
 #include <string>
 #include <vector>

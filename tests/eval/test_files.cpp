@@ -68,12 +68,40 @@ TEST_F(Files, CsvRoundTripAndHeaderAliases) {
     EXPECT_TRUE(back[i].position().isApprox(objs[i].position(), 1e-9));
     EXPECT_TRUE(back[i].extent().isApprox(objs[i].extent(), 1e-9));
   }
+  // A leaning trunk keeps its axis.
+  Object lean;
+  lean.class_id = 71;
+  lean.model = Cylinder{{1, 2, 0}, Eigen::Vector3d(0, 0.6, 0.8), 0.25, 5};
+  writeObjectMapCsv(csv, {lean});
+  const auto l = readObjectMapFile(csv, classes_);
+  EXPECT_TRUE(std::get<Cylinder>(l[0].model).axis.isApprox(Eigen::Vector3d(0, 0.6, 0.8), 1e-9));
+  EXPECT_TRUE(std::get<Cylinder>(l[0].model).root.isApprox(Eigen::Vector3d(1, 2, 0), 1e-9));
   // Columns in another order, a radius column, an extra column.
   const auto other = write("o.csv", "x,y,z,class,radius,height,note\n1,2,3,71,0.3,5,hello\n");
   const auto o = readObjectMapFile(other, classes_);
   ASSERT_EQ(o.size(), 1u);
   EXPECT_NEAR(std::get<Cylinder>(o[0].model).radius, 0.3, 1e-12);
   EXPECT_TRUE(o[0].position().isApprox(Eigen::Vector3d(1, 2, 3)));
+}
+
+TEST_F(Files, SimulatorGroundTruthCsv) {
+  // The layout of the simulator's objects.csv (sim branch, io/ground_truth_objects.h).
+  const auto p = write("objects.csv",
+                       "id,class_id,shape,x,y,z,yaw,length,width,height,radius,axis_x,axis_y,axis_z,semantic,vx,vy\n"
+                       "1,10,cuboid,5,2,0.8,0.5,4.2,1.8,1.6,0,0,0,1,10,0,0\n"
+                       "2,71,cylinder,1,1,3,0,0.6,0.6,6,0.3,0.6,0,0.8,71,0,0\n"
+                       "3,2,ellipsoid,0,4,0.4,0,1.2,1.2,0.8,0.6,0,0,1,0,0,0\n");
+  const auto objs = readObjectMapFile(p, classes_);
+  ASSERT_EQ(objs.size(), 3u);
+  EXPECT_EQ(objs[0].id, 1);
+  EXPECT_TRUE(objs[0].extent().isApprox(Eigen::Vector3d(4.2, 1.8, 1.6)));
+  EXPECT_NEAR(yawOf(std::get<Cuboid>(objs[0].model).pose.linear()), 0.5, 1e-12);
+  const Cylinder& c = std::get<Cylinder>(objs[1].model);
+  EXPECT_NEAR(c.radius, 0.3, 1e-12);
+  EXPECT_TRUE(c.axis.isApprox(Eigen::Vector3d(0.6, 0, 0.8)));
+  EXPECT_TRUE(objs[1].position().isApprox(Eigen::Vector3d(1, 1, 3)));
+  EXPECT_NEAR(std::get<Ellipsoid>(objs[2].model).radius, 0.6, 1e-12);
+  EXPECT_NEAR(std::get<Ellipsoid>(objs[2].model).height, 0.8, 1e-12);
 }
 
 TEST_F(Files, PoleListWithDefaultClass) {

@@ -12,7 +12,8 @@ A suite whose program is missing is reported as missing; a suite that fails is r
 its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
   --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>)
   --json FILE     merged JSON (default: DIR/bench.json); the report is FILE with .md
-  --timeout S     stop a suite after S seconds (reported as failed, exit code 124)
+  --timeout S     stop a suite after S seconds (reported as failed, exit code 124);
+                  default 1800, 0 for none
 Environment: SLIDE_BENCH_BIN (where the suite programs are, default build/bin),
 SLIDE_NO_BUILD=1 (do not build first).
 USAGE
@@ -23,7 +24,7 @@ main() {
     bench_usage
     return 0
   fi
-  local suites=() json="" out="" timeout_s=""
+  local suites=() json="" out="" timeout_s=1800
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --json) [[ $# -ge 2 ]] || die "bench: --json needs a FILE"; json="$2"; shift 2 ;;
@@ -78,7 +79,7 @@ main() {
     log "suite $suite: running $exe --json $suite_json"
     t0=$(date +%s%N)
     set +e
-    if [[ -n "$timeout_s" ]]; then
+    if [[ "$timeout_s" -gt 0 ]]; then
       timeout "$timeout_s" "$exe" --json "$suite_json" 2>&1 | tee "$log"
     else
       "$exe" --json "$suite_json" 2>&1 | tee "$log"
