@@ -7,9 +7,11 @@
 namespace slide {
 
 namespace {
+// atan2(sin, cos) of the rotation angle: well conditioned near zero, unlike acos of the trace
+// (which turns rounding in 7-digit KITTI files into hundredths of a degree).
 double rotationAngleDeg(const Eigen::Matrix3d& R) {
-  const double c = std::clamp((R.trace() - 1.0) / 2.0, -1.0, 1.0);
-  return std::acos(c) * 180.0 / M_PI;
+  const Eigen::Vector3d w(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));
+  return std::atan2(0.5 * w.norm(), 0.5 * (R.trace() - 1.0)) * 180.0 / M_PI;
 }
 
 Pose scaled(Pose p, double s) {

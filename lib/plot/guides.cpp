@@ -36,7 +36,7 @@ void drawAxes(Canvas& c, const Viewport& vp, const std::string& x_label, const s
   frame.stroke = kInk;
   c.polygon({{a.x, a.y}, {a.x + a.w, a.y}, {a.x + a.w, a.y + a.h}, {a.x, a.y + a.h}}, frame);
   c.text({a.x + a.w / 2, a.y + a.h + 40}, x_label, 12, kInk, TextAnchor::Middle);
-  c.text({a.x, a.y - 8}, y_label, 12, kInk, TextAnchor::Middle);
+  c.text({std::max(6.0, a.x - 0.5 * Canvas::textWidth(y_label, 12)), a.y - 10}, y_label, 12, kInk);
 }
 
 void drawScaleBar(Canvas& c, const Viewport& vp, const std::string& unit) {

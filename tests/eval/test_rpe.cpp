@@ -133,3 +133,12 @@ TEST(TransformError, HandComputed) {
   EXPECT_NEAR(r.yaw_deg, 0, 1e-9);
   EXPECT_NEAR(r.rotation_deg, 0.1 * 180 / M_PI, 1e-9);
 }
+
+TEST(Rpe, SmallRotationsAreAccurate) {
+  // 1 microradian: acos of the trace would lose it in rounding; the result must be exact.
+  std::vector<Pose> ref = line(2), est = line(2);
+  est[1] = poseFromXyzYaw(1, 0, 0, 1e-6);
+  const RpeResult r = relativePoseError(est, ref);
+  EXPECT_NEAR(r.rot_errors_deg[0], 1e-6 * 180 / M_PI, 1e-12);
+  EXPECT_NEAR(transformError(est[1], ref[1]).rotation_deg, 1e-6 * 180 / M_PI, 1e-12);
+}

@@ -50,13 +50,6 @@ AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_r
   return associatePoses(est, ref, a.max_dt, a.offset, 3);
 }
 
-Alignment parseAlignment(const std::string& s) {
-  if (s == "none") return Alignment::None;
-  if (s == "se3") return Alignment::Se3;
-  if (s == "sim3") return Alignment::Sim3;
-  return Alignment::Yaw4Dof;
-}
-
 Json poseJson(const Pose& T) {
   const Eigen::Quaterniond q(T.linear());
   Json j;

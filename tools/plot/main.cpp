@@ -1,11 +1,14 @@
 // slide-plot: pictures of a run. `map` draws object maps and trajectories (top or oblique
-// view, PNG or SVG); `ate` draws the absolute trajectory error of each pose over time.
+// view, PNG or SVG); `ate` and `rpe` draw trajectory errors over time.
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
+#include <sstream>
 
 #include "app/app.h"
 #include "eval/ate.h"
+#include "eval/error_stats.h"
+#include "eval/rpe.h"
 #include "eval/object_map_file.h"
 #include "eval/placed_file.h"
 #include "eval/time_association.h"
@@ -87,20 +90,35 @@ int main(int argc, char** argv) {
   map_cmd->add_option("--class", default_class, "Class id of objects in CSV maps without a class column (e.g. 80 for x,y pole lists)");
   addTrajectoryOptions(map_cmd, traj_args);
 
-  // ate
+  // ate and rpe: errors over time, one line per EST REF pair.
+  struct ErrorArgs {
+    std::vector<std::string> pairs;
+    std::string out, align, unit = "frames";
+    double max_dt = 0.01, delta = 1.0;
+    bool rotation = false;
+    TrajectoryArgs traj;
+  };
+  ErrorArgs ate_args{{}, "ate.png", "se3"}, rpe_args{{}, "rpe.png", "none"};
+  auto addErrorOptions = [&](CLI::App* cmd, ErrorArgs& a) {
+    cmd->add_option("pairs", a.pairs, "EST REF [EST REF ...] trajectory files")->required();
+    cmd->add_option("--out,-o", a.out, "Output .png or .svg")->capture_default_str();
+    cmd->add_option("--max-dt", a.max_dt, "Largest time difference of associated poses, seconds")->capture_default_str();
+    cmd->add_option("--title", title, "Title");
+    addTrajectoryOptions(cmd, a.traj);
+  };
   CLI::App* ate_cmd = app.add_subcommand("ate", "Absolute trajectory error per pose over time, one line per pair");
-  std::vector<std::string> pairs;
-  std::string ate_out = "ate.png", align = "se3";
-  double max_dt = 0.01;
-  TrajectoryArgs ate_traj;
-  ate_cmd->add_option("pairs", pairs, "EST REF [EST REF ...] trajectory files")->required();
-  ate_cmd->add_option("--out,-o", ate_out, "Output .png or .svg")->capture_default_str();
-  ate_cmd->add_option("--align", align, "none, se3, sim3 or yaw (x, y, z, yaw)")
+  addErrorOptions(ate_cmd, ate_args);
+  ate_cmd->add_option("--align", ate_args.align, "none, se3, sim3 or yaw (x, y, z, yaw)")
       ->check(CLI::IsMember({"none", "se3", "sim3", "yaw"}))
       ->capture_default_str();
-  ate_cmd->add_option("--max-dt", max_dt, "Largest time difference of associated poses, seconds")->capture_default_str();
-  ate_cmd->add_option("--title", title, "Title");
-  addTrajectoryOptions(ate_cmd, ate_traj);
+  CLI::App* rpe_cmd = app.add_subcommand("rpe", "Relative pose error over time (at each pair's first pose), one line per pair");
+  addErrorOptions(rpe_cmd, rpe_args);
+  rpe_cmd->add_option("--delta", rpe_args.delta, "Pair spacing, in --unit")->capture_default_str();
+  rpe_cmd->add_option("--unit", rpe_args.unit, "frames or m")->check(CLI::IsMember({"frames", "m"}))->capture_default_str();
+  rpe_cmd->add_option("--align", rpe_args.align, "none, or sim3 to correct the scale first")
+      ->check(CLI::IsMember({"none", "sim3"}))
+      ->capture_default_str();
+  rpe_cmd->add_flag("--rotation", rpe_args.rotation, "Plot the rotation error (degrees) instead of the translation error");
 
   return runApp(app, common, argc, argv, [&]() -> int {
     const ClassTable classes = classes_path.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_path);
@@ -145,38 +163,54 @@ int main(int argc, char** argv) {
       spdlog::info("wrote {}", out);
       return 0;
     }
-    // ate
-    if (pairs.size() % 2) throw std::invalid_argument("ate: give trajectory files in EST REF pairs");
-    const Alignment mode = align == "none" ? Alignment::None
-                           : align == "se3" ? Alignment::Se3
-                           : align == "sim3" ? Alignment::Sim3
-                                             : Alignment::Yaw4Dof;
+    const bool ate = ate_cmd->parsed();
+    const ErrorArgs& e = ate ? ate_args : rpe_args;
+    if (e.pairs.size() % 2) throw std::invalid_argument("give trajectory files in EST REF pairs");
     std::vector<Series> series;
     std::string subtitle;
-    for (std::size_t k = 0; k < pairs.size(); k += 2) {
-      const auto est = loadTrajectory(pairs[k], ate_traj, Pose::Identity());
-      const auto ref = loadTrajectory(pairs[k + 1], ate_traj, Pose::Identity());
-      const AssociatedPoses a = associatePoses(est, ref, max_dt, 0.0, 3);
-      const AteResult r = absoluteTrajectoryError(a.est, a.ref, mode);
+    for (std::size_t k = 0; k < e.pairs.size(); k += 2) {
+      const auto est = loadTrajectory(e.pairs[k], e.traj, Pose::Identity());
+      const auto ref = loadTrajectory(e.pairs[k + 1], e.traj, Pose::Identity());
+      const AssociatedPoses a = associatePoses(est, ref, e.max_dt, 0.0, 3);
       Series s;
-      s.name = stem(pairs[k]);
+      s.name = stem(e.pairs[k]);
       s.colour = robotColour(static_cast<int>(k / 2));
-      for (std::size_t i = 0; i < a.t.size(); ++i) {
-        s.x.push_back(a.t[i] - a.t.front());
-        s.y.push_back(r.errors[i]);
+      std::vector<double> errors;
+      if (ate) {
+        const AteResult r = absoluteTrajectoryError(a.est, a.ref, parseAlignment(e.align));
+        s.x = a.t;
+        s.y = r.errors;
+      } else {
+        RpeOptions o;
+        o.delta = e.delta;
+        o.unit = e.unit == "m" ? DeltaUnit::Metres : DeltaUnit::Frames;
+        if (e.align == "sim3") o.scale = absoluteTrajectoryError(a.est, a.ref, Alignment::Sim3).alignment.scale;
+        const RpeResult r = relativePoseError(a.est, a.ref, o);
+        for (std::size_t i = 0; i < r.first.size(); ++i) s.x.push_back(a.t[r.first[i]]);
+        s.y = e.rotation ? r.rot_errors_deg : r.trans_errors;
       }
-      series.push_back(s);
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "%s%s: rmse %.3f m, max %.3f m, %zu poses", subtitle.empty() ? "" : "; ",
-                    s.name.c_str(), r.rmse, r.max, a.t.size());
+      for (double& x : s.x) x -= a.t.front();
+      const ErrorStats st = errorStats(s.y);
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "%s%s: rmse %.3f, max %.3f %s over %zu", subtitle.empty() ? "" : "; ", s.name.c_str(),
+                    st.rmse, st.max, ate || !e.rotation ? "m" : "deg", st.count);
       subtitle += buf;
+      series.push_back(std::move(s));
     }
     SeriesPlotOptions opts;
-    opts.title = title.empty() ? "absolute trajectory error (" + align + " alignment)" : title;
+    if (ate) {
+      opts.title = "absolute trajectory error (" + e.align + " alignment)";
+      opts.y_label = "ATE [m]";
+    } else {
+      std::ostringstream t;
+      t << "relative pose error, delta " << e.delta << " " << e.unit << (e.align == "sim3" ? " (scale corrected)" : "");
+      opts.title = t.str();
+      opts.y_label = e.rotation ? "RPE rotation [deg]" : "RPE translation [m]";
+    }
+    if (!title.empty()) opts.title = title;
     opts.subtitle = subtitle;
-    opts.y_label = "ATE [m]";
-    plotSeries(series, opts).write(ate_out);
-    spdlog::info("wrote {}", ate_out);
+    plotSeries(series, opts).write(e.out);
+    spdlog::info("wrote {}", e.out);
     return 0;
   });
 }
