@@ -216,6 +216,17 @@ std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummary
        << (r.status == SuiteRun::Status::Missing ? "-" : std::to_string(r.exit_code)) << " | " << num(r.wall_s) << " | "
        << r.results.size() << " | " << met << "/" << targets << " |\n";
   }
+  // Figures off target, all in one place.
+  std::ostringstream missed;
+  for (const auto& r : runs)
+    for (const auto& b : r.results)
+      if (b.target && !BenchReport::meetsTarget(b))
+        missed << "| " << cell(r.suite) << " | " << cell(b.name) << " | " << num(b.value) << " | " << cell(b.unit) << " | "
+               << (b.lower_is_better ? "<= " : ">= ") << num(*b.target) << " | " << opt(b.paper) << " |\n";
+  if (!missed.str().empty())
+    md << "\n## Figures that miss their target\n\n| suite | name | value | unit | target | paper |\n"
+       << "|---|---|---|---|---|---|\n"
+       << missed.str();
   for (const auto& r : runs) {
     md << "\n## " << cell(r.suite) << "\n\n";
     if (!r.problem.empty()) md << "**" << statusName(r.status) << "**: " << cell(r.problem) << "\n\n";

@@ -80,6 +80,8 @@ TEST(SuiteResults, MarkdownMarksPassAndFail) {
   EXPECT_NE(md.find("| kitti05.slidematch.trans_err_m | 0.2 | m | <= 0.5 | 0.245 | pass |"), std::string::npos) << md;
   EXPECT_NE(md.find("| kitti05.slidematch.yaw_err_deg | 7 | deg | <= 5 | 0.245 | **FAIL** |"), std::string::npos) << md;
   EXPECT_NE(md.find("| team | missing | - |"), std::string::npos) << md;
+  EXPECT_NE(md.find("## Figures that miss their target"), std::string::npos) << md;
+  EXPECT_NE(md.find("| place | kitti05.slidematch.yaw_err_deg | 7 | deg | <= 5 | 0.245 |"), std::string::npos) << md;
   EXPECT_NE(md.find("total wall time: 12.5 s"), std::string::npos) << md;
   const Json j = combinedJson({run, missing}, {12.5, "", "", ""});
   EXPECT_EQ(j.find("totals")->find("targets")->asNumber(), 2);

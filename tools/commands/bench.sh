@@ -78,12 +78,12 @@ main() {
     fi
     log "suite $suite: running $exe --json $suite_json"
     t0=$(date +%s%N)
+    # Line-buffered output so that the log keeps what a killed suite printed.
+    local runner=()
+    command -v stdbuf >/dev/null && runner=(stdbuf -oL -eL)
+    [[ "$timeout_s" -gt 0 ]] && runner=(timeout "$timeout_s" "${runner[@]}")
     set +e
-    if [[ "$timeout_s" -gt 0 ]]; then
-      timeout "$timeout_s" "$exe" --json "$suite_json" 2>&1 | tee "$log"
-    else
-      "$exe" --json "$suite_json" 2>&1 | tee "$log"
-    fi
+    "${runner[@]}" "$exe" --json "$suite_json" 2>&1 | tee "$log"
     code=${PIPESTATUS[0]}
     set -e
     t1=$(date +%s%N)
