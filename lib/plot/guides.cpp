@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plot/palette.h"
+
 namespace slide {
 
 namespace {
@@ -85,6 +87,28 @@ void drawLegend(Canvas& c, double x, double y, const std::vector<LegendEntry>& e
     c.text({tx, row + kSize / 2}, e.label, kSize, kInk);
     row += kRow;
   }
+}
+
+void drawColourBar(Canvas& c, double x, double y, double w, double h, double lo, double hi, const std::string& label) {
+  constexpr int kSteps = 48;
+  for (int i = 0; i < kSteps; ++i) {
+    const double y0 = y + h - (i + 1) * h / kSteps, y1 = y + h - i * h / kSteps;
+    Style s;
+    s.filled = true;
+    s.fill = rampColour((i + 0.5) / kSteps);
+    s.stroke_width = 0;
+    c.polygon({{x, y0 - 0.5}, {x + w, y0 - 0.5}, {x + w, y1}, {x, y1}}, s);
+  }
+  Style frame;
+  frame.stroke = kInk;
+  c.polygon({{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}}, frame);
+  const double step = niceStep(hi - lo, 5);
+  for (double v : ticks(lo, hi, step)) {
+    const double py = y + h - (hi > lo ? (v - lo) / (hi - lo) : 0) * h;
+    c.polyline({{x + w, py}, {x + w + 4, py}}, frame);
+    c.text({x + w + 7, py + 4}, tickLabel(v, step), 10, kInk);
+  }
+  c.text({x, y - 8}, label, 11, kInk);
 }
 
 void drawTitle(Canvas& c, const std::string& title, const std::string& subtitle) {

@@ -25,6 +25,9 @@ Eigen::Vector2d legendSize(const std::vector<LegendEntry>& entries);
 // Entries stacked downwards from (x, y), the top-left corner of the legend box.
 void drawLegend(Canvas& c, double x, double y, const std::vector<LegendEntry>& entries);
 
+// A vertical colour bar (rampColour) of the given size with its range and a label above.
+void drawColourBar(Canvas& c, double x, double y, double w, double h, double lo, double hi, const std::string& label);
+
 void drawTitle(Canvas& c, const std::string& title, const std::string& subtitle = "");
 
 }  // namespace slide

@@ -232,6 +232,17 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
       }
     }
 
+  // Range of the values that colour trajectories, if any.
+  std::optional<std::pair<double, double>> value_range;
+  for (std::size_t t = 0; t < trajectories.size(); ++t)
+    if (trajectories[t].values.size() == trajectories[t].positions.size())
+      for (double v : trajectories[t].values) {
+        if (!std::isfinite(v)) continue;
+        if (!value_range) value_range = std::make_pair(v, v);
+        value_range->first = std::min(value_range->first, v);
+        value_range->second = std::max(value_range->second, v);
+      }
+
   // Trajectories: ground truth first (dashed black), estimates on top.
   for (bool truth : {true, false})
     for (std::size_t t = 0; t < trajectories.size(); ++t) {
@@ -241,7 +252,19 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
       s.stroke_width = truth ? 1.5 : 2.4;
       s.dashed = truth;
       const auto px = toPixels(vp, paths[t]);
-      c.polyline(px, s);
+      const auto& values = trajectories[t].values;
+      if (!truth && values.size() == px.size() && value_range) {
+        // Coloured by value: one short segment per pose pair.
+        for (std::size_t i = 1; i < px.size(); ++i) {
+          Style seg = s;
+          seg.stroke = rampColour((0.5 * (values[i - 1] + values[i]) - value_range->first) /
+                                  std::max(1e-12, value_range->second - value_range->first));
+          seg.stroke_width = 3.0;
+          c.polyline({px[i - 1], px[i]}, seg);
+        }
+      } else {
+        c.polyline(px, s);
+      }
       if (truth) continue;
       Style start;
       start.filled = true;
@@ -280,7 +303,8 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
     if (!any_robot) legend.push_back({LegendEntry::Header, "trajectories", {}});
     any_robot = true;
     Style s;
-    s.stroke = robotColour(trajectories[t].robot);
+    const bool by_value = value_range && trajectories[t].values.size() == trajectories[t].positions.size();
+    s.stroke = by_value ? rampColour(0.5) : robotColour(trajectories[t].robot);
     s.stroke_width = 2.4;
     legend.push_back({LegendEntry::Line,
                       trajectories[t].name + " (" + fixed(pathLength(trajectories[t].positions), 0) + " m)", s});
@@ -308,7 +332,11 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
   if (gt_objects) legend.push_back({LegendEntry::Patch, "objects (" + std::to_string(gt_objects) + ")", truth_style});
   if (gt_traj) legend.push_back({LegendEntry::Line, "trajectory", truth_style});
   if (any_robot) legend.push_back({LegendEntry::Header, "circle: start, square: end", {}});
-  drawLegend(c, std::min(opts.width - kLegendWidth - 10, opts.width - legendSize(legend).x() - 8), area.y, legend);
+  const double legend_x = std::min(opts.width - kLegendWidth - 10, opts.width - legendSize(legend).x() - 8);
+  drawLegend(c, legend_x, area.y, legend);
+  if (value_range)
+    drawColourBar(c, legend_x + 10, area.y + legendSize(legend).y() + 40, 22, std::min(260.0, area.h / 2),
+                  value_range->first, value_range->second, opts.values_label);
 
   std::string subtitle = opts.subtitle;
   if (subtitle.empty()) {

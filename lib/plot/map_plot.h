@@ -25,6 +25,8 @@ struct PlotTrajectory {
   std::vector<Eigen::Vector3d> positions;
   int robot = 0;
   bool ground_truth = false;
+  // Optional, one per position (e.g. ATE): colours the line by value with a colour bar.
+  std::vector<double> values;
 };
 
 struct MapPlotOptions {
@@ -33,6 +35,7 @@ struct MapPlotOptions {
   std::string title = "object map", subtitle;
   double fill_opacity = 0.6;
   bool label_ids = false;  // write object ids next to objects
+  std::string values_label = "error [m]";  // colour bar label for PlotTrajectory::values
 };
 
 Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajectory>& trajectories,

@@ -25,4 +25,16 @@ Rgb shadeColour(Rgb c, double f) {
   return {ch(c.r), ch(c.g), ch(c.b)};
 }
 
+Rgb rampColour(double t) {
+  static const std::array<Rgb, 6> kStops{{{68, 1, 84}, {65, 68, 135}, {42, 120, 142}, {34, 168, 132}, {122, 209, 81},
+                                          {253, 231, 37}}};
+  if (!(t > 0)) t = 0;  // also NaN
+  if (t > 1) t = 1;
+  const double x = t * (kStops.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(x), kStops.size() - 2);
+  const double f = x - i;
+  auto mix = [&](int a, int b) { return static_cast<int>(a + (b - a) * f + 0.5); };
+  return {mix(kStops[i].r, kStops[i + 1].r), mix(kStops[i].g, kStops[i + 1].g), mix(kStops[i].b, kStops[i + 1].b)};
+}
+
 }  // namespace slide

@@ -5,6 +5,7 @@
 #include "objects/class_table.h"
 #include "plot/map_plot.h"
 #include "plot/object_shapes.h"
+#include "plot/palette.h"
 #include "plot/series_plot.h"
 
 using namespace slide;
@@ -105,4 +106,17 @@ TEST(SeriesPlot, LinesLegendAndErrors) {
   EXPECT_NE(svg.find(">ATE [m]</text>"), std::string::npos);
   s.y.pop_back();
   EXPECT_THROW(plotSeries({s}, o), std::invalid_argument);
+}
+
+TEST(MapPlot, TrajectoryColouredByValueHasAColourBar) {
+  PlotTrajectory t{"robot0", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, 0, false, {0.0, 0.5, 1.0}};
+  MapPlotOptions opts;
+  opts.values_label = "ATE [m]";
+  const std::string svg = plotMap({}, {t}, ClassTable(), opts).toSvg();
+  EXPECT_NE(svg.find(">ATE [m]</text>"), std::string::npos);
+  // The ends of the ramp appear: dark for the low segment, yellow-green for the high one.
+  EXPECT_NE(svg.find(rampColour(0.25).r == 0 ? "" : "stroke=\"rgb(" + std::to_string(rampColour(0.25).r)), std::string::npos);
+  EXPECT_EQ(rampColour(0).r, 68);
+  EXPECT_EQ(rampColour(1).g, 231);
+  EXPECT_EQ(rampColour(std::nan("")).r, 68);
 }

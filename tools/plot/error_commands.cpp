@@ -9,6 +9,7 @@
 #include "eval/error_stats.h"
 #include "eval/rpe.h"
 #include "eval/time_association.h"
+#include "plot/map_plot.h"
 #include "plot/palette.h"
 #include "plot/series_plot.h"
 #include "plot_commands.h"
@@ -18,7 +19,7 @@ namespace slide {
 PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
   struct Args {
     std::vector<std::string> pairs;
-    std::string out, align, unit = "frames", title;
+    std::string out, align, unit = "frames", title, map_out;
     double max_dt = 0.01, delta = 1.0;
     bool rotation = false;
     TrajectoryArgs traj;
@@ -42,10 +43,13 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
     cmd->add_option("--align", a->align, "none, se3, sim3 or yaw (x, y, z, yaw)")
         ->check(CLI::IsMember({"none", "se3", "sim3", "yaw"}))
         ->capture_default_str();
+    cmd->add_option("--map-out", a->map_out,
+                    "Also draw a top view (.png/.svg) of the aligned estimates coloured by ATE over the dashed references");
   }
   return [a, rpe] {
     if (a->pairs.size() % 2) throw std::invalid_argument("give trajectory files in EST REF pairs");
     std::vector<Series> series;
+    std::vector<PlotTrajectory> paths;
     std::string subtitle;
     for (std::size_t k = 0; k < a->pairs.size(); k += 2) {
       const auto est = loadTrajectory(a->pairs[k], a->traj, Pose::Identity());
@@ -55,8 +59,18 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
       s.name = fileStem(a->pairs[k]);
       s.colour = robotColour(static_cast<int>(k / 2));
       if (!rpe) {
+        const AteResult r = absoluteTrajectoryError(p.est, p.ref, parseAlignment(a->align));
         s.x = p.t;
-        s.y = absoluteTrajectoryError(p.est, p.ref, parseAlignment(a->align)).errors;
+        s.y = r.errors;
+        PlotTrajectory e{s.name + " (aligned)", {}, static_cast<int>(k / 2), false, r.errors};
+        PlotTrajectory g{fileStem(a->pairs[k + 1]), {}, static_cast<int>(k / 2), true, {}};
+        for (std::size_t i = 0; i < p.t.size(); ++i) {
+          e.positions.push_back(r.alignment.scale * (r.alignment.T.linear() * p.est[i].translation()) +
+                                r.alignment.T.translation());
+          g.positions.push_back(p.ref[i].translation());
+        }
+        paths.push_back(std::move(e));
+        paths.push_back(std::move(g));
       } else {
         RpeOptions o;
         o.delta = a->delta;
@@ -88,6 +102,14 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
     opts.subtitle = subtitle;
     plotSeries(series, opts).write(a->out);
     spdlog::info("wrote {}", a->out);
+    if (!a->map_out.empty()) {
+      MapPlotOptions m;
+      m.title = opts.title;
+      m.subtitle = "estimates coloured by ATE, references dashed (top view)";
+      m.values_label = "ATE [m]";
+      plotMap({}, paths, ClassTable(), m).write(a->map_out);
+      spdlog::info("wrote {}", a->map_out);
+    }
   };
 }
 
