@@ -114,8 +114,13 @@ TEST(MapPlot, TrajectoryColouredByValueHasAColourBar) {
   opts.values_label = "ATE [m]";
   const std::string svg = plotMap({}, {t}, ClassTable(), opts).toSvg();
   EXPECT_NE(svg.find(">ATE [m]</text>"), std::string::npos);
-  // The ends of the ramp appear: dark for the low segment, yellow-green for the high one.
-  EXPECT_NE(svg.find(rampColour(0.25).r == 0 ? "" : "stroke=\"rgb(" + std::to_string(rampColour(0.25).r)), std::string::npos);
+  // Segment colours: the ramp at each segment's mean value (0.25 and 0.75 of the range).
+  for (double v : {0.25, 0.75}) {
+    const Rgb c = rampColour(v);
+    const std::string stroke =
+        "stroke=\"rgb(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")\"";
+    EXPECT_NE(svg.find(stroke), std::string::npos) << stroke;
+  }
   EXPECT_EQ(rampColour(0).r, 68);
   EXPECT_EQ(rampColour(1).g, 231);
   EXPECT_EQ(rampColour(std::nan("")).r, 68);
