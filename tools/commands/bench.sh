@@ -10,7 +10,8 @@ name, .md) with value, target, paper and pass/fail per figure and the wall times
 Without SUITE: ${BENCH_KNOWN_SUITES[*]}, plus any other slide-bench-* present.
 A suite whose program is missing is reported as missing; a suite that fails is reported with
 its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
-  --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>)
+  --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>,
+                  with build/bench/latest pointing at it)
   --json FILE     merged JSON (default: DIR/bench.json); the report is FILE with .md
   --timeout S     stop a suite after S seconds (reported as failed, exit code 124);
                   default 1800, 0 for none
@@ -54,7 +55,10 @@ main() {
   local started stamp
   started=$(date -u +%Y-%m-%dT%H:%M:%SZ)
   stamp=$(date -u +%Y%m%d-%H%M%S)
-  [[ -n "$out" ]] || out="$SLIDE_BUILD/bench/$stamp"
+  if [[ -z "$out" ]]; then
+    out="$SLIDE_BUILD/bench/$stamp"
+    mkdir -p "$out" && ln -sfn "$stamp" "$SLIDE_BUILD/bench/latest"
+  fi
   mkdir -p "$out" || die "bench: cannot create $out"
   out=$(cd "$out" && pwd)
   [[ -n "$json" ]] || json="$out/bench.json"
