@@ -10,8 +10,12 @@ namespace slide {
 PlacedFile parsePlacedFile(const std::string& arg) {
   PlacedFile f;
   const auto at = arg.rfind('@');
+  // An '@' inside a directory name is part of the path, not a placement.
+  if (at == std::string::npos || arg.find('/', at) != std::string::npos) {
+    f.path = arg;
+    return f;
+  }
   f.path = arg.substr(0, at);
-  if (at == std::string::npos) return f;
   std::stringstream s(arg.substr(at + 1));
   std::vector<double> v;
   std::string tok;

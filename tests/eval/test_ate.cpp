@@ -56,3 +56,12 @@ TEST(Alignment, NamesRoundTrip) {
     EXPECT_EQ(parseAlignment(alignmentName(a)), a);
   EXPECT_THROW(parseAlignment("se2"), std::invalid_argument);
 }
+
+TEST(Alignment, YawOnlyLeavesRollAndPitchErrors) {
+  // A copy tilted by 0.2 rad of roll cannot be undone by x, y, z, yaw; SE(3) can.
+  const Pose tilt = poseFromXyzRpy({0, 0, 0}, 0.2, 0, 0);
+  std::vector<Pose> est;
+  for (const Pose& p : square()) est.push_back(tilt * p);
+  EXPECT_NEAR(absoluteTrajectoryError(est, square(), Alignment::Se3).rmse, 0, 1e-9);
+  EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::Yaw4Dof).rmse, 0.1);
+}
