@@ -71,6 +71,13 @@ TEST_F(EvalCli, ObjectsTransformAndPlots) {
   EXPECT_NEAR(o.find("overall")->find("precision")->asNumber(), 2.0 / 3, 1e-9);
   EXPECT_NEAR(o.find("overall")->find("recall")->asNumber(), 2.0 / 3, 1e-9);
   EXPECT_NEAR(o.find("overall")->find("position_rmse_m")->asNumber(), std::sqrt((0.16 + 0.04) / 2), 1e-9);
+  // --list names every match, false positive and miss.
+  ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + " " + path("gt.txt") + " --list --json " + path("l.json")), 0);
+  const Json* listing = readJsonFile(path("l.json")).find("listing");
+  ASSERT_NE(listing, nullptr);
+  EXPECT_EQ(listing->find("matches")->asArray().size(), 2u);
+  EXPECT_EQ(listing->find("false_positives")->asArray()[0].find("class")->asString(), "monitor");
+  EXPECT_EQ(listing->find("missed")->asArray()[0].find("index")->asNumber(), 1);
   // Placing the estimate 0.4 m back along x makes the car exact.
   ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + "@-0.4,0,0,0 " + path("gt.txt") + " --json " + path("o2.json")),
             0);

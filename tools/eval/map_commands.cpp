@@ -13,7 +13,7 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
   struct Args {
     std::string est, gt, classes;
     double threshold = 1.0;
-    bool planar = false, any_class = false;
+    bool planar = false, any_class = false, list = false;
     int default_class = -1;
   };
   auto a = std::make_shared<Args>();
@@ -25,6 +25,7 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
   cmd->add_flag("--any-class", a->any_class, "Let objects of different classes match");
   cmd->add_option("--class", a->default_class, "Class id for CSV maps without a class column (e.g. 80 for pole lists)");
   cmd->add_option("--classes", a->classes, "Class table (default config/classes.yaml)");
+  cmd->add_flag("--list", a->list, "List every match, false positive and missed object (also in the JSON)");
   cmd->footer(
       "Matching is one-to-one and greedy by distance: all same-class pairs within the threshold, nearest first.\n"
       "precision = matched / estimated, recall = matched / ground truth, F1 = 2PR/(P+R); RMSE over matched pairs.");
@@ -71,6 +72,52 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
       per_class.push(classJson(name, c));
     }
     row("all", s.overall);
+    Json listing;
+    if (a->list) {
+      auto name = [&](int id) {
+        const ClassInfo* c = classes.find(id);
+        return c ? c->name : std::to_string(id);
+      };
+      auto objectJson = [&](const Object& o, std::size_t index) {
+        Json j;
+        j.set("index", index);
+        j.set("id", static_cast<long long>(o.id));
+        j.set("class", name(o.class_id));
+        j.set("x", o.position().x());
+        j.set("y", o.position().y());
+        j.set("z", o.position().z());
+        return j;
+      };
+      std::vector<bool> est_matched(est.size(), false), gt_matched(gt.size(), false);
+      Json matches = Json::array(), fps = Json::array(), fns = Json::array();
+      for (const ObjectMatch& m : s.matches) {
+        est_matched[m.est] = gt_matched[m.gt] = true;
+        const Eigen::Vector3d p = est[m.est].position(), q = gt[m.gt].position();
+        std::printf("  match  %-10s est #%zu (%.2f, %.2f, %.2f) - gt #%zu (%.2f, %.2f, %.2f): %.3f m\n",
+                    name(est[m.est].class_id).c_str(), m.est, p.x(), p.y(), p.z(), m.gt, q.x(), q.y(), q.z(), m.distance);
+        Json j;
+        j.set("estimate", objectJson(est[m.est], m.est));
+        j.set("ground_truth", objectJson(gt[m.gt], m.gt));
+        j.set("distance_m", m.distance);
+        matches.push(j);
+      }
+      for (std::size_t i = 0; i < est.size(); ++i)
+        if (!est_matched[i]) {
+          const Eigen::Vector3d p = est[i].position();
+          std::printf("  false positive %-10s est #%zu (%.2f, %.2f, %.2f)\n", name(est[i].class_id).c_str(), i, p.x(),
+                      p.y(), p.z());
+          fps.push(objectJson(est[i], i));
+        }
+      for (std::size_t i = 0; i < gt.size(); ++i)
+        if (!gt_matched[i]) {
+          const Eigen::Vector3d p = gt[i].position();
+          std::printf("  missed %-10s gt #%zu (%.2f, %.2f, %.2f)\n", name(gt[i].class_id).c_str(), i, p.x(), p.y(), p.z());
+          fns.push(objectJson(gt[i], i));
+        }
+      listing.set("matches", matches);
+      listing.set("false_positives", fps);
+      listing.set("missed", fns);
+    }
     Json j;
     j.set("metric", "objects");
     j.set("estimate", est_file.path);
@@ -81,6 +128,7 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
     j.set("matching", "one-to-one, greedy by distance");
     j.set("overall", classJson("all", s.overall));
     j.set("per_class", per_class);
+    if (a->list) j.set("listing", listing);
     return j;
   };
 }
