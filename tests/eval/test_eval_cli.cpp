@@ -73,7 +73,8 @@ TEST_F(EvalCli, ObjectsTransformAndPlots) {
   EXPECT_NEAR(o.find("overall")->find("position_rmse_m")->asNumber(), std::sqrt((0.16 + 0.04) / 2), 1e-9);
   // --list names every match, false positive and miss.
   ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + " " + path("gt.txt") + " --list --json " + path("l.json")), 0);
-  const Json* listing = readJsonFile(path("l.json")).find("listing");
+  const Json listed = readJsonFile(path("l.json"));
+  const Json* listing = listed.find("listing");
   ASSERT_NE(listing, nullptr);
   EXPECT_EQ(listing->find("matches")->asArray().size(), 2u);
   EXPECT_EQ(listing->find("false_positives")->asArray()[0].find("class")->asString(), "monitor");
