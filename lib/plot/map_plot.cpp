@@ -277,6 +277,22 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
                 start);
     }
 
+  // Scoring overlay: matches, false positives, missed truth.
+  const MatchOverlay& ov = opts.overlay;
+  Style match_style;
+  match_style.stroke = {0, 150, 60};
+  match_style.stroke_width = 2;
+  Style wrong_style;
+  wrong_style.stroke = {230, 0, 0};
+  wrong_style.stroke_width = 2;
+  for (const auto& [e, g] : ov.matches) c.polyline({vp.toPixel(view.project(e)), vp.toPixel(view.project(g))}, match_style);
+  for (const auto& p : ov.false_positives) {
+    const Eigen::Vector2d q = vp.toPixel(view.project(p));
+    c.polyline({q + Eigen::Vector2d(-6, -6), q + Eigen::Vector2d(6, 6)}, wrong_style);
+    c.polyline({q + Eigen::Vector2d(-6, 6), q + Eigen::Vector2d(6, -6)}, wrong_style);
+  }
+  for (const auto& p : ov.missed) c.circle(vp.toPixel(view.project(p)), 8, wrong_style);
+
   if (!view.isTop()) {
     drawScaleBar(c, vp);
     drawCompass(c, vp, view);
@@ -331,6 +347,13 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
   truth_style.dashed = true;
   if (gt_objects) legend.push_back({LegendEntry::Patch, "objects (" + std::to_string(gt_objects) + ")", truth_style});
   if (gt_traj) legend.push_back({LegendEntry::Line, "trajectory", truth_style});
+  if (!ov.matches.empty() || !ov.false_positives.empty() || !ov.missed.empty()) {
+    legend.push_back({LegendEntry::Header, "scoring", {}});
+    legend.push_back({LegendEntry::Line, "match (" + std::to_string(ov.matches.size()) + ")", match_style});
+    legend.push_back({LegendEntry::Line, "x false positive (" + std::to_string(ov.false_positives.size()) + ")", wrong_style});
+    Style ring = wrong_style;
+    legend.push_back({LegendEntry::Patch, "o missed (" + std::to_string(ov.missed.size()) + ")", ring});
+  }
   if (any_robot) legend.push_back({LegendEntry::Header, "circle: start, square: end", {}});
   const double legend_x = std::min(opts.width - kLegendWidth - 10, opts.width - legendSize(legend).x() - 8);
   drawLegend(c, legend_x, area.y, legend);

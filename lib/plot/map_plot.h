@@ -29,6 +29,14 @@ struct PlotTrajectory {
   std::vector<double> values;
 };
 
+// The outcome of scoring a map against ground truth, drawn over the map (see
+// eval/object_matching.h): matched pairs joined by a line, false positives crossed out,
+// missed ground-truth objects ringed.
+struct MatchOverlay {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> matches;  // (estimate, truth) positions
+  std::vector<Eigen::Vector3d> false_positives, missed;
+};
+
 struct MapPlotOptions {
   View view = View::top();
   int width = 1400, height = 1000;
@@ -36,6 +44,7 @@ struct MapPlotOptions {
   double fill_opacity = 0.6;
   bool label_ids = false;  // write object ids next to objects
   std::string values_label = "error [m]";  // colour bar label for PlotTrajectory::values
+  MatchOverlay overlay;
 };
 
 Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajectory>& trajectories,

@@ -125,3 +125,18 @@ TEST(MapPlot, TrajectoryColouredByValueHasAColourBar) {
   EXPECT_EQ(rampColour(1).g, 231);
   EXPECT_EQ(rampColour(std::nan("")).r, 68);
 }
+
+TEST(MapPlot, ScoringOverlayIsDrawnAndExplained) {
+  const ClassTable classes = ClassTable::loadDefault();
+  PlotMap est{"est", {car(0, 0, 0), car(30, 0, 0)}, 0, false};
+  PlotMap gt{"gt", {car(0.5, 0, 0), car(15, 0, 0)}, 0, true};
+  MapPlotOptions opts;
+  opts.overlay.matches.push_back({{0, 0, 0.75}, {0.5, 0, 0.75}});
+  opts.overlay.false_positives.push_back({30, 0, 0.75});
+  opts.overlay.missed.push_back({15, 0, 0.75});
+  const std::string svg = plotMap({est, gt}, {}, classes, opts).toSvg();
+  EXPECT_NE(svg.find(">match (1)</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">x false positive (1)</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">o missed (1)</text>"), std::string::npos);
+  EXPECT_NE(svg.find("stroke=\"rgb(230,0,0)\""), std::string::npos);
+}

@@ -1,9 +1,11 @@
 // slide-plot map: object maps and trajectories in one picture.
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <memory>
 
 #include "eval/object_map_file.h"
+#include "eval/object_matching.h"
 #include "eval/placed_file.h"
 #include "plot/map_plot.h"
 #include "plot_commands.h"
@@ -17,6 +19,7 @@ PlotCommand addMapCommand(CLI::App* cmd) {
     double azimuth = -60, elevation = 35;
     int width = 1400, height = 1000, default_class = -1;
     bool label_ids = false;
+    double score_threshold = 0;
     TrajectoryArgs traj;
   };
   auto a = std::make_shared<Args>();
@@ -37,6 +40,9 @@ PlotCommand addMapCommand(CLI::App* cmd) {
   cmd->add_option("--height", a->height, "Pixels")->capture_default_str();
   cmd->add_flag("--label-ids", a->label_ids, "Write object ids next to the objects");
   cmd->add_option("--class", a->default_class, "Class id of objects in CSV maps without a class column (e.g. 80 for x,y pole lists)");
+  cmd->add_option("--score", a->score_threshold,
+                  "Score the maps against the ground-truth maps with this threshold (m) and draw matches, false "
+                  "positives (x) and missed objects (o); precision/recall/F1 in the subtitle");
   addTrajectoryOptions(cmd, a->traj);
   return [a] {
     if (a->maps.empty() && a->trajs.empty() && a->gt_maps.empty() && a->gt_trajs.empty())
@@ -77,6 +83,28 @@ PlotCommand addMapCommand(CLI::App* cmd) {
       for (const auto& m : maps) opts.title += (opts.title.empty() ? "" : ", ") + m.name;
       if (opts.title.empty())
         for (const auto& t : trajs) opts.title += (opts.title.empty() ? "" : ", ") + t.name;
+    }
+    if (a->score_threshold > 0) {
+      std::vector<Object> est, gt;
+      for (const auto& m : maps) (m.ground_truth ? gt : est).insert((m.ground_truth ? gt : est).end(), m.objects.begin(), m.objects.end());
+      if (est.empty() || gt.empty()) throw std::invalid_argument("map --score needs --map and --gt-map");
+      ObjectMatchOptions mo;
+      mo.threshold = a->score_threshold;
+      const ObjectMappingScore sc = scoreObjectMap(est, gt, mo);
+      std::vector<bool> est_hit(est.size(), false), gt_hit(gt.size(), false);
+      for (const ObjectMatch& m : sc.matches) {
+        est_hit[m.est] = gt_hit[m.gt] = true;
+        opts.overlay.matches.emplace_back(est[m.est].position(), gt[m.gt].position());
+      }
+      for (std::size_t i = 0; i < est.size(); ++i)
+        if (!est_hit[i]) opts.overlay.false_positives.push_back(est[i].position());
+      for (std::size_t i = 0; i < gt.size(); ++i)
+        if (!gt_hit[i]) opts.overlay.missed.push_back(gt[i].position());
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "precision %.3f, recall %.3f, F1 %.3f, position RMSE %.3f m (threshold %g m)",
+                    sc.overall.precision, sc.overall.recall, sc.overall.f1, sc.overall.position_rmse, a->score_threshold);
+      opts.subtitle = std::string(a->view == "top" ? "top view" : "oblique view") + "; " + buf;
+      spdlog::info("{}", buf);
     }
     plotMap(maps, trajs, classes, opts).write(a->out);
     spdlog::info("wrote {}", a->out);
