@@ -47,7 +47,18 @@ AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_r
   const auto ref = readTrajectory(a.ref, o);
   *n_est = est.size();
   *n_ref = ref.size();
-  return associatePoses(est, ref, a.max_dt, a.offset, 3);
+  try {
+    AssociatedPoses p = associatePoses(est, ref, a.max_dt, a.offset, 3);
+    if (p.t.size() * 2 < std::min(est.size(), ref.size()))
+      spdlog::warn("only {} of {} estimate and {} reference poses matched in time: check the stamps (KITTI poses are "
+                   "stamped by frame index unless --est-times/--ref-times are given), --max-dt and --offset",
+                   p.t.size(), est.size(), ref.size());
+    return p;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) +
+                                "; KITTI poses are stamped by frame index unless --est-times/--ref-times are given, "
+                                "and --offset shifts the estimate's stamps");
+  }
 }
 
 Json poseJson(const Pose& T) {
