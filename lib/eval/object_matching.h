@@ -18,7 +18,9 @@ namespace slide {
 struct ObjectMatchOptions {
   double threshold = 1.0;   // metres between object positions (Object::position())
   bool planar = false;      // distance in x, y only (maps whose heights are unreliable)
-  bool match_classes = true;  // false: any class may match any class
+  // false: any class may match any class; a match then counts for the estimate's class, so
+  // only the overall figures are meaningful (a class's recall can exceed 1).
+  bool match_classes = true;
 };
 
 struct ObjectMatch {
