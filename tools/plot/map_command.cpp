@@ -63,7 +63,7 @@ PlotCommand addMapCommand(CLI::App* cmd) {
     auto addTrajs = [&](const std::vector<std::string>& args, bool truth) {
       for (std::size_t i = 0; i < args.size(); ++i) {
         const PlacedFile f = parsePlacedFile(args[i]);
-        PlotTrajectory t{fileStem(f.path), {}, static_cast<int>(i), truth};
+        PlotTrajectory t{fileStem(f.path), {}, static_cast<int>(i), truth, {}};
         for (const auto& p : loadTrajectory(f.path, a->traj, f.placement)) t.positions.push_back(p.pose.translation());
         spdlog::info("{}: {} poses", f.path, t.positions.size());
         trajs.push_back(std::move(t));
