@@ -50,3 +50,18 @@ TEST(Ate, Sim3RecoversScale) {
   EXPECT_NEAR(r.rmse, 0, 1e-9);
   EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::Se3).rmse, 1.0);
 }
+
+TEST(Alignment, NamesRoundTrip) {
+  for (Alignment a : {Alignment::None, Alignment::Se3, Alignment::Sim3, Alignment::Yaw4Dof})
+    EXPECT_EQ(parseAlignment(alignmentName(a)), a);
+  EXPECT_THROW(parseAlignment("se2"), std::invalid_argument);
+}
+
+TEST(Alignment, YawOnlyLeavesRollAndPitchErrors) {
+  // A copy tilted by 0.2 rad of roll cannot be undone by x, y, z, yaw; SE(3) can.
+  const Pose tilt = poseFromXyzRpy({0, 0, 0}, 0.2, 0, 0);
+  std::vector<Pose> est;
+  for (const Pose& p : square()) est.push_back(tilt * p);
+  EXPECT_NEAR(absoluteTrajectoryError(est, square(), Alignment::Se3).rmse, 0, 1e-9);
+  EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::Yaw4Dof).rmse, 0.1);
+}

@@ -1,0 +1,136 @@
+// slide-eval objects: precision, recall, F1 per class and landmark RMSE of an object map.
+#include <cstdio>
+#include <memory>
+
+#include "commands.h"
+#include "eval/object_map_file.h"
+#include "eval/object_matching.h"
+#include "eval/placed_file.h"
+
+namespace slide {
+
+EvalCommand addObjectsCommand(CLI::App* cmd) {
+  struct Args {
+    std::string est, gt, classes;
+    double threshold = 1.0;
+    bool planar = false, any_class = false, list = false;
+    int default_class = -1;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("est", a->est, "Estimated object map (text 'label x y z ...' or CSV); FILE@x,y,z,yaw_deg places it")
+      ->required();
+  cmd->add_option("gt", a->gt, "Ground-truth object map, same formats")->required();
+  cmd->add_option("--threshold", a->threshold, "Largest centre distance of a match, metres")->capture_default_str();
+  cmd->add_flag("--planar", a->planar, "Measure distances in x-y only");
+  cmd->add_flag("--any-class", a->any_class, "Let objects of different classes match");
+  cmd->add_option("--class", a->default_class, "Class id for CSV maps without a class column (e.g. 80 for pole lists)");
+  cmd->add_option("--classes", a->classes, "Class table (default config/classes.yaml)");
+  cmd->add_flag("--list", a->list, "List every match, false positive and missed object (also in the JSON)");
+  cmd->footer(
+      "Matching is one-to-one and greedy by distance: all same-class pairs within the threshold, nearest first.\n"
+      "precision = matched / estimated, recall = matched / ground truth, F1 = 2PR/(P+R); RMSE over matched pairs.");
+  return [=] {
+    const ClassTable classes = a->classes.empty() ? ClassTable::loadDefault() : ClassTable::load(a->classes);
+    const PlacedFile est_file = parsePlacedFile(a->est), gt_file = parsePlacedFile(a->gt);
+    std::vector<Object> est, gt;
+    for (const Object& o : readObjectMapFile(est_file.path, classes, a->default_class))
+      est.push_back(transformObject(est_file.placement, o));
+    for (const Object& o : readObjectMapFile(gt_file.path, classes, a->default_class))
+      gt.push_back(transformObject(gt_file.placement, o));
+    ObjectMatchOptions o;
+    o.threshold = a->threshold;
+    o.planar = a->planar;
+    o.match_classes = !a->any_class;
+    const ObjectMappingScore s = scoreObjectMap(est, gt, o);
+
+    std::printf("object map %s against %s (threshold %g m%s%s)\n", est_file.path.c_str(), gt_file.path.c_str(),
+                a->threshold, a->planar ? ", planar" : "", a->any_class ? ", any class" : "");
+    std::printf("  %-12s %6s %6s %6s %9s %7s %7s %9s\n", "class", "est", "gt", "match", "precision", "recall", "F1",
+                "rmse [m]");
+    auto row = [](const std::string& name, const ClassScore& c) {
+      std::printf("  %-12s %6zu %6zu %6zu %9.3f %7.3f %7.3f %9.3f\n", name.c_str(), c.num_est, c.num_gt, c.true_positives,
+                  c.precision, c.recall, c.f1, c.position_rmse);
+    };
+    Json per_class = Json::array();
+    auto classJson = [](const std::string& name, const ClassScore& c) {
+      Json j;
+      j.set("class", name);
+      j.set("class_id", c.class_id);
+      j.set("estimated", c.num_est);
+      j.set("ground_truth", c.num_gt);
+      j.set("matched", c.true_positives);
+      j.set("precision", c.precision);
+      j.set("recall", c.recall);
+      j.set("f1", c.f1);
+      j.set("position_rmse_m", c.position_rmse);
+      return j;
+    };
+    for (const ClassScore& c : s.per_class) {
+      const ClassInfo* info = classes.find(c.class_id);
+      const std::string name = info ? info->name : std::to_string(c.class_id);
+      row(name, c);
+      per_class.push(classJson(name, c));
+    }
+    row("all", s.overall);
+    Json listing;
+    if (a->list) {
+      auto name = [&](int id) {
+        const ClassInfo* c = classes.find(id);
+        return c ? c->name : std::to_string(id);
+      };
+      auto objectJson = [&](const Object& o, std::size_t index) {
+        Json j;
+        j.set("index", index);
+        j.set("id", static_cast<long long>(o.id));
+        j.set("class", name(o.class_id));
+        j.set("x", o.position().x());
+        j.set("y", o.position().y());
+        j.set("z", o.position().z());
+        return j;
+      };
+      std::vector<bool> est_matched(est.size(), false), gt_matched(gt.size(), false);
+      Json matches = Json::array(), fps = Json::array(), fns = Json::array();
+      for (const ObjectMatch& m : s.matches) {
+        est_matched[m.est] = gt_matched[m.gt] = true;
+        const Eigen::Vector3d p = est[m.est].position(), q = gt[m.gt].position();
+        std::printf("  match  %-10s est #%zu (%.2f, %.2f, %.2f) - gt #%zu (%.2f, %.2f, %.2f): %.3f m\n",
+                    name(est[m.est].class_id).c_str(), m.est, p.x(), p.y(), p.z(), m.gt, q.x(), q.y(), q.z(), m.distance);
+        Json j;
+        j.set("estimate", objectJson(est[m.est], m.est));
+        j.set("ground_truth", objectJson(gt[m.gt], m.gt));
+        j.set("distance_m", m.distance);
+        matches.push(j);
+      }
+      for (std::size_t i = 0; i < est.size(); ++i)
+        if (!est_matched[i]) {
+          const Eigen::Vector3d p = est[i].position();
+          std::printf("  false positive %-10s est #%zu (%.2f, %.2f, %.2f)\n", name(est[i].class_id).c_str(), i, p.x(),
+                      p.y(), p.z());
+          fps.push(objectJson(est[i], i));
+        }
+      for (std::size_t i = 0; i < gt.size(); ++i)
+        if (!gt_matched[i]) {
+          const Eigen::Vector3d p = gt[i].position();
+          std::printf("  missed %-10s gt #%zu (%.2f, %.2f, %.2f)\n", name(gt[i].class_id).c_str(), i, p.x(), p.y(), p.z());
+          fns.push(objectJson(gt[i], i));
+        }
+      listing.set("matches", matches);
+      listing.set("false_positives", fps);
+      listing.set("missed", fns);
+    }
+    Json j;
+    j.set("metric", "objects");
+    j.set("estimate", est_file.path);
+    j.set("ground_truth", gt_file.path);
+    j.set("threshold_m", a->threshold);
+    j.set("planar", a->planar);
+    j.set("match_classes", !a->any_class);
+    j.set("matching", "one-to-one, greedy by distance");
+    j.set("overall", classJson("all", s.overall));
+    j.set("per_class", per_class);
+    if (a->list) j.set("listing", listing);
+    return j;
+  };
+}
+
+}  // namespace slide
