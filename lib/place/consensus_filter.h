@@ -1,0 +1,61 @@
+#pragma once
+// Consensus over repeated place-recognition results for one pair of maps (e.g. own map vs a
+// peer's). Results that agree with the held transform refine it (inlier-weighted mean); a
+// result that disagrees is held back, and replaces the held transform only once repeated
+// attempts agree with it more often than with the held one over a recent window. This guards
+// against aliased scenes (two similar rooms) where a single answer can be wrong.
+#include <deque>
+#include <map>
+#include <optional>
+
+#include "geometry/pose.h"
+
+namespace slide {
+
+struct ConsensusParams {
+  double trans_tol = 1.0;         // metres: two results agree within this translation...
+  double yaw_tol_deg = 3.0;       // ...and this yaw difference
+  int initial_confirmations = 1;  // agreeing results needed before the first transform is held
+  int change_confirmations = 3;   // agreeing results needed to replace the held transform
+  int window = 10;                // recent results that count as support
+};
+
+class ConsensusFilter {
+ public:
+  enum class Outcome {
+    Accepted,  // first transform held
+    Refined,   // agreed with the held transform, which was refined
+    Replaced,  // a repeatedly confirmed contender replaced the held transform
+    Pending,   // held back: disagrees with the held one (or not yet confirmed)
+  };
+  struct Update {
+    Outcome outcome = Outcome::Pending;
+    Pose T = Pose::Identity();  // the held transform after this update (meaningful unless Pending)
+    int support = 0;            // recent results agreeing with the result just added
+  };
+
+  explicit ConsensusFilter(ConsensusParams params = {}) : params_(params) {}
+
+  // Adds a found transform with its weight (e.g. inlier count, > 0).
+  Update add(const Pose& T, double weight);
+  // The held transform, if any.
+  std::optional<Pose> held() const;
+
+ private:
+  struct Cluster {
+    Eigen::Vector3d t_sum = Eigen::Vector3d::Zero();
+    double cos_sum = 0, sin_sum = 0, weight = 0;
+    Pose mean() const;
+  };
+  int supportOf(int id) const;
+
+  ConsensusParams params_;
+  std::map<int, Cluster> clusters_;
+  std::deque<int> recent_;  // cluster id of each recent result, newest last
+  int held_ = -1;
+  int next_id_ = 0;
+};
+
+const char* outcomeName(ConsensusFilter::Outcome o);
+
+}  // namespace slide

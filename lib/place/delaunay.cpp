@@ -1,0 +1,91 @@
+#include "place/delaunay.h"
+
+#include <cmath>
+#include <cstring>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+
+namespace slide {
+
+namespace {
+std::uint64_t cellKey(double x, double y, double cell) {
+  const auto qx = static_cast<std::int64_t>(std::floor(x / cell));
+  const auto qy = static_cast<std::int64_t>(std::floor(y / cell));
+  return (static_cast<std::uint64_t>(qx) * 0x9E3779B97F4A7C15ULL) ^ static_cast<std::uint64_t>(qy);
+}
+
+std::uint64_t floatKey(float x, float y) {
+  std::uint32_t bx, by;
+  std::memcpy(&bx, &x, 4);
+  std::memcpy(&by, &y, 4);
+  return (static_cast<std::uint64_t>(bx) << 32) | by;
+}
+}  // namespace
+
+std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts) {
+  std::vector<Triangle> out;
+  // Centre the points so that float coordinates keep millimetre precision.
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  std::vector<std::uint32_t> kept;
+  for (std::uint32_t i = 0; i < pts.size(); ++i)
+    if (pts[i].allFinite()) {
+      centre += pts[i];
+      kept.push_back(i);
+    }
+  if (kept.size() < 3) return out;
+  centre /= static_cast<double>(kept.size());
+
+  // Merge near duplicates (1 mm grid, checking neighbouring cells).
+  const double cell = 1e-3;
+  std::unordered_map<std::uint64_t, std::uint32_t> seen;
+  std::vector<std::uint32_t> unique;
+  double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+  for (std::uint32_t i : kept) {
+    const Eigen::Vector2d p = pts[i] - centre;
+    bool dup = false;
+    for (int dx = -1; dx <= 1 && !dup; ++dx)
+      for (int dy = -1; dy <= 1 && !dup; ++dy) {
+        const auto it = seen.find(cellKey(p.x() + dx * cell, p.y() + dy * cell, cell));
+        dup = it != seen.end() && (pts[it->second] - pts[i]).norm() < cell;
+      }
+    if (dup) continue;
+    seen.emplace(cellKey(p.x(), p.y(), cell), i);
+    unique.push_back(i);
+    lo_x = std::min(lo_x, p.x());
+    lo_y = std::min(lo_y, p.y());
+    hi_x = std::max(hi_x, p.x());
+    hi_y = std::max(hi_y, p.y());
+  }
+  if (unique.size() < 3) return out;
+
+  const double margin = 1.0 + 0.01 * std::max(hi_x - lo_x, hi_y - lo_y);
+  cv::Subdiv2D subdiv(cv::Rect(static_cast<int>(std::floor(lo_x - margin)), static_cast<int>(std::floor(lo_y - margin)),
+                               static_cast<int>(std::ceil(hi_x - lo_x + 2 * margin)) + 1,
+                               static_cast<int>(std::ceil(hi_y - lo_y + 2 * margin)) + 1));
+  std::unordered_map<std::uint64_t, std::uint32_t> index_of;
+  for (std::uint32_t i : unique) {
+    const Eigen::Vector2d p = pts[i] - centre;
+    const cv::Point2f q(static_cast<float>(p.x()), static_cast<float>(p.y()));
+    if (index_of.emplace(floatKey(q.x, q.y), i).second) subdiv.insert(q);
+  }
+  std::vector<cv::Vec6f> tris;
+  subdiv.getTriangleList(tris);
+  out.reserve(tris.size());
+  for (const cv::Vec6f& t : tris) {
+    Triangle tri;
+    bool ok = true;
+    for (int k = 0; k < 3 && ok; ++k) {
+      const auto it = index_of.find(floatKey(t[2 * k], t[2 * k + 1]));
+      ok = it != index_of.end();
+      if (ok) tri[k] = it->second;
+    }
+    if (!ok) continue;  // touches Subdiv2D's outer virtual vertices
+    const Eigen::Vector2d e1 = pts[tri[1]] - pts[tri[0]], e2 = pts[tri[2]] - pts[tri[0]];
+    const double area2 = std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    if (area2 <= 1e-6 * std::max(e1.squaredNorm(), e2.squaredNorm())) continue;  // sliver
+    out.push_back(tri);
+  }
+  return out;
+}
+
+}  // namespace slide

@@ -1,0 +1,42 @@
+#include "place/landmark.h"
+
+#include <algorithm>
+
+namespace slide {
+
+std::vector<Landmark> landmarksOf(const ObjectMap& map) {
+  std::vector<Landmark> out;
+  out.reserve(map.size());
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const Object& o = map[i];
+    if (!o.isFinite()) continue;
+    out.push_back({o.position(), o.extent(), o.class_id, i});
+  }
+  return out;
+}
+
+std::string unusableReason(const std::vector<Landmark>& lms, std::size_t min_count, const std::string& name) {
+  if (lms.empty()) return name + " is empty";
+  for (const Landmark& l : lms)
+    if (!l.p.allFinite() || !l.size.allFinite()) return name + " has a non-finite landmark (index " + std::to_string(l.index) + ")";
+  if (lms.size() < min_count)
+    return name + " has " + std::to_string(lms.size()) + " landmarks, fewer than the minimum " + std::to_string(min_count);
+  double spread = 0;
+  for (const Landmark& l : lms) spread = std::max(spread, (l.p - lms.front().p).head<2>().norm());
+  if (spread < 1e-6) return name + " has all landmarks at one point";
+  return "";
+}
+
+bool sizesAgree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) {
+  if (a.isZero() || b.isZero()) return true;
+  const Eigen::Vector3d bs(b.y(), b.x(), b.z());
+  return std::min((a - b).norm(), (a - bs).norm()) <= tol;
+}
+
+Eigen::Vector3d centroidOf(const std::vector<Landmark>& lms) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const Landmark& l : lms) c += l.p;
+  return lms.empty() ? c : Eigen::Vector3d(c / static_cast<double>(lms.size()));
+}
+
+}  // namespace slide

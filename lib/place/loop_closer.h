@@ -1,0 +1,87 @@
+#pragma once
+// The loop closer's logic, free of any middleware: holds the robot's own map and trajectory and
+// its peers' maps, and on poll() runs what is due —
+//  * intra-robot: when the current key pose comes near an old one, the objects first seen
+//    recently around it are matched against the objects first seen long ago (duplicates left
+//    by drift); the transform moves the recent ones onto the old ones;
+//  * inter-robot: the own map against each peer's map, every period, staggered between peers
+//    and robots, re-checked whenever either map changed.
+// Every result passes through a consensus filter per peer (per place for intra-robot).
+#include <map>
+
+#include "place/consensus_filter.h"
+#include "place/place_config.h"
+
+namespace slide {
+
+struct LoopCloserParams {
+  int robot = 0;
+  PlaceMethod method = PlaceMethod::SlideGraph;
+  PlaceConfig place;
+  ConsensusParams consensus;
+  double inter_period_s = 5.0;         // each peer is re-checked at most this often
+  double stagger_s = 1.0;              // first checks of peers are spread by this much
+  double intra_period_s = 2.0;
+  double intra_trigger_radius_m = 10.0; // the current key pose this close to an old one...
+  int intra_min_keypose_gap = 30;       // ...at least this many key poses older triggers a check
+  double intra_local_radius_m = 25.0;   // objects within this of the current pose form the sub-maps
+  std::size_t min_objects = 6;          // per map or sub-map
+};
+
+struct LoopClosure {
+  int robot_a = 0, robot_b = 0;
+  int keypose_a = -1, keypose_b = -1;  // intra-robot: old and current key pose sequence numbers
+  PlaceMethod method = PlaceMethod::SlideGraph;
+  Pose T_a_b = Pose::Identity();       // held (consensus) transform: B's frame into A's
+  PlaceResult result;                  // the raw result of this check
+  std::vector<std::pair<std::int64_t, std::int64_t>> inliers;  // object ids (map A, map B)
+  ConsensusFilter::Outcome outcome = ConsensusFilter::Outcome::Pending;
+};
+
+struct KeyPose {
+  int seq = 0;
+  Pose pose = Pose::Identity();
+};
+
+class LoopCloser {
+ public:
+  explicit LoopCloser(LoopCloserParams params) : params_(std::move(params)) {}
+
+  // The robot's own map in its own frame; objects need stable ids.
+  void setOwnMap(const ObjectMap& map, double now_s);
+  // A peer's map in the peer's own frame.
+  void setPeerMap(int robot, const ObjectMap& map, double now_s);
+  // The robot's key poses (own frame), oldest first.
+  void setTrajectory(std::vector<KeyPose> keyposes);
+
+  // Runs the checks that are due (at most one inter-robot check per call, to spread load) and
+  // returns their outcomes: found transforms, accepted, refined, replaced or held back.
+  std::vector<LoopClosure> poll(double now_s);
+
+  // Why the last check of each kind did not produce a transform (for logs and tests).
+  const std::string& lastReason() const { return last_reason_; }
+
+ private:
+  struct Peer {
+    ObjectMap map;
+    int version = 0, checked_version = -1, own_checked_version = -1;
+    double next_due = 0;
+    ConsensusFilter filter;
+  };
+  std::optional<LoopClosure> checkPeer(int robot, Peer& peer);
+  std::optional<LoopClosure> checkIntra();
+  LoopClosure run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
+                  const std::vector<std::size_t>& ib, ConsensusFilter& filter);
+
+  LoopCloserParams params_;
+  ObjectMap own_;
+  int own_version_ = 0;
+  std::map<std::int64_t, int> first_seen_;  // object id -> key pose seq when first in the map
+  std::vector<KeyPose> keyposes_;
+  std::map<int, Peer> peers_;
+  std::map<int, ConsensusFilter> intra_filters_;  // keyed by old key pose / gap
+  double next_intra_ = 0;
+  std::string last_reason_;
+};
+
+}  // namespace slide

@@ -1,0 +1,41 @@
+#pragma once
+// What a place-recognition query returns: the transform T_a_b (maps points of map B's frame
+// into map A's frame) or "no transform" with the reason, plus the evidence.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/pose.h"
+
+namespace slide {
+
+// CPU time of the calling thread in milliseconds (unaffected by other processes' load).
+double threadCpuMs();
+
+enum class PlaceMethod { SlideGraph, SlideMatch };
+const char* methodName(PlaceMethod m);
+
+// A landmark of map A matched to a landmark of map B (indices into the Landmark vectors).
+struct LandmarkMatch {
+  std::size_t a = 0;
+  std::size_t b = 0;
+};
+
+struct PlaceResult {
+  bool found = false;
+  std::string reason;          // why no transform (empty when found)
+  Pose T_a_b = Pose::Identity();
+  std::vector<LandmarkMatch> inliers;
+  double residual_rms = 0;     // metres, over the inliers after refinement
+  double score = 0;            // method-specific: SlideMatch grid score, SlideGraph clique size
+  double chance_inliers = 0;   // inliers expected by chance at this overlap (acceptance test)
+  double ms = 0;               // wall time of the query
+  double cpu_ms = 0;           // CPU time of the calling thread during the query
+  std::vector<std::pair<std::string, double>> stage_cpu_ms;  // CPU ms per stage, in order
+  std::size_t associations = 0;       // SlideGraph: initial associations given to CLIPPER
+  std::size_t clipper_edges = 0;      // SlideGraph: consistent pairs in the sparse graph
+  std::size_t clipper_peak_bytes = 0; // SlideGraph: peak bytes held by the consistency graph
+  bool budget_exhausted = false;      // SlideMatch: the search stopped on its time budget
+};
+
+}  // namespace slide

@@ -1,0 +1,28 @@
+#pragma once
+// SlideGraph: Delaunay triangles of each map, described by sorted vertex-to-centroid distances
+// and vertex classes; candidate triangle pairs from a k-d tree over B's descriptors; their
+// vertex correspondences, ranked by votes, become the associations that CLIPPER prunes; the
+// surviving clique seeds a 4-DoF alignment that guided matching refines and verifies.
+#include "place/clipper.h"
+#include "place/verify.h"
+
+namespace slide {
+
+struct SlideGraphParams {
+  double descriptor_radius = 0.4;         // metres in descriptor space
+  std::size_t neighbors_per_simplex = 3;  // candidate B triangles kept per A triangle
+  std::size_t max_associations = 2500;    // strongest (most voted) associations given to CLIPPER
+  std::uint32_t min_votes = 2;            // associations seen in fewer triangle pairs are dropped...
+  std::size_t min_voted = 40;             // ...unless fewer than this many would remain
+  bool use_classes = true;                // vertex classes must agree
+  std::size_t min_landmarks = 4;          // per map
+  int hypotheses = 3;                     // CLIPPER sets tried (each without the previous ones)
+  ClipperParams clipper;
+  VerifyParams verify;
+};
+
+// T_a_b mapping B's frame into A's, or no transform with the reason. Inlier indices refer to
+// the landmark vectors.
+PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params);
+
+}  // namespace slide

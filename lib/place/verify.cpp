@@ -1,0 +1,108 @@
+#include "place/verify.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "place/alignment.h"
+
+namespace slide {
+
+std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const LandmarkIndex& index_a,
+                                         const std::vector<Landmark>& b, const Pose& T_a_b,
+                                         const VerifyParams& params) {
+  struct Cand {
+    double d;
+    std::size_t ia, ib;
+  };
+  std::vector<Cand> cands;
+  for (std::size_t j = 0; j < b.size(); ++j) {
+    const Eigen::Vector3d q = T_a_b * b[j].p;
+    for (std::size_t i : index_a.radius(q, params.match_radius, b[j].class_id))
+      if (sizesAgree(a[i].size, b[j].size, params.size_tolerance)) cands.push_back({(a[i].p - q).norm(), i, j});
+  }
+  std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
+    return x.d < y.d || (x.d == y.d && (x.ia < y.ia || (x.ia == y.ia && x.ib < y.ib)));
+  });
+  std::vector<char> used_a(a.size(), 0), used_b(b.size(), 0);
+  std::vector<LandmarkMatch> out;
+  for (const Cand& c : cands) {
+    if (used_a[c.ia] || used_b[c.ib]) continue;
+    used_a[c.ia] = used_b[c.ib] = 1;
+    out.push_back({c.ia, c.ib});
+  }
+  std::sort(out.begin(), out.end(), [](const LandmarkMatch& x, const LandmarkMatch& y) { return x.b < y.b; });
+  return out;
+}
+
+Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
+                  const Pose& T_a_b, double match_radius) {
+  Overlap o;
+  // Coverage radius: three times A's median landmark spacing, at least four match radii.
+  const double R = std::max(3.0 * index_a.medianSpacing(), 4.0 * match_radius);
+  const double ratio = (match_radius * match_radius) / (R * R);
+  for (const Landmark& l : b) {
+    const Eigen::Vector3d q = T_a_b * l.p;
+    if (index_a.nearest(q, LandmarkIndex::kAnyClass).second > R) continue;
+    ++o.covered;
+    // Local density of A's landmarks of this class around q, times the match disc.
+    const double n = static_cast<double>(index_a.radius(q, R, l.class_id).size());
+    o.chance += std::min(1.0, n * ratio);
+  }
+  return o;
+}
+
+void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
+                     const Pose& hypothesis, const VerifyParams& params, PlaceResult& out) {
+  out.found = false;
+  Pose T = hypothesis;
+  std::vector<LandmarkMatch> matches;
+  double rms = 0;
+  for (int round = 0; round < std::max(1, params.rounds); ++round) {
+    matches = guidedMatches(a, index_a, b, T, params);
+    if (matches.size() < 2) break;
+    std::vector<Eigen::Vector3d> pa, pb;
+    for (const LandmarkMatch& m : matches) {
+      pa.push_back(a[m.a].p);
+      pb.push_back(b[m.b].p);
+    }
+    const Alignment al = alignXyzYawRobust(pa, pb, params.robust_scale);
+    if (!al.ok) break;
+    T = al.T_a_b;
+    rms = al.rms;
+  }
+  matches = guidedMatches(a, index_a, b, T, params);
+  {
+    std::vector<Eigen::Vector3d> pa, pb;
+    for (const LandmarkMatch& m : matches) {
+      pa.push_back(a[m.a].p);
+      pb.push_back(b[m.b].p);
+    }
+    double sum = 0;
+    for (std::size_t i = 0; i < pa.size(); ++i) sum += (pa[i] - T * pb[i]).squaredNorm();
+    rms = pa.empty() ? 0 : std::sqrt(sum / pa.size());
+  }
+  out.T_a_b = T;
+  out.inliers = matches;
+  out.residual_rms = rms;
+  const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
+  out.chance_inliers = ov.chance;
+  const double n = static_cast<double>(matches.size());
+  char buf[256];
+  if (matches.size() < params.min_inliers) {
+    std::snprintf(buf, sizeof buf, "best hypothesis has %zu inliers, fewer than the minimum %zu", matches.size(),
+                  params.min_inliers);
+  } else if (n < ov.chance + params.significance * std::sqrt(ov.chance)) {
+    std::snprintf(buf, sizeof buf, "best hypothesis has %zu inliers, not significant against %.1f expected by chance",
+                  matches.size(), ov.chance);
+  } else if (n < params.min_inlier_ratio * static_cast<double>(ov.covered)) {
+    std::snprintf(buf, sizeof buf, "best hypothesis matches %zu of %zu overlapping landmarks, below the ratio %.2f",
+                  matches.size(), ov.covered, params.min_inlier_ratio);
+  } else {
+    out.found = true;
+    out.reason.clear();
+    return;
+  }
+  out.reason = buf;
+}
+
+}  // namespace slide

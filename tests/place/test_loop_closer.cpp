@@ -1,0 +1,103 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "place/loop_closer.h"
+#include "place/map_perturb.h"
+
+using namespace slide;
+
+namespace {
+// Mixed-class objects over a w x w square with ids starting at `first_id`.
+ObjectMap sceneMap(int n, double w, unsigned seed, std::int64_t first_id) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, w);
+  const int classes[] = {71, 1, 2, 0};
+  ObjectMap m;
+  for (int i = 0; i < n; ++i) {
+    Object o;
+    o.id = first_id + i;
+    o.class_id = classes[i % 4];
+    o.model = Ellipsoid{{u(rng), u(rng), 0.5}, 0.3, 1.0};
+    m.add(o);
+  }
+  return m;
+}
+
+ObjectMap movedCopy(const ObjectMap& m, const Pose& T_a_b, std::int64_t id_offset, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0, 0.03);
+  ObjectMap out;
+  for (const Object& o : m.objects()) {
+    Object c = transformObject(T_a_b.inverse(), o);
+    std::get<Ellipsoid>(c.model).centroid += Eigen::Vector3d(n(rng), n(rng), 0);
+    c.id = o.id + id_offset;
+    out.add(c);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(LoopCloser, InterRobotCheckIsStaggeredRepeatedOnChangeAndRefined) {
+  LoopCloserParams p;
+  p.robot = 0;
+  p.inter_period_s = 5;
+  p.stagger_s = 1;
+  LoopCloser lc(p);
+  const ObjectMap own = sceneMap(80, 40, 1, 0);
+  const Pose truth = poseFromXyzYaw(12, -7, 0.3, 1.2);
+  lc.setOwnMap(own, 0.0);
+  lc.setPeerMap(2, movedCopy(own, truth, 1000, 2), 0.0);
+  EXPECT_TRUE(lc.poll(0.0).empty());  // robot 0, peer 2: first check staggered to t = 2 s
+  auto out = lc.poll(2.0);
+  ASSERT_EQ(out.size(), 1u) << lc.lastReason();
+  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Accepted);
+  EXPECT_EQ(out[0].robot_a, 0);
+  EXPECT_EQ(out[0].robot_b, 2);
+  EXPECT_LT(transformError(out[0].T_a_b, truth).trans_m, 0.05);
+  for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 1000);
+  EXPECT_TRUE(lc.poll(8.0).empty());  // nothing changed: no re-check
+  lc.setPeerMap(2, movedCopy(own, truth, 1000, 3), 8.0);
+  out = lc.poll(9.0);  // changed and due (the period ran out at t = 7 s)
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Refined);
+}
+
+TEST(LoopCloser, UnrelatedPeerGivesNoClosureAndAReason) {
+  LoopCloser lc(LoopCloserParams{});
+  lc.setOwnMap(sceneMap(80, 40, 1, 0), 0);
+  lc.setPeerMap(1, sceneMap(80, 40, 9, 500), 0);
+  lc.setPeerMap(3, sceneMap(3, 40, 9, 900), 0);
+  for (double t = 0; t < 20; t += 1) EXPECT_TRUE(lc.poll(t).empty());
+  EXPECT_FALSE(lc.lastReason().empty());
+}
+
+TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
+  LoopCloserParams p;
+  p.intra_min_keypose_gap = 30;
+  p.intra_trigger_radius_m = 5;
+  p.intra_local_radius_m = 40;
+  LoopCloser lc(p);
+  // The robot starts at (20, 20), maps the objects around it, drives away and comes back.
+  std::vector<KeyPose> traj;
+  for (int k = 0; k <= 10; ++k) traj.push_back({k, poseFromXyzYaw(20 + 0.1 * k, 20, 0, 0)});
+  lc.setTrajectory(traj);
+  const ObjectMap old = sceneMap(60, 40, 4, 0);
+  lc.setOwnMap(old, 1.0);
+  for (int k = 11; k <= 60; ++k) traj.push_back({k, poseFromXyzYaw(20 + 30 * std::sin(k * 0.126), 20, 0, 0)});
+  traj.push_back({61, poseFromXyzYaw(21, 20, 0, 0)});
+  lc.setTrajectory(traj);
+  // Drift: on return the tracker re-created the objects 0.8 m and 3 degrees off, with new ids.
+  const Pose drift = poseFromXyzYaw(0.8, -0.4, 0, 0.05);
+  ObjectMap both = old;
+  const ObjectMap duplicates = movedCopy(old, drift, 5000, 5);
+  for (const Object& o : duplicates.objects()) both.add(o);
+  lc.setOwnMap(both, 2.0);
+  const auto out = lc.poll(3.0);
+  ASSERT_EQ(out.size(), 1u) << lc.lastReason();
+  EXPECT_EQ(out[0].robot_a, out[0].robot_b);
+  EXPECT_EQ(out[0].keypose_b, 61);
+  EXPECT_LE(out[0].keypose_a, 61 - 30);
+  EXPECT_LT(transformError(out[0].T_a_b, drift).trans_m, 0.05);
+  for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 5000);
+}

@@ -1,0 +1,151 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <fstream>
+
+#include "config/config.h"
+#include "mapio/object_map_text.h"
+#include "place/map_perturb.h"
+#include "place/place_config.h"
+#include "place/slidegraph.h"
+#include "place/slidematch.h"
+
+using namespace slide;
+
+namespace {
+// A small mixed-class scene: trunks, cars and other objects scattered over w x w metres.
+std::vector<Landmark> scene(int n, double w, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, w), h(0, 1.5);
+  const int classes[] = {71, 71, 10, 0};
+  std::vector<Landmark> out;
+  for (int i = 0; i < n; ++i) {
+    Landmark l;
+    l.p = {u(rng), u(rng), h(rng)};
+    l.class_id = classes[i % 4];
+    l.size = l.class_id == 10 ? Eigen::Vector3d(4.5, 1.8, 1.5) : Eigen::Vector3d(0.5, 0.5, 2.0);
+    l.index = i;
+    out.push_back(l);
+  }
+  return out;
+}
+
+struct Case {
+  std::vector<Landmark> a, b;
+  Pose truth;
+};
+
+Case movedCopy(unsigned seed) {
+  Case c;
+  c.a = scene(120, 60, seed);
+  c.truth = poseFromXyzYaw(25.0, -13.0, 0.4, 2.2);
+  std::mt19937 rng(seed + 100);
+  c.b = perturbedCopy(c.a, c.truth, PerturbParams{0.05, 0.0, 0.2}, rng);
+  return c;
+}
+}  // namespace
+
+TEST(SlideGraph, RecoversAMovedNoisyCopyWithDrops) {
+  const Case c = movedCopy(1);
+  const PlaceResult r = slideGraph(c.a, c.b, SlideGraphParams{});
+  ASSERT_TRUE(r.found) << r.reason;
+  const TransformError e = transformError(r.T_a_b, c.truth);
+  EXPECT_LT(e.trans_m, 0.1);
+  EXPECT_LT(e.yaw_deg, 0.2);
+  EXPECT_GT(r.inliers.size(), 80u);
+  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);  // every inlier is right
+}
+
+TEST(SlideMatch, RecoversAMovedNoisyCopyWithDrops) {
+  const Case c = movedCopy(2);
+  const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
+  ASSERT_TRUE(r.found) << r.reason;
+  const TransformError e = transformError(r.T_a_b, c.truth);
+  EXPECT_LT(e.trans_m, 0.1);
+  EXPECT_LT(e.yaw_deg, 0.2);
+  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);
+}
+
+TEST(PlaceRecognition, UnrelatedMapsGiveNoTransform) {
+  const auto a = scene(120, 60, 5), b = scene(120, 60, 6);
+  const PlaceResult g = slideGraph(a, b, SlideGraphParams{});
+  EXPECT_FALSE(g.found);
+  EXPECT_FALSE(g.reason.empty());
+  const PlaceResult m = slideMatch(a, b, SlideMatchParams{});
+  EXPECT_FALSE(m.found);
+  EXPECT_FALSE(m.reason.empty());
+}
+
+TEST(PlaceRecognition, BadInputGivesAReasonNotACrash) {
+  const auto good = scene(40, 30, 9);
+  std::vector<Landmark> empty, tiny(good.begin(), good.begin() + 2), line, same, nan = good;
+  for (int i = 0; i < 20; ++i) {
+    Landmark l;
+    l.p = {1.0 * i, 2.0 * i, 0};
+    line.push_back(l);
+    l.p = {3, 3, 0};
+    same.push_back(l);
+  }
+  nan[5].p.x() = std::numeric_limits<double>::quiet_NaN();
+  struct Bad {
+    const std::vector<Landmark>* map;
+    const char* expect;
+  };
+  for (const Bad& bad : {Bad{&empty, "empty"}, Bad{&tiny, "fewer than"}, Bad{&line, "collinear"},
+                         Bad{&same, "one point"}, Bad{&nan, "non-finite"}}) {
+    const PlaceResult g = slideGraph(good, *bad.map, SlideGraphParams{});
+    EXPECT_FALSE(g.found);
+    EXPECT_NE(g.reason.find(bad.expect), std::string::npos) << g.reason;
+    const PlaceResult m = slideMatch(*bad.map, good, SlideMatchParams{});
+    EXPECT_FALSE(m.found);
+    EXPECT_FALSE(m.reason.empty());
+  }
+}
+
+TEST(SlideMatch, AnytimeBudgetStillReturnsADecision) {
+  const Case c = movedCopy(3);
+  SlideMatchParams p;
+  p.budget_ms = 0;  // only the first yaw (zero) is visited
+  const PlaceResult r = slideMatch(c.a, c.b, p);
+  EXPECT_TRUE(r.budget_exhausted);
+  EXPECT_FALSE(r.found);  // the true yaw is 2.2 rad away from the only yaw searched
+  EXPECT_NE(r.reason.find("budget"), std::string::npos) << r.reason;
+}
+
+TEST(PlaceRecognition, RealParkingMapAgainstAMovedCopy) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const std::vector<Landmark> a =
+      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt", classes).map);
+  const Pose truth = poseFromXyzYaw(-31.0, 12.5, 1.0, -1.9);
+  std::mt19937 rng(21);
+  const std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.15}, rng);
+  const PlaceConfig config = loadDefaultPlaceConfig();
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    const PlaceResult r = recognizePlace(m, a, b, config);
+    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+    const TransformError e = transformError(r.T_a_b, truth);
+    EXPECT_LT(e.trans_m, 0.1) << methodName(m);
+    EXPECT_LT(e.yaw_deg, 0.2) << methodName(m);
+    for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
+  }
+}
+
+TEST(PlaceConfig, LoadsTheShippedFileAndNamesBadKeys) {
+  const PlaceConfig c = loadDefaultPlaceConfig();
+  EXPECT_EQ(c.slidegraph.neighbors_per_simplex, 3u);
+  EXPECT_DOUBLE_EQ(c.slidematch.verify.match_radius, c.slidegraph.verify.match_radius);
+  const std::string path = ::testing::TempDir() + "bad_place.yaml";
+  {
+    std::ofstream f(path);
+    f << "clipper:\n  sigma: -1\n";
+  }
+  try {
+    loadPlaceConfig(path);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad_place.yaml"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parsePlaceMethod("icp"), std::invalid_argument);
+}
