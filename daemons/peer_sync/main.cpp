@@ -1,0 +1,194 @@
+// slide-peer-sync: wires the peer-sync engine (lib/team) to the robot bus and the team bus.
+#include <spdlog/spdlog.h>
+#include <sys/select.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <lcm/lcm-cpp.hpp>
+
+#include "app/app.h"
+#include "team/peer_sync.h"
+#include "team_msg.h"
+
+using namespace slide;
+using namespace slide::team;
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+void onSignal(int) { g_stop = 1; }
+
+Micros nowMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+struct Channels {
+  std::string own_bundle, own_map, peer_bundle, peer_map;
+  TeamChannels team;
+};
+
+class PeerSyncDaemon {
+ public:
+  PeerSyncDaemon(PeerSyncNode& node, lcm::LCM& robot_bus, lcm::LCM& team_bus, Channels ch)
+      : node_(node), robot_(robot_bus), team_(team_bus), ch_(std::move(ch)) {
+    robot_.subscribe(ch_.own_bundle, &PeerSyncDaemon::onOwnBundle, this);
+    robot_.subscribe(ch_.own_map, &PeerSyncDaemon::onOwnMap, this);
+    team_.subscribe(ch_.team.heartbeat, &PeerSyncDaemon::onTeam<sync_heartbeat_t>, this);
+    team_.subscribe(ch_.team.chunk, &PeerSyncDaemon::onTeam<sync_chunk_t>, this);
+    team_.subscribe(ch_.team.ack, &PeerSyncDaemon::onTeam<sync_ack_t>, this);
+  }
+
+  void onOwnBundle(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    std::string why = "undecodable keypose_bundle_t";
+    auto m = decodeLcm<keypose_bundle_t>(rb->data, rb->data_size);
+    std::optional<Bundle> b = m ? fromLcm(*m, &why) : std::nullopt;
+    if (!b) return spdlog::warn("{}: dropped own bundle: {}", channel, why);
+    if (auto drop = node_.addOwnBundle(std::move(*b), nowMicros()))
+      spdlog::warn("{}: dropped own bundle {}/{}: {}", channel, m->header.robot, m->header.seq, dropName(*drop));
+  }
+
+  void onOwnMap(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    std::string why = "undecodable object_map_t";
+    auto m = decodeLcm<object_map_t>(rb->data, rb->data_size);
+    std::optional<SharedMap> map = m ? fromLcm(*m, &why) : std::nullopt;
+    if (!map) return spdlog::warn("{}: dropped own map: {}", channel, why);
+    node_.setOwnMap(std::move(*map), nowMicros());
+  }
+
+  template <typename L>
+  void onTeam(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    std::string why = "undecodable message";
+    auto m = decodeLcm<L>(rb->data, rb->data_size);
+    auto msg = m ? fromLcm(*m, &why) : std::nullopt;
+    if (!msg) {
+      node_.countMalformed();
+      return spdlog::debug("{}: dropped malformed message: {}", channel, why);
+    }
+    node_.receive(*msg, nowMicros());
+  }
+
+  void step() {
+    const Micros now = nowMicros();
+    TickOutput out = node_.tick(now);
+    for (const auto& h : out.heartbeats) publish(ch_.team.heartbeat, toLcm(h));
+    for (const auto& a : out.acks) publish(ch_.team.ack, toLcm(a));
+    for (const auto& c : out.chunks) publish(ch_.team.chunk, toLcm(c));
+    while (auto b = node_.nextDelivery()) {
+      const keypose_bundle_t m = toLcm(*b);
+      robot_.publish(ch_.peer_bundle, &m);
+      node_.confirmDelivered(b->origin, b->seq);
+      spdlog::debug("delivered bundle {}/{}", b->origin, b->seq);
+    }
+    for (const auto& map : node_.takeMaps()) {
+      const object_map_t m = toLcm(map);
+      robot_.publish(ch_.peer_map, &m);
+      spdlog::info("map of robot {} ({} objects) delivered", map.robot, map.objects.size());
+    }
+  }
+
+  void logStats() {
+    const Micros now = nowMicros();
+    std::string drops;
+    for (int d = 0; d < static_cast<int>(Drop::kCount); ++d)
+      if (node_.drops()[d]) drops += fmt::format(" {}={}", dropName(static_cast<Drop>(d)), node_.drops()[d]);
+    spdlog::info("held {} bundles, sent {:.0f} B, received {:.0f} B; drops:{}", node_.db().size(),
+                 node_.traffic().totalSent(), node_.traffic().totalReceived(), drops.empty() ? " none" : drops);
+    for (const auto& line : node_.trafficSummary(now)) spdlog::info("{}", line);
+  }
+
+ private:
+  template <typename M>
+  void publish(const std::string& channel, const M& m) {
+    if (team_.publish(channel, &m) != 0) spdlog::warn("{}: publish failed", channel);
+  }
+  PeerSyncNode& node_;
+  lcm::LCM& robot_;
+  lcm::LCM& team_;
+  Channels ch_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Peer-sync bookmark service: exchanges key-pose bundles and maps with teammates over the team bus, "
+               "journals them, and delivers peers' bundles exactly once and in order on the robot bus."};
+  CommonOptions common;
+  addCommonOptions(app, common);
+  std::string config_path = std::string(SLIDE_SOURCE_DIR) + "/config/peer_sync.yaml";
+  std::int32_t robot = 0;
+  std::string state_dir, robot_url, team_url, team_key;
+  double run_for_s = 0;
+  app.add_option("--config", config_path, "Peer-sync configuration (YAML)")->capture_default_str();
+  app.add_option("--robot", robot, "This robot's id (must be in the config's team list)")->required();
+  app.add_option("--state-dir", state_dir, "Folder for journal and counters (default: config state_dir/robot<id>)");
+  app.add_option("--robot-url", robot_url, "LCM URL of the robot bus (default: config robot_url)");
+  app.add_option("--team-url", team_url, "LCM URL of the team bus (default: config team_url)");
+  app.add_option("--team-key", team_key, "Team HMAC key (default: config team_key)");
+  app.add_option("--run-for", run_for_s, "Exit after this many seconds (0: until SIGINT/SIGTERM)");
+
+  return runApp(app, common, argc, argv, [&]() {
+    const ConfigNode cfg = ConfigNode::load(config_path);
+    SyncConfig sync = SyncConfig::fromConfig(cfg, robot);
+    if (!team_key.empty()) sync.team_key = team_key;
+    const ConfigNode chn = cfg.child("channels");
+    Channels ch;
+    ch.own_bundle = chn.get<std::string>("own_bundle");
+    ch.own_map = chn.get<std::string>("own_map");
+    ch.peer_bundle = chn.get<std::string>("peer_bundle");
+    ch.peer_map = chn.get<std::string>("peer_map");
+    ch.team.heartbeat = chn.get<std::string>("heartbeat");
+    ch.team.chunk = chn.get<std::string>("chunk");
+    ch.team.ack = chn.get<std::string>("ack");
+    if (robot_url.empty()) robot_url = cfg.get<std::string>("robot_url");
+    if (team_url.empty()) team_url = cfg.get<std::string>("team_url");
+    if (state_dir.empty()) state_dir = cfg.get<std::string>("state_dir") + "/robot" + std::to_string(robot);
+    const double tick_s = cfg.get<double>("tick_period_s", 0.05);
+    const double stats_s = cfg.get<double>("stats_period_s", 10.0);
+    if (!(tick_s > 0) || !(stats_s > 0)) cfg.fail("tick_period_s", "tick_period_s and stats_period_s must be positive");
+    std::filesystem::create_directories(state_dir);
+
+    lcm::LCM robot_bus(robot_url), team_bus(team_url);
+    if (!robot_bus.good()) throw std::runtime_error("cannot open robot bus " + robot_url);
+    if (!team_bus.good()) throw std::runtime_error("cannot open team bus " + team_url);
+    PeerSyncNode node(sync, state_dir, nowMicros(), ch.team);
+    const auto& rec = node.db().recovery();
+    spdlog::info("robot {}: journal {} holds {} bundles ({} records){}", robot, state_dir, node.db().size(), rec.records,
+                 rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
+                                                 rec.damaged_copy)
+                                   : std::string());
+    PeerSyncDaemon daemon(node, robot_bus, team_bus, ch);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+
+    const Micros start = nowMicros(), tick = static_cast<Micros>(tick_s * 1e6), stats = static_cast<Micros>(stats_s * 1e6);
+    Micros next_tick = start, next_stats = start + stats;
+    while (!g_stop && (run_for_s <= 0 || nowMicros() - start < static_cast<Micros>(run_for_s * 1e6))) {
+      const Micros wait = std::max<Micros>(0, next_tick - nowMicros());
+      fd_set fds;
+      FD_ZERO(&fds);
+      const int rfd = robot_bus.getFileno(), tfd = team_bus.getFileno();
+      FD_SET(rfd, &fds);
+      FD_SET(tfd, &fds);
+      timeval tv{static_cast<time_t>(wait / 1000000), static_cast<suseconds_t>(wait % 1000000)};
+      const int n = select(std::max(rfd, tfd) + 1, &fds, nullptr, nullptr, &tv);
+      if (n > 0 && FD_ISSET(rfd, &fds)) robot_bus.handle();
+      if (n > 0 && FD_ISSET(tfd, &fds)) team_bus.handle();
+      const Micros now = nowMicros();
+      if (now >= next_tick) {
+        daemon.step();
+        next_tick = now + tick;
+      }
+      if (now >= next_stats) {
+        daemon.logStats();
+        next_stats = now + stats;
+      }
+    }
+    daemon.step();
+    daemon.logStats();
+    node.persist();
+    spdlog::info("robot {}: stopped", robot);
+    return 0;
+  });
+}

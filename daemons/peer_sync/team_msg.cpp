@@ -1,0 +1,202 @@
+#include "team_msg.h"
+
+#include <cmath>
+
+#include "msg/convert.h"
+
+namespace slide::team {
+namespace {
+
+std::vector<origin_ranges_t> toLcm(const OriginRanges& r) {
+  std::vector<origin_ranges_t> out;
+  for (const auto& [origin, set] : r) {
+    origin_ranges_t o;
+    o.origin = origin;
+    for (const auto& x : set.ranges()) {
+      seq_range_t s;
+      s.first = x.first;
+      s.last = x.last;
+      o.ranges.push_back(s);
+    }
+    o.num_ranges = static_cast<int16_t>(o.ranges.size());
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+// Ranges must be well formed, ascending and disjoint, origins unique: otherwise the MAC of the
+// canonical form would not match what the sender signed anyway, but say why.
+bool fromLcm(const std::vector<origin_ranges_t>& in, OriginRanges* out, std::string* why) {
+  for (const auto& o : in) {
+    if (out->count(o.origin)) return *why = "origin " + std::to_string(o.origin) + " listed twice", false;
+    std::vector<SeqRange> ranges;
+    for (const auto& r : o.ranges) {
+      if (r.first > r.last || r.first < 0) return *why = "invalid range for origin " + std::to_string(o.origin), false;
+      if (!ranges.empty() && r.first <= ranges.back().last + 1)
+        return *why = "ranges of origin " + std::to_string(o.origin) + " overlap or are unsorted", false;
+      ranges.push_back({r.first, r.last});
+    }
+    (*out)[o.origin] = RangeSet::fromRanges(ranges);
+  }
+  return true;
+}
+
+template <typename M>
+void copyMac(const M& from, Mac& to) {
+  std::copy(std::begin(from.mac), std::end(from.mac), to.begin());
+}
+
+bool finitePose(const pose3_t& p) {
+  double qn = 0;
+  for (double v : p.position)
+    if (!std::isfinite(v)) return false;
+  for (double v : p.orientation) {
+    if (!std::isfinite(v)) return false;
+    qn += v * v;
+  }
+  return qn > 0.25;
+}
+
+}  // namespace
+
+sync_heartbeat_t toLcm(const Heartbeat& m) {
+  sync_heartbeat_t o;
+  o.sender = m.sender;
+  o.counter = m.counter;
+  o.map_version = m.map_version;
+  o.held = toLcm(m.held);
+  o.num_origins = static_cast<int16_t>(o.held.size());
+  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  return o;
+}
+
+sync_chunk_t toLcm(const Chunk& m) {
+  sync_chunk_t o;
+  o.sender = m.sender;
+  o.receiver = m.receiver;
+  o.counter = m.counter;
+  o.kind = static_cast<int8_t>(m.kind);
+  o.origin = m.origin;
+  o.seq = m.seq;
+  o.chunk_index = m.chunk_index;
+  o.num_chunks = m.num_chunks;
+  o.data = m.data;
+  o.size = static_cast<int32_t>(o.data.size());
+  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  return o;
+}
+
+sync_ack_t toLcm(const Ack& m) {
+  sync_ack_t o;
+  o.sender = m.sender;
+  o.receiver = m.receiver;
+  o.counter = m.counter;
+  o.acked = toLcm(m.acked);
+  o.num_origins = static_cast<int16_t>(o.acked.size());
+  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  return o;
+}
+
+std::optional<Heartbeat> fromLcm(const sync_heartbeat_t& m, std::string* why) {
+  Heartbeat h;
+  h.sender = m.sender;
+  h.counter = m.counter;
+  h.map_version = m.map_version;
+  if (!fromLcm(m.held, &h.held, why)) return std::nullopt;
+  copyMac(m, h.mac);
+  return h;
+}
+
+std::optional<Chunk> fromLcm(const sync_chunk_t& m, std::string* why) {
+  if (m.kind != sync_chunk_t::BUNDLE && m.kind != sync_chunk_t::MAP)
+    return *why = "unknown chunk kind " + std::to_string(m.kind), std::nullopt;
+  Chunk c;
+  c.sender = m.sender;
+  c.receiver = m.receiver;
+  c.counter = m.counter;
+  c.kind = static_cast<ChunkKind>(m.kind);
+  c.origin = m.origin;
+  c.seq = m.seq;
+  c.chunk_index = m.chunk_index;
+  c.num_chunks = m.num_chunks;
+  c.data = m.data;
+  copyMac(m, c.mac);
+  return c;
+}
+
+std::optional<Ack> fromLcm(const sync_ack_t& m, std::string* why) {
+  Ack a;
+  a.sender = m.sender;
+  a.receiver = m.receiver;
+  a.counter = m.counter;
+  if (!fromLcm(m.acked, &a.acked, why)) return std::nullopt;
+  copyMac(m, a.mac);
+  return a;
+}
+
+keypose_bundle_t toLcm(const Bundle& b) {
+  keypose_bundle_t m;
+  m.header.utime = b.utime;
+  m.header.robot = b.origin;
+  m.header.seq = b.seq;
+  m.odom_pose = slide::toMsg(b.odom_pose);
+  m.relative_odom = slide::toMsg(b.relative_odom);
+  std::copy(b.odom_sigma.begin(), b.odom_sigma.end(), m.odom_sigma);
+  for (const auto& o : b.objects) m.objects.push_back(slide::toMsg(o));
+  m.num_objects = static_cast<int32_t>(m.objects.size());
+  return m;
+}
+
+std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
+  if (!finitePose(m.odom_pose) || !finitePose(m.relative_odom))
+    return *why = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq) +
+                  ": invalid odom_pose or relative_odom",
+           std::nullopt;
+  Bundle b;
+  b.origin = m.header.robot;
+  b.seq = m.header.seq;
+  b.utime = m.header.utime;
+  b.odom_pose = slide::fromMsg(m.odom_pose);
+  b.relative_odom = slide::fromMsg(m.relative_odom);
+  std::copy(std::begin(m.odom_sigma), std::end(m.odom_sigma), b.odom_sigma.begin());
+  try {
+    for (const auto& o : m.objects) {
+      Object obj = slide::fromMsg(o);
+      if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
+      b.objects.push_back(std::move(obj));
+    }
+  } catch (const std::invalid_argument& e) {
+    return *why = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq) + ": " + e.what(),
+           std::nullopt;
+  }
+  return b;
+}
+
+object_map_t toLcm(const SharedMap& m) {
+  object_map_t o;
+  o.utime = m.utime;
+  o.robot = m.robot;
+  o.frame_robot = m.frame_robot;
+  for (const auto& obj : m.objects) o.objects.push_back(slide::toMsg(obj));
+  o.num_objects = static_cast<int32_t>(o.objects.size());
+  return o;
+}
+
+std::optional<SharedMap> fromLcm(const object_map_t& m, std::string* why) {
+  SharedMap s;
+  s.robot = m.robot;
+  s.frame_robot = m.frame_robot;
+  s.utime = m.utime;
+  try {
+    for (const auto& o : m.objects) {
+      Object obj = slide::fromMsg(o);
+      if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
+      s.objects.push_back(std::move(obj));
+    }
+  } catch (const std::invalid_argument& e) {
+    return *why = std::string("object map: ") + e.what(), std::nullopt;
+  }
+  return s;
+}
+
+}  // namespace slide::team

@@ -1,0 +1,32 @@
+#pragma once
+// Why an input was dropped; every drop is counted under one of these.
+#include <array>
+#include <cstdint>
+
+namespace slide::team {
+
+enum class Drop : int {
+  UnknownSender,   // sender not in the team list
+  BadMac,          // wrong key, forged or tampered
+  Replay,          // counter not above the last accepted from that sender
+  Malformed,       // undecodable LCM bytes, inconsistent chunk header or payload
+  UnknownOrigin,   // bundle of a robot not in the team
+  WrongOrigin,     // own-bundle input not from this robot, map not from its sender
+  SeqBackwards,    // own input going back, or before the origin's first bundle
+  SeqJump,         // sequence number jumping ahead
+  Duplicate,       // already held (normal under loss and relay; counted, harmless)
+  Stale,           // map older than the one held
+  Overflow,        // reassembly space exhausted
+  kCount
+};
+
+inline const char* dropName(Drop d) {
+  static constexpr std::array<const char*, static_cast<int>(Drop::kCount)> names = {
+      "unknown_sender", "bad_mac",  "replay",    "malformed", "unknown_origin", "wrong_origin",
+      "seq_backwards",  "seq_jump", "duplicate", "stale",     "overflow"};
+  return names[static_cast<int>(d)];
+}
+
+using DropCounts = std::array<std::uint64_t, static_cast<int>(Drop::kCount)>;
+
+}  // namespace slide::team

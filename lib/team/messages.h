@@ -1,0 +1,53 @@
+#pragma once
+// The three team-bus messages as plain structs (the daemon maps them 1:1 onto
+// sync_heartbeat_t, sync_chunk_t and sync_ack_t), and their encoded sizes on the wire.
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "team/byte_io.h"
+#include "team/seq_ranges.h"
+
+namespace slide::team {
+
+using Mac = std::array<std::uint8_t, 16>;
+
+struct Heartbeat {
+  std::int32_t sender = 0;
+  std::int64_t counter = 0;
+  std::int32_t map_version = 0;  // sender's own map version, 0: none yet
+  OriginRanges held;             // what the sender holds, per origin
+  Mac mac{};
+};
+
+enum class ChunkKind : std::int8_t { Bundle = 0, Map = 1 };
+
+struct Chunk {
+  std::int32_t sender = 0;
+  std::int32_t receiver = -1;  // -1: everyone
+  std::int64_t counter = 0;
+  ChunkKind kind = ChunkKind::Bundle;
+  std::int32_t origin = 0;
+  std::int32_t seq = 0;  // bundle sequence number, or map version for kind Map
+  std::int16_t chunk_index = 0;
+  std::int16_t num_chunks = 1;
+  Bytes data;
+  Mac mac{};
+};
+
+struct Ack {
+  std::int32_t sender = 0;    // who acknowledges
+  std::int32_t receiver = 0;  // whose bookmark this updates
+  std::int64_t counter = 0;
+  OriginRanges acked;
+  Mac mac{};
+};
+
+// Bytes of the LCM encoding (fingerprint included) of each message.
+std::size_t encodedSize(const Heartbeat& m);
+std::size_t encodedSize(const Chunk& m);
+std::size_t encodedSize(const Ack& m);
+// Bytes LCM adds around a small message on UDP multicast: header, channel name and its NUL.
+inline std::size_t lcmPacketOverhead(const std::string& channel) { return 8 + channel.size() + 1; }
+
+}  // namespace slide::team

@@ -1,0 +1,56 @@
+#pragma once
+// The observation database: encoded bundles by (origin, seq), own and received, journalled
+// before they count as held, plus the per-origin delivery cursor (journalled on each
+// delivery) so that a restarted daemon neither repeats nor skips a delivery. Nothing stored is
+// ever replaced.
+#include <map>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "team/journal.h"
+#include "team/seq_ranges.h"
+
+namespace slide::team {
+
+class ObservationDb {
+ public:
+  struct Entry {
+    Bytes data;           // compact encoding (codec.h)
+    bool first = false;   // first bundle of its origin
+    float step_m = 0;     // length of its relative odometry (for per-metre accounting)
+  };
+
+  // Rebuilds from the journal at `journal_path` (created if missing; empty path: memory only).
+  explicit ObservationDb(const std::string& journal_path);
+
+  bool has(std::int32_t origin, std::int32_t seq) const;
+  const Entry* get(std::int32_t origin, std::int32_t seq) const;
+  // Stores and journals a new bundle; false (and nothing changes) when it is already held.
+  bool add(std::int32_t origin, std::int32_t seq, Entry entry);
+  const OriginRanges& held() const { return held_; }
+  std::optional<std::int32_t> firstSeq(std::int32_t origin) const;
+  double metres(std::int32_t origin) const;
+  std::size_t size() const;
+
+  // The next bundle in per-origin order not yet delivered, over origins other than `skip`.
+  std::optional<std::pair<std::int32_t, std::int32_t>> nextToDeliver(std::int32_t skip) const;
+  void markDelivered(std::int32_t origin, std::int32_t seq);
+  bool delivered(std::int32_t origin, std::int32_t seq) const;
+  const JournalRecovery& recovery() const { return recovery_; }
+
+ private:
+  enum RecordType : std::uint8_t { kBundle = 1, kDelivered = 2 };
+  void apply(const JournalRecord& r);
+  void insert(std::int32_t origin, std::int32_t seq, Entry entry);
+
+  std::map<std::pair<std::int32_t, std::int32_t>, Entry> entries_;
+  OriginRanges held_;
+  OriginRanges delivered_;
+  std::map<std::int32_t, std::int32_t> first_;
+  std::map<std::int32_t, double> metres_;
+  std::unique_ptr<Journal> journal_;
+  JournalRecovery recovery_;
+};
+
+}  // namespace slide::team

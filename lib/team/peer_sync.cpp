@@ -1,0 +1,417 @@
+#include "team/peer_sync.h"
+
+#include <algorithm>
+#include <deque>
+#include <stdexcept>
+
+#include "team/codec.h"
+
+namespace slide::team {
+namespace {
+
+Micros secs(double s) { return static_cast<Micros>(s * 1e6); }
+constexpr std::size_t kMaxChunkOnWire = 60000;
+
+std::string joinPath(const std::string& dir, const char* name) {
+  return dir.empty() ? std::string() : dir + "/" + name;
+}
+
+}  // namespace
+
+PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels)
+    : cfg_((cfg.validate(), std::move(cfg))),
+      channels_(std::move(channels)),
+      auth_(cfg_.team_key),
+      counters_(joinPath(state_dir, "counters.txt")),
+      db_(joinPath(state_dir, "journal.bin")),
+      reassembler_(cfg_.reassembly_bytes, secs(cfg_.reassembly_timeout_s)),
+      limiter_(cfg_.rate_limit_bytes_per_s, cfg_.burst_bytes),
+      traffic_(now),
+      next_heartbeat_(now) {}
+
+PeerSyncNode::~PeerSyncNode() {
+  try {
+    counters_.save();
+  } catch (...) {
+  }
+}
+
+bool PeerSyncNode::inTeam(std::int32_t robot) const {
+  return std::find(cfg_.team.begin(), cfg_.team.end(), robot) != cfg_.team.end();
+}
+
+bool PeerSyncNode::inReach(std::int32_t peer, Micros now) const {
+  auto it = peers_.find(peer);
+  return it != peers_.end() && it->second.heard_heartbeat && now - it->second.last_heard <= secs(cfg_.peer_timeout_s);
+}
+
+std::vector<std::int32_t> PeerSyncNode::peersInReach(Micros now) const {
+  std::vector<std::int32_t> out;
+  for (const auto& [id, p] : peers_)
+    if (inReach(id, now)) out.push_back(id);
+  return out;
+}
+
+std::size_t PeerSyncNode::landmarks(std::int32_t robot) const {
+  if (robot == cfg_.robot) return own_map_ ? own_map_->objects.size() : 0;
+  auto it = peer_map_size_.find(robot);
+  return it == peer_map_size_.end() ? 0 : it->second;
+}
+
+std::vector<std::string> PeerSyncNode::trafficSummary(Micros now) const {
+  std::vector<std::string> lines;
+  for (const auto& [id, t] : traffic_.peers()) lines.push_back(traffic_.summary(id, now, landmarks(id), db_.metres(id)));
+  return lines;
+}
+
+// ---- own input ----
+
+std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
+  if (b.origin != cfg_.robot) return drop(Drop::WrongOrigin), Drop::WrongOrigin;
+  auto it = db_.held().find(cfg_.robot);
+  const bool have_any = it != db_.held().end() && !it->second.empty();
+  if (have_any) {
+    const RangeSet& own = it->second;
+    Drop d = Drop::kCount;
+    if (own.contains(b.seq)) d = Drop::Duplicate;
+    else if (b.seq <= own.max()) d = Drop::SeqBackwards;
+    else if (static_cast<std::int64_t>(b.seq) > static_cast<std::int64_t>(own.max()) + 1) d = Drop::SeqJump;
+    if (d != Drop::kCount) return drop(d), d;
+  }
+  b.first = !have_any;
+  ObservationDb::Entry e;
+  e.data = encodeBundle(b);
+  e.first = b.first;
+  e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
+  db_.add(b.origin, b.seq, std::move(e));
+  return std::nullopt;
+}
+
+void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
+  m.robot = cfg_.robot;
+  // Versions come from the persisted message counter, so they grow across restarts.
+  own_map_version_ = static_cast<std::int32_t>(counters_.nextOwn() & 0x7fffffff);
+  m.version = own_map_version_;
+  own_map_data_ = encodeMap(m);
+  own_map_ = std::move(m);
+}
+
+// ---- team input ----
+
+bool PeerSyncNode::admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes) {
+  if (sender == cfg_.robot) return false;  // our own multicast echo
+  if (!inTeam(sender)) return drop(Drop::UnknownSender), false;
+  if (!mac_ok) return drop(Drop::BadMac), false;
+  if (!counters_.accept(sender, counter)) return drop(Drop::Replay), false;
+  traffic_.received(sender, bytes);
+  return true;
+}
+
+void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
+  if (m.sender == cfg_.robot) return;
+  if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m),
+             encodedSize(m) + lcmPacketOverhead(channels_.heartbeat)))
+    return;
+  Peer& p = peers_[m.sender];
+  p.heard_heartbeat = true;
+  p.last_heard = now;
+  p.known = m.held;
+  p.map_version = m.map_version;
+  forgetKnown(p);
+}
+
+void PeerSyncNode::receive(const Ack& m, Micros now) {
+  if (m.sender == cfg_.robot) return;
+  if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), encodedSize(m) + lcmPacketOverhead(channels_.ack)))
+    return;
+  Peer& p = peers_[m.sender];
+  p.last_heard = now;
+  insertAll(p.known, m.acked);  // what the acknowledging robot holds, whoever it told
+  forgetKnown(p);
+}
+
+void PeerSyncNode::receive(const Chunk& m, Micros now) {
+  if (m.sender == cfg_.robot) return;
+  if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), wireBytes(m))) return;
+  peers_[m.sender].last_heard = now;
+  if (m.num_chunks < 1 || m.chunk_index < 0 || m.chunk_index >= m.num_chunks || m.data.size() > kMaxChunkOnWire ||
+      m.seq < 0 || (m.kind != ChunkKind::Bundle && m.kind != ChunkKind::Map))
+    return drop(Drop::Malformed);
+  if (m.kind == ChunkKind::Bundle) receiveBundleChunk(m, now);
+  else receiveMapChunk(m, now);
+}
+
+void PeerSyncNode::scheduleAck(std::int32_t peer, std::int32_t origin, Micros now) {
+  Peer& p = peers_[peer];
+  if (!p.ack_pending) {
+    p.ack_pending = true;
+    p.ack_due = now + secs(cfg_.ack_delay_s);
+  }
+  p.ack_origins.insert(origin);
+}
+
+void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
+  if (!inTeam(m.origin)) return drop(Drop::UnknownOrigin);
+  const Key key{m.origin, m.seq};
+  // Overheard or not, the addressees now have (or are getting) it: do not send it to them too.
+  for (auto& [id, p] : peers_)
+    if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
+  const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
+  if (db_.has(m.origin, m.seq)) {
+    if (for_me) scheduleAck(m.sender, m.origin, now);
+    return drop(Drop::Duplicate);
+  }
+  const auto first = db_.firstSeq(m.origin);
+  if (first && m.seq < *first) return drop(Drop::SeqBackwards);
+  auto held = db_.held().find(m.origin);
+  std::int64_t base = held != db_.held().end() && !held->second.empty() ? held->second.max() : -1;
+  if (first) base = std::max<std::int64_t>(base, *first);
+  if (base >= 0 && static_cast<std::int64_t>(m.seq) > base + cfg_.max_seq_jump) return drop(Drop::SeqJump);
+
+  std::optional<Drop> refused;
+  std::optional<Bytes> payload = reassembler_.add(m, now, &refused);
+  if (refused) return drop(*refused);
+  if (!payload) return;
+  std::string error;
+  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error);
+  if (!bundle) return drop(Drop::Malformed);
+  // A bundle claiming to start its origin's stream must not contradict what is held.
+  if (bundle->first && ((first && *first != m.seq) || (held != db_.held().end() && !held->second.empty() &&
+                                                         held->second.min() < m.seq)))
+    return drop(Drop::Malformed);
+  ObservationDb::Entry e;
+  e.data = std::move(*payload);
+  e.first = bundle->first;
+  e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
+  db_.add(m.origin, m.seq, std::move(e));
+  scheduleAck(m.sender, m.origin, now);
+}
+
+void PeerSyncNode::receiveMapChunk(const Chunk& m, Micros now) {
+  if (m.origin != m.sender) return drop(Drop::WrongOrigin);
+  auto it = peer_map_version_.find(m.origin);
+  if (it != peer_map_version_.end() && m.seq <= it->second) return drop(Drop::Stale);
+  std::optional<Drop> refused;
+  std::optional<Bytes> payload = reassembler_.add(m, now, &refused);
+  if (refused) return drop(*refused);
+  if (!payload) return;
+  std::string error;
+  auto map = decodeMap(*payload, m.origin, m.seq, &error);
+  if (!map) return drop(Drop::Malformed);
+  peer_map_version_[m.origin] = m.seq;
+  peer_map_size_[m.origin] = map->objects.size();
+  new_maps_[m.origin] = std::move(*map);
+}
+
+void PeerSyncNode::forgetKnown(Peer& p) {
+  auto known = [&](const Key& k) {
+    auto it = p.known.find(k.first);
+    return it != p.known.end() && it->second.contains(k.second);
+  };
+  for (auto* m : {&p.sent, &p.lacking_since})
+    for (auto it = m->begin(); it != m->end();) it = known(it->first) ? m->erase(it) : std::next(it);
+}
+
+// ---- output ----
+
+OriginRanges PeerSyncNode::truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const {
+  OriginRanges out;
+  for (const auto& [origin, set] : r) {
+    if (only && !only->count(origin)) continue;
+    auto ranges = set.ranges();
+    if (ranges.size() > cfg_.max_ranges_per_origin) ranges.resize(cfg_.max_ranges_per_origin);
+    out[origin] = RangeSet::fromRanges(ranges);
+  }
+  return out;
+}
+
+TickOutput PeerSyncNode::tick(Micros now) {
+  TickOutput out;
+  reassembler_.expire(now);
+  const bool heartbeat = now >= next_heartbeat_;
+  if (heartbeat) {
+    Heartbeat h;
+    h.sender = cfg_.robot;
+    h.counter = counters_.nextOwn();
+    h.map_version = own_map_version_;
+    h.held = truncated(db_.held(), nullptr);
+    auth_.sign(h);
+    const std::size_t bytes = encodedSize(h) + lcmPacketOverhead(channels_.heartbeat);
+    limiter_.force(static_cast<double>(bytes), now);
+    traffic_.sent(peersInReach(now), bytes);
+    out.heartbeats.push_back(std::move(h));
+    next_heartbeat_ = now + secs(cfg_.heartbeat_period_s);
+  }
+  // Acknowledgements due: one message for every peer waiting (receiver -1 when several); a
+  // heartbeat just sent says the same to everyone, so it acknowledges all.
+  std::vector<std::int32_t> ack_to;
+  std::set<std::int32_t> ack_origins;
+  for (auto& [id, p] : peers_) {
+    if (!p.ack_pending || (now < p.ack_due && !heartbeat)) continue;
+    if (!heartbeat) {
+      ack_to.push_back(id);
+      ack_origins.insert(p.ack_origins.begin(), p.ack_origins.end());
+    }
+    p.ack_pending = false;
+    p.ack_origins.clear();
+  }
+  if (!ack_to.empty()) {
+    // Peers with an acknowledgement pending but not yet due ride along.
+    for (auto& [id, p] : peers_) {
+      if (!p.ack_pending) continue;
+      ack_to.push_back(id);
+      ack_origins.insert(p.ack_origins.begin(), p.ack_origins.end());
+      p.ack_pending = false;
+      p.ack_origins.clear();
+    }
+    Ack a;
+    a.sender = cfg_.robot;
+    a.receiver = ack_to.size() == 1 ? ack_to[0] : -1;
+    a.counter = counters_.nextOwn();
+    a.acked = truncated(db_.held(), &ack_origins);
+    auth_.sign(a);
+    const std::size_t bytes = encodedSize(a) + lcmPacketOverhead(channels_.ack);
+    limiter_.force(static_cast<double>(bytes), now);
+    traffic_.sent(ack_to, bytes);
+    out.acks.push_back(std::move(a));
+  }
+  sendMap(now, out);
+  sendBundles(now, out);
+  counters_.save();
+  return out;
+}
+
+void PeerSyncNode::sendMap(Micros now, TickOutput& out) {
+  if (!own_map_) return;
+  const auto reach = peersInReach(now);
+  if (reach.empty()) return;
+  const bool changed = own_map_version_ != map_sent_version_;
+  const Micros since = now - map_sent_at_;
+  if (!((changed && (map_sent_version_ == 0 || since >= secs(cfg_.map_period_s))) || since >= secs(cfg_.map_refresh_s)))
+    return;
+  const auto parts = splitPayload(own_map_data_, cfg_.max_chunk_bytes);
+  if (parts.size() > 32767) return;
+  std::vector<Chunk> chunks;
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    Chunk c;
+    c.sender = cfg_.robot;
+    c.receiver = -1;
+    c.kind = ChunkKind::Map;
+    c.origin = cfg_.robot;
+    c.seq = own_map_version_;
+    c.chunk_index = static_cast<std::int16_t>(i);
+    c.num_chunks = static_cast<std::int16_t>(parts.size());
+    c.data = parts[i];
+    bytes += wireBytes(c);
+    chunks.push_back(std::move(c));
+  }
+  if (!limiter_.tryTake(static_cast<double>(bytes), now)) return;
+  for (auto& c : chunks) {
+    c.counter = counters_.nextOwn();
+    auth_.sign(c);
+    out.chunks.push_back(std::move(c));
+  }
+  traffic_.sent(reach, bytes);
+  map_sent_version_ = own_map_version_;
+  map_sent_at_ = now;
+}
+
+void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
+  const auto reach = peersInReach(now);
+  if (reach.empty()) return;
+  // Per origin, the bundles due to some peer in reach, with the peers they are due to.
+  std::map<std::int32_t, std::map<std::int32_t, std::vector<std::int32_t>>> due;
+  for (std::int32_t id : reach) {
+    Peer& p = peers_[id];
+    for (const auto& [origin, set] : db_.held()) {
+      static const RangeSet kNone;
+      auto k = p.known.find(origin);
+      const auto missing = set.minus(k == p.known.end() ? kNone : k->second, cfg_.max_sends_per_tick);
+      const bool relay = origin != cfg_.robot && origin != id && inReach(origin, now);
+      // A robot holds its own bundles: only fill gaps below what it says it holds (it lost some).
+      const bool own_to_origin = origin == id;
+      const std::int32_t origin_max =
+          own_to_origin && k != p.known.end() && !k->second.empty() ? k->second.max() : INT32_MIN;
+      for (std::int32_t seq : missing) {
+        if (own_to_origin && seq >= origin_max) break;
+        const Key key{origin, seq};
+        const Micros lacking = p.lacking_since.emplace(key, now).first->second;
+        // The origin itself is in reach and sends its own data; relay only what stays missing.
+        if (relay && now - lacking < secs(cfg_.relay_delay_s)) continue;
+        auto s = p.sent.find(key);
+        if (s != p.sent.end() && now - s->second < secs(cfg_.resend_timeout_s)) continue;
+        due[origin][seq].push_back(id);
+      }
+    }
+  }
+  // Round robin over origins, each in sequence order, until the rate limit says stop.
+  std::vector<std::pair<std::map<std::int32_t, std::vector<std::int32_t>>::iterator,
+                        std::map<std::int32_t, std::vector<std::int32_t>>::iterator>>
+      cursors;
+  for (auto& [origin, seqs] : due) cursors.emplace_back(seqs.begin(), seqs.end());
+  std::vector<std::int32_t> origins;
+  for (auto& [origin, seqs] : due) origins.push_back(origin);
+  bool progress = true;
+  while (progress) {
+    progress = false;
+    for (std::size_t i = 0; i < cursors.size(); ++i) {
+      auto& [it, end] = cursors[i];
+      if (it == end) continue;
+      const std::int32_t origin = origins[i], seq = it->first;
+      const std::vector<std::int32_t>& to = it->second;
+      ++it;
+      const ObservationDb::Entry* e = db_.get(origin, seq);
+      const auto parts = splitPayload(e->data, cfg_.max_chunk_bytes);
+      if (parts.size() > 32767) continue;
+      std::vector<Chunk> chunks;
+      std::size_t bytes = 0;
+      for (std::size_t j = 0; j < parts.size(); ++j) {
+        Chunk c;
+        c.sender = cfg_.robot;
+        c.receiver = to.size() == 1 ? to[0] : -1;
+        c.kind = ChunkKind::Bundle;
+        c.origin = origin;
+        c.seq = seq;
+        c.chunk_index = static_cast<std::int16_t>(j);
+        c.num_chunks = static_cast<std::int16_t>(parts.size());
+        c.data = parts[j];
+        bytes += wireBytes(c);
+        chunks.push_back(std::move(c));
+      }
+      if (!limiter_.tryTake(static_cast<double>(bytes), now)) return;
+      for (auto& c : chunks) {
+        c.counter = counters_.nextOwn();
+        auth_.sign(c);
+        out.chunks.push_back(std::move(c));
+      }
+      traffic_.sent(to, bytes);
+      for (std::int32_t id : to) peers_[id].sent[{origin, seq}] = now;
+      progress = true;
+    }
+  }
+}
+
+// ---- delivery ----
+
+std::optional<Bundle> PeerSyncNode::nextDelivery() const {
+  const auto next = db_.nextToDeliver(cfg_.robot);
+  if (!next) return std::nullopt;
+  std::string error;
+  auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error);
+  if (!b)
+    throw std::logic_error("stored bundle " + std::to_string(next->first) + "/" + std::to_string(next->second) +
+                           " does not decode: " + error);
+  return b;
+}
+
+void PeerSyncNode::confirmDelivered(std::int32_t origin, std::int32_t seq) { db_.markDelivered(origin, seq); }
+
+std::vector<SharedMap> PeerSyncNode::takeMaps() {
+  std::vector<SharedMap> out;
+  for (auto& [id, m] : new_maps_) out.push_back(std::move(m));
+  new_maps_.clear();
+  return out;
+}
+
+}  // namespace slide::team

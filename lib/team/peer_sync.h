@@ -1,0 +1,125 @@
+#pragma once
+// One robot's peer-sync protocol engine: the observation database, per-peer bookmarks
+// (what each peer is known to hold, what was sent to it and when), relay of third robots'
+// bundles, map sharing, authentication, replay protection, rate limiting, traffic accounting
+// and in-order exactly-once delivery. Pure logic: messages in and out as structs, time as
+// microseconds; the daemon (or a simulated network) moves the messages.
+#include <map>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "team/bandwidth.h"
+#include "team/bundle.h"
+#include "team/counters.h"
+#include "team/drop_reason.h"
+#include "team/message_auth.h"
+#include "team/observation_db.h"
+#include "team/rate_limiter.h"
+#include "team/reassembly.h"
+#include "team/sync_config.h"
+
+namespace slide::team {
+
+struct TeamChannels {
+  std::string heartbeat = "TEAM_HEARTBEAT";
+  std::string chunk = "TEAM_CHUNK";
+  std::string ack = "TEAM_ACK";
+};
+
+struct TickOutput {
+  std::vector<Heartbeat> heartbeats;
+  std::vector<Chunk> chunks;
+  std::vector<Ack> acks;
+  bool empty() const { return heartbeats.empty() && chunks.empty() && acks.empty(); }
+};
+
+class PeerSyncNode {
+ public:
+  // `state_dir` holds journal.bin and counters.txt (empty: memory only, nothing survives).
+  PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels = {});
+  ~PeerSyncNode();
+
+  // The robot's own key-pose bundle; returns the reason when refused.
+  std::optional<Drop> addOwnBundle(Bundle b, Micros now);
+  // The robot's current object map (its version is assigned here).
+  void setOwnMap(SharedMap m, Micros now);
+
+  void receive(const Heartbeat& m, Micros now);
+  void receive(const Chunk& m, Micros now);
+  void receive(const Ack& m, Micros now);
+  // A team-bus message that could not even be decoded.
+  void countMalformed() { ++drops_[static_cast<int>(Drop::Malformed)]; }
+
+  // What to send now (signed); call often (e.g. every 50 ms).
+  TickOutput tick(Micros now);
+
+  // The next peer bundle to hand to the robot's own stack, in per-origin order; the same one
+  // until confirmDelivered() records it in the journal.
+  std::optional<Bundle> nextDelivery() const;
+  void confirmDelivered(std::int32_t origin, std::int32_t seq);
+  // Peers' maps received since the last call (newest version per robot).
+  std::vector<SharedMap> takeMaps();
+
+  const SyncConfig& config() const { return cfg_; }
+  const ObservationDb& db() const { return db_; }
+  const DropCounts& drops() const { return drops_; }
+  std::uint64_t dropped(Drop d) const { return drops_[static_cast<int>(d)]; }
+  const BandwidthMeter& traffic() const { return traffic_; }
+  bool inReach(std::int32_t peer, Micros now) const;
+  // Landmarks in the latest map shared by `robot` (own map for this robot).
+  std::size_t landmarks(std::int32_t robot) const;
+  // One line per peer: rates, bytes per landmark and per metre.
+  std::vector<std::string> trafficSummary(Micros now) const;
+  void persist() { counters_.save(); }
+
+ private:
+  using Key = std::pair<std::int32_t, std::int32_t>;  // (origin, seq)
+  struct Peer {
+    bool heard_heartbeat = false;
+    Micros last_heard = 0;
+    OriginRanges known;                 // last heartbeat's holdings plus later acknowledgements
+    std::map<Key, Micros> sent;         // last time it was sent to this peer (by anyone)
+    std::map<Key, Micros> lacking_since;
+    bool ack_pending = false;
+    Micros ack_due = 0;
+    std::set<std::int32_t> ack_origins;
+    std::int32_t map_version = 0;       // its own map's version, from its heartbeats
+  };
+
+  bool admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes);
+  bool inTeam(std::int32_t robot) const;
+  void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
+  void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
+  void receiveBundleChunk(const Chunk& m, Micros now);
+  void receiveMapChunk(const Chunk& m, Micros now);
+  OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
+  std::vector<std::int32_t> peersInReach(Micros now) const;
+  void sendMap(Micros now, TickOutput& out);
+  void sendBundles(Micros now, TickOutput& out);
+  void forgetKnown(Peer& p);
+  std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
+
+  SyncConfig cfg_;
+  TeamChannels channels_;
+  MessageAuth auth_;
+  CounterStore counters_;
+  ObservationDb db_;
+  Reassembler reassembler_;
+  RateLimiter limiter_;
+  BandwidthMeter traffic_;
+  DropCounts drops_{};
+  std::map<std::int32_t, Peer> peers_;
+  Micros next_heartbeat_;
+
+  std::optional<SharedMap> own_map_;
+  Bytes own_map_data_;
+  std::int32_t own_map_version_ = 0;
+  std::int32_t map_sent_version_ = 0;
+  Micros map_sent_at_ = 0;
+  std::map<std::int32_t, std::int32_t> peer_map_version_;  // latest received per robot
+  std::map<std::int32_t, std::size_t> peer_map_size_;
+  std::map<std::int32_t, SharedMap> new_maps_;
+};
+
+}  // namespace slide::team

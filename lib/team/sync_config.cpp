@@ -1,0 +1,60 @@
+#include "team/sync_config.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace slide::team {
+
+SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_t> robot) {
+  SyncConfig c;
+  c.robot = robot ? *robot : n.get<std::int32_t>("robot");
+  c.team = n.getList<std::int32_t>("team");
+  c.team_key = n.get<std::string>("team_key");
+  c.heartbeat_period_s = n.get<double>("heartbeat_period_s", c.heartbeat_period_s);
+  c.ack_delay_s = n.get<double>("ack_delay_s", c.ack_delay_s);
+  c.resend_timeout_s = n.get<double>("resend_timeout_s", c.resend_timeout_s);
+  c.relay_delay_s = n.get<double>("relay_delay_s", c.relay_delay_s);
+  c.peer_timeout_s = n.get<double>("peer_timeout_s", c.peer_timeout_s);
+  c.map_period_s = n.get<double>("map_period_s", c.map_period_s);
+  c.map_refresh_s = n.get<double>("map_refresh_s", c.map_refresh_s);
+  c.rate_limit_bytes_per_s = n.get<double>("rate_limit_bytes_per_s", c.rate_limit_bytes_per_s);
+  c.burst_bytes = n.get<double>("burst_bytes", c.burst_bytes);
+  c.max_chunk_bytes = n.get<unsigned>("max_chunk_bytes", static_cast<unsigned>(c.max_chunk_bytes));
+  c.max_ranges_per_origin = n.get<unsigned>("max_ranges_per_origin", static_cast<unsigned>(c.max_ranges_per_origin));
+  c.max_sends_per_tick = n.get<unsigned>("max_sends_per_tick", static_cast<unsigned>(c.max_sends_per_tick));
+  c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
+  c.reassembly_bytes = n.get<unsigned>("reassembly_bytes", static_cast<unsigned>(c.reassembly_bytes));
+  c.reassembly_timeout_s = n.get<double>("reassembly_timeout_s", c.reassembly_timeout_s);
+  try {
+    c.validate();
+  } catch (const std::invalid_argument& e) {
+    n.fail("", e.what());
+  }
+  return c;
+}
+
+void SyncConfig::validate() const {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0)) throw std::invalid_argument(std::string(name) + " must be positive");
+  };
+  positive(heartbeat_period_s, "heartbeat_period_s");
+  positive(resend_timeout_s, "resend_timeout_s");
+  positive(peer_timeout_s, "peer_timeout_s");
+  positive(map_period_s, "map_period_s");
+  positive(map_refresh_s, "map_refresh_s");
+  positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
+  positive(burst_bytes, "burst_bytes");
+  positive(reassembly_timeout_s, "reassembly_timeout_s");
+  if (ack_delay_s < 0 || relay_delay_s < 0) throw std::invalid_argument("ack_delay_s and relay_delay_s must be >= 0");
+  if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)
+    throw std::invalid_argument("max_chunk_bytes must be within 64..60000 (LCM's UDP limit is ~64 KB)");
+  if (max_ranges_per_origin < 1 || max_ranges_per_origin > 4096)
+    throw std::invalid_argument("max_ranges_per_origin must be within 1..4096");
+  if (max_sends_per_tick < 1) throw std::invalid_argument("max_sends_per_tick must be >= 1");
+  if (max_seq_jump < 1) throw std::invalid_argument("max_seq_jump must be >= 1");
+  if (team_key.empty()) throw std::invalid_argument("team_key must not be empty");
+  if (std::find(team.begin(), team.end(), robot) == team.end())
+    throw std::invalid_argument("robot " + std::to_string(robot) + " is not in the team list");
+}
+
+}  // namespace slide::team

@@ -1,0 +1,40 @@
+#pragma once
+// Parameters of the peer-sync protocol (times in seconds, sizes in bytes).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config/config.h"
+
+namespace slide::team {
+
+struct SyncConfig {
+  std::int32_t robot = 0;
+  std::vector<std::int32_t> team;  // every robot id allowed on the team bus (robot included)
+  std::string team_key;            // HMAC key shared by the team
+
+  double heartbeat_period_s = 2.0;
+  double ack_delay_s = 1.0;          // acknowledgements are coalesced this long (a heartbeat acks all)
+  double resend_timeout_s = 3.0;     // unacknowledged data is sent again after this
+  double relay_delay_s = 3.0;        // a third robot's bundle is relayed once a peer lacked it this long
+  double peer_timeout_s = 6.0;       // a peer is in reach while heard within this
+  double map_period_s = 30.0;        // own map sent at most this often when it changed
+  double map_refresh_s = 120.0;      // and again this often when unchanged
+  double rate_limit_bytes_per_s = 20000;
+  double burst_bytes = 8000;
+  std::size_t max_chunk_bytes = 1024;       // payload bytes per chunk
+  std::size_t max_ranges_per_origin = 64;   // in heartbeats and acks
+  std::size_t max_sends_per_tick = 64;      // bundles considered per peer and tick
+  std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused
+  std::size_t reassembly_bytes = 4 << 20;   // space for partly received payloads
+  double reassembly_timeout_s = 30.0;
+
+  // Throws ConfigError naming the file and key on a missing or invalid value. `robot`, when
+  // given (the daemon's --robot), replaces the file's optional `robot` key.
+  static SyncConfig fromConfig(const ConfigNode& node, std::optional<std::int32_t> robot = std::nullopt);
+  // Throws std::invalid_argument explaining the first inconsistent value.
+  void validate() const;
+};
+
+}  // namespace slide::team
