@@ -1,0 +1,125 @@
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <unordered_set>
+
+#include "frontend/point_stats.h"
+#include "frontend/shape_fit.h"
+
+namespace slide {
+
+namespace {
+void setWhy(std::string* why, const std::string& s) {
+  if (why) *why = s;
+}
+
+// Footprint thinned to one point per grid cell, for the rectangle search.
+std::vector<cv::Point2f> thinFootprint(const Cloud& pts, double cell) {
+  std::unordered_set<std::int64_t> seen;
+  std::vector<cv::Point2f> out;
+  for (const auto& q : pts) {
+    const std::int64_t ix = static_cast<std::int64_t>(std::floor(q.x() / cell));
+    const std::int64_t iy = static_cast<std::int64_t>(std::floor(q.y() / cell));
+    if (seen.insert((ix << 32) ^ (iy & 0xffffffff)).second) out.emplace_back(q.x(), q.y());
+  }
+  return out;
+}
+
+// Heading of a footprint's rectangle by search over [0, 90) deg maximizing the closeness of
+// the points to the nearest rectangle edge (robust for the L-shaped views of partly seen
+// cars, where the minimum-area rectangle aligns with the diagonal).
+double footprintYaw(const std::vector<cv::Point2f>& foot, double step) {
+  if (foot.size() < 3) return 0.0;
+  if (step <= 0) {
+    cv::Point2f corners[4];
+    cv::minAreaRect(foot).points(corners);
+    return std::atan2(corners[1].y - corners[0].y, corners[1].x - corners[0].x);
+  }
+  constexpr double kMinDistance = 0.02;  // metres: caps each point's weight
+  double best_yaw = 0, best_score = -1;
+  std::vector<double> u(foot.size()), v(foot.size());
+  for (double a = 0; a < M_PI / 2; a += step) {
+    const double c = std::cos(a), s = std::sin(a);
+    double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
+    for (std::size_t i = 0; i < foot.size(); ++i) {
+      u[i] = c * foot[i].x + s * foot[i].y;
+      v[i] = -s * foot[i].x + c * foot[i].y;
+      u0 = std::min(u0, u[i]), u1 = std::max(u1, u[i]), v0 = std::min(v0, v[i]), v1 = std::max(v1, v[i]);
+    }
+    double score = 0;
+    for (std::size_t i = 0; i < foot.size(); ++i) {
+      const double d = std::min(std::min(u[i] - u0, u1 - u[i]), std::min(v[i] - v0, v1 - v[i]));
+      score += 1.0 / std::max(d, kMinDistance);
+    }
+    if (score > best_score) best_score = score, best_yaw = a;
+  }
+  return best_yaw;
+}
+
+// Extends [lo, hi] to at least `min_len`, growing away from the viewpoint coordinate `v`.
+void completeInterval(double& lo, double& hi, double min_len, double v) {
+  const double len = hi - lo;
+  if (len >= min_len) return;
+  if (v <= 0.5 * (lo + hi)) hi = lo + min_len;
+  else lo = hi - min_len;
+}
+}  // namespace
+
+std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
+                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max, std::string* why) {
+  if (static_cast<int>(pts.size()) < p.min_points) {
+    setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
+    return std::nullopt;
+  }
+  const std::vector<cv::Point2f> foot = thinFootprint(pts, p.footprint_cell);
+  const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0);
+  // Robust extents along the rectangle's axes and in z.
+  auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v) {
+    const double c = std::cos(a), s = std::sin(a);
+    std::vector<double> u, v;
+    u.reserve(pts.size());
+    v.reserve(pts.size());
+    for (const auto& q : pts) {
+      u.push_back(c * q.x() + s * q.y());
+      v.push_back(-s * q.x() + c * q.y());
+    }
+    lo_u = quantileInPlace(u, p.low_percentile);
+    hi_u = quantileInPlace(u, p.high_percentile);
+    lo_v = quantileInPlace(v, p.low_percentile);
+    hi_v = quantileInPlace(v, p.high_percentile);
+  };
+  double yaw_x = yaw;
+  double lo_u, hi_u, lo_v, hi_v;
+  extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
+  if (hi_v - lo_v > hi_u - lo_u) {  // x along the longer side
+    yaw_x += M_PI / 2;
+    extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
+  }
+  std::vector<double> zs;
+  for (const auto& q : pts) zs.push_back(q.z());
+  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
+
+  const double visible_len = hi_u - lo_u;
+  if (visible_len < p.min_visible_fraction * size_min.x()) {
+    setWhy(why, "visible length " + std::to_string(visible_len) + " m too short");
+    return std::nullopt;
+  }
+  const Eigen::Vector3d observed(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
+  if ((observed.array() > size_max.array() * p.size_tolerance).any()) {
+    setWhy(why, "extents (" + std::to_string(observed.x()) + ", " + std::to_string(observed.y()) + ", " +
+                    std::to_string(observed.z()) + ") exceed the class maximum");
+    return std::nullopt;
+  }
+  // Partly seen boxes grow to the class minimum, away from the sensor.
+  const double c = std::cos(yaw_x), s = std::sin(yaw_x);
+  completeInterval(lo_u, hi_u, size_min.x(), c * viewpoint.x() + s * viewpoint.y());
+  completeInterval(lo_v, hi_v, size_min.y(), -s * viewpoint.x() + c * viewpoint.y());
+  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_min.z();  // the bottom is what goes unseen
+
+  const double cu = 0.5 * (lo_u + hi_u), cv_ = 0.5 * (lo_v + hi_v);
+  Cuboid box;
+  box.pose = poseFromXyzYaw(c * cu - s * cv_, s * cu + c * cv_, 0.5 * (lo_z + hi_z), wrapAngle(yaw_x));
+  box.dims = Eigen::Vector3d(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
+  return box;
+}
+
+}  // namespace slide

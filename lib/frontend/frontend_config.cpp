@@ -1,0 +1,170 @@
+#include "frontend/frontend_config.h"
+
+#include <limits>
+
+#include "config/config.h"
+
+namespace slide {
+
+namespace {
+// Reads key into `v` when present; checks v >= lo.
+template <typename T>
+void opt(const ConfigNode& n, const std::string& key, T& v, T lo = std::numeric_limits<T>::lowest()) {
+  if (!n.has(key)) return;
+  v = n.get<T>(key);
+  if (v < lo) n.fail(key, "must be at least " + std::to_string(lo));
+}
+
+void sixVector(const ConfigNode& n, const std::string& key, std::array<double, 6>& v) {
+  if (!n.has(key)) return;
+  const auto list = n.getList<double>(key, 6);
+  for (int i = 0; i < 6; ++i) {
+    if (list[i] < 0) n.fail(key, "values must be non-negative");
+    v[i] = list[i];
+  }
+}
+
+void loadCluster(const ConfigNode& n, GridClusterParams& c) {
+  opt(n, "cell", c.cell, 1e-3);
+  opt(n, "min_points", c.min_points, 1);
+}
+
+void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
+  opt(n, "max_range", g.max_range, 1.0);
+  opt(n, "emit_other", g.emit_other);
+  if (n.has("ground")) {
+    const ConfigNode c = n.child("ground");
+    opt(c, "cell", g.ground.cell, 0.05);
+    opt(c, "window", g.ground.window, 0);
+    opt(c, "threshold", g.ground.threshold, 0.0);
+    opt(c, "min_cell_points", g.ground.min_cell_points, 1);
+  }
+  if (n.has("column")) {
+    const ConfigNode c = n.child("column");
+    auto& p = g.column;
+    opt(c, "band_low", p.band_low, 0.0);
+    opt(c, "band_high", p.band_high, p.band_low + 0.1);
+    opt(c, "cell", p.cell, 0.02);
+    opt(c, "max_diameter", p.max_diameter, 0.05);
+    opt(c, "coverage_bin", p.coverage_bin, 0.05);
+    opt(c, "min_coverage", p.min_coverage, 0.0);
+    opt(c, "min_top", p.min_top, 0.0);
+    opt(c, "ceiling_margin", p.ceiling_margin, 0.0);
+    opt(c, "max_height", p.max_height, 0.5);
+    opt(c, "margin", p.margin, 0.0);
+    opt(c, "min_points", p.min_points, 1);
+    opt(c, "trunk_min_radius", p.trunk_min_radius, 0.0);
+    opt(c, "canopy_radius", p.canopy_radius, 0.0);
+    opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
+  }
+  if (n.has("car")) {
+    const ConfigNode c = n.child("car");
+    auto& p = g.car;
+    opt(c, "height_cap", p.height_cap, 0.5);
+    opt(c, "cell", p.cell, 0.02);
+    opt(c, "min_points", p.min_points, 1);
+    opt(c, "min_top", p.min_top, 0.0);
+    opt(c, "max_top", p.max_top, p.min_top);
+    opt(c, "max_bottom", p.max_bottom, 0.0);
+    opt(c, "min_length", p.min_length, 0.0);
+    opt(c, "max_length", p.max_length, p.min_length);
+    opt(c, "max_width", p.max_width, 0.0);
+    opt(c, "max_roughness", p.max_roughness, 0.0);
+  }
+  if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
+}
+
+void loadFit(const ConfigNode& n, FitParams& f) {
+  if (n.has("cylinder")) {
+    const ConfigNode c = n.child("cylinder");
+    auto& p = f.cylinder;
+    opt(c, "slice_height", p.slice_height, 0.02);
+    opt(c, "min_slice_points", p.min_slice_points, 3);
+    opt(c, "max_height", p.max_height, 0.1);
+    opt(c, "breast_height", p.breast_height, 0.0);
+    opt(c, "breast_window", p.breast_window, 0.0);
+    opt(c, "min_inlier_ratio", p.min_inlier_ratio, 0.0);
+    opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
+    opt(c, "min_points", p.min_points, 3);
+    opt(c, "ransac_iterations", p.ransac.iterations, 1);
+    opt(c, "inlier_distance", p.ransac.inlier_distance, 1e-4);
+    opt(c, "min_radius", p.ransac.min_radius, 1e-3);
+    opt(c, "max_radius", p.ransac.max_radius, p.ransac.min_radius);
+  }
+  if (n.has("cuboid")) {
+    const ConfigNode c = n.child("cuboid");
+    auto& p = f.cuboid;
+    opt(c, "low_percentile", p.low_percentile, 0.0);
+    opt(c, "high_percentile", p.high_percentile, p.low_percentile);
+    opt(c, "footprint_cell", p.footprint_cell, 1e-3);
+    opt(c, "yaw_step_deg", p.yaw_step_deg, 0.0);
+    opt(c, "min_visible_fraction", p.min_visible_fraction, 0.0);
+    opt(c, "size_tolerance", p.size_tolerance, 1.0);
+    opt(c, "min_points", p.min_points, 3);
+  }
+  if (n.has("ellipsoid")) {
+    const ConfigNode c = n.child("ellipsoid");
+    auto& p = f.ellipsoid;
+    opt(c, "radius_percentile", p.radius_percentile, 0.0);
+    opt(c, "low_percentile", p.low_percentile, 0.0);
+    opt(c, "high_percentile", p.high_percentile, p.low_percentile);
+    opt(c, "min_points", p.min_points, 1);
+  }
+}
+}  // namespace
+
+FrontendConfig loadFrontendConfig(const std::string& path) {
+  const ConfigNode root = ConfigNode::load(path);
+  FrontendConfig cfg;
+  if (root.has("segmenter")) {
+    const ConfigNode s = root.child("segmenter");
+    if (s.has("lidar_mode")) {
+      cfg.lidar_mode = s.get<std::string>("lidar_mode");
+      if (cfg.lidar_mode != "auto" && cfg.lidar_mode != "labelled" && cfg.lidar_mode != "geometric")
+        s.fail("lidar_mode", "expected one of auto, labelled, geometric, got '" + cfg.lidar_mode + "'");
+    }
+    if (s.has("labelled")) {
+      const ConfigNode c = s.child("labelled");
+      opt(c, "min_points", cfg.labelled.min_points, 1);
+      opt(c, "max_range", cfg.labelled.max_range, 1.0);
+      if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
+    }
+    if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);
+    if (s.has("rgbd")) {
+      const ConfigNode c = s.child("rgbd");
+      auto& p = cfg.rgbd;
+      opt(c, "min_confidence", p.min_confidence, 0.0);
+      opt(c, "band_fraction", p.band_fraction, 0.0);
+      if (p.band_fraction > 1.0) c.fail("band_fraction", "must be at most 1");
+      opt(c, "band_margin", p.band_margin, 0.0);
+      opt(c, "min_depth", p.min_depth, 0.0);
+      opt(c, "max_depth", p.max_depth, p.min_depth);
+      opt(c, "stride", p.stride, 1);
+      opt(c, "min_points", p.min_points, 1);
+    }
+  }
+  if (root.has("fit")) loadFit(root.child("fit"), cfg.fit);
+  if (root.has("tracker")) {
+    const ConfigNode c = root.child("tracker");
+    auto& p = cfg.tracker;
+    opt(c, "gate_scale", p.gate_scale, 1e-3);
+    opt(c, "min_age", p.min_age, 1);
+    opt(c, "max_missed", p.max_missed, 0);
+    opt(c, "report_max_missed", p.report_max_missed, 0);
+    opt(c, "max_observations", p.max_observations, 1);
+    opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
+    opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
+  }
+  if (root.has("keypose")) {
+    const ConfigNode c = root.child("keypose");
+    opt(c, "distance", cfg.keypose.distance, 0.0);
+    opt(c, "yaw_deg", cfg.keypose.yaw_deg, 0.0);
+    sixVector(c, "sigma_min", cfg.keypose.sigma_min);
+    sixVector(c, "sigma_per_m", cfg.keypose.sigma_per_m);
+  }
+  return cfg;
+}
+
+FrontendConfig loadDefaultFrontendConfig() { return loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml"); }
+
+}  // namespace slide

@@ -1,0 +1,68 @@
+#pragma once
+// Segmentation without a trained model: ground removal, then
+//  1. columns: narrow, vertically continuous point groups in a height band above ground
+//     (trunks and poles; a trunk when a canopy spreads above it or it is thick),
+//  2. cars: clusters of the remaining points below a height cap whose footprint and height
+//     fit a car,
+//  3. other: clusters of what is left whose extents fit the "other" class.
+#include "frontend/grid_clustering.h"
+#include "frontend/ground_removal.h"
+#include "frontend/segmenter.h"
+#include "objects/class_table.h"
+
+namespace slide {
+
+struct ColumnParams {
+  double band_low = 0.5;         // metres above ground
+  double band_high = 2.2;
+  double cell = 0.15;            // planar clustering of band points
+  double max_diameter = 1.2;     // footprint of a column in the band
+  double coverage_bin = 0.25;    // vertical bins of the band ...
+  double min_coverage = 0.5;     // ... this fraction of which must hold points
+  double min_top = 2.5;          // the column must reach this high (pedestrians do not), or
+  double ceiling_margin = 0.3;   // ... to within this of the highest visible point at its range
+  double max_height = 8.0;       // column points kept up to this height
+  double margin = 0.12;          // metres added to the band radius when collecting points
+  int min_points = 8;            // band points
+  double trunk_min_radius = 0.12;      // thicker columns are trunks
+  double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
+  double canopy_min_fraction = 0.2;    // ... in this fraction of the cluster make it a trunk
+};
+
+struct CarParams {
+  double height_cap = 2.6;       // points above this height are left out of car clusters
+  double cell = 0.3;
+  int min_points = 40;
+  double min_top = 1.0, max_top = 2.3;  // 95th percentile of height above ground
+  double max_bottom = 0.8;       // 5th percentile of height above ground
+  double min_length = 1.2, max_length = 6.5;
+  double max_width = 2.8;
+  // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
+  // car bodies are smooth (~2 cm), vegetation is not (~8 cm). 0 disables; clusters with
+  // fewer than 10 consecutive triplets (unordered scans) skip the test.
+  double max_roughness = 0.045;
+};
+
+struct GeometricSegmenterParams {
+  GroundParams ground;
+  double max_range = 60.0;       // metres, horizontal
+  ColumnParams column;
+  CarParams car;
+  GridClusterParams other_cluster{0.3, false, 30};
+  bool emit_other = true;        // emit "other" instances for remaining compact clusters
+  int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
+};
+
+class GeometricSegmenter : public LidarSegmenter {
+ public:
+  // Throws std::out_of_range when a configured class id is missing from `classes`.
+  GeometricSegmenter(ClassTable classes, GeometricSegmenterParams params);
+  std::string name() const override { return "geometric"; }
+  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override;
+
+ private:
+  ClassTable classes_;
+  GeometricSegmenterParams params_;
+};
+
+}  // namespace slide

@@ -1,0 +1,80 @@
+#include "frontend/ground_removal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace slide {
+
+namespace {
+// Minimum filter of radius w along rows then columns (separable for a square window).
+std::vector<float> minFilter(const std::vector<float>& g, int nx, int ny, int w) {
+  std::vector<float> tmp(g.size()), out(g.size());
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      float m = std::numeric_limits<float>::infinity();
+      for (int k = std::max(0, x - w); k <= std::min(nx - 1, x + w); ++k) m = std::min(m, g[y * nx + k]);
+      tmp[y * nx + x] = m;
+    }
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      float m = std::numeric_limits<float>::infinity();
+      for (int k = std::max(0, y - w); k <= std::min(ny - 1, y + w); ++k) m = std::min(m, tmp[k * nx + x]);
+      out[y * nx + x] = m;
+    }
+  return out;
+}
+}  // namespace
+
+std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> h(cloud.size(), nan);
+  float min_x = std::numeric_limits<float>::infinity(), min_y = min_x, max_x = -min_x, max_y = -min_x;
+  const double r2 = params.max_range * params.max_range;
+  std::vector<char> use(cloud.size(), 0);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const auto& p = cloud[i];
+    if (!p.allFinite() || double(p.x()) * p.x() + double(p.y()) * p.y() > r2) continue;
+    use[i] = 1;
+    min_x = std::min(min_x, p.x());
+    min_y = std::min(min_y, p.y());
+    max_x = std::max(max_x, p.x());
+    max_y = std::max(max_y, p.y());
+  }
+  if (!(min_x <= max_x)) return h;
+  const double inv = 1.0 / params.cell;
+  const int nx = static_cast<int>((max_x - min_x) * inv) + 1, ny = static_cast<int>((max_y - min_y) * inv) + 1;
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> lowest(static_cast<std::size_t>(nx) * ny, inf), second(lowest.size(), inf);
+  std::vector<int> count(lowest.size(), 0);
+  std::vector<int> cell_of(cloud.size(), -1);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!use[i]) continue;
+    const auto& p = cloud[i];
+    const int cx = std::min(nx - 1, static_cast<int>((p.x() - min_x) * inv));
+    const int cy = std::min(ny - 1, static_cast<int>((p.y() - min_y) * inv));
+    const int c = cy * nx + cx;
+    cell_of[i] = c;
+    ++count[c];
+    if (p.z() < lowest[c]) {
+      second[c] = lowest[c];
+      lowest[c] = p.z();
+    } else if (p.z() < second[c]) {
+      second[c] = p.z();
+    }
+  }
+  // A cell's ground candidate is its second-lowest point, robust to one stray low return.
+  std::vector<float> cand(lowest.size(), inf);
+  for (std::size_t c = 0; c < cand.size(); ++c)
+    if (count[c] >= std::max(2, params.min_cell_points)) cand[c] = second[c];
+  const std::vector<float> ground = minFilter(cand, nx, ny, params.window);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cell_of[i] < 0) continue;
+    float g = ground[cell_of[i]];
+    if (!std::isfinite(g)) g = lowest[cell_of[i]];
+    h[i] = cloud[i].z() - g;
+  }
+  return h;
+}
+
+}  // namespace slide

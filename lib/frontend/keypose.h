@@ -1,0 +1,49 @@
+#pragma once
+// Key poses every configurable travelled distance (or turn), each with one observation bundle:
+// the relative odometry since the previous key pose and the tracker's objects in the body frame.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "frontend/tracker.h"
+
+namespace slide {
+
+struct KeyposeParams {
+  double distance = 1.0;   // metres travelled since the previous key pose
+  double yaw_deg = 30.0;   // or this much turning
+  std::array<double, 6> sigma_min{0.01, 0.01, 0.01, 0.002, 0.002, 0.005};    // x y z roll pitch yaw
+  std::array<double, 6> sigma_per_m{0.02, 0.02, 0.02, 0.002, 0.002, 0.005};  // added per metre
+};
+
+struct KeyposeBundle {
+  int seq = 0;                           // 0, 1, 2, ... per robot
+  std::int64_t utime = 0;
+  Pose odom_pose = Pose::Identity();     // T_odom_body of this key pose
+  Pose relative_odom = Pose::Identity(); // T_prev_this (identity for seq 0)
+  std::array<double, 6> odom_sigma{};
+  std::vector<Object> objects;           // body frame, ids are track ids
+};
+
+// Feeds frames to a Tracker and emits a bundle whenever a frame is a key pose (the first
+// frame always is).
+class KeyposeBundler {
+ public:
+  KeyposeBundler(Tracker tracker, KeyposeParams params) : tracker_(std::move(tracker)), params_(params) {}
+
+  std::optional<KeyposeBundle> process(const FrameInstances& frame, InputIssues& issues);
+
+  const Tracker& tracker() const { return tracker_; }
+  int nextSeq() const { return next_seq_; }
+
+ private:
+  Tracker tracker_;
+  KeyposeParams params_;
+  int next_seq_ = 0;
+  Pose last_key_ = Pose::Identity();
+  Pose last_frame_ = Pose::Identity();
+  double travelled_ = 0;  // path length since the last key pose
+};
+
+}  // namespace slide

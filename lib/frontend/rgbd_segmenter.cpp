@@ -1,0 +1,76 @@
+#include "frontend/rgbd_segmenter.h"
+
+#include <cmath>
+
+#include "frontend/point_stats.h"
+
+namespace slide {
+
+std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes, const RgbdSegmenterParams& p,
+                                  InputIssues& issues) {
+  const CameraIntrinsics& K = f.intrinsics;
+  if (K.width <= 0 || K.height <= 0 || !(K.fx > 0) || !(K.fy > 0) || !(K.depth_scale > 0)) {
+    issues.count("invalid intrinsics");
+    return {};
+  }
+  const std::size_t n = static_cast<std::size_t>(K.width) * K.height;
+  if (f.depth.size() != n || f.mask.size() != n) {
+    issues.count("image size does not match intrinsics");
+    return {};
+  }
+  if (f.instance_confidence.size() != f.instance_class.size()) {
+    issues.count("instance arrays differ in length");
+    return {};
+  }
+  const int num = static_cast<int>(f.instance_class.size());
+  std::vector<std::vector<int>> pixels(num);
+  long missing_depth = 0, stray_ids = 0;
+  const int stride = std::max(1, p.stride);
+  for (int v = 0; v < K.height; v += stride)
+    for (int u = 0; u < K.width; u += stride) {
+      const std::size_t i = static_cast<std::size_t>(v) * K.width + u;
+      const int id = f.mask[i];
+      if (id == 0) continue;
+      if (id > num) {
+        ++stray_ids;
+        continue;
+      }
+      if (f.depth[i] == 0) {
+        ++missing_depth;
+        continue;
+      }
+      pixels[id - 1].push_back(static_cast<int>(i));
+    }
+  issues.count("zero depth in mask", missing_depth);
+  issues.count("mask id without instance", stray_ids);
+
+  std::vector<Instance> out;
+  for (int k = 0; k < num; ++k) {
+    if (!classes.find(f.instance_class[k])) {
+      issues.count("unknown class");
+      continue;
+    }
+    if (!(f.instance_confidence[k] >= p.min_confidence) || static_cast<int>(pixels[k].size()) < p.min_points) continue;
+    std::vector<double> d;
+    d.reserve(pixels[k].size());
+    for (int i : pixels[k]) d.push_back(f.depth[i] * K.depth_scale);
+    std::vector<double> tmp = d;
+    const double lo = std::max(p.min_depth, quantileInPlace(tmp, 0.5 - 0.5 * p.band_fraction) - p.band_margin);
+    const double hi = std::min(p.max_depth, quantileInPlace(tmp, 0.5 + 0.5 * p.band_fraction) + p.band_margin);
+    Instance inst;
+    inst.id = k + 1;
+    inst.class_id = f.instance_class[k];
+    inst.confidence = f.instance_confidence[k];
+    for (std::size_t j = 0; j < pixels[k].size(); ++j) {
+      const double z = d[j];
+      if (z < lo || z > hi) continue;
+      const int u = pixels[k][j] % K.width, v = pixels[k][j] / K.width;
+      const double x_opt = (u - K.cx) * z / K.fx, y_opt = (v - K.cy) * z / K.fy;
+      inst.points.emplace_back(static_cast<float>(z), static_cast<float>(-x_opt), static_cast<float>(-y_opt));
+    }
+    if (static_cast<int>(inst.points.size()) >= p.min_points) out.push_back(std::move(inst));
+  }
+  return out;
+}
+
+}  // namespace slide

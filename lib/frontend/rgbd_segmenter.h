@@ -1,0 +1,55 @@
+#pragma once
+// RGBD instances: each instance mask is backprojected with the depth image, keeping only
+// pixels whose depth lies in a percentile band around the mask's median depth (drops the
+// background and mixed edge pixels), after a detector-confidence gate. A learned detector
+// (YOLO-style) plugs in as a MaskDetector that fills the masks from the colour image.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "frontend/input_issues.h"
+#include "frontend/instance.h"
+#include "objects/class_table.h"
+
+namespace slide {
+
+struct CameraIntrinsics {
+  int width = 0, height = 0;
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  double depth_scale = 0.001;  // metres per raw depth unit
+};
+
+struct RgbdFrame {
+  CameraIntrinsics intrinsics;
+  std::vector<std::uint8_t> color;    // BGR, width*height*3 (may be empty)
+  std::vector<std::uint16_t> depth;   // width*height raw units, 0 = missing
+  std::vector<std::uint16_t> mask;    // width*height instance ids (index + 1), 0 = none
+  std::vector<int> instance_class;    // per instance
+  std::vector<float> instance_confidence;
+};
+
+// A learned image detector: fills frame.mask, instance_class and instance_confidence from
+// frame.color.
+class MaskDetector {
+ public:
+  virtual ~MaskDetector() = default;
+  virtual std::string name() const = 0;
+  virtual void detect(RgbdFrame& frame) const = 0;
+};
+
+struct RgbdSegmenterParams {
+  double min_confidence = 0.5;
+  double band_fraction = 0.5;  // keep depths between the (0.5 -+ band/2) quantiles of the mask
+  double band_margin = 0.05;   // metres added on both sides of the band
+  double min_depth = 0.2, max_depth = 8.0;  // metres
+  int stride = 1;              // pixel step (1 = every pixel)
+  int min_points = 30;
+};
+
+// Instances of one frame in the camera's body frame (x forward, y left, z up: the optical
+// frame z-forward is rotated accordingly). Frames whose images do not match the intrinsics
+// give no instances and count an issue; unknown classes and missing depth are counted.
+std::vector<Instance> segmentRgbd(const RgbdFrame& frame, const ClassTable& classes, const RgbdSegmenterParams& params,
+                                  InputIssues& issues);
+
+}  // namespace slide

@@ -1,0 +1,64 @@
+#pragma once
+// Fitting one shape model to the points of one object: cylinders (trunks, poles) from RANSAC
+// circle fits on horizontal slices, cuboids (cars) from the minimum-area footprint rectangle
+// with robust extents, ellipsoids (everything else) from centroid, radius and height.
+// `viewpoint` is the sensor position in the points' frame: a partly seen object is completed
+// away from it.
+#include <optional>
+#include <string>
+
+#include "frontend/circle_fit.h"
+#include "frontend/instance.h"
+#include "objects/class_table.h"
+
+namespace slide {
+
+struct CylinderFitParams {
+  double slice_height = 0.25;      // metres per horizontal slice
+  int min_slice_points = 6;
+  double max_height = 8.0;         // slices above the lowest point considered
+  double breast_height = 1.3;      // radius taken this far above the lowest point
+  double breast_window = 0.6;      // slices within +-window of breast height vote
+  double min_inlier_ratio = 0.5;   // slice circle inliers / slice points
+  double max_lean_deg = 20.0;      // reject clusters leaning more than this from vertical
+  int min_points = 10;
+  CircleRansacParams ransac;
+};
+
+struct CuboidFitParams {
+  double low_percentile = 0.02;    // robust extents along each axis
+  double high_percentile = 0.98;
+  double footprint_cell = 0.05;    // footprint thinning before the rectangle search
+  double yaw_step_deg = 1.0;       // heading search step (0: minimum-area rectangle instead)
+  double min_visible_fraction = 0.4;  // visible length / class min length required
+  double size_tolerance = 1.1;     // fitted extents may exceed the class maximum by this factor
+  int min_points = 30;
+};
+
+struct EllipsoidFitParams {
+  double radius_percentile = 0.9;  // horizontal distance from the centroid
+  double low_percentile = 0.02;
+  double high_percentile = 0.98;
+  int min_points = 10;
+};
+
+struct FitParams {
+  CylinderFitParams cylinder;
+  CuboidFitParams cuboid;
+  EllipsoidFitParams ellipsoid;
+};
+
+// Each returns nullopt (and a reason in *why) when the points do not support the model.
+std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p, const Eigen::Vector3d& viewpoint,
+                                    std::string* why = nullptr);
+// size_min/size_max: the class's plausible extents (length, width, height).
+std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
+                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
+                                std::string* why = nullptr);
+std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, std::string* why = nullptr);
+
+// The model of the object's class (ClassTable shape), with class size gates applied.
+std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
+                                const Eigen::Vector3d& viewpoint, std::string* why = nullptr);
+
+}  // namespace slide

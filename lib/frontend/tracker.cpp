@@ -1,0 +1,142 @@
+#include "frontend/tracker.h"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "frontend/hungarian.h"
+
+namespace slide {
+
+namespace {
+Cloud subsample(const Cloud& c, int max_points) {
+  if (static_cast<int>(c.size()) <= max_points || max_points <= 0) return c;
+  Cloud out;
+  out.reserve(max_points);
+  const double step = static_cast<double>(c.size()) / max_points;
+  for (int k = 0; k < max_points; ++k) out.push_back(c[static_cast<std::size_t>(k * step)]);
+  return out;
+}
+
+double centroidDistance(Shape shape, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  // Cylinders are compared on the ground plane: the visible part of a trunk varies in height.
+  return shape == Shape::Cylinder ? (a - b).head<2>().norm() : (a - b).norm();
+}
+}  // namespace
+
+Cloud Track::accumulated() const {
+  Cloud out;
+  for (const auto& o : observations) out.insert(out.end(), o.begin(), o.end());
+  return out;
+}
+
+Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
+    : classes_(std::move(classes)), params_(params), fit_(fit) {}
+
+bool Tracker::exceedsClassSize(const Track& t) const {
+  const ClassInfo& info = classes_.at(t.class_id);
+  std::vector<cv::Point2f> pts;
+  float zmin = 1e30f, zmax = -1e30f;
+  for (const auto& o : t.observations)
+    for (const auto& p : o) {
+      pts.emplace_back(p.x(), p.y());
+      zmin = std::min(zmin, p.z());
+      zmax = std::max(zmax, p.z());
+    }
+  if (pts.size() < 3) return false;
+  const cv::RotatedRect r = cv::minAreaRect(pts);
+  const double len = std::max(r.size.width, r.size.height), wid = std::min(r.size.width, r.size.height);
+  const double tol = params_.moving_tolerance;
+  // Horizontal extents only: vertical growth comes from seeing more of a tall object.
+  return len > info.size_max.x() * tol || wid > info.size_max.y() * tol;
+}
+
+void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
+  if (!frame.odom_pose.matrix().allFinite()) {
+    issues.count("non-finite odometry pose");
+    return;
+  }
+  // Instances per class in the odometry frame.
+  struct Obs {
+    int class_id;
+    float confidence;
+    Cloud points;
+    Eigen::Vector3d centroid;
+  };
+  std::map<int, std::vector<Obs>> by_class;
+  for (const auto& inst : frame.instances) {
+    if (!classes_.find(inst.class_id)) {
+      issues.count("unknown class");
+      continue;
+    }
+    Cloud pts;
+    pts.reserve(inst.points.size());
+    long bad = 0;
+    for (const auto& p : inst.points) {
+      if (p.allFinite()) pts.push_back(p);
+      else ++bad;
+    }
+    issues.count("non-finite point", bad);
+    if (pts.empty()) {
+      issues.count("empty instance");
+      continue;
+    }
+    Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {}};
+    o.centroid = centroidOf(o.points);
+    by_class[inst.class_id].push_back(std::move(o));
+  }
+
+  std::map<std::int64_t, bool> matched;
+  for (auto& [class_id, obs] : by_class) {
+    const ClassInfo& info = classes_.at(class_id);
+    std::vector<Track*> cand;
+    for (auto& [id, t] : tracks_)
+      if (t.class_id == class_id) cand.push_back(&t);
+    Eigen::MatrixXd cost(obs.size(), cand.size());
+    for (std::size_t i = 0; i < obs.size(); ++i)
+      for (std::size_t j = 0; j < cand.size(); ++j)
+        cost(i, j) = centroidDistance(info.shape, obs[i].centroid, cand[j]->last_centroid);
+    const std::vector<int> assign = cand.empty() ? std::vector<int>(obs.size(), -1)
+                                                 : solveGatedAssignment(cost, info.association_distance * params_.gate_scale);
+    for (std::size_t i = 0; i < obs.size(); ++i) {
+      Track* t;
+      if (assign[i] >= 0) {
+        t = cand[assign[i]];
+      } else {
+        Track fresh;
+        fresh.id = next_id_++;
+        fresh.class_id = class_id;
+        t = &tracks_.emplace(fresh.id, fresh).first->second;
+      }
+      ++t->hits;
+      t->missed = 0;
+      t->confidence_sum += obs[i].confidence;
+      t->last_centroid = obs[i].centroid;
+      t->observations.push_back(std::move(obs[i].points));
+      while (static_cast<int>(t->observations.size()) > params_.max_observations) t->observations.pop_front();
+      if (!t->moving && exceedsClassSize(*t)) t->moving = true;
+      matched[t->id] = true;
+    }
+  }
+  for (auto it = tracks_.begin(); it != tracks_.end();) {
+    if (!matched.count(it->first)) ++it->second.missed;
+    if (it->second.missed > params_.max_missed) it = tracks_.erase(it);
+    else ++it;
+  }
+}
+
+std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body) const {
+  std::vector<Object> out;
+  const Pose T_body_odom = T_odom_body.inverse();
+  for (const auto& [id, t] : tracks_) {
+    if (t.moving || t.hits < params_.min_age || t.missed > params_.report_max_missed) continue;
+    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, Eigen::Vector3d::Zero());
+    if (!o) continue;
+    o->id = id;
+    o->num_observations = t.hits;
+    o->confidence = t.confidence_sum / t.hits;
+    out.push_back(*o);
+  }
+  return out;
+}
+
+}  // namespace slide

@@ -1,0 +1,63 @@
+#pragma once
+// Instance tracking across frames in the odometry frame: per-class Hungarian assignment of
+// instances to tracks by centroid distance (gated by the class's association distance),
+// points accumulated over a sliding window of observations, a minimum age before a track
+// yields objects, deletion after missed frames, and rejection of moving objects (tracks whose
+// accumulated points grow beyond the class's size limits).
+#include <deque>
+#include <map>
+#include <vector>
+
+#include "frontend/input_issues.h"
+#include "frontend/instance.h"
+#include "frontend/shape_fit.h"
+#include "objects/class_table.h"
+
+namespace slide {
+
+struct TrackerParams {
+  double gate_scale = 1.0;           // gate = class association_distance * gate_scale
+  int min_age = 3;                   // observations before a track yields objects
+  int max_missed = 5;                // consecutive missed frames before deletion
+  int report_max_missed = 1;         // tracks missed longer ago are not reported
+  int max_observations = 10;         // sliding window of observations per track
+  int max_points_per_observation = 1500;
+  double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
+};
+
+struct Track {
+  std::int64_t id = 0;
+  int class_id = 0;
+  int hits = 0;
+  int missed = 0;
+  bool moving = false;
+  double confidence_sum = 0;
+  Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
+  std::deque<Cloud> observations;                           // odometry frame
+  Cloud accumulated() const;
+};
+
+class Tracker {
+ public:
+  Tracker(ClassTable classes, TrackerParams params, FitParams fit);
+
+  // One frame: instances (sensor/body frame) at odometry pose frame.odom_pose.
+  void update(const FrameInstances& frame, InputIssues& issues);
+  // Fitted models of the confirmed, static, recently seen tracks in the body frame of
+  // T_odom_body; object ids are track ids.
+  std::vector<Object> objectsInBody(const Pose& T_odom_body) const;
+
+  const std::map<std::int64_t, Track>& tracks() const { return tracks_; }
+  const ClassTable& classes() const { return classes_; }
+
+ private:
+  bool exceedsClassSize(const Track& t) const;
+
+  ClassTable classes_;
+  TrackerParams params_;
+  FitParams fit_;
+  std::map<std::int64_t, Track> tracks_;
+  std::int64_t next_id_ = 0;
+};
+
+}  // namespace slide

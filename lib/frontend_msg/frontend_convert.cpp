@@ -1,0 +1,138 @@
+#include "frontend_msg/frontend_convert.h"
+
+#include "msg/convert.h"
+
+namespace slide {
+
+LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues) {
+  LabelledScan s;
+  const std::size_t n = std::min<std::size_t>(m.xyz.size(), static_cast<std::size_t>(std::max(0, m.num_points)));
+  s.xyz.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) s.xyz.emplace_back(m.xyz[i][0], m.xyz[i][1], m.xyz[i][2]);
+  s.intensity.assign(m.intensity.begin(), m.intensity.begin() + std::min(n, m.intensity.size()));
+  if (m.has_labels) {
+    if (m.num_labels != m.num_points || m.semantic.size() != n || m.instance.size() != n) {
+      issues.count("label count mismatch");
+    } else {
+      s.semantic.reserve(n);
+      s.instance.reserve(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        s.semantic.push_back(static_cast<uint16_t>(m.semantic[i]));
+        s.instance.push_back(static_cast<uint16_t>(m.instance[i]));
+      }
+    }
+  }
+  return s;
+}
+
+lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header) {
+  lidar_scan_t m;
+  m.header = header;
+  m.num_points = static_cast<int32_t>(scan.size());
+  m.xyz.resize(scan.size());
+  m.intensity.resize(scan.size(), 0.0f);
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    for (int k = 0; k < 3; ++k) m.xyz[i][k] = scan.xyz[i][k];
+    if (i < scan.intensity.size()) m.intensity[i] = scan.intensity[i];
+  }
+  m.has_labels = scan.hasLabels();
+  m.num_labels = m.has_labels ? m.num_points : 0;
+  if (m.has_labels) {
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      m.semantic.push_back(static_cast<int16_t>(scan.semantic[i]));
+      m.instance.push_back(static_cast<int16_t>(scan.instance[i]));
+    }
+  }
+  return m;
+}
+
+std::optional<RgbdFrame> rgbdFromMsg(const rgbd_frame_t& m, InputIssues& issues) {
+  RgbdFrame f;
+  const camera_intrinsics_t& k = m.intrinsics;
+  f.intrinsics = {k.width, k.height, k.fx, k.fy, k.cx, k.cy, k.depth_scale};
+  if (k.width <= 0 || k.height <= 0) {
+    issues.count("invalid intrinsics");
+    return std::nullopt;
+  }
+  const std::size_t pixels = static_cast<std::size_t>(k.width) * k.height;
+  if (m.depth.size() != 2 * pixels) {
+    issues.count(m.depth.empty() ? "missing depth image" : "image size does not match intrinsics");
+    return std::nullopt;
+  }
+  if (!m.instance_mask.empty() && m.instance_mask.size() != 2 * pixels) {
+    issues.count("image size does not match intrinsics");
+    return std::nullopt;
+  }
+  if (!m.color.empty() && m.color.size() != 3 * pixels) issues.count("colour image size does not match intrinsics");
+  else f.color = m.color;
+  f.depth.resize(pixels);
+  f.mask.assign(pixels, 0);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    f.depth[i] = static_cast<uint16_t>(m.depth[2 * i] | (m.depth[2 * i + 1] << 8));
+    if (!m.instance_mask.empty()) f.mask[i] = static_cast<uint16_t>(m.instance_mask[2 * i] | (m.instance_mask[2 * i + 1] << 8));
+  }
+  f.instance_class.assign(m.instance_class.begin(), m.instance_class.end());
+  f.instance_confidence.assign(m.instance_confidence.begin(), m.instance_confidence.end());
+  return f;
+}
+
+frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header) {
+  frame_instances_t m;
+  m.header = header;
+  m.odom_pose = toMsg(f.odom_pose);
+  m.num_instances = static_cast<int32_t>(f.instances.size());
+  for (const auto& inst : f.instances) {
+    object_instance_t o;
+    o.instance_id = inst.id;
+    o.class_id = static_cast<int16_t>(inst.class_id);
+    o.confidence = inst.confidence;
+    o.num_points = static_cast<int32_t>(inst.points.size());
+    o.xyz.resize(inst.points.size());
+    for (std::size_t i = 0; i < inst.points.size(); ++i)
+      for (int k = 0; k < 3; ++k) o.xyz[i][k] = inst.points[i][k];
+    m.instances.push_back(std::move(o));
+  }
+  return m;
+}
+
+FrameInstances instancesFromMsg(const frame_instances_t& m) {
+  FrameInstances f;
+  f.utime = m.header.utime;
+  f.odom_pose = fromMsg(m.odom_pose);
+  for (const auto& o : m.instances) {
+    Instance inst;
+    inst.id = o.instance_id;
+    inst.class_id = o.class_id;
+    inst.confidence = o.confidence;
+    inst.points.reserve(o.xyz.size());
+    for (const auto& p : o.xyz) inst.points.emplace_back(p[0], p[1], p[2]);
+    f.instances.push_back(std::move(inst));
+  }
+  return f;
+}
+
+keypose_bundle_t bundleToMsg(const KeyposeBundle& b, int robot) {
+  keypose_bundle_t m;
+  m.header.utime = b.utime;
+  m.header.robot = robot;
+  m.header.seq = b.seq;
+  m.odom_pose = toMsg(b.odom_pose);
+  m.relative_odom = toMsg(b.relative_odom);
+  for (int i = 0; i < 6; ++i) m.odom_sigma[i] = static_cast<float>(b.odom_sigma[i]);
+  m.num_objects = static_cast<int32_t>(b.objects.size());
+  for (const auto& o : b.objects) m.objects.push_back(toMsg(o));
+  return m;
+}
+
+KeyposeBundle bundleFromMsg(const keypose_bundle_t& m) {
+  KeyposeBundle b;
+  b.seq = m.header.seq;
+  b.utime = m.header.utime;
+  b.odom_pose = fromMsg(m.odom_pose);
+  b.relative_odom = fromMsg(m.relative_odom);
+  for (int i = 0; i < 6; ++i) b.odom_sigma[i] = m.odom_sigma[i];
+  for (const auto& o : m.objects) b.objects.push_back(fromMsg(o));
+  return b;
+}
+
+}  // namespace slide

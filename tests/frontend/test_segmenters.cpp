@@ -1,0 +1,120 @@
+// Labelled and geometric LiDAR segmenters on hand-made and real SemanticKITTI scans, grid
+// clustering, ground removal, and bad input.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "frontend/frontend_config.h"
+#include "frontend/geometric_segmenter.h"
+#include "frontend/grid_clustering.h"
+#include "frontend/labelled_segmenter.h"
+#include "synthetic_scene.h"
+
+using namespace slide;
+using slide::synth::SceneObject;
+
+namespace {
+const std::string kScan720 = std::string(SLIDE_DATA_DIR) + "/semantickitti/sequences/08/velodyne/000720.bin";
+
+const Instance* nearest(const std::vector<Instance>& v, int class_id, const Eigen::Vector2d& xy, double max_d) {
+  const Instance* best = nullptr;
+  for (const auto& i : v) {
+    if (i.class_id != class_id) continue;
+    const double d = (centroidOf(i.points).head<2>() - xy).norm();
+    if (d < max_d) max_d = d, best = &i;
+  }
+  return best;
+}
+}  // namespace
+
+TEST(GridClustering, SplitsSeparatedBlobsAndDropsSmallOnes) {
+  Cloud c;
+  for (int i = 0; i < 50; ++i) c.emplace_back(0.02f * i, 0, 0);
+  for (int i = 0; i < 30; ++i) c.emplace_back(5 + 0.02f * i, 0, 0);
+  for (int i = 0; i < 3; ++i) c.emplace_back(-10, 0.01f * i, 0);
+  c.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0, 0);
+  const auto cl = clusterGrid(c, {}, {0.3, false, 5});
+  ASSERT_EQ(cl.size(), 2u);
+  EXPECT_EQ(cl[0].size(), 50u);
+  EXPECT_EQ(cl[1].size(), 30u);
+  // Planar clustering ignores height.
+  Cloud stack{{0, 0, 0}, {0, 0, 5}};
+  EXPECT_EQ(clusterGrid(stack, {}, {0.3, true, 1}).size(), 1u);
+  EXPECT_EQ(clusterGrid(stack, {}, {0.3, false, 1}).size(), 2u);
+}
+
+TEST(GroundRemoval, CarRoofIsNotGround) {
+  const auto scan = synth::syntheticScan({{10, {8, 0, 0}, 0, 0, 0, {4.4, 1.8, 1.5}}},
+                                           poseFromXyzYaw(0, 0, 1.5, 0));
+  const auto h = heightAboveGround(scan.xyz, {});
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (scan.semantic[i] == 40) EXPECT_LT(std::abs(h[i]), 0.1);
+    if (scan.semantic[i] == 10 && scan.xyz[i].z() > -0.5) EXPECT_GT(h[i], 0.9);
+  }
+}
+
+TEST(LabelledSegmenter, InstancesFromIdsAndBadInput) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const LabelledSegmenter seg(classes, {});
+  auto scan = synth::syntheticScan({{71, {6, 2, 0}}, {10, {9, -3, 0}, 0, 0, 0.3}}, poseFromXyzYaw(0, 0, 1.5, 0));
+  for (auto& id : scan.instance) id = id == 1 ? 0 : id;  // the trunk without instance id: clustered
+  scan.xyz[0] = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  InputIssues issues;
+  const auto inst = seg.segment(scan, issues);
+  ASSERT_EQ(inst.size(), 2u);
+  EXPECT_TRUE(nearest(inst, 71, {6, 2}, 0.5));
+  EXPECT_TRUE(nearest(inst, 10, {9, -3}, 1.0));
+  EXPECT_EQ(issues.get("non-finite point"), 1);
+
+  InputIssues empty_issues;
+  EXPECT_TRUE(seg.segment(LabelledScan{}, empty_issues).empty());
+  EXPECT_EQ(empty_issues.get("empty scan"), 1);
+  LabelledScan unlabelled;
+  unlabelled.xyz = scan.xyz;
+  EXPECT_TRUE(seg.segment(unlabelled, empty_issues).empty());
+  EXPECT_EQ(empty_issues.get("scan without labels"), 1);
+}
+
+TEST(LabelledSegmenter, RealScanCarBecomesCarSizedCuboid) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const LabelledScan scan = readLabelledScan(kScan720);
+  InputIssues issues;
+  const auto inst = LabelledSegmenter(classes, cfg.labelled).segment(scan, issues);
+  const Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.0);
+  ASSERT_TRUE(car);
+  EXPECT_GT(car->points.size(), 600u);
+  const auto o = fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(o);
+  EXPECT_TRUE(classes.sizePlausible(*o));
+  int cylinders = 0;
+  for (const auto& i : inst)
+    if (classes.at(i.class_id).shape == Shape::Cylinder) cylinders += fitObject(i.points, i.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()).has_value();
+  EXPECT_GE(cylinders, 7);
+}
+
+TEST(GeometricSegmenter, SyntheticTrunkAndCar) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const GeometricSegmenter seg(classes, loadDefaultFrontendConfig().geometric);
+  auto scan = synth::syntheticScan({{71, {6, 3, 0}, 0.25, 6.0}, {10, {9, -4, 0}, 0, 0, 0.2}}, poseFromXyzYaw(0, 0, 1.5, 0));
+  scan.semantic.clear();
+  scan.instance.clear();
+  InputIssues issues;
+  const auto inst = seg.segment(scan, issues);
+  EXPECT_TRUE(nearest(inst, 71, {6, 3}, 0.5));
+  EXPECT_TRUE(nearest(inst, 10, {9, -4}, 1.0));
+  EXPECT_EQ(issues.total(), 0);
+}
+
+TEST(GeometricSegmenter, RealScanFindsTheLabelledCar) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  LabelledScan scan = readLabelledScan(kScan720);
+  scan.semantic.clear();
+  scan.instance.clear();
+  InputIssues issues;
+  const auto inst = GeometricSegmenter(classes, cfg.geometric).segment(scan, issues);
+  const Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.5);
+  ASSERT_TRUE(car);
+  EXPECT_TRUE(fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero()));
+}

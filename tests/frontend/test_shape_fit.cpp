@@ -1,0 +1,140 @@
+// Circle, cylinder, cuboid and ellipsoid fits on synthetic clouds and on the real TLS trunk.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "frontend/shape_fit.h"
+#include "frontend/xyz_cloud.h"
+
+using namespace slide;
+
+namespace {
+// Visible half of a cylinder along `axis` from root, seen from the origin (trunk along +x).
+Cloud cylinderCloud(const Eigen::Vector3d& root, const Eigen::Vector3d& axis, double r, double len, double arc,
+                    unsigned seed = 1, double noise = 0.005) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0, noise);
+  const Eigen::Vector3d a = axis.normalized();
+  Cloud c;
+  for (double t = 0; t <= len; t += 0.05)
+    for (double ang = M_PI - arc / 2; ang <= M_PI + arc / 2; ang += 0.05) {
+      const Eigen::Vector3d p = root + t * a + r * Eigen::Vector3d(std::cos(ang), std::sin(ang), 0);
+      c.push_back((p + Eigen::Vector3d(n(rng), n(rng), n(rng))).cast<float>());
+    }
+  return c;
+}
+}  // namespace
+
+TEST(CircleFit, AlgebraicExactAndRansacWithOutliers) {
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 40; ++i) pts.emplace_back(2 + 0.3 * std::cos(i * 0.1), -1 + 0.3 * std::sin(i * 0.1));
+  const auto c = fitCircleAlgebraic(pts);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->radius, 0.3, 1e-9);
+  EXPECT_NEAR((c->center - Eigen::Vector2d(2, -1)).norm(), 0, 1e-9);
+  for (int i = 0; i < 20; ++i) pts.emplace_back(2.5 + 0.05 * i, -0.5);  // a branch
+  EXPECT_GT(std::abs(fitCircleAlgebraic(pts)->radius - 0.3), 0.02);
+  const auto r = fitCircleRansac(pts, {});
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(r->radius, 0.3, 1e-3);
+  EXPECT_FALSE(fitCircleAlgebraic({{0, 0}, {1, 1}, {2, 2}}));  // collinear
+}
+
+TEST(CylinderFit, UprightArcGivesRadiusAndAxis) {
+  const Cloud c = cylinderCloud({8, 1, -1.7}, {0, 0, 1}, 0.25, 4.0, 2.2);
+  const auto cyl = fitCylinder(c, {}, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(cyl);
+  EXPECT_NEAR(cyl->radius, 0.25, 0.02);
+  EXPECT_NEAR((cyl->root.head<2>() - Eigen::Vector2d(8, 1)).norm(), 0, 0.03);
+  EXPECT_NEAR(cyl->root.z(), -1.7, 0.05);
+  EXPECT_NEAR(cyl->length, 4.0, 0.1);
+  EXPECT_GT(cyl->axis.z(), 0.995);
+}
+
+TEST(CylinderFit, RejectsLeaningBeyondLimit) {
+  const Cloud slight = cylinderCloud({8, 0, 0}, {0.17, 0, 1}, 0.2, 4.0, 3.0);   // ~10 deg
+  const Cloud strong = cylinderCloud({8, 0, 0}, {0.7, 0, 1}, 0.2, 4.0, 3.0);    // ~35 deg
+  std::string why;
+  const auto a = fitCylinder(slight, {}, Eigen::Vector3d::Zero(), &why);
+  ASSERT_TRUE(a) << why;
+  EXPECT_NEAR(std::acos(a->axis.z()) * 180 / M_PI, 9.7, 2.0);
+  EXPECT_FALSE(fitCylinder(strong, {}, Eigen::Vector3d::Zero(), &why));
+  EXPECT_NE(why.find("leaning"), std::string::npos);
+  EXPECT_FALSE(fitCylinder(Cloud(5, Eigen::Vector3f::Zero()), {}, Eigen::Vector3d::Zero()));
+}
+
+TEST(CylinderFit, RealTlsTrunkSliceWithinOneCentimetreOfLeastSquares) {
+  const Cloud slice = readXyzCloud(std::string(SLIDE_DATA_DIR) + "/tls/dbh_slice.xyz");
+  ASSERT_EQ(slice.size(), 1369u);
+  const Eigen::Vector3d view = centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
+  const auto cyl = fitCylinder(slice, {}, view);
+  ASSERT_TRUE(cyl);
+  std::vector<Eigen::Vector2d> bark;
+  for (const auto& p : slice) {
+    const Eigen::Vector2d q(p.x(), p.y());
+    if (std::abs((q - cyl->root.head<2>()).norm() - cyl->radius) <= 0.05) bark.push_back(q);
+  }
+  EXPECT_GT(bark.size(), 900u);
+  const auto lsq = fitCircleAlgebraic(bark);
+  ASSERT_TRUE(lsq);
+  EXPECT_NEAR(cyl->radius, lsq->radius, 0.01);
+  EXPECT_NEAR(cyl->radius, 0.15, 0.02);
+}
+
+TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
+  // L-shaped view of a 4.5 x 1.8 x 1.5 car at yaw 30 deg, sensor at the origin.
+  const double yaw = 30 * M_PI / 180;
+  const Eigen::Matrix3d R = rotZ(yaw);
+  const Eigen::Vector3d centre(10, 4, -1.0);
+  Cloud pts;
+  for (double z = -0.75; z <= 0.75; z += 0.05) {
+    for (double x = -2.25; x <= 2.25; x += 0.05) pts.push_back((centre + R * Eigen::Vector3d(x, -0.9, z)).cast<float>());
+    for (double y = -0.9; y <= 0.9; y += 0.05) pts.push_back((centre + R * Eigen::Vector3d(-2.25, y, z)).cast<float>());
+  }
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  const auto box = fitCuboid(pts, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max);
+  ASSERT_TRUE(box);
+  EXPECT_NEAR(std::abs(wrapAngle(2 * (yawOf(box->pose.linear()) - yaw))) / 2, 0, 0.03);
+  EXPECT_NEAR(box->dims.x(), 4.5, 0.25);  // 2nd-98th percentile extents
+  EXPECT_NEAR(box->dims.y(), 1.8, 0.15);
+  EXPECT_NEAR((box->pose.translation() - centre).head<2>().norm(), 0, 0.15);
+
+  // Only one short side seen: completed to the class minimum away from the sensor.
+  Cloud face;
+  for (double z = -0.75; z <= 0.75; z += 0.05)
+    for (double y = -0.9; y <= 0.9; y += 0.05) face.push_back(Eigen::Vector3f(10, y, z));
+  const auto completed = fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max);
+  ASSERT_TRUE(completed);
+  EXPECT_GE(completed->dims.x(), car.size_min.x() - 1e-9);
+  EXPECT_GE(completed->dims.y(), car.size_min.y() - 1e-9);
+  EXPECT_GT(completed->pose.translation().x(), 10.0) << "grown away from the sensor";
+  Cloud sliver;
+  for (double z = -0.75; z <= 0.75; z += 0.05)
+    for (double y = -0.3; y <= 0.3; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
+  std::string why;
+  EXPECT_FALSE(fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, &why)) << "too little seen";
+  EXPECT_NE(why.find("too short"), std::string::npos) << why;
+  // A wall is not a car.
+  Cloud wall;
+  for (double x = 0; x <= 12; x += 0.1)
+    for (double z = 0; z <= 1.5; z += 0.1) wall.push_back(Eigen::Vector3f(x, 5, z));
+  EXPECT_FALSE(fitObject(wall, 10, classes, {}, Eigen::Vector3d::Zero(), &why));
+  EXPECT_NE(why.find("exceed"), std::string::npos) << why;
+}
+
+TEST(EllipsoidFit, CentroidRadiusHeight) {
+  Cloud pts;
+  for (double a = 0; a < 2 * M_PI; a += 0.05)
+    for (double z = 0; z <= 0.8; z += 0.05) pts.push_back(Eigen::Vector3f(3 + 0.4 * std::cos(a), 2 + 0.4 * std::sin(a), z));
+  const auto e = fitEllipsoid(pts, {});
+  ASSERT_TRUE(e);
+  EXPECT_NEAR((e->centroid - Eigen::Vector3d(3, 2, 0.4)).norm(), 0, 0.03);
+  EXPECT_NEAR(e->radius, 0.4, 0.02);
+  EXPECT_NEAR(e->height, 0.8, 0.08);
+  const ClassTable classes = ClassTable::loadDefault();
+  const auto o = fitObject(pts, 1, classes, {}, Eigen::Vector3d::Zero());  // chair
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->shape(), Shape::Ellipsoid);
+  EXPECT_FALSE(fitObject(pts, 12345, classes, {}, Eigen::Vector3d::Zero()));
+}

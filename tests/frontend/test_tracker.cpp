@@ -1,0 +1,140 @@
+// Tracker and key-pose bundles on synthetic instances: one track per static object, objects
+// only after the minimum age, moving objects rejected, deletion after missed frames, key
+// poses by travelled distance with relative odometry.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "config/config.h"
+#include "frontend/frontend_config.h"
+#include "frontend/keypose.h"
+#include "frontend/labelled_segmenter.h"
+#include "frontend/odometry_buffer.h"
+#include "synthetic_scene.h"
+
+using namespace slide;
+using slide::synth::SceneObject;
+
+namespace {
+struct Pipeline {
+  ClassTable classes = ClassTable::loadDefault();
+  FrontendConfig cfg = loadDefaultFrontendConfig();
+  LabelledSegmenter seg{classes, cfg.labelled};
+  KeyposeBundler bundler{Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose};
+  InputIssues issues;
+
+  // The robot drives along x at 0.5 m per frame; objects may move with `car_velocity` per frame.
+  std::vector<KeyposeBundle> run(std::vector<SceneObject> objects, int frames, double car_step = 0) {
+    std::vector<KeyposeBundle> out;
+    for (int k = 0; k < frames; ++k) {
+      const Pose T = poseFromXyzYaw(0.5 * k, 0, 1.5, 0.02 * k);
+      FrameInstances f;
+      f.utime = k * 100000;
+      f.odom_pose = T;
+      f.instances = seg.segment(synth::syntheticScan(objects, T, 0.08, k + 1), issues);
+      if (auto b = bundler.process(f, issues)) out.push_back(*b);
+      for (auto& o : objects)
+        if (o.semantic == 10) o.center.x() += car_step;
+    }
+    return out;
+  }
+};
+}  // namespace
+
+TEST(Tracker, StaticObjectsKeepOneTrackAndAppearAfterMinAge) {
+  Pipeline p;
+  const auto bundles = p.run({{71, {8, 4, 0}, 0.3, 6.0}, {10, {10, -5, 0}, 0, 0, 0.4}}, 12);
+  ASSERT_GE(bundles.size(), 5u);
+  for (std::size_t i = 0; i < bundles.size(); ++i) EXPECT_EQ(bundles[i].seq, static_cast<int>(i));
+  EXPECT_TRUE(bundles[0].objects.empty()) << "no track is old enough at the first key pose";
+  EXPECT_TRUE(bundles[0].relative_odom.isApprox(Pose::Identity()));
+  EXPECT_EQ(p.bundler.tracker().tracks().size(), 2u);
+  const KeyposeBundle& last = bundles.back();
+  ASSERT_EQ(last.objects.size(), 2u);
+  for (const auto& o : last.objects) {
+    const Eigen::Vector3d world = last.odom_pose * o.position();
+    if (o.class_id == 71) {
+      EXPECT_NEAR((world.head<2>() - Eigen::Vector2d(8, 4)).norm(), 0, 0.1);
+      EXPECT_NEAR(std::get<Cylinder>(o.model).radius, 0.3, 0.05);
+    } else {
+      EXPECT_EQ(o.class_id, 10);
+      EXPECT_NEAR((world.head<2>() - Eigen::Vector2d(10, -5)).norm(), 0, 0.4);
+    }
+    EXPECT_GE(o.num_observations, 3);
+  }
+  // Relative odometry chains the key poses.
+  for (std::size_t i = 1; i < bundles.size(); ++i)
+    EXPECT_TRUE((bundles[i - 1].odom_pose * bundles[i].relative_odom).isApprox(bundles[i].odom_pose, 1e-9));
+  EXPECT_GE(bundles[1].odom_pose.translation().x() - bundles[0].odom_pose.translation().x(), 1.0 - 1e-9);
+}
+
+TEST(Tracker, MovingCarIsRejected) {
+  Pipeline p;
+  // 1.5 m per frame (15 m/s at 10 Hz): its track smears beyond a car's length.
+  const auto bundles = p.run({{71, {8, 4, 0}, 0.3, 6.0}, {10, {6, -5, 0}, 0, 0, 0.0}}, 12, 1.5);
+  for (const auto& o : bundles.back().objects) EXPECT_NE(o.class_id, 10);
+  bool moving = false;
+  for (const auto& [id, t] : p.bundler.tracker().tracks()) moving |= t.moving;
+  EXPECT_TRUE(moving);
+}
+
+TEST(Tracker, TracksAreDeletedAfterMissedFramesAndUnknownClassesCounted) {
+  const ClassTable classes = ClassTable::loadDefault();
+  TrackerParams tp;
+  tp.max_missed = 2;
+  Tracker tracker(classes, tp, {});
+  FrameInstances f;
+  Instance inst;
+  inst.class_id = 71;
+  for (int i = 0; i < 30; ++i) inst.points.emplace_back(5 + 0.01f * i, 0, 0.1f * i);
+  f.instances = {inst};
+  InputIssues issues;
+  tracker.update(f, issues);
+  EXPECT_EQ(tracker.tracks().size(), 1u);
+  FrameInstances empty;
+  for (int k = 0; k < 3; ++k) tracker.update(empty, issues);
+  EXPECT_TRUE(tracker.tracks().empty());
+  Instance unknown = inst;
+  unknown.class_id = 4242;
+  f.instances = {unknown};
+  tracker.update(f, issues);
+  EXPECT_EQ(issues.get("unknown class"), 1);
+  f.odom_pose.matrix()(0, 3) = std::nan("");
+  tracker.update(f, issues);
+  EXPECT_EQ(issues.get("non-finite odometry pose"), 1);
+}
+
+TEST(OdometryBuffer, InterpolatesAndKnowsWhenToGiveUp) {
+  OdometryBuffer buf(100, 20000);
+  EXPECT_FALSE(buf.at(0));
+  buf.add(1000000, poseFromXyzYaw(0, 0, 0, 0));
+  buf.add(1100000, poseFromXyzYaw(1, 0, 0, 0.2));
+  const auto mid = buf.at(1050000);
+  ASSERT_TRUE(mid);
+  EXPECT_NEAR(mid->translation().x(), 0.5, 1e-9);
+  EXPECT_NEAR(yawOf(mid->linear()), 0.1, 1e-9);
+  EXPECT_TRUE(buf.at(1110000));   // within tolerance after the newest
+  EXPECT_FALSE(buf.at(1200000));  // not yet known
+  EXPECT_FALSE(buf.hopeless(1200000));
+  EXPECT_TRUE(buf.hopeless(500000));  // before the oldest: will never come
+}
+
+TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  EXPECT_EQ(cfg.lidar_mode, "auto");
+  EXPECT_DOUBLE_EQ(cfg.keypose.distance, 1.0);
+  const std::string path = std::string(SLIDE_BINARY_DIR) + "/bad_frontend.yaml";
+  {
+    std::ofstream(path) << "tracker:\n  min_age: many\n";
+  }
+  try {
+    loadFrontendConfig(path);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("min_age"), std::string::npos) << e.what();
+  }
+  {
+    std::ofstream(path) << "segmenter:\n  lidar_mode: magic\n";
+  }
+  EXPECT_THROW(loadFrontendConfig(path), ConfigError);
+}

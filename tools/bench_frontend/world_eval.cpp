@@ -1,0 +1,185 @@
+#include "world_eval.h"
+
+#include <chrono>
+#include <memory>
+#include <set>
+#include <opencv2/core.hpp>
+
+#include "frontend/geometric_segmenter.h"
+#include "frontend/hungarian.h"
+#include "frontend/keypose.h"
+#include "frontend/labelled_segmenter.h"
+#include "frontend/rgbd_segmenter.h"
+#include "sim/lidar.h"
+#include "sim/ray_caster.h"
+#include "sim/rgbd_camera.h"
+#include "sim/dataset_writer.h"
+#include "sim/scenario.h"
+
+namespace slide {
+
+namespace {
+RgbdFrame toFrame(const RgbdImage& img, const CameraModel& cam) {
+  RgbdFrame f;
+  f.intrinsics = {cam.width, cam.height, cam.fx, cam.fy, cam.cx, cam.cy, 0.001};
+  f.depth.assign(img.depth.begin<std::uint16_t>(), img.depth.end<std::uint16_t>());
+  f.mask.assign(img.instance.begin<std::uint16_t>(), img.instance.end<std::uint16_t>());
+  f.instance_class = img.instance_class;
+  f.instance_confidence.assign(img.instance_class.size(), 1.0f);
+  return f;
+}
+
+// Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
+bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
+  if (mode == "labelled") return !c.semantickitti.empty();
+  if (mode == "geometric")
+    return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class;
+  return c.id != 0;  // rgbd: every detector class but the catch-all
+}
+
+// Evaluation group of a class: the geometric mode cannot tell trunks from poles reliably, so
+// there both count as one "cylinder" group.
+int groupOf(const std::string& mode, int class_id, const FrontendConfig& cfg) {
+  if (mode == "geometric" && class_id == cfg.geometric.pole_class) return cfg.geometric.trunk_class;
+  return class_id;
+}
+
+struct Runner {
+  std::string mode;
+  std::unique_ptr<LidarSegmenter> lidar;
+  std::unique_ptr<KeyposeBundler> bundler;
+  std::map<std::int64_t, Object> latest;  // world frame, by track id
+  ModeResult result;
+};
+}  // namespace
+
+WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& classes, const FrontendConfig& cfg) {
+  ScenarioSpec ss;
+  ss.world = spec.world;
+  ss.robots = 1;
+  ss.seed = spec.seed;
+  ss.distance = spec.distance;
+  ss.rate = spec.rate;
+  ss.data_dir = spec.data_dir;
+  const Scenario sc = buildScenario(ss);
+  const RobotRun& robot = sc.robots.at(0);
+  const LidarModel lidar = lidarModel("os1-64");
+  const CameraModel camera = cameraModel("d455");
+
+  std::vector<Runner> runners;
+  for (const auto& mode : spec.modes) {
+    Runner r;
+    r.mode = r.result.mode = mode;
+    if (mode == "labelled") r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
+    else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
+    else if (mode != "rgbd") throw std::invalid_argument("unknown mode '" + mode + "'");
+    r.bundler = std::make_unique<KeyposeBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
+    runners.push_back(std::move(r));
+  }
+  bool any_moving = false;
+  for (const auto& o : sc.world.objects) any_moving |= o.moving();
+  bool need_lidar = false, need_rgbd = false;
+  for (const auto& r : runners) (r.mode == "rgbd" ? need_rgbd : need_lidar) = true;
+
+  std::map<int, int> seen_lidar, seen_rgbd;  // object id -> frames with >= min_points
+  std::unique_ptr<RayCaster> caster;
+  const std::size_t n = robot.ground_truth.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = robot.ground_truth.times[k];
+    if (!caster || any_moving) caster = std::make_unique<RayCaster>(sc.world, t);
+    const Pose& T_world_body = robot.ground_truth.poses[k];
+    std::mt19937_64 rng = frameRng(spec.seed, 0, static_cast<int>(k));
+    LabelledScan scan, unlabelled;
+    RgbdFrame frame;
+    std::map<int, int> count;
+    if (need_lidar) {
+      scan = simulateLidarScan(*caster, T_world_body, lidar, rng);
+      unlabelled.xyz = scan.xyz;
+      unlabelled.intensity = scan.intensity;
+      count.clear();
+      for (auto id : scan.instance) ++count[id];
+      for (const auto& [id, c] : count)
+        if (id != 0 && c >= spec.min_points) ++seen_lidar[id];
+    }
+    if (need_rgbd) {
+      const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
+      frame = toFrame(img, camera);
+      std::vector<int> pix(img.instance_object.size() + 1, 0);
+      for (auto id : frame.mask)
+        if (id > 0 && id < pix.size()) ++pix[id];
+      for (std::size_t i = 0; i < img.instance_object.size(); ++i)
+        if (img.instance_object[i] > 0 && pix[i + 1] >= spec.min_points) ++seen_rgbd[img.instance_object[i]];
+    }
+    for (auto& r : runners) {
+      InputIssues issues;
+      const auto t0 = std::chrono::steady_clock::now();
+      FrameInstances fi;
+      fi.utime = static_cast<std::int64_t>(t * 1e6);
+      fi.odom_pose = robot.odometry[k];
+      if (r.mode == "rgbd") fi.instances = segmentRgbd(frame, classes, cfg.rgbd, issues);
+      else fi.instances = r.lidar->segment(r.mode == "labelled" ? scan : unlabelled, issues);
+      const auto bundle = r.bundler->process(fi, issues);
+      r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      r.result.issues += issues.total();
+      if (bundle)
+        for (const auto& o : bundle->objects) r.latest[o.id] = transformObject(T_world_body, o);
+    }
+  }
+
+  WorldEvalResult out;
+  out.world = spec.world;
+  out.frames = static_cast<int>(n);
+  for (auto& r : runners) {
+    const auto& seen = r.mode == "rgbd" ? seen_rgbd : seen_lidar;
+    std::map<int, std::vector<const Object*>> gt, est;  // by evaluation group
+    for (const auto& g : sc.world.objects) {
+      const ClassInfo* c = classes.find(g.object.class_id);
+      if (!c || g.moving() || !producible(r.mode, *c, cfg)) continue;
+      const auto it = seen.find(static_cast<int>(g.object.id));
+      if (it == seen.end() || it->second < spec.min_frames) continue;
+      gt[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
+    }
+    // The map: estimates of one group closer than the class's association distance are one
+    // landmark (what the back-end's data association does with re-created tracks).
+    std::vector<Object> merged;
+    for (const auto& [id, o] : r.latest) {
+      const ClassInfo* c = classes.find(o.class_id);
+      if (!c || !producible(r.mode, *c, cfg)) continue;
+      bool dup = false;
+      for (const auto& m : merged)
+        dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
+               (m.position() - o.position()).head<2>().norm() < c->association_distance;
+      if (!dup) merged.push_back(o);
+    }
+    for (const auto& o : merged) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
+    ModeResult& m = r.result;
+    std::set<int> groups;
+    for (const auto& [g, v] : gt) groups.insert(g);
+    for (const auto& [g, v] : est) groups.insert(g);
+    for (int g : groups) {
+      const auto& G = gt[g];
+      const auto& E = est[g];
+      const ClassInfo& info = classes.at(g);
+      int matched = 0;
+      if (!G.empty() && !E.empty()) {
+        Eigen::MatrixXd cost(E.size(), G.size());
+        for (std::size_t i = 0; i < E.size(); ++i)
+          for (std::size_t j = 0; j < G.size(); ++j)
+            cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
+        for (int a : solveGatedAssignment(cost, info.association_distance)) matched += a >= 0;
+      }
+      auto& pc = m.per_class[info.name];
+      pc = {static_cast<int>(E.size()), static_cast<int>(G.size()), matched};
+      m.estimated += static_cast<int>(E.size());
+      m.ground_truth += static_cast<int>(G.size());
+      m.matched += matched;
+    }
+    m.precision = m.estimated ? double(m.matched) / m.estimated : 0.0;
+    m.recall = m.ground_truth ? double(m.matched) / m.ground_truth : 0.0;
+    m.f1 = m.precision + m.recall > 0 ? 2 * m.precision * m.recall / (m.precision + m.recall) : 0.0;
+    out.modes.push_back(std::move(m));
+  }
+  return out;
+}
+
+}  // namespace slide
