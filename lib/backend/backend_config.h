@@ -1,0 +1,65 @@
+#pragma once
+// Parameters of the back-end (config/backend.yaml): noise models, association, confirmation,
+// incremental solving and input gates.
+#include <string>
+
+#include "geometry/pose.h"
+
+namespace slide {
+
+struct BackendConfig {
+  // Odometry noise, used when a bundle's odom_sigma is missing (zeros) or
+  // use_message_sigma is false: sigma = max(floor, per_metre * step length).
+  bool use_message_sigma = true;
+  double odom_translation_per_m = 0.01;
+  double odom_rotation_per_m = 0.001;
+  double odom_translation_floor = 0.005;
+  double odom_rotation_floor = 0.0005;
+  // Input gates: steps longer or turns larger than these are rejected as absurd.
+  double max_step_m = 25.0;
+  double max_step_rad = 1.2;
+
+  // Prior on the first own pose; prior on a merged peer's first pose from the inter-robot
+  // transform; intra-robot loop closures.
+  double prior_translation_sigma = 0.001;
+  double prior_rotation_sigma = 0.001;
+  double peer_translation_sigma = 1.0;
+  double peer_rotation_sigma = 0.05;
+  double loop_translation_sigma = 0.2;
+  double loop_rotation_sigma = 0.02;
+
+  // Object measurement noise (range-bearing model for positions).
+  double range_sigma = 0.1;
+  double bearing_sigma = 0.05;
+  double vertical_sigma = 0.2;
+  double position_sigma_floor = 0.05;
+  double cuboid_rotation_sigma = 0.1;
+  double cuboid_dims_sigma = 0.3;
+  double cylinder_along_axis_sigma = 2.0;
+  double cylinder_axis_sigma = 0.1;
+  double cylinder_radius_sigma = 0.05;
+  double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
+  double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)
+
+  // Association and confirmation. The class table's distance threshold is widened by
+  // association_sigmas times the detection's own position sigma (range-bearing model).
+  int min_observations = 3;
+  double association_sigmas = 2.0;
+
+  // Incremental solving.
+  int window_poses = 3;            // own latest poses optimized in each local solve
+  int settled_observations = 8;    // landmarks seen this often stay fixed in local solves
+  int local_iterations = 3;
+  int full_iterations = 3;         // full solves during updates (warm-started)
+  int final_iterations = 100;      // full solves on request / at the end (to convergence)
+  int full_every = 250;            // key poses between periodic full solves
+  int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop
+  int min_full_gap = 120;          // key poses between loop-triggered full solves
+  double full_function_tolerance = 1e-6;
+  int num_threads = 1;
+};
+
+// Loads backend.yaml; every key is optional (defaults above); errors name file and key.
+BackendConfig loadBackendConfig(const std::string& path);
+
+}  // namespace slide

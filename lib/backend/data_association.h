@@ -1,0 +1,31 @@
+#pragma once
+// Detection-to-landmark association for one key pose: same class, centre distance and model
+// difference inside the class table's thresholds, and at most one detection per landmark,
+// chosen by a minimum-cost assignment (normalized distance + normalized model difference).
+#include <vector>
+
+#include "objects/class_table.h"
+
+namespace slide {
+
+// A detection in the landmarks' frame, with the extra distance its own uncertainty allows
+// (e.g. a few bearing sigmas times its range) on top of the class threshold.
+struct Detection {
+  Object object;
+  double slack = 0.0;
+};
+
+struct LandmarkCandidate {
+  int index = -1;                  // caller's landmark index
+  const Object* object = nullptr;  // landmark in the same frame as the detections
+};
+
+// Cost of pairing a detection with a landmark: distance / (class threshold + slack) + model
+// difference / class threshold (each <= 1 when associable); negative when not associable.
+double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack = 0.0);
+
+// For each detection, the index of its landmark or -1 (a new landmark).
+std::vector<int> associateDetections(const std::vector<Detection>& detections,
+                                     const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes);
+
+}  // namespace slide

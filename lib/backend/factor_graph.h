@@ -1,0 +1,99 @@
+#pragma once
+// The factor graph that never forgets: every variable and factor ever added stays (until a
+// factor is explicitly replaced), in one persistent Ceres problem for full solves. Local
+// solves build a small problem over chosen variables, with every factor touching them and
+// the rest held constant; batch solves rebuild everything from the initial values.
+// Ceres stays out of this header.
+#include <array>
+#include <deque>
+#include <memory>
+#include <vector>
+
+namespace ceres {
+class CostFunction;
+class LossFunction;
+class Manifold;
+class Problem;
+}  // namespace ceres
+
+namespace slide {
+
+enum class BlockKind { Pose, Cylinder, Vector3 };  // sizes 7, 7, 3
+
+struct SolveReport {
+  double initial_cost = 0;
+  double final_cost = 0;
+  int iterations = 0;
+  int residual_blocks = 0;
+};
+
+class FactorGraph {
+ public:
+  using Values = std::vector<std::array<double, 7>>;
+
+  // Robust losses on object factors: Huber on the whitened residual norm with threshold
+  // robust_loss_scale * sqrt(number of residuals), so a block whose error matches its noise
+  // model keeps its full (quadratic) weight whatever its dimension.
+  explicit FactorGraph(double robust_loss_scale = 1.5);
+  ~FactorGraph();
+  FactorGraph(const FactorGraph&) = delete;
+  FactorGraph& operator=(const FactorGraph&) = delete;
+
+  // Schur solves eliminate group 0 (landmark blocks, which never share a factor) first, then
+  // the rest (key poses, and landmark blocks that accompany a group-0 block such as cuboid
+  // dims). `init` has the block's size.
+  int addVariable(BlockKind kind, const double* init, bool eliminate_first);
+  // Takes ownership of `cost`; its parameter blocks are `vars` in order.
+  int addFactor(ceres::CostFunction* cost, std::vector<int> vars, bool robust);
+  void removeFactor(int factor);
+  // Drops a variable no factor uses any more (e.g. a landmark merged into another).
+  void removeVariable(int var);
+
+  double* value(int var) { return vars_[var].value.data(); }
+  const double* value(int var) const { return vars_[var].value.data(); }
+  const std::vector<int>& factorsOf(int var) const { return vars_[var].factors; }
+  std::size_t numVariables() const { return vars_.size(); }
+  std::size_t numFactors() const { return factors_.size() - removed_; }
+  bool eliminatedFirst(int var) const { return vars_[var].eliminate_first; }
+
+  // Solves over `active` variables with every factor that touches one of them.
+  SolveReport solveLocal(const std::vector<int>& active, int max_iterations);
+  // Solves over every variable in the persistent problem.
+  SolveReport solveFull(int max_iterations, double function_tolerance, int num_threads = 1);
+  // Solves a fresh problem of the same factors starting from each variable's initial value;
+  // returns the solution without touching the graph's values.
+  Values solveBatch(int max_iterations, double function_tolerance, SolveReport* report = nullptr,
+                    int num_threads = 1) const;
+  Values values() const;
+  double cost() const;  // total cost (robust losses applied) at the current values
+
+ private:
+  struct Variable {
+    BlockKind kind;
+    bool eliminate_first;
+    std::array<double, 7> value;
+    std::array<double, 7> initial;
+    std::vector<int> factors;
+    bool removed = false;
+  };
+  struct Factor {
+    std::unique_ptr<ceres::CostFunction> cost;
+    std::vector<int> vars;
+    bool robust = false;
+    bool removed = false;
+    void* global_id = nullptr;  // ceres::ResidualBlockId in global_
+  };
+  ceres::Manifold* manifoldFor(BlockKind kind) const;
+  ceres::LossFunction* lossFor(const Factor& f) const;
+  void addToProblem(ceres::Problem& p, const Factor& f, std::vector<double*>& blocks, Values* storage) const;
+
+  std::deque<Variable> vars_;  // deque: block addresses stay valid as variables are added
+  std::vector<Factor> factors_;
+  std::size_t removed_ = 0;
+  double robust_scale_;
+  std::vector<std::unique_ptr<ceres::LossFunction>> losses_;  // by residual count
+  std::unique_ptr<ceres::Manifold> pose_manifold_, cylinder_manifold_;
+  std::unique_ptr<ceres::Problem> global_;
+};
+
+}  // namespace slide

@@ -1,0 +1,166 @@
+// Landmarks of the optimizer: creation, observation factors and their current models.
+#include <algorithm>
+#include <cmath>
+
+#include "backend/data_association.h"
+#include "backend/factors.h"
+#include "backend/optimizer.h"
+#include "backend/pose_block.h"
+
+namespace slide {
+
+namespace {
+// Whitening of a body-frame position error for a range-bearing sensor at the origin.
+Eigen::Matrix3d rangeBearingSqrtInfo(const Eigen::Vector3d& p, const BackendConfig& c) {
+  const double rho = p.head<2>().norm();
+  const Eigen::Vector3d radial = rho > 1e-6 ? Eigen::Vector3d(p.x() / rho, p.y() / rho, 0) : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d tangential = Eigen::Vector3d::UnitZ().cross(radial);
+  Eigen::Matrix3d L;
+  L.row(0) = radial.transpose() / std::max(c.position_sigma_floor, c.range_sigma);
+  L.row(1) = tangential.transpose() / std::max(c.position_sigma_floor, c.bearing_sigma * rho);
+  L.row(2) = Eigen::Vector3d::UnitZ().transpose() / std::max(c.position_sigma_floor, c.vertical_sigma);
+  return L;
+}
+
+// The measured cuboid pose turned by a multiple of 90 degrees about its z axis (with length
+// and width swapped on odd turns) to be closest to the predicted one: boxes look the same.
+std::pair<Pose, Eigen::Vector3d> closestCuboidSymmetry(const Cuboid& m, const Pose& predicted) {
+  std::pair<Pose, Eigen::Vector3d> best{m.pose, m.dims};
+  double best_angle = 1e9;
+  for (int k = 0; k < 4; ++k) {
+    Pose T = m.pose;
+    T.linear() = m.pose.linear() * rotZ(k * M_PI / 2);
+    const double angle = Eigen::AngleAxisd(predicted.linear().transpose() * T.linear()).angle();
+    if (angle < best_angle) {
+      best_angle = angle;
+      best.first = T;
+      best.second = k % 2 ? Eigen::Vector3d(m.dims.y(), m.dims.x(), m.dims.z()) : m.dims;
+    }
+  }
+  return best;
+}
+}  // namespace
+
+int Optimizer::addLandmark(const Object& w) {
+  Landmark lm;
+  lm.id = static_cast<std::int64_t>(landmarks_.size());
+  lm.class_id = w.class_id;
+  lm.shape = w.shape();
+  if (const auto* c = std::get_if<Cuboid>(&w.model)) {
+    lm.var = graph_.addVariable(BlockKind::Pose, toPoseBlock(c->pose).data(), true);
+    lm.dims_var = graph_.addVariable(BlockKind::Vector3, c->dims.data(), false);
+  } else if (const auto* c = std::get_if<Cylinder>(&w.model)) {
+    const Eigen::Vector3d axis = c->axis.normalized();
+    const double block[7] = {c->root.x(), c->root.y(), c->root.z(), axis.x(), axis.y(), axis.z(), c->radius};
+    lm.var = graph_.addVariable(BlockKind::Cylinder, block, true);
+    lm.length = c->length;
+  } else {
+    const auto& e = std::get<Ellipsoid>(w.model);
+    lm.var = graph_.addVariable(BlockKind::Vector3, e.centroid.data(), true);
+    lm.radius = e.radius;
+    lm.height = e.height;
+  }
+  landmarks_.push_back(lm);
+  const int index = static_cast<int>(landmarks_.size()) - 1;
+  grid_.move(index, w.position());
+  return index;
+}
+
+void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o, Landmark& lm) {
+  const double a = cfg_.ellipsoid_size_ema;
+  int factor = -1;
+  if (const auto* c = std::get_if<Cuboid>(&o.model)) {
+    const Pose predicted = T_w_b.inverse() * fromPoseBlock(graph_.value(lm.var));
+    const auto [pose, dims] = closestCuboidSymmetry(*c, predicted);
+    const double range = pose.translation().norm();
+    const double t_sigma = std::max({cfg_.position_sigma_floor, cfg_.range_sigma, cfg_.bearing_sigma * range});
+    PoseSigma sigma;
+    sigma << t_sigma, t_sigma, t_sigma, cfg_.cuboid_rotation_sigma, cfg_.cuboid_rotation_sigma, cfg_.cuboid_rotation_sigma;
+    factor = graph_.addFactor(cuboidFactor(pose, dims, sigma, Eigen::Vector3d::Constant(cfg_.cuboid_dims_sigma)),
+                              {pose_var, lm.var, lm.dims_var}, true);
+  } else if (const auto* c = std::get_if<Cylinder>(&o.model)) {
+    CylinderNoise n;
+    n.position_sqrt_info = rangeBearingSqrtInfo(c->root + 0.5 * c->length * c->axis.normalized(), cfg_);
+    n.along_axis_sigma = cfg_.cylinder_along_axis_sigma;
+    n.axis_sigma = cfg_.cylinder_axis_sigma;
+    n.radius_sigma = cfg_.cylinder_radius_sigma;
+    factor = graph_.addFactor(cylinderFactor(c->root, c->axis.normalized(), c->radius, n), {pose_var, lm.var}, true);
+    if (lm.observations > 0) lm.length = (1 - a) * lm.length + a * c->length;
+  } else {
+    const auto& e = std::get<Ellipsoid>(o.model);
+    factor = graph_.addFactor(
+        ellipsoidFactor(e.centroid, std::max(cfg_.position_sigma_floor, cfg_.range_sigma), cfg_.bearing_sigma),
+        {pose_var, lm.var}, true);
+    if (lm.observations > 0) {
+      lm.radius = (1 - a) * lm.radius + a * e.radius;
+      lm.height = (1 - a) * lm.height + a * e.height;
+    }
+  }
+  ++lm.observations;
+  lm.last_step = step_;
+  lm.seen.push_back({factor, pose_var, o});
+}
+
+void Optimizer::moveObservations(Landmark& from, Landmark& to) {
+  const int last_step = std::max(from.last_step, to.last_step);
+  for (const Observation& obs : from.seen) {
+    graph_.removeFactor(obs.factor);
+    addObservation(obs.pose_var, fromPoseBlock(graph_.value(obs.pose_var)), obs.body, to);
+  }
+  to.last_step = last_step;
+  from.seen.clear();
+  from.observations = 0;
+  from.alive = false;
+  graph_.removeVariable(from.var);
+  if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
+}
+
+int Optimizer::mergeDuplicates() {
+  int merged = 0;
+  std::vector<int> near;
+  for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+    if (!landmarks_[i].alive) continue;
+    const Object oi = landmarkObject(landmarks_[i]);
+    near.clear();
+    grid_.near(oi.position(), max_association_distance_, near);
+    for (int j : near) {
+      Landmark& a = landmarks_[i];
+      Landmark& b = landmarks_[j];
+      if (j <= static_cast<int>(i) || !b.alive || b.class_id != a.class_id) continue;
+      if (associationCost(landmarkObject(b), oi, classes_) < 0) continue;
+      bool shared = false;
+      for (const Observation& x : a.seen)
+        for (const Observation& y : b.seen) shared = shared || x.pose_var == y.pose_var;
+      if (shared) continue;
+      // The older landmark (lower index) keeps its id.
+      moveObservations(b, a);
+      ++merged;
+    }
+  }
+  merges_ += merged;
+  return merged;
+}
+
+Object Optimizer::landmarkObject(const Landmark& lm, const FactorGraph::Values* values) const {
+  const double* v = values ? (*values)[lm.var].data() : graph_.value(lm.var);
+  Object o;
+  o.id = lm.id;
+  o.class_id = lm.class_id;
+  o.num_observations = lm.observations;
+  switch (lm.shape) {
+    case Shape::Cuboid: {
+      const double* d = values ? (*values)[lm.dims_var].data() : graph_.value(lm.dims_var);
+      o.model = Cuboid{fromPoseBlock(v), Eigen::Vector3d(d[0], d[1], d[2])};
+      break;
+    }
+    case Shape::Cylinder:
+      o.model = Cylinder{{v[0], v[1], v[2]}, Eigen::Vector3d(v[3], v[4], v[5]).normalized(), v[6], lm.length};
+      break;
+    case Shape::Ellipsoid:
+      o.model = Ellipsoid{{v[0], v[1], v[2]}, lm.radius, lm.height};
+      break;
+  }
+  return o;
+}
+
+}  // namespace slide

@@ -1,0 +1,306 @@
+#include "backend/optimizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "backend/data_association.h"
+#include "backend/factors.h"
+#include "backend/pose_block.h"
+
+namespace slide {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+PoseSigma sigma6(double t, double r) {
+  PoseSigma s;
+  s << t, t, t, r, r, r;
+  return s;
+}
+}  // namespace
+
+Optimizer::Optimizer(BackendConfig config, ClassTable classes, int host_robot)
+    : cfg_(config), classes_(std::move(classes)), host_(host_robot), graph_(config.robust_loss_scale) {
+  robots_[host_].merged = true;
+  for (int id : classes_.ids()) max_association_distance_ = std::max(max_association_distance_, classes_.at(id).association_distance);
+  grid_ = backend::LandmarkGrid(std::max(4.0, max_association_distance_));
+}
+
+Optimizer::~Optimizer() = default;
+
+Pose Optimizer::poseOf(int var, const FactorGraph::Values* values) const {
+  return fromPoseBlock(values ? (*values)[var].data() : graph_.value(var));
+}
+
+const Optimizer::KeyPose* Optimizer::findKeyPose(int robot, int seq) const {
+  const auto it = robots_.find(robot);
+  if (it == robots_.end()) return nullptr;
+  const auto& list = it->second.keyposes;
+  const auto pos = std::lower_bound(list.begin(), list.end(), seq,
+                                    [&](int kp, int s) { return keyposes_[kp].seq < s; });
+  if (pos == list.end() || keyposes_[*pos].seq != seq) return nullptr;
+  return &keyposes_[*pos];
+}
+
+Vector6d Optimizer::odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const {
+  if (cfg_.use_message_sigma && !bridged && (b.odom_sigma.array() > 0).all()) return b.odom_sigma;
+  const double d = relative.translation().norm();
+  return sigma6(std::max(cfg_.odom_translation_floor, cfg_.odom_translation_per_m * d),
+                std::max(cfg_.odom_rotation_floor, cfg_.odom_rotation_per_m * d));
+}
+
+UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
+  const auto t0 = Clock::now();
+  UpdateResult r;
+  Robot& robot = robots_[b.robot];
+  const std::string problem = checkBundle(b, robot);
+  if (!problem.empty()) return reject(r, problem);
+  if (!robot.merged) {
+    robot.held[b.seq] = b;
+    r.accepted = r.held = true;
+    r.update_ms = msSince(t0);
+    return r;
+  }
+  std::vector<int> touched;
+  bool loop = false;
+  const int pose_var = insertBundle(b, r, touched, loop);
+  r.solve = solveAfterInsert(b.robot, pose_var, touched, loop, r);
+  r.accepted = true;
+  r.update_ms = msSince(t0);
+  return r;
+}
+
+int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector<int>& touched, bool& loop) {
+  Robot& robot = robots_[b.robot];
+  const std::vector<Object> objects = usableObjects(b, r);
+  Pose T_w_b;
+  int prev_var = -1;
+  Pose relative = b.relative_odom;
+  bool bridged = false;
+  if (robot.keyposes.empty()) {
+    T_w_b = robot.T_host_robot * b.odom_pose;
+  } else {
+    const KeyPose& last = keyposes_[robot.keyposes.back()];
+    prev_var = last.var;
+    if (b.seq != last.seq + 1) {
+      relative = last.odom_pose.inverse() * b.odom_pose;
+      bridged = true;
+      r.warnings.push_back("gap: robot " + std::to_string(b.robot) + " key poses " + std::to_string(last.seq + 1) + ".." +
+                           std::to_string(b.seq - 1) + " missing, bridged with odometry poses");
+    }
+    T_w_b = poseOf(prev_var) * relative;
+  }
+  const int var = graph_.addVariable(BlockKind::Pose, toPoseBlock(T_w_b).data(), false);
+  if (prev_var < 0) {
+    const PoseSigma s = b.robot == host_ ? sigma6(cfg_.prior_translation_sigma, cfg_.prior_rotation_sigma)
+                                         : sigma6(cfg_.peer_translation_sigma, cfg_.peer_rotation_sigma);
+    robot.anchor_factor = graph_.addFactor(posePriorFactor(T_w_b, s), {var}, false);
+  } else {
+    graph_.addFactor(relativePoseFactor(relative, odometrySigma(b, relative, bridged)), {prev_var, var}, false);
+  }
+  keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose});
+  robot.keyposes.push_back(static_cast<int>(keyposes_.size()) - 1);
+  ++step_;
+
+  // Association in the host frame against landmarks near each detection.
+  std::vector<Detection> world;
+  world.reserve(objects.size());
+  std::vector<int> near;
+  for (const Object& o : objects) {
+    const double sigma = std::max(cfg_.range_sigma, cfg_.bearing_sigma * o.position().head<2>().norm());
+    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * sigma});
+    grid_.near(world.back().object.position(), max_association_distance_ + world.back().slack + 1.0, near);
+  }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  std::vector<Object> candidate_objects;
+  candidate_objects.reserve(near.size());
+  for (int i : near) candidate_objects.push_back(landmarkObject(landmarks_[i]));
+  std::vector<LandmarkCandidate> candidates;
+  for (std::size_t k = 0; k < near.size(); ++k)
+    if (landmarks_[near[k]].alive) candidates.push_back({near[k], &candidate_objects[k]});
+  const std::vector<int> match = associateDetections(world, candidates, classes_);
+
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    int index = match[i];
+    if (index < 0) {
+      index = addLandmark(world[i].object);
+    } else if (step_ - landmarks_[index].last_step > cfg_.loop_gap) {
+      loop = true;
+    }
+    addObservation(var, T_w_b, objects[i], landmarks_[index]);
+    r.landmark_ids[objects[i].id] = landmarks_[index].id;
+    touched.push_back(index);
+  }
+  return var;
+}
+
+SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop,
+                                        UpdateResult& r) {
+  if (loop) full_pending_ = true;
+  const int since_full = step_ - last_full_step_;
+  if ((full_pending_ && since_full >= cfg_.min_full_gap) || since_full >= cfg_.full_every) {
+    r.full_solve = true;
+    return solveAll(cfg_.full_iterations);
+  }
+  std::vector<int> active;
+  const auto& kps = robots_[robot].keyposes;
+  for (int k = static_cast<int>(kps.size()) - 1; k >= 0 && k >= static_cast<int>(kps.size()) - cfg_.window_poses; --k)
+    active.push_back(keyposes_[kps[k]].var);
+  for (int i : touched) {
+    if (landmarks_[i].observations > cfg_.settled_observations) continue;
+    active.push_back(landmarks_[i].var);
+    if (landmarks_[i].dims_var >= 0) active.push_back(landmarks_[i].dims_var);
+  }
+  std::sort(active.begin(), active.end());
+  active.erase(std::unique(active.begin(), active.end()), active.end());
+  const SolveReport s = graph_.solveLocal(active, cfg_.local_iterations);
+  afterSolve(touched, false);
+  return s;
+}
+
+SolveReport Optimizer::fullSolve() {
+  SolveReport s = solveAll(cfg_.final_iterations);
+  for (int round = 0; round < 3 && mergeDuplicates() > 0; ++round) s = solveAll(cfg_.final_iterations);
+  return s;
+}
+
+SolveReport Optimizer::solveAll(int max_iterations) {
+  const SolveReport s = graph_.solveFull(max_iterations, cfg_.full_function_tolerance, cfg_.num_threads);
+  full_pending_ = false;
+  last_full_step_ = step_;
+  afterSolve({}, true);
+  if (max_iterations < cfg_.final_iterations && mergeDuplicates() > 0) afterSolve({}, true);
+  return s;
+}
+
+void Optimizer::afterSolve(const std::vector<int>& moved, bool all) {
+  if (all) {
+    for (std::size_t i = 0; i < landmarks_.size(); ++i)
+      if (landmarks_[i].alive) grid_.move(static_cast<int>(i), landmarkObject(landmarks_[i]).position());
+  } else {
+    for (int i : moved) grid_.move(i, landmarkObject(landmarks_[i]).position());
+  }
+}
+
+UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
+  const auto t0 = Clock::now();
+  UpdateResult r;
+  if (peer == host_) return reject(r, "bad transform: robot " + std::to_string(peer) + " is this robot");
+  if (!T_host_peer.matrix().allFinite()) return reject(r, "non-finite value: transform to robot " + std::to_string(peer));
+  Robot& robot = robots_[peer];
+  robot.T_host_robot = T_host_peer;
+  if (!robot.merged) {
+    robot.merged = true;
+    for (const auto& [seq, b] : robot.held) {
+      UpdateResult part;
+      if (!robot.keyposes.empty() && b.utime < keyposes_[robot.keyposes.back()].utime) {
+        reject(part, "timestamp out of order: robot " + std::to_string(peer) + " key pose " + std::to_string(seq));
+        continue;
+      }
+      std::vector<int> touched;
+      bool loop = false;
+      insertBundle(b, part, touched, loop);
+      r.warnings.insert(r.warnings.end(), part.warnings.begin(), part.warnings.end());
+    }
+    robot.held.clear();
+  } else if (!robot.keyposes.empty()) {
+    // Refinement: the anchor prior of the peer's first pose is replaced, not duplicated.
+    const KeyPose& first = keyposes_[robot.keyposes.front()];
+    graph_.removeFactor(robot.anchor_factor);
+    robot.anchor_factor = graph_.addFactor(
+        posePriorFactor(T_host_peer * first.odom_pose, sigma6(cfg_.peer_translation_sigma, cfg_.peer_rotation_sigma)),
+        {first.var}, false);
+  }
+  if (!robot.keyposes.empty()) {
+    r.full_solve = true;
+    r.solve = solveAll(cfg_.full_iterations);
+  }
+  r.accepted = true;
+  r.update_ms = msSince(t0);
+  return r;
+}
+
+UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b) {
+  const auto t0 = Clock::now();
+  UpdateResult r;
+  if (!T_a_b.matrix().allFinite()) return reject(r, "non-finite value: loop closure of robot " + std::to_string(robot));
+  const KeyPose* a = findKeyPose(robot, seq_a);
+  const KeyPose* b = findKeyPose(robot, seq_b);
+  if (!a || !b || seq_a == seq_b)
+    return reject(r, "unknown key pose: loop closure " + std::to_string(seq_a) + "-" + std::to_string(seq_b) +
+                         " of robot " + std::to_string(robot) + " names a key pose not in the graph");
+  const auto key = std::make_pair(robot, std::make_pair(seq_a, seq_b));
+  const auto it = loop_factors_.find(key);
+  if (it != loop_factors_.end()) graph_.removeFactor(it->second);
+  loop_factors_[key] = graph_.addFactor(
+      relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, true);
+  // A full solve now, or (rate-limited) as soon as min_full_gap key poses have passed.
+  full_pending_ = true;
+  if (step_ - last_full_step_ >= cfg_.min_full_gap) {
+    r.full_solve = true;
+    r.solve = solveAll(cfg_.full_iterations);
+  } else {
+    r.solve = graph_.solveLocal({a->var, b->var}, cfg_.local_iterations);
+  }
+  r.accepted = true;
+  r.update_ms = msSince(t0);
+  return r;
+}
+
+std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
+  std::vector<Object> out;
+  for (const Landmark& lm : landmarks_)
+    if (lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations)) out.push_back(landmarkObject(lm));
+  return out;
+}
+
+int Optimizer::numLandmarks(bool confirmed_only) const {
+  int n = 0;
+  for (const Landmark& lm : landmarks_) n += lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations);
+  return n;
+}
+
+std::vector<int> Optimizer::robots() const {
+  std::vector<int> out;
+  for (const auto& [id, r] : robots_)
+    if (r.merged) out.push_back(id);
+  return out;
+}
+
+bool Optimizer::merged(int robot) const {
+  const auto it = robots_.find(robot);
+  return it != robots_.end() && it->second.merged;
+}
+
+int Optimizer::numPeersMerged() const { return static_cast<int>(robots().size()) - 1; }
+
+int Optimizer::numHeld() const {
+  int n = 0;
+  for (const auto& [id, r] : robots_) n += static_cast<int>(r.held.size());
+  return n;
+}
+
+std::vector<TrajectoryPose> Optimizer::trajectory(int robot) const {
+  std::vector<TrajectoryPose> out;
+  const auto it = robots_.find(robot);
+  if (it == robots_.end()) return out;
+  for (int k : it->second.keyposes) out.push_back({keyposes_[k].seq, keyposes_[k].utime, poseOf(keyposes_[k].var)});
+  return out;
+}
+
+Optimizer::Batch Optimizer::solveBatch() const {
+  Batch b;
+  const auto t0 = Clock::now();
+  const FactorGraph::Values values = graph_.solveBatch(200, 1e-10, &b.report, cfg_.num_threads);
+  b.ms = msSince(t0);
+  for (const auto& [id, r] : robots_)
+    for (int k : r.keyposes) b.trajectories[id].push_back({keyposes_[k].seq, keyposes_[k].utime, poseOf(keyposes_[k].var, &values)});
+  for (const Landmark& lm : landmarks_)
+    if (lm.alive && lm.observations >= cfg_.min_observations) b.landmarks.push_back(landmarkObject(lm, &values));
+  return b;
+}
+
+}  // namespace slide

@@ -1,0 +1,151 @@
+#pragma once
+// The back-end of one robot: validates key-pose bundles (its own and, once an inter-robot
+// transform is known, its peers'), associates their objects with landmarks, grows the factor
+// graph and keeps it optimized incrementally (local solves per key pose, full solves on loop
+// closures and periodically). Everything is in the host robot's frame.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backend/backend_config.h"
+#include "backend/factor_graph.h"
+#include "backend/keypose_bundle.h"
+#include "backend/landmark_grid.h"
+#include "objects/class_table.h"
+
+namespace slide {
+
+struct TrajectoryPose {
+  int seq = 0;
+  std::int64_t utime = 0;
+  Pose pose = Pose::Identity();
+};
+
+struct UpdateResult {
+  bool accepted = false;
+  bool held = false;        // a peer bundle kept until that peer's transform arrives
+  std::string reason;       // why the input was rejected
+  std::vector<std::string> warnings;       // objects dropped from an accepted bundle, and why
+  std::vector<std::int64_t> landmark_ids;  // per input object: its landmark id, -1 if dropped
+  bool full_solve = false;
+  double update_ms = 0;     // wall time of the whole update
+  SolveReport solve;
+};
+
+class Optimizer {
+ public:
+  Optimizer(BackendConfig config, ClassTable classes, int host_robot);
+  ~Optimizer();
+
+  int hostRobot() const { return host_; }
+
+  // A key-pose bundle of the host (added at once) or of a peer (held until the peer's
+  // transform arrives, then added in the host frame).
+  UpdateResult addBundle(const KeyPoseBundle& bundle);
+  // T_host_peer maps the peer's frame into the host's. The first one merges the peer's held
+  // bundles; later ones replace it (the peer's anchor prior), never adding a second.
+  UpdateResult addRobotTransform(int peer, const Pose& T_host_peer);
+  // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
+  // A repeated (robot, seq_a, seq_b) replaces the earlier one.
+  UpdateResult addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b);
+  // Full solve to convergence over the whole graph (at most final_iterations).
+  SolveReport fullSolve();
+
+  // Landmarks in the host frame (ids are the landmark ids), confirmed ones or all.
+  std::vector<Object> landmarks(bool confirmed_only = true) const;
+  std::vector<int> robots() const;  // the host and every merged peer, ascending
+  std::vector<TrajectoryPose> trajectory(int robot) const;
+  bool merged(int robot) const;
+
+  int numKeyPoses() const { return static_cast<int>(keyposes_.size()); }
+  int numLandmarks(bool confirmed_only = true) const;
+  int numPeersMerged() const;
+  int numHeld() const;
+  int rejected() const { return rejected_; }
+  int merges() const { return merges_; }
+  const std::map<std::string, int>& rejections() const { return rejections_; }
+  double cost() const { return graph_.cost(); }
+  const FactorGraph& graph() const { return graph_; }
+
+  // The same graph solved from scratch (initial values, full convergence), as a baseline.
+  struct Batch {
+    double ms = 0;
+    SolveReport report;
+    std::map<int, std::vector<TrajectoryPose>> trajectories;
+    std::vector<Object> landmarks;  // confirmed
+  };
+  Batch solveBatch() const;
+
+ private:
+  struct KeyPose {
+    int robot, seq;
+    std::int64_t utime;
+    int var;
+    Pose odom_pose;
+  };
+  struct Observation {
+    int factor;
+    int pose_var;
+    Object body;  // the measurement, in the key pose's body frame
+  };
+  struct Landmark {
+    std::int64_t id;
+    bool alive = true;  // false once merged into another landmark
+    std::vector<Observation> seen;
+    int class_id;
+    Shape shape;
+    int var, dims_var = -1;
+    int observations = 0;
+    int last_step = -1;
+    double radius = 0, height = 0, length = 0;  // averages not in the graph
+  };
+  struct Robot {
+    bool merged = false;
+    Pose T_host_robot = Pose::Identity();
+    int anchor_factor = -1;
+    std::vector<int> keyposes;                // indices into keyposes_
+    std::map<int, KeyPoseBundle> held;        // by seq, before the transform
+  };
+
+  UpdateResult reject(UpdateResult r, const std::string& reason);
+  std::string checkBundle(const KeyPoseBundle& b, const Robot& robot) const;
+  std::vector<Object> usableObjects(const KeyPoseBundle& b, UpdateResult& r) const;
+  // Adds the pose, odometry and objects of an already validated bundle; returns the new
+  // pose's variable and fills `touched` with the landmarks it observed. Sets `loop` when one
+  // of them was last seen long ago.
+  int insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector<int>& touched, bool& loop);
+  int addLandmark(const Object& world);
+  void addObservation(int pose_var, const Pose& T_w_b, const Object& body_obj, Landmark& lm);
+  Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
+  Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
+  void afterSolve(const std::vector<int>& landmarks, bool all);
+  SolveReport solveAll(int max_iterations);
+  // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
+  // the poses): same class, associable, never seen from the same key pose. Returns merges.
+  int mergeDuplicates();
+  void moveObservations(Landmark& from, Landmark& to);
+  SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
+  const KeyPose* findKeyPose(int robot, int seq) const;
+  Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
+
+  BackendConfig cfg_;
+  ClassTable classes_;
+  int host_;
+  FactorGraph graph_;
+  std::vector<KeyPose> keyposes_;
+  std::vector<Landmark> landmarks_;
+  std::map<int, Robot> robots_;
+  std::map<std::pair<int, std::pair<int, int>>, int> loop_factors_;
+  backend::LandmarkGrid grid_;
+  double max_association_distance_ = 1.0;
+  int step_ = 0;                 // key poses inserted so far
+  int last_full_step_ = 0;
+  bool full_pending_ = false;
+  int rejected_ = 0;
+  int merges_ = 0;
+  std::map<std::string, int> rejections_;
+};
+
+}  // namespace slide

@@ -1,0 +1,56 @@
+// Relative pose and pose prior functors.
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/numeric_diff_cost_function.h>
+
+#include "backend/factors.h"
+#include "backend/se3_jet.h"
+
+namespace slide {
+
+namespace {
+
+struct RelativePoseError {
+  RelativePoseError(const Pose& m, const PoseSigma& sigma)
+      : q_m(m.linear()), t_m(m.translation()), inv_sigma(sigma.cwiseInverse()) {}
+
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* residual) const {
+    const jet::Vec6<T> e = jet::relativePoseError(a, b, q_m, t_m);
+    for (int i = 0; i < 6; ++i) residual[i] = e[i] * inv_sigma[i];
+    return true;
+  }
+
+  Eigen::Quaterniond q_m;
+  Eigen::Vector3d t_m;
+  Vector6d inv_sigma;
+};
+
+struct PosePriorError {
+  PosePriorError(const Pose& m, const PoseSigma& sigma) : between(m, sigma) {}
+
+  template <typename T>
+  bool operator()(const T* pose, T* residual) const {
+    const T origin[7] = {T(0), T(0), T(0), T(0), T(0), T(0), T(1)};
+    return between(origin, pose, residual);
+  }
+
+  RelativePoseError between;
+};
+
+}  // namespace
+
+ceres::CostFunction* relativePoseFactor(const Pose& measured_a_b, const PoseSigma& sigma, Differentiation d) {
+  auto* f = new RelativePoseError(measured_a_b, sigma);
+  if (d == Differentiation::Numeric)
+    return new ceres::NumericDiffCostFunction<RelativePoseError, ceres::CENTRAL, 6, 7, 7>(f);
+  return new ceres::AutoDiffCostFunction<RelativePoseError, 6, 7, 7>(f);
+}
+
+ceres::CostFunction* posePriorFactor(const Pose& measured, const PoseSigma& sigma, Differentiation d) {
+  auto* f = new PosePriorError(measured, sigma);
+  if (d == Differentiation::Numeric)
+    return new ceres::NumericDiffCostFunction<PosePriorError, ceres::CENTRAL, 6, 7>(f);
+  return new ceres::AutoDiffCostFunction<PosePriorError, 6, 7>(f);
+}
+
+}  // namespace slide

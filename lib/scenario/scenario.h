@@ -1,0 +1,78 @@
+#pragma once
+// Graph-level scenarios for the back-end: ground-truth landmarks and robot paths turned into
+// noisy key-pose bundles (what a front-end would deliver), as plain C++ structs. Each robot's
+// odometry frame is its own first pose: bundle 0 has odom_pose = identity, and
+// ScenarioRobot::truth[0] maps that frame into the world.
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "backend/keypose_bundle.h"
+#include "objects/object.h"
+
+namespace slide {
+
+// Measurement and odometry noise of a simulated robot.
+struct ScenarioNoise {
+  double range_sigma = 0.1;       // metres, on the range to an object's centre
+  double bearing_sigma = 0.05;    // radians, on azimuth and elevation
+  double odom_fraction = 0.01;    // translation sigma per axis as a fraction of the step
+  double odom_yaw_per_m = 0.001;  // yaw sigma per metre of step (radians)
+  double odom_tilt_per_m = 0.0002;  // roll/pitch sigma per metre (trusted IMU)
+  double yaw_sigma = 0.05;        // cuboid heading
+  double axis_sigma = 0.02;       // cylinder axis tilt
+  double size_sigma = 0.03;       // radius, height, dims
+  double range = 15.0;            // sensor range (horizontal distance to the object centre)
+  int max_objects = 20;           // nearest objects reported per key pose
+};
+
+struct ScenarioRobot {
+  int id = 0;
+  std::vector<Pose> truth;              // true key poses in the world frame
+  std::vector<KeyPoseBundle> bundles;   // noisy, in the robot's odometry frame
+  std::vector<std::vector<int>> seen;   // per bundle and object: index into Scenario::landmarks
+};
+
+struct Scenario {
+  std::string name;
+  std::vector<Object> landmarks;        // true landmarks in the world frame (id = index)
+  std::vector<ScenarioRobot> robots;    // robots[0] is the host
+  ScenarioNoise noise;
+};
+
+// Key poses spaced evenly along a 2-D polyline at height z, heading along the path.
+std::vector<Pose> pathAlongWaypoints(const std::vector<Eigen::Vector2d>& waypoints, int num_poses, double z = 0.0);
+
+// Drives `truth` past `landmarks` and records noisy bundles stamped from `utime0` (0.1 s apart).
+ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::vector<Object>& landmarks,
+                            const ScenarioNoise& noise, std::mt19937& rng, std::int64_t utime0 = 0);
+
+// An intra-robot loop closure as a place-recognition stage would report it once key pose
+// seq_b exists: the pose of seq_b's body in seq_a's body, with noise.
+struct ScenarioLoopClosure {
+  int robot = 0;
+  int seq_a = 0, seq_b = 0;
+  Pose T_a_b = Pose::Identity();
+};
+
+// Loop closures of one robot: whenever it is within `radius` of a true pose at least
+// `min_gap` key poses older, at most one per `every` key poses; noise in metres / radians.
+std::vector<ScenarioLoopClosure> simulateLoopClosures(const ScenarioRobot& robot, double radius = 4.0,
+                                                      int min_gap = 150, int every = 50, double metres = 0.05,
+                                                      double radians = 0.005, std::uint32_t seed = 7);
+
+// Indoor: 10 x 20 m room, 150 key poses, 70 furniture ellipsoids, range 4 m.
+Scenario makeIndoorScenario(std::uint32_t seed = 1);
+// Urban: 200 x 200 m, 300 key poses over 715 m, 250 cars/poles/other, range 15 m.
+Scenario makeUrbanScenario(std::uint32_t seed = 2);
+// Forest: 400 x 400 m, 1000 key poses over 1430 m in two loops sharing a re-driven edge,
+// 860 trunks within 15 m of the path, range 15 m.
+Scenario makeForestScenario(std::uint32_t seed = 3);
+// KITTI: the real LiDAR path of a sequence (poses file, KITTI camera layout) cut into
+// `num_robots` consecutive robots, key poses every `spacing` metres, observing the real pole
+// map (csv "x,y") as cylinders within 20 m. Throws IoError / std::runtime_error on bad files.
+Scenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
+                           int num_robots = 3, double spacing = 2.0, std::uint32_t seed = 5);
+
+}  // namespace slide

@@ -1,0 +1,168 @@
+#include "scenario_run.h"
+
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "backend/optimizer.h"
+#include "eval/ate.h"
+
+namespace slide {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double cpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+Pose perturb(const Pose& T, double metres, double degrees, std::mt19937& rng) {
+  std::normal_distribution<double> g(0, 1);
+  const Pose D = poseFromXyzYaw(metres * g(rng), metres * g(rng), 0.3 * metres * g(rng), degrees * M_PI / 180 * g(rng));
+  return T * D;
+}
+
+// Estimated poses of every robot next to the true ones (in the host's frame).
+struct Pairs {
+  std::vector<Pose> est, ref;
+};
+
+void collect(const Scenario& s, const std::map<int, std::vector<TrajectoryPose>>& est, Pairs& out) {
+  const Pose host0_inv = s.robots[0].truth.front().inverse();
+  for (const ScenarioRobot& r : s.robots) {
+    const auto it = est.find(r.id);
+    if (it == est.end()) continue;
+    for (const TrajectoryPose& p : it->second) {
+      out.est.push_back(p.pose);
+      out.ref.push_back(host0_inv * r.truth[p.seq]);
+    }
+  }
+}
+
+double landmarkError(const Object& est, const Object& truth) {
+  if (est.shape() == Shape::Cylinder && truth.shape() == Shape::Cylinder)
+    return (std::get<Cylinder>(est.model).root - std::get<Cylinder>(truth.model).root).head<2>().norm();
+  return (est.position() - truth.position()).norm();
+}
+}  // namespace
+
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch) {
+  ScenarioRunResult out;
+  Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
+  std::mt19937 rng(11);
+  std::map<std::int64_t, std::map<int, int>> votes;  // landmark id -> true index -> count
+  std::size_t longest = 0;
+  for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
+  std::map<int, Pose> given;  // last transform given per peer
+  std::map<int, std::map<int, std::vector<ScenarioLoopClosure>>> closures;  // robot -> seq_b -> closures
+  for (const auto& r : s.robots)
+    for (const auto& lc : simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
+  int objects = 0;
+  for (std::size_t k = 0; k < longest; ++k) {
+    for (const ScenarioRobot& r : s.robots) {
+      if (k >= r.bundles.size()) continue;
+      const double c0 = cpuMs();
+      const UpdateResult u = opt.addBundle(r.bundles[k]);
+      const double cpu = cpuMs() - c0;
+      objects += static_cast<int>(r.bundles[k].objects.size());
+      if (!u.accepted) ++out.rejected;
+      if (!u.held) {
+        out.update_ms.push_back(u.update_ms);
+        out.update_cpu_ms.push_back(cpu);
+      }
+      out.full_solves += u.full_solve;
+      for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
+        if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
+      if (!opt.merged(r.id)) continue;
+      for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
+        const double c1 = cpuMs();
+        const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
+        out.update_cpu_ms.push_back(cpuMs() - c1);
+        out.update_ms.push_back(l.update_ms);
+        out.full_solves += l.full_solve;
+        ++out.loop_closures;
+      }
+    }
+    for (std::size_t p = 1; p < s.robots.size(); ++p) {
+      const bool first = k == longest / 2, refine = k == 3 * longest / 4;
+      if (!first && !refine) continue;
+      const Pose truth = s.robots[0].truth.front().inverse() * s.robots[p].truth.front();
+      given[s.robots[p].id] = first ? perturb(truth, 0.3, 1.0, rng) : perturb(truth, 0.05, 0.2, rng);
+      const double c0 = cpuMs();
+      const UpdateResult u = opt.addRobotTransform(s.robots[p].id, given[s.robots[p].id]);
+      out.update_cpu_ms.push_back(cpuMs() - c0);
+      // Ids of landmarks the merged bundles joined are not reported per object; votes come
+      // from later updates.
+      out.update_ms.push_back(u.update_ms);
+      out.full_solves += u.full_solve;
+    }
+  }
+  const auto t0 = Clock::now();
+  const double c0 = cpuMs();
+  opt.fullSolve();
+  out.final_solve_cpu_ms = cpuMs() - c0;
+  out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  out.incremental_cost = opt.cost();
+  out.keyposes = opt.numKeyPoses();
+  out.objects_per_keypose = static_cast<double>(objects) / std::max(1, out.keyposes);
+
+  std::map<int, std::vector<TrajectoryPose>> est;
+  for (int r : opt.robots()) est[r] = opt.trajectory(r);
+  Pairs pairs;
+  collect(s, est, pairs);
+  const AteResult ate = absoluteTrajectoryError(pairs.est, pairs.ref, Alignment::Se3);
+  out.ate_m = ate.rmse;
+
+  // Raw odometry, each robot placed by the transform it was given.
+  Pairs odom;
+  for (const ScenarioRobot& r : s.robots) {
+    const Pose T = r.id == s.robots[0].id ? Pose::Identity() : given.count(r.id) ? given[r.id] : Pose::Identity();
+    if (r.id != s.robots[0].id && !given.count(r.id)) continue;
+    for (std::size_t k = 0; k < r.bundles.size(); ++k) {
+      odom.est.push_back(T * r.bundles[k].odom_pose);
+      odom.ref.push_back(s.robots[0].truth.front().inverse() * r.truth[k]);
+    }
+  }
+  out.odom_ate_m = absoluteTrajectoryError(odom.est, odom.ref, Alignment::Se3).rmse;
+
+  // Landmarks: each confirmed one against the true landmark most of its detections came from.
+  const std::vector<Object> lms = opt.landmarks(true);
+  out.landmarks = static_cast<int>(lms.size());
+  double sq = 0;
+  int n = 0;
+  const Pose host_to_world = s.robots[0].truth.front();
+  for (const Object& lm : lms) {
+    const auto it = votes.find(lm.id);
+    if (it == votes.end()) continue;
+    int best = -1, count = 0;
+    for (const auto& [i, c] : it->second)
+      if (c > count) best = i, count = c;
+    const double e = landmarkError(transformObject(host_to_world * ate.alignment.T, lm), s.landmarks[best]);
+    sq += e * e;
+    ++n;
+  }
+  out.landmark_rmse_m = n ? std::sqrt(sq / n) : 0;
+  std::vector<char> seen(s.landmarks.size(), 0);
+  for (const auto& r : s.robots)
+    for (const auto& list : r.seen)
+      for (int i : list) seen[i] = 1;
+  for (char c : seen) out.true_landmarks_seen += c;
+
+  if (with_batch) {
+    const double cb = cpuMs();
+    const Optimizer::Batch b = opt.solveBatch();
+    out.batch_cpu_ms = cpuMs() - cb;
+    out.batch_ms = b.ms;
+    out.batch_cost = b.report.final_cost;
+    Pairs bp;
+    collect(s, b.trajectories, bp);
+    out.batch_ate_m = absoluteTrajectoryError(bp.est, bp.ref, Alignment::Se3).rmse;
+  }
+  return out;
+}
+
+}  // namespace slide
