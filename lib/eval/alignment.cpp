@@ -6,6 +6,24 @@
 
 namespace slide {
 
+Alignment parseAlignment(const std::string& name) {
+  if (name == "none") return Alignment::None;
+  if (name == "se3") return Alignment::Se3;
+  if (name == "sim3") return Alignment::Sim3;
+  if (name == "yaw") return Alignment::Yaw4Dof;
+  throw std::invalid_argument("alignment must be none, se3, sim3 or yaw, got '" + name + "'");
+}
+
+const char* alignmentName(Alignment a) {
+  switch (a) {
+    case Alignment::None: return "none";
+    case Alignment::Se3: return "se3";
+    case Alignment::Sim3: return "sim3";
+    case Alignment::Yaw4Dof: return "yaw";
+  }
+  return "?";
+}
+
 AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& ref,
                       Alignment mode) {
   if (est.size() != ref.size()) throw std::invalid_argument("align: point sets differ in size");

@@ -1,6 +1,7 @@
 #pragma once
 // Rigid alignment of corresponding point sets, as trajectory evaluation needs it:
 // Umeyama's closed form (SE(3) or Sim(3)) and a yaw-only (x, y, z, yaw) variant.
+#include <string>
 #include <vector>
 
 #include "geometry/pose.h"
@@ -8,6 +9,10 @@
 namespace slide {
 
 enum class Alignment { None, Se3, Sim3, Yaw4Dof };
+
+// "none", "se3", "sim3" or "yaw" (x, y, z, yaw); throws std::invalid_argument otherwise.
+Alignment parseAlignment(const std::string& name);
+const char* alignmentName(Alignment a);
 
 struct AlignmentResult {
   Pose T = Pose::Identity();  // maps estimate points into the reference frame

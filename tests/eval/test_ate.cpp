@@ -50,3 +50,9 @@ TEST(Ate, Sim3RecoversScale) {
   EXPECT_NEAR(r.rmse, 0, 1e-9);
   EXPECT_GT(absoluteTrajectoryError(est, square(), Alignment::Se3).rmse, 1.0);
 }
+
+TEST(Alignment, NamesRoundTrip) {
+  for (Alignment a : {Alignment::None, Alignment::Se3, Alignment::Sim3, Alignment::Yaw4Dof})
+    EXPECT_EQ(parseAlignment(alignmentName(a)), a);
+  EXPECT_THROW(parseAlignment("se2"), std::invalid_argument);
+}

@@ -1,0 +1,56 @@
+#include "eval/stage_timing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "bench/stats.h"
+#include "io/io_error.h"
+
+namespace slide {
+
+std::vector<StageTiming> stageTimings(const std::map<std::string, std::vector<double>>& samples) {
+  std::vector<StageTiming> out;
+  for (const auto& [stage, v] : samples) {
+    if (v.empty()) continue;
+    StageTiming t;
+    t.stage = stage;
+    t.count = v.size();
+    t.median = median(v);
+    t.p99 = quantile(v, 0.99);
+    t.mean = mean(v);
+    t.max = *std::max_element(v.begin(), v.end());
+    out.push_back(t);
+  }
+  return out;
+}
+
+std::map<std::string, std::vector<double>> readStageSamples(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path, "cannot open file");
+  std::map<std::string, std::vector<double>> out;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream s(line);
+    std::string a, b, extra;
+    s >> a >> b >> extra;
+    const std::string stage = b.empty() ? "all" : a;
+    const std::string num = b.empty() ? a : b;
+    double v = 0;
+    std::size_t used = 0;
+    try {
+      v = std::stod(num, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != num.size() || !std::isfinite(v) || !extra.empty())
+      throw IoError(path, "line " + std::to_string(n) + ": expected 'stage value' or 'value', got '" + line + "'");
+    out[stage].push_back(v);
+  }
+  return out;
+}
+
+}  // namespace slide

@@ -1,0 +1,11 @@
+#pragma once
+// Colours for robots (trajectories, map outlines) that stay apart from the class colours.
+#include "plot/canvas.h"
+
+namespace slide {
+
+Rgb robotColour(int robot);
+// c scaled towards black (f < 1) or white (f > 1, up to 2).
+Rgb shadeColour(Rgb c, double f);
+
+}  // namespace slide

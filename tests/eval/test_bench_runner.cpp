@@ -1,0 +1,67 @@
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "report/json.h"
+
+using namespace slide;
+namespace fs = std::filesystem;
+
+// Runs ./slide bench on fake suites (one good, one failing, one writing broken JSON, one
+// writing none, one absent) and checks the merged JSON and the Markdown report.
+TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
+  const fs::path dir = fs::temp_directory_path() / ("slide_bench_runner_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "bin");
+  const fs::path fake = fs::path(SLIDE_BINARY_DIR) / "tests" / "eval" / "fake_bench_suite";
+  ASSERT_TRUE(fs::exists(fake)) << fake;
+  for (const char* name : {"good", "failing", "badjson", "nojson"})
+    fs::create_symlink(fake, dir / "bin" / (std::string("slide-bench-") + name));
+
+  const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
+                          (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench good failing absent badjson nojson --out '" +
+                          (dir / "out").string() + "' --json '" + (dir / "all.json").string() + "' > '" +
+                          (dir / "stdout.txt").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0) << "a failing or missing suite must fail the run";
+
+  const Json doc = readJsonFile((dir / "all.json").string());
+  const auto& suites = doc.find("suites")->asArray();
+  ASSERT_EQ(suites.size(), 5u);
+  auto suite = [&](std::size_t i, const char* field) -> const Json& { return *suites[i].find(field); };
+  EXPECT_EQ(suite(0, "suite").asString(), "good");
+  EXPECT_EQ(suite(0, "status").asString(), "ok");
+  ASSERT_EQ(suite(0, "results").asArray().size(), 2u);
+  const Json& ate = suite(0, "results").asArray()[0];
+  EXPECT_DOUBLE_EQ(ate.find("value")->asNumber(), 0.5);
+  EXPECT_DOUBLE_EQ(ate.find("paper")->asNumber(), 0.54);
+  EXPECT_TRUE(ate.find("pass")->asBool());
+  EXPECT_FALSE(suite(0, "results").asArray()[1].find("pass")->asBool());
+  EXPECT_EQ(suite(1, "status").asString(), "failed");
+  EXPECT_EQ(suite(1, "exit_code").asNumber(), 3);
+  EXPECT_EQ(suite(1, "results").asArray().size(), 2u);  // figures of a failed suite are kept
+  EXPECT_EQ(suite(2, "status").asString(), "missing");
+  EXPECT_EQ(suite(3, "status").asString(), "no-results");
+  EXPECT_NE(suite(3, "problem").asString().find("bad JSON"), std::string::npos);
+  EXPECT_EQ(suite(4, "status").asString(), "no-results");
+  EXPECT_GE(doc.find("total_wall_s")->asNumber(), 0.0);
+  EXPECT_EQ(doc.find("totals")->find("targets_met")->asNumber(), 2);
+
+  std::ifstream md_in(dir / "all.md");
+  ASSERT_TRUE(md_in) << "no Markdown report beside the JSON";
+  std::stringstream md;
+  md << md_in.rdbuf();
+  EXPECT_NE(md.str().find("| failing | failed | 3 |"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("| absent | missing |"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("| good.ate_m | 0.5 | m | <= 1 | 0.54 | pass |"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("| good.f1 | 0.7 |  | >= 0.8 | - | **FAIL** | 3 runs |"), std::string::npos) << md.str();
+  EXPECT_NE(md.str().find("total wall time"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "out" / "good.log"));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/kitti_poses.h"
+#include "io/tum_trajectory.h"
+#include "report/json.h"
+
+using namespace slide;
+namespace fs = std::filesystem;
+
+// slide-eval and slide-plot end to end on small TUM, KITTI and map files.
+class EvalCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("slide_eval_cli_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  int run(const std::string& tool, const std::string& args) const {
+    const std::string cmd = std::string(SLIDE_BINARY_DIR) + "/bin/" + tool + " " + args + " --log-level warn > '" +
+                            path("out.txt") + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string output() const {
+    std::ifstream in(path("out.txt"));
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  fs::path dir_;
+};
+
+TEST_F(EvalCli, AteOfTumAgainstKittiWithHandComputedError) {
+  // Reference: KITTI poses along x, one per frame (times = frame index). Estimate: TUM with
+  // the same stamps, every pose 0.3 m off in y except the first; no alignment -> rmse
+  // sqrt(3 * 0.09 / 4) = 0.2598.
+  std::vector<Pose> ref;
+  std::vector<StampedPose> est;
+  for (int i = 0; i < 4; ++i) {
+    ref.push_back(poseFromXyzYaw(i, 0, 0, 0));
+    est.push_back({double(i), poseFromXyzYaw(i, i ? 0.3 : 0.0, 0, 0)});
+  }
+  writeKittiPoses(path("ref.txt"), ref);
+  writeTum(path("est.tum"), est);
+  ASSERT_EQ(run("slide-eval", "ate " + path("est.tum") + " " + path("ref.txt") + " --align none --json " + path("a.json")), 0)
+      << output();
+  const Json j = readJsonFile(path("a.json"));
+  EXPECT_EQ(j.find("pairs")->asNumber(), 4);
+  EXPECT_NEAR(j.find("translation_m")->find("rmse")->asNumber(), std::sqrt(3 * 0.09 / 4), 1e-6);
+  EXPECT_NE(output().find("rmse 0.2598 m"), std::string::npos) << output();
+  // RPE over 1 frame: errors 0.3, 0, 0.
+  ASSERT_EQ(run("slide-eval", "rpe " + path("est.tum") + " " + path("ref.txt") + " --json " + path("r.json")), 0) << output();
+  EXPECT_NEAR(readJsonFile(path("r.json")).find("translation_m")->find("max")->asNumber(), 0.3, 1e-6);
+  // A bad file gives a clear error naming it, and exit code 1.
+  std::ofstream(path("bad.txt")) << "1 2 3\n";
+  EXPECT_EQ(run("slide-eval", "ate " + path("bad.txt") + " " + path("ref.txt")), 1);
+  EXPECT_NE(output().find(path("bad.txt")), std::string::npos) << output();
+}
+
+TEST_F(EvalCli, ObjectsTransformAndPlots) {
+  std::ofstream(path("gt.txt")) << "-2 0 0 0.8\n-2 10 0 0.8\n-1 5 5 2\n";
+  std::ofstream(path("est.txt")) << "-2 0.4 0 0.8\n-1 5 5.2 2\n3 40 40 1\n";
+  ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + " " + path("gt.txt") + " --json " + path("o.json")), 0)
+      << output();
+  const Json o = readJsonFile(path("o.json"));
+  EXPECT_NEAR(o.find("overall")->find("precision")->asNumber(), 2.0 / 3, 1e-9);
+  EXPECT_NEAR(o.find("overall")->find("recall")->asNumber(), 2.0 / 3, 1e-9);
+  EXPECT_NEAR(o.find("overall")->find("position_rmse_m")->asNumber(), std::sqrt((0.16 + 0.04) / 2), 1e-9);
+  // Placing the estimate 0.4 m back along x makes the car exact.
+  ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + "@-0.4,0,0,0 " + path("gt.txt") + " --json " + path("o2.json")),
+            0);
+  EXPECT_NEAR(readJsonFile(path("o2.json")).find("per_class")->asArray()[0].find("position_rmse_m")->asNumber(), 0.0,
+              1e-9);
+
+  ASSERT_EQ(run("slide-eval", "transform --est 1,2,0,10 --truth '1 2 0.5 0 0 0 1' --json " + path("t.json")), 0);
+  const Json t = readJsonFile(path("t.json"));
+  EXPECT_NEAR(t.find("translation_m")->asNumber(), 0.5, 1e-9);
+  EXPECT_NEAR(t.find("yaw_deg")->asNumber(), 10, 1e-9);
+
+  std::vector<StampedPose> traj;
+  for (int i = 0; i < 20; ++i) traj.push_back({0.1 * i, poseFromXyzYaw(0.5 * i, 0.1 * i, 0, 0)});
+  writeTum(path("traj.tum"), traj);
+  for (const char* out : {"map.png", "map.svg"}) {
+    ASSERT_EQ(run("slide-plot", "map --map " + path("est.txt") + " --gt-map " + path("gt.txt") + " --traj " +
+                                    path("traj.tum") + " --view oblique -o " + path(out)),
+              0)
+        << output();
+    EXPECT_GT(fs::file_size(path(out)), 1000u);
+  }
+  ASSERT_EQ(run("slide-plot", "ate " + path("traj.tum") + " " + path("traj.tum") + " -o " + path("ate.svg")), 0) << output();
+  EXPECT_GT(fs::file_size(path("ate.svg")), 1000u);
+  EXPECT_EQ(run("slide-plot", "map --map " + path("missing.txt") + " -o " + path("x.png")), 1);
+  EXPECT_NE(output().find("missing.txt"), std::string::npos);
+}

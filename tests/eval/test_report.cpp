@@ -1,0 +1,88 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "report/json.h"
+#include "report/suite_runs.h"
+
+using namespace slide;
+
+TEST(Json, ParsesAndDumpsRoundTrip) {
+  const Json j = parseJson(R"({"a": [1, 2.5, -3e2, true, false, null], "s": "x\"y\\z\u00e9\n", "o": {}})");
+  const auto& a = j.find("a")->asArray();
+  ASSERT_EQ(a.size(), 6u);
+  EXPECT_DOUBLE_EQ(a[1].asNumber(), 2.5);
+  EXPECT_DOUBLE_EQ(a[2].asNumber(), -300);
+  EXPECT_TRUE(a[3].asBool());
+  EXPECT_TRUE(a[5].isNull());
+  EXPECT_EQ(j.find("s")->asString(), "x\"y\\z\xc3\xa9\n");
+  EXPECT_TRUE(j.find("o")->isObject());
+  const Json back = parseJson(j.dump());
+  EXPECT_EQ(back.dump(0), j.dump(0));
+  EXPECT_EQ(Json(std::nan("")).dump(), "null");
+  EXPECT_EQ(Json(3).dump(), "3");
+}
+
+TEST(Json, ErrorsGiveLineAndColumn) {
+  try {
+    parseJson("{\n  \"a\": [1, 2,]\n}", "f.json");
+    FAIL();
+  } catch (const JsonError& e) {
+    EXPECT_NE(std::string(e.what()).find("f.json: line 2, column 14"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parseJson("{\"a\": 1} x"), JsonError);
+  EXPECT_THROW(parseJson("\"unterminated"), JsonError);
+  EXPECT_THROW(parseJson("01x"), JsonError);
+  EXPECT_THROW(parseJson(""), JsonError);
+  EXPECT_THROW(parseJson("[1,]"), JsonError);
+  EXPECT_THROW(Json(1.0).asString(), JsonError);
+}
+
+TEST(SuiteResults, ParsesTheBenchmarkConvention) {
+  const Json doc = parseJson(R"({"suite": "backend", "results": [
+    {"name": "forest.update_ms.median", "value": 3.2, "unit": "ms", "target": 5.0, "paper": 36.46, "better": "lower"},
+    {"name": "forest.f1", "value": null, "unit": "", "better": "higher"}]})");
+  const auto r = parseSuiteResults(doc, "b.json");
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].name, "forest.update_ms.median");
+  EXPECT_DOUBLE_EQ(*r[0].target, 5.0);
+  EXPECT_DOUBLE_EQ(*r[0].paper, 36.46);
+  EXPECT_TRUE(r[0].lower_is_better);
+  EXPECT_TRUE(std::isnan(r[1].value));
+  EXPECT_FALSE(r[1].lower_is_better);
+  EXPECT_FALSE(r[1].target.has_value());
+  EXPECT_THROW(parseSuiteResults(parseJson(R"({"results": [{"value": 1}]})"), "x.json"), JsonError);
+  EXPECT_THROW(parseSuiteResults(parseJson(R"({"results": [{"name": "a", "value": 1, "better": "up"}]})"), "x.json"),
+               JsonError);
+  EXPECT_THROW(parseSuiteResults(parseJson(R"({"suite": "a"})"), "x.json"), JsonError);
+}
+
+TEST(SuiteResults, MarkdownMarksPassAndFail) {
+  SuiteRun run;
+  run.suite = "place";
+  BenchResult ok;
+  ok.name = "kitti05.slidematch.trans_err_m";
+  ok.value = 0.2;
+  ok.unit = "m";
+  ok.target = 0.5;
+  ok.paper = 0.245;
+  BenchResult bad = ok;
+  bad.name = "kitti05.slidematch.yaw_err_deg";
+  bad.value = 7;
+  bad.unit = "deg";
+  bad.target = 5;
+  run.results = {ok, bad};
+  SuiteRun missing;
+  missing.suite = "team";
+  missing.status = SuiteRun::Status::Missing;
+  missing.problem = "no executable";
+  const std::string md = markdownReport({run, missing}, {12.5, "2026-01-01T00:00:00Z", "host", "./slide bench"});
+  EXPECT_NE(md.find("| kitti05.slidematch.trans_err_m | 0.2 | m | <= 0.5 | 0.245 | pass |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| kitti05.slidematch.yaw_err_deg | 7 | deg | <= 5 | 0.245 | **FAIL** |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| team | missing | - |"), std::string::npos) << md;
+  EXPECT_NE(md.find("total wall time: 12.5 s"), std::string::npos) << md;
+  const Json j = combinedJson({run, missing}, {12.5, "", "", ""});
+  EXPECT_EQ(j.find("totals")->find("targets")->asNumber(), 2);
+  EXPECT_EQ(j.find("totals")->find("targets_met")->asNumber(), 1);
+  EXPECT_EQ(j.find("totals")->find("missing")->asNumber(), 1);
+}

@@ -1,0 +1,98 @@
+# help: run the benchmark suites (all, or those named) into one JSON file and a Markdown report
+BENCH_KNOWN_SUITES=(frontend backend place team system sim)
+
+bench_usage() {
+  cat <<USAGE
+usage: ./slide bench [SUITE...] [--json FILE] [--out DIR] [--timeout SECONDS]
+Runs each benchmark suite program build/bin/slide-bench-SUITE with --json, one after the
+other, then merges their figures into one JSON file and a Markdown report beside it (same
+name, .md) with value, target, paper and pass/fail per figure and the wall times.
+Without SUITE: ${BENCH_KNOWN_SUITES[*]}, plus any other slide-bench-* present.
+A suite whose program is missing is reported as missing; a suite that fails is reported with
+its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
+  --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>)
+  --json FILE     merged JSON (default: DIR/bench.json); the report is FILE with .md
+  --timeout S     stop a suite after S seconds (reported as failed, exit code 124);
+                  default 1800, 0 for none
+Environment: SLIDE_BENCH_BIN (where the suite programs are, default build/bin),
+SLIDE_NO_BUILD=1 (do not build first).
+USAGE
+}
+
+main() {
+  if wants_help "$@"; then
+    bench_usage
+    return 0
+  fi
+  local suites=() json="" out="" timeout_s=1800
+  while [[ $# -gt 0 ]]; do
+    case "$1" in
+      --json) [[ $# -ge 2 ]] || die "bench: --json needs a FILE"; json="$2"; shift 2 ;;
+      --out) [[ $# -ge 2 ]] || die "bench: --out needs a DIR"; out="$2"; shift 2 ;;
+      --timeout) [[ $# -ge 2 && "$2" =~ ^[0-9]+$ ]] || die "bench: --timeout needs whole seconds"; timeout_s="$2"; shift 2 ;;
+      -*) die "bench: unknown option $1 (see ./slide bench --help)" ;;
+      *) [[ "$1" =~ ^[A-Za-z0-9_]+$ ]] || die "bench: bad suite name '$1'"; suites+=("$1"); shift ;;
+    esac
+  done
+  [[ -n "${SLIDE_NO_BUILD:-}" ]] || ensure_built
+  local bench_bin="${SLIDE_BENCH_BIN:-$SLIDE_BIN}"
+  local report_tool="$SLIDE_BIN/slide-benchmark-report"
+  [[ -x "$report_tool" ]] || die "bench: $report_tool is not built (run ./slide setup)"
+
+  if [[ ${#suites[@]} -eq 0 ]]; then
+    suites=("${BENCH_KNOWN_SUITES[@]}")
+    local exe name known
+    for exe in "$bench_bin"/slide-bench-*; do
+      [[ -x "$exe" ]] || continue
+      name="${exe##*/slide-bench-}"
+      known=0
+      for s in "${suites[@]}"; do [[ "$s" == "$name" ]] && known=1; done
+      [[ $known -eq 1 ]] || suites+=("$name")
+    done
+  fi
+
+  local started stamp
+  started=$(date -u +%Y-%m-%dT%H:%M:%SZ)
+  stamp=$(date -u +%Y%m%d-%H%M%S)
+  [[ -n "$out" ]] || out="$SLIDE_BUILD/bench/$stamp"
+  mkdir -p "$out" || die "bench: cannot create $out"
+  out=$(cd "$out" && pwd)
+  [[ -n "$json" ]] || json="$out/bench.json"
+  mkdir -p "$(dirname "$json")" || die "bench: cannot create the directory of $json"
+  local md="${json%.json}.md"
+  [[ "$md" != "$json" ]] || md="$json.md"
+  local manifest="$out/manifest.tsv"
+  : > "$manifest"
+
+  local t_all t0 t1 code suite exe suite_json log
+  t_all=$(date +%s%N)
+  for suite in "${suites[@]}"; do
+    exe="$bench_bin/slide-bench-$suite"
+    suite_json="$out/$suite.json"
+    log="$out/$suite.log"
+    rm -f "$suite_json"
+    if [[ ! -x "$exe" ]]; then
+      log "suite $suite: MISSING ($exe not found)"
+      printf '%s\tmissing\t0\t\t\n' "$suite" >> "$manifest"
+      continue
+    fi
+    log "suite $suite: running $exe --json $suite_json"
+    t0=$(date +%s%N)
+    set +e
+    if [[ "$timeout_s" -gt 0 ]]; then
+      timeout "$timeout_s" "$exe" --json "$suite_json" 2>&1 | tee "$log"
+    else
+      "$exe" --json "$suite_json" 2>&1 | tee "$log"
+    fi
+    code=${PIPESTATUS[0]}
+    set -e
+    t1=$(date +%s%N)
+    [[ $code -eq 0 ]] || log "suite $suite: FAILED with exit code $code (log: $log)"
+    printf '%s\t%s\t%s\t%s\t%s\n' "$suite" "$code" "$(((t1 - t0) / 1000000))" "$suite_json" "$log" >> "$manifest"
+  done
+  local total_ms=$((($(date +%s%N) - t_all) / 1000000))
+  local total_s
+  total_s=$(printf '%d.%03d' $((total_ms / 1000)) $((total_ms % 1000)))
+  "$report_tool" --manifest "$manifest" --json "$json" --markdown "$md" --total-wall-s "$total_s" \
+    --started "$started" --host "$(hostname)" --command "./slide bench ${suites[*]}"
+}

@@ -1,0 +1,141 @@
+// slide-eval transform, bandwidth and timing.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "eval/bandwidth.h"
+#include "eval/rpe.h"
+#include "eval/stage_timing.h"
+#include "eval/trajectory_file.h"
+#include "eval/transform_error.h"
+
+namespace slide {
+
+namespace {
+// A transform as 4 numbers (x y z yaw_deg), 7 (x y z qx qy qz qw) or 12 (3x4 row-major),
+// separated by commas or spaces, given inline or as the content of a file.
+Pose parseTransform(const std::string& arg, const char* what) {
+  std::string text = arg;
+  if (std::ifstream f(arg); f) {
+    std::ostringstream s;
+    s << f.rdbuf();
+    text = s.str();
+  }
+  for (char& c : text)
+    if (c == ',') c = ' ';
+  std::istringstream s(text);
+  std::vector<double> v;
+  std::string tok;
+  while (s >> tok) {
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(tok, &used));
+      if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::exception&) {
+      throw std::invalid_argument(std::string(what) + ": '" + tok + "' is not a number");
+    }
+  }
+  if (v.size() == 4) return poseFromXyzYaw(v[0], v[1], v[2], v[3] * M_PI / 180);
+  if (v.size() == 7) return poseFromPositionQuaternion({v[0], v[1], v[2]}, Eigen::Quaterniond(v[6], v[3], v[4], v[5]));
+  if (v.size() == 12 || v.size() == 16) {
+    Pose T = Pose::Identity();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) T.matrix()(r, c) = v[r * 4 + c];
+    const Eigen::Matrix3d R = T.linear();
+    if (!(R.transpose() * R).isApprox(Eigen::Matrix3d::Identity(), 1e-4) || R.determinant() < 0)
+      throw std::invalid_argument(std::string(what) + ": the 3x3 part is not a rotation");
+    return T;
+  }
+  throw std::invalid_argument(std::string(what) + ": expected 4 (x y z yaw_deg), 7 (x y z qx qy qz qw) or 12 (3x4) numbers, got " +
+                              std::to_string(v.size()));
+}
+}  // namespace
+
+EvalCommand addTransformCommand(CLI::App* cmd) {
+  auto est = std::make_shared<std::string>();
+  auto truth = std::make_shared<std::string>();
+  cmd->add_option("--est", *est, "Estimated transform: 'x,y,z,yaw_deg', 'x y z qx qy qz qw', 3x4 matrix, or a file")
+      ->required();
+  cmd->add_option("--truth", *truth, "True transform, same forms")->required();
+  return [=] {
+    const Pose E = parseTransform(*est, "--est"), T = parseTransform(*truth, "--truth");
+    const TransformError e = transformError(E, T);
+    std::printf("transform error: translation %.4f m, yaw %.4f deg, rotation %.4f deg\n", e.translation_m, e.yaw_deg,
+                e.rotation_deg);
+    Json j;
+    j.set("metric", "transform");
+    j.set("translation_m", e.translation_m);
+    j.set("yaw_deg", e.yaw_deg);
+    j.set("rotation_deg", e.rotation_deg);
+    return j;
+  };
+}
+
+EvalCommand addBandwidthCommand(CLI::App* cmd) {
+  struct Args {
+    double bytes = -1, metres = -1;
+    std::size_t landmarks = 0;
+    std::vector<std::string> trajs;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--bytes", a->bytes, "Bytes sent (or received)")->required();
+  cmd->add_option("--landmarks", a->landmarks, "Landmarks in the exchanged map");
+  cmd->add_option("--metres", a->metres, "Distance travelled");
+  cmd->add_option("--traj", a->trajs, "Trajectories (TUM/KITTI) whose path lengths add up to the distance");
+  return [=] {
+    double metres = a->metres;
+    if (!a->trajs.empty()) {
+      metres = 0;
+      for (const auto& t : a->trajs) {
+        std::vector<Pose> poses;
+        for (const auto& p : readTrajectory(t)) poses.push_back(p.pose);
+        metres += pathLength(poses);
+      }
+    }
+    const BandwidthFigures f = bandwidthFigures(a->bytes, a->landmarks, std::max(0.0, metres));
+    std::printf("bandwidth: %.0f bytes, %.1f bytes per landmark (%zu landmarks), %.1f bytes per metre (%.1f m)\n", f.bytes,
+                f.bytes_per_landmark, a->landmarks, f.bytes_per_metre, std::max(0.0, metres));
+    Json j;
+    j.set("metric", "bandwidth");
+    j.set("bytes", f.bytes);
+    j.set("landmarks", a->landmarks);
+    j.set("metres", std::max(0.0, metres));
+    j.set("bytes_per_landmark", f.bytes_per_landmark);
+    j.set("bytes_per_metre", f.bytes_per_metre);
+    return j;
+  };
+}
+
+EvalCommand addTimingCommand(CLI::App* cmd) {
+  auto files = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("files", *files, "Files of 'stage value' lines (or one value a line), values in ms")
+      ->required()
+      ->check(CLI::ExistingFile);
+  return [=] {
+    std::map<std::string, std::vector<double>> samples;
+    for (const auto& f : *files)
+      for (auto& [stage, v] : readStageSamples(f)) samples[stage].insert(samples[stage].end(), v.begin(), v.end());
+    std::printf("  %-24s %8s %10s %10s %10s %10s\n", "stage", "count", "median", "p99", "mean", "max");
+    Json stages = Json::array();
+    for (const StageTiming& t : stageTimings(samples)) {
+      std::printf("  %-24s %8zu %10.3f %10.3f %10.3f %10.3f\n", t.stage.c_str(), t.count, t.median, t.p99, t.mean, t.max);
+      Json s;
+      s.set("stage", t.stage);
+      s.set("count", t.count);
+      s.set("median", t.median);
+      s.set("p99", t.p99);
+      s.set("mean", t.mean);
+      s.set("max", t.max);
+      stages.push(s);
+    }
+    Json j;
+    j.set("metric", "timing");
+    j.set("stages", stages);
+    return j;
+  };
+}
+
+}  // namespace slide
