@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
   Options opts;
   CommonOptions common;
   addCommonOptions(app, common);
-  app.add_option("--run", opts.run_dir, "Run folder with logs/robot<N>.lcmlog and logs/team.lcmlog")->required();
+  app.add_option("--run", opts.run_dir, "Run folder with logs/robot<N>.lcmlog (robot bus) and logs/team<N>.lcmlog (team bus on robot N's host)")->required();
   app.add_option("--data", opts.data_dir, "Simulator output folder (robot<N>/, objects.csv)")->required();
   app.add_option("--out", opts.out_dir, "Report folder (default RUN/report)");
   app.add_option("--robots", opts.robots, "Robot ids")->delimiter(',')->capture_default_str();
@@ -184,12 +184,17 @@ int main(int argc, char** argv) {
     }
 
     std::int64_t team_bytes = 0, team_msgs = 0;
-    const std::string team_log = opts.run_dir + "/logs/team.lcmlog";
-    if (fs::exists(team_log))
-      for (const auto& [ch, t] : readTraffic(team_log)) {
-        team_bytes += t.bytes;
-        team_msgs += t.messages;
+    for (int a : opts.robots) {
+      const std::string team_log = opts.run_dir + "/logs/team" + std::to_string(a) + ".lcmlog";
+      if (!fs::exists(team_log)) {
+        spdlog::warn("{}: missing, robot {}'s team traffic is not counted", team_log, a);
+        continue;
       }
+      const TeamTraffic t = readTeamTraffic(team_log, a);
+      if (t.undecodable) spdlog::warn("{}: {} team messages failed to decode", team_log, t.undecodable);
+      team_bytes += t.bytes;
+      team_msgs += t.messages;
+    }
     double metres = 0;
     for (const RobotTruth& r : truth.robots) metres += r.path_length_m;
     std::size_t max_landmarks = 0;

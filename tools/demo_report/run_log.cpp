@@ -8,6 +8,9 @@
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
 #include "slide/optimizer_status_t.hpp"
+#include "slide/sync_ack_t.hpp"
+#include "slide/sync_chunk_t.hpp"
+#include "slide/sync_heartbeat_t.hpp"
 #include "slide/trajectory_t.hpp"
 
 namespace slide {
@@ -60,14 +63,34 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
   return out;
 }
 
-std::map<std::string, ChannelTraffic> readTraffic(const std::string& path) {
+TeamTraffic readTeamTraffic(const std::string& path, int robot) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw std::runtime_error(path + ": cannot open LCM log");
-  std::map<std::string, ChannelTraffic> out;
+  TeamTraffic out;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    ChannelTraffic& c = out[ev->channel];
-    c.bytes += ev->datalen;
-    ++c.messages;
+    int sender = -1;
+    bool ok = false;
+    if (ev->channel == "TEAM_HEARTBEAT") {
+      sync_heartbeat_t m;
+      ok = decode(ev, m);
+      sender = m.sender;
+    } else if (ev->channel == "TEAM_CHUNK") {
+      sync_chunk_t m;
+      ok = decode(ev, m);
+      sender = m.sender;
+    } else if (ev->channel == "TEAM_ACK") {
+      sync_ack_t m;
+      ok = decode(ev, m);
+      sender = m.sender;
+    } else {
+      continue;
+    }
+    if (!ok) {
+      ++out.undecodable;
+    } else if (sender == robot) {
+      out.bytes += ev->datalen;
+      ++out.messages;
+    }
   }
   return out;
 }

@@ -36,10 +36,12 @@ struct RobotRunLog {
 // Reads one robot bus log; messages that fail to decode are counted in `bad` and skipped.
 RobotRunLog readRobotLog(const std::string& path, int robot, int& bad);
 
-// Total bytes and messages per channel of a log (the team bus: what crossed the network).
-struct ChannelTraffic {
-  std::int64_t bytes = 0, messages = 0;
+// Team-bus traffic a robot sent, from the team-bus log recorded on its own host: bytes and
+// messages of TEAM_HEARTBEAT / TEAM_CHUNK / TEAM_ACK whose sender is `robot`, so that summing
+// the hosts' figures counts every message once, at its sender.
+struct TeamTraffic {
+  std::int64_t bytes = 0, messages = 0, undecodable = 0;
 };
-std::map<std::string, ChannelTraffic> readTraffic(const std::string& path);
+TeamTraffic readTeamTraffic(const std::string& path, int robot);
 
 }  // namespace slide
