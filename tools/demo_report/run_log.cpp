@@ -73,15 +73,15 @@ TeamTraffic readTeamTraffic(const std::string& path, int robot) {
     if (ev->channel == "TEAM_HEARTBEAT") {
       sync_heartbeat_t m;
       ok = decode(ev, m);
-      sender = m.sender;
+      if (ok) sender = m.sender;
     } else if (ev->channel == "TEAM_CHUNK") {
       sync_chunk_t m;
       ok = decode(ev, m);
-      sender = m.sender;
+      if (ok) sender = m.sender;
     } else if (ev->channel == "TEAM_ACK") {
       sync_ack_t m;
       ok = decode(ev, m);
-      sender = m.sender;
+      if (ok) sender = m.sender;
     } else {
       continue;
     }
