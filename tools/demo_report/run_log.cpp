@@ -71,15 +71,15 @@ TeamTraffic readTeamTraffic(const std::string& path, int robot) {
     int sender = -1;
     bool ok = false;
     if (ev->channel == "TEAM_HEARTBEAT") {
-      sync_heartbeat_t m;
+      sync_heartbeat_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;
     } else if (ev->channel == "TEAM_CHUNK") {
-      sync_chunk_t m;
+      sync_chunk_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;
     } else if (ev->channel == "TEAM_ACK") {
-      sync_ack_t m;
+      sync_ack_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;
     } else {
