@@ -1,0 +1,266 @@
+// slide-demo-report: turns a team run (robot-bus and team-bus LCM logs) plus the simulator's
+// ground truth into figures, pictures and a Markdown report.
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "app/app.h"
+#include "bench/report.h"
+#include "bench/stats.h"
+#include "eval/ate.h"
+#include "eval/bandwidth.h"
+#include "eval/object_matching.h"
+#include "eval/time_association.h"
+#include "eval/transform_error.h"
+#include "objects/class_table.h"
+#include "plot/map_plot.h"
+#include "run_log.h"
+#include "team_truth.h"
+
+using namespace slide;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Options {
+  std::string run_dir, data_dir, out_dir, json, classes = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
+  std::vector<int> robots{0, 1, 2};
+  double wall_s = NAN;
+  double match_threshold = 1.0;
+  double visible_range = 10.0;
+};
+
+struct RobotFigures {
+  int robot = 0;
+  double ate = NAN, odom_ate = NAN;
+  std::size_t poses = 0, landmarks = 0, trajectories = 0;
+  ObjectMappingScore objects;
+  std::vector<std::pair<int, TransformError>> closures;  // per peer found
+  double update_ms_median = NAN, update_ms_p99 = NAN;
+  int keypose_bundles = 0, peer_bundles = 0;
+};
+
+// Ground-truth objects within `range` (horizontally) of any robot's true path: what the team
+// could have seen.
+std::vector<Object> visibleObjects(const TeamTruth& truth, double range) {
+  std::vector<Object> out;
+  for (const Object& o : truth.objects) {
+    bool seen = false;
+    for (const RobotTruth& r : truth.robots) {
+      for (const StampedPose& p : r.ground_truth)
+        if ((p.pose.translation() - o.position()).head<2>().norm() <= range) {
+          seen = true;
+          break;
+        }
+      if (seen) break;
+    }
+    if (seen) out.push_back(o);
+  }
+  return out;
+}
+
+std::vector<StampedPose> stamped(const LoggedTrajectory& t) {
+  std::vector<StampedPose> out;
+  for (std::size_t i = 0; i < t.t.size(); ++i) out.push_back({t.t[i], t.poses[i]});
+  return out;
+}
+
+std::vector<Eigen::Vector3d> positions(const std::vector<StampedPose>& traj, const Pose& T = Pose::Identity()) {
+  std::vector<Eigen::Vector3d> out;
+  for (const StampedPose& p : traj) out.push_back(T * p.pose.translation());
+  return out;
+}
+
+RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth, const std::vector<Object>& visible,
+                           const Options& opts) {
+  RobotFigures f;
+  f.robot = a;
+  f.landmarks = log.map.size();
+  f.trajectories = log.trajectories.size();
+  f.keypose_bundles = log.keypose_bundles;
+  f.peer_bundles = log.peer_bundles;
+  const RobotTruth& rt = truth.robot(a);
+  if (auto it = log.trajectories.find(a); it != log.trajectories.end() && it->second.poses.size() >= 3) {
+    const AssociatedPoses est = associatePoses(stamped(it->second), rt.ground_truth, 0.05, 0.0, 3);
+    f.poses = est.est.size();
+    f.ate = absoluteTrajectoryError(est.est, est.ref, Alignment::Se3).rmse;
+    // Raw odometry at the same instants, as the baseline.
+    std::vector<double> key_t(est.t.begin(), est.t.end());
+    std::vector<StampedPose> odom_at;
+    const AssociatedPoses od = associatePoses(rt.odometry, rt.ground_truth, 0.05, 0.0, 3);
+    std::vector<Pose> oe, orf;
+    for (std::size_t i = 0; i < od.t.size(); ++i)
+      for (double t : key_t)
+        if (std::abs(od.t[i] - t) < 1e-6) {
+          oe.push_back(od.est[i]);
+          orf.push_back(od.ref[i]);
+        }
+    if (oe.size() >= 3) f.odom_ate = absoluteTrajectoryError(oe, orf, Alignment::Se3).rmse;
+  }
+  std::vector<Object> in_world;
+  for (const Object& o : log.map) in_world.push_back(transformObject(rt.T_world_odom, o));
+  ObjectMatchOptions mo;
+  mo.threshold = opts.match_threshold;
+  mo.planar = true;
+  f.objects = scoreObjectMap(in_world, visible, mo);
+  for (const auto& [b, c] : log.closures) f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
+  if (!log.update_ms.empty()) {
+    f.update_ms_median = median(log.update_ms);
+    f.update_ms_p99 = quantile(log.update_ms, 0.99);
+  }
+  return f;
+}
+
+void plotRobot(int a, const RobotRunLog& log, const TeamTruth& truth, const std::vector<Object>& visible,
+               const ClassTable& classes, const std::string& out_base, View view) {
+  const Pose T_w_a = truth.robot(a).T_world_odom;
+  std::vector<PlotMap> maps;
+  maps.push_back({"ground truth", visible, -1, true});
+  PlotMap own{"robot" + std::to_string(a) + " merged map", {}, a, false};
+  for (const Object& o : log.map) own.objects.push_back(transformObject(T_w_a, o));
+  maps.push_back(own);
+  std::vector<PlotTrajectory> trajs;
+  for (const RobotTruth& r : truth.robots)
+    trajs.push_back({"robot" + std::to_string(r.robot) + " truth", positions(r.ground_truth), r.robot, true});
+  for (const auto& [b, t] : log.trajectories)
+    trajs.push_back({"robot" + std::to_string(b) + " estimate", positions(stamped(t), T_w_a), b, false});
+  MapPlotOptions po;
+  po.view = view;
+  po.title = "robot" + std::to_string(a) + ": merged map and all trajectories";
+  po.subtitle = "world frame via robot" + std::to_string(a) + "'s true start; dashed black = ground truth";
+  const Canvas c = plotMap(maps, trajs, classes, po);
+  c.write(out_base + ".png");
+  c.write(out_base + ".svg");
+}
+
+std::string num(double v, int prec = 3) {
+  if (!std::isfinite(v)) return "n/a";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(prec) << v;
+  return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Evaluate a team run: inter-robot transform errors, ATE, object precision/recall, bandwidth; "
+               "writes report.md, report.json and pictures",
+               "slide-demo-report"};
+  Options opts;
+  CommonOptions common;
+  addCommonOptions(app, common);
+  app.add_option("--run", opts.run_dir, "Run folder with logs/robot<N>.lcmlog (robot bus) and logs/team<N>.lcmlog (team bus on robot N's host)")->required();
+  app.add_option("--data", opts.data_dir, "Simulator output folder (robot<N>/, objects.csv)")->required();
+  app.add_option("--out", opts.out_dir, "Report folder (default RUN/report)");
+  app.add_option("--robots", opts.robots, "Robot ids")->delimiter(',')->capture_default_str();
+  app.add_option("--wall-s", opts.wall_s, "Wall time of the run, seconds (reported as demo.wall_s)");
+  app.add_option("--json", opts.json, "Write the figures as benchmark JSON (suite system)");
+  app.add_option("--classes", opts.classes, "Class table")->capture_default_str();
+  app.add_option("--match-threshold", opts.match_threshold, "Object match distance, metres")->capture_default_str();
+  app.add_option("--visible-range", opts.visible_range,
+                 "Ground-truth objects within this horizontal distance of a path count as observable")
+      ->capture_default_str();
+  return runApp(app, common, argc, argv, [&] {
+    if (opts.out_dir.empty()) opts.out_dir = opts.run_dir + "/report";
+    fs::create_directories(opts.out_dir);
+    const ClassTable classes = ClassTable::load(opts.classes);
+    const TeamTruth truth = readTeamTruth(opts.data_dir, opts.robots);
+    const std::vector<Object> visible = visibleObjects(truth, opts.visible_range);
+
+    std::vector<RobotFigures> figs;
+    for (int a : opts.robots) {
+      const std::string path = opts.run_dir + "/logs/robot" + std::to_string(a) + ".lcmlog";
+      int bad = 0;
+      const RobotRunLog log = readRobotLog(path, a, bad);
+      if (bad) spdlog::warn("{}: {} messages failed to decode", path, bad);
+      figs.push_back(evaluateRobot(a, log, truth, visible, opts));
+      const std::string base = opts.out_dir + "/robot" + std::to_string(a);
+      plotRobot(a, log, truth, visible, classes, base + "_top", View::top());
+      plotRobot(a, log, truth, visible, classes, base + "_oblique", View::oblique());
+    }
+
+    std::int64_t team_bytes = 0, team_msgs = 0;
+    for (int a : opts.robots) {
+      const std::string team_log = opts.run_dir + "/logs/team" + std::to_string(a) + ".lcmlog";
+      if (!fs::exists(team_log)) {
+        spdlog::warn("{}: missing, robot {}'s team traffic is not counted", team_log, a);
+        continue;
+      }
+      const TeamTraffic t = readTeamTraffic(team_log, a);
+      if (t.undecodable) spdlog::warn("{}: {} team messages failed to decode", team_log, t.undecodable);
+      team_bytes += t.bytes;
+      team_msgs += t.messages;
+    }
+    double metres = 0;
+    for (const RobotTruth& r : truth.robots) metres += r.path_length_m;
+    std::size_t max_landmarks = 0;
+    for (const RobotFigures& f : figs) max_landmarks = std::max(max_landmarks, f.landmarks);
+    const BandwidthFigures bw = bandwidthFigures(double(team_bytes), max_landmarks, metres);
+
+    std::vector<double> trans_err, yaw_err, ates, odom_ates, f1s, precisions, recalls;
+    std::size_t pairs_found = 0;
+    for (const RobotFigures& f : figs) {
+      for (const auto& [b, e] : f.closures) {
+        trans_err.push_back(e.translation_m);
+        yaw_err.push_back(e.yaw_deg);
+        ++pairs_found;
+      }
+      if (std::isfinite(f.ate)) ates.push_back(f.ate);
+      if (std::isfinite(f.odom_ate)) odom_ates.push_back(f.odom_ate);
+      f1s.push_back(f.objects.overall.f1);
+      precisions.push_back(f.objects.overall.precision);
+      recalls.push_back(f.objects.overall.recall);
+    }
+    const std::size_t pairs_possible = opts.robots.size() * (opts.robots.size() - 1);
+
+    BenchReport report("system");
+    if (std::isfinite(opts.wall_s)) report.add("demo.wall_s", opts.wall_s, "s", true, 300.0);
+    report.add("demo.inter_robot_trans_err_m", mean(trans_err), "m", true, 0.5, 0.54).note =
+        "mean over " + std::to_string(pairs_found) + " of " + std::to_string(pairs_possible) + " ordered pairs found";
+    report.add("demo.inter_robot_yaw_err_deg", mean(yaw_err), "deg", true, 2.0);
+    report.add("demo.pairs_found_fraction", pairs_possible ? double(pairs_found) / pairs_possible : 0.0, "", false, 1.0);
+    report.add("demo.ate_m", mean(ates), "m").note = "mean over robots of own-trajectory ATE (SE3 aligned)";
+    report.add("demo.odom_ate_m", mean(odom_ates), "m").note = "raw odometry at the same key poses";
+    report.add("demo.precision", mean(precisions), "", false, 0.95);
+    report.add("demo.recall", mean(recalls), "", false, 0.92);
+    report.add("demo.f1", mean(f1s), "", false);
+    report.add("demo.team_bytes", double(team_bytes), "bytes").note = std::to_string(team_msgs) + " team-bus messages";
+    report.add("demo.bytes_per_landmark", bw.bytes_per_landmark, "bytes", true, 200.0, 1800.0);
+    report.add("demo.bytes_per_metre", bw.bytes_per_metre, "bytes", true, 500.0, 1650.0);
+    report.printTable(std::cout);
+    report.writeJson(opts.out_dir + "/report.json");
+    if (!opts.json.empty()) report.writeJson(opts.json);
+
+    std::ofstream md(opts.out_dir + "/report.md");
+    md << "# Team run report\n\nRun: `" << opts.run_dir << "`; ground truth: `" << opts.data_dir << "`.\n\n";
+    md << "| figure | value | unit | target | paper |\n|---|---|---|---|---|\n";
+    for (const BenchResult& r : report.results())
+      md << "| " << r.name << " | " << num(r.value) << " | " << r.unit << " | " << (r.target ? num(*r.target) : "-")
+         << " | " << (r.paper ? num(*r.paper) : "-") << " |\n";
+    md << "\nObject scores count estimated landmarks (in the world through each robot's true start) against the "
+       << visible.size() << " static ground-truth objects within " << opts.visible_range
+       << " m of any robot's path, matched one-to-one within " << opts.match_threshold << " m (x, y).\n\n";
+    md << "## Per robot\n\n| robot | key poses | ATE m | odometry ATE m | landmarks | precision | recall | F1 | "
+          "trajectories held | bundles own / peers | update ms median / p99 |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const RobotFigures& f : figs)
+      md << "| " << f.robot << " | " << f.poses << " | " << num(f.ate) << " | " << num(f.odom_ate) << " | "
+         << f.landmarks << " | " << num(f.objects.overall.precision) << " | " << num(f.objects.overall.recall) << " | "
+         << num(f.objects.overall.f1) << " | " << f.trajectories << " | " << f.keypose_bundles << " / "
+         << f.peer_bundles << " | " << num(f.update_ms_median, 2) << " / " << num(f.update_ms_p99, 2) << " |\n";
+    md << "\n## Inter-robot transforms\n\n| robot | peer | translation error m | yaw error deg |\n|---|---|---|---|\n";
+    for (const RobotFigures& f : figs)
+      for (const auto& [b, e] : f.closures)
+        md << "| " << f.robot << " | " << b << " | " << num(e.translation_m) << " | " << num(e.yaw_deg, 2) << " |\n";
+    if (pairs_found == 0) md << "| - | - | no transform found | |\n";
+    md << "\n## Pictures\n\n";
+    for (int a : opts.robots)
+      md << "![robot" << a << "](robot" << a << "_top.png)\n![robot" << a << " oblique](robot" << a
+         << "_oblique.png)\n\n";
+    spdlog::info("report: {}/report.md", opts.out_dir);
+    return 0;
+  });
+}

@@ -1,0 +1,98 @@
+#include "run_log.h"
+
+#include <lcm/lcm-cpp.hpp>
+#include <stdexcept>
+
+#include "msg/convert.h"
+#include "slide/keypose_bundle_t.hpp"
+#include "slide/loop_closure_t.hpp"
+#include "slide/object_map_t.hpp"
+#include "slide/optimizer_status_t.hpp"
+#include "slide/sync_ack_t.hpp"
+#include "slide/sync_chunk_t.hpp"
+#include "slide/sync_heartbeat_t.hpp"
+#include "slide/trajectory_t.hpp"
+
+namespace slide {
+
+namespace {
+template <typename M>
+bool decode(const lcm::LogEvent* ev, M& m) {
+  return m.decode(ev->data, 0, ev->datalen) == ev->datalen;
+}
+}  // namespace
+
+RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw std::runtime_error(path + ": cannot open LCM log");
+  RobotRunLog out;
+  bad = 0;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    const std::string& ch = ev->channel;
+    if (ch == "OBJECT_MAP") {
+      object_map_t m;
+      if (!decode(ev, m)) { ++bad; continue; }
+      if (m.robot != robot) continue;
+      out.map.clear();
+      for (const object_t& o : m.objects) out.map.push_back(fromMsg(o));
+    } else if (ch == "TRAJECTORY") {
+      trajectory_t m;
+      if (!decode(ev, m)) { ++bad; continue; }
+      LoggedTrajectory t{m.robot, m.frame_robot, {}, {}};
+      for (int i = 0; i < m.num_poses; ++i) {
+        t.t.push_back(m.pose_utime[i] * 1e-6);
+        t.poses.push_back(fromMsg(m.poses[i]));
+      }
+      out.trajectories[m.robot] = t;
+    } else if (ch == "LOOP_CLOSURE") {
+      loop_closure_t m;
+      if (!decode(ev, m)) { ++bad; continue; }
+      if (m.robot_a != robot || m.robot_b == robot) continue;
+      out.closures[m.robot_b] = {m.robot_a, m.robot_b, m.num_inliers, poseFromXyzYaw(m.x, m.y, m.z, m.yaw),
+                                 m.method == loop_closure_t::SLIDEMATCH ? "slidematch" : "slidegraph"};
+    } else if (ch == "OPTIMIZER_STATUS") {
+      optimizer_status_t m;
+      if (!decode(ev, m)) { ++bad; continue; }
+      out.update_ms.push_back(m.update_ms);
+    } else if (ch == "KEYPOSE_BUNDLE") {
+      ++out.keypose_bundles;
+    } else if (ch == "PEER_BUNDLE") {
+      ++out.peer_bundles;
+    }
+  }
+  return out;
+}
+
+TeamTraffic readTeamTraffic(const std::string& path, int robot) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw std::runtime_error(path + ": cannot open LCM log");
+  TeamTraffic out;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    int sender = -1;
+    bool ok = false;
+    if (ev->channel == "TEAM_HEARTBEAT") {
+      sync_heartbeat_t m{};
+      ok = decode(ev, m);
+      if (ok) sender = m.sender;
+    } else if (ev->channel == "TEAM_CHUNK") {
+      sync_chunk_t m{};
+      ok = decode(ev, m);
+      if (ok) sender = m.sender;
+    } else if (ev->channel == "TEAM_ACK") {
+      sync_ack_t m{};
+      ok = decode(ev, m);
+      if (ok) sender = m.sender;
+    } else {
+      continue;
+    }
+    if (!ok) {
+      ++out.undecodable;
+    } else if (sender == robot) {
+      out.bytes += ev->datalen;
+      ++out.messages;
+    }
+  }
+  return out;
+}
+
+}  // namespace slide
