@@ -26,7 +26,7 @@ std::int64_t utimeNow() {
 }
 
 struct Channels {
-  std::string own_map = "MAP", peer_maps = "PEER_MAPS", trajectory = "TRAJECTORY", loop_closures = "LOOP_CLOSURES";
+  std::string own_map = "OBJECT_MAP", peer_maps = "PEER_MAP", trajectory = "TRAJECTORY", loop_closures = "LOOP_CLOSURE";
 };
 
 slide::ObjectMap mapFromMsg(const slide::object_map_t& m) {

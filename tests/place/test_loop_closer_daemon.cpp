@@ -58,7 +58,7 @@ TEST(LoopCloserDaemon, PublishesTheTransformBetweenTwoRobotsMaps) {
   lcm::LCM lcm(kUrl);
   ASSERT_TRUE(lcm.good());
   Collector c;
-  lcm.subscribe("LOOP_CLOSURES", &Collector::on, &c);
+  lcm.subscribe("LOOP_CLOSURE", &Collector::on, &c);
 
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 40);
@@ -78,8 +78,8 @@ TEST(LoopCloserDaemon, PublishesTheTransformBetweenTwoRobotsMaps) {
   const object_map_t own_msg = mapMsg(0, own), peer_msg = mapMsg(1, peer);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (c.got.empty() && std::chrono::steady_clock::now() < deadline) {
-    lcm.publish("MAP", &own_msg);  // repeated: the daemon may still be starting
-    lcm.publish("PEER_MAPS", &peer_msg);
+    lcm.publish("OBJECT_MAP", &own_msg);  // repeated: the daemon may still be starting
+    lcm.publish("PEER_MAP", &peer_msg);
     lcm.handleTimeout(300);
   }
   kill(pid, SIGTERM);

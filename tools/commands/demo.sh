@@ -34,7 +34,7 @@ main() {
   done
   [[ "$robots" =~ ^[1-9]$ ]] || die "demo: --robots must be 1..9 (got '$robots')"
   [[ $(id -u) -eq 0 ]] || die "demo needs root: it runs each robot in its own network namespace"
-  ensure_built
+  [[ -n "${SLIDE_NO_BUILD:-}" ]] || ensure_built
   out=${out:-$SLIDE_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}
   mkdir -p "$out"
   out=$(cd "$out" && pwd)
