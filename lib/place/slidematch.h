@@ -4,8 +4,9 @@
 // yaw of a grid (step chosen so that B's far landmarks move about one bin per step), every
 // class-consistent landmark pair votes for the translation it implies, which scores every
 // translation of the region at once (per-class lists, no pair of different classes is ever
-// looked at). Yaws are visited outward from zero and the time budget is checked after each
-// one: the search is anytime and returns the best so far. Fine stage: the best coarse cells
+// looked at). The search grows outward from the centre of the yaw range (0, +step, -step, ...;
+// every translation of the region at each yaw) and the time budget is checked after each yaw
+// and every 64 landmarks within one: it is anytime and returns the best so far. Fine stage: the best coarse cells
 // are rescored exactly (class-consistent matches within the position and size thresholds,
 // per-class bucket grid) on finer grids, then refined and verified like SlideGraph's result.
 #include "place/verify.h"
