@@ -19,7 +19,7 @@ struct SlideMatchParams {
   std::size_t max_coarse_bins = 4'000'000;  // bins of the voting grid; larger regions get coarser bins
   double min_yaw_step_deg = 0.5;  // bounds of the automatic yaw step
   double max_yaw_step_deg = 5.0;
-  std::size_t refine_candidates = 6;  // coarse peaks rescored on the fine grid
+  std::size_t refine_candidates = 12;  // coarse peaks rescored on the fine grid, verified best first
   std::size_t min_landmarks = 4;
   VerifyParams verify;
 };
