@@ -134,7 +134,10 @@ int main(int argc, char** argv) {
                  slide::methodName(params.method), url, ch.own_map, ch.peer_maps, ch.trajectory, ch.loop_closures);
     std::string last_reason;
     while (!g_stop) {
-      if (lcm.handleTimeout(100) < 0) throw std::runtime_error("LCM receive failed");
+      if (lcm.handleTimeout(100) < 0) {
+        if (g_stop) break;  // select() interrupted by the stop signal
+        throw std::runtime_error("LCM receive failed on '" + url + "'");
+      }
       for (const slide::LoopClosure& lc : closer.poll(nowS())) {
         const Eigen::Vector4d v = slide::xyzYawOf(lc.T_a_b);
         spdlog::info("robot {} <- robot {}{}: {} ({} inliers, {:.1f} ms): x {:.3f} y {:.3f} z {:.3f} yaw {:.2f} deg",

@@ -10,7 +10,8 @@ namespace slide {
 
 class ClassGrid {
  public:
-  // `cell` should be about the query radius; positions are used as given (xy only).
+  // `cell` should be about the query radius; positions are used as given (xy only). The grid
+  // refers to `lms`, which must outlive it.
   ClassGrid(const std::vector<Landmark>& lms, double cell);
 
   // Index of the nearest landmark of class `class_id` within r (xy) of p whose size agrees

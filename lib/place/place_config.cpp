@@ -59,6 +59,8 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     read(n, "use_classes", c.slidegraph.use_classes);
     read(n, "min_votes", c.slidegraph.min_votes);
     read(n, "hypotheses", c.slidegraph.hypotheses);
+    read(n, "small_map", c.slidegraph.small_map);
+    read(n, "retry_tolerance_scale", c.slidegraph.retry_tolerance_scale);
     read(n, "min_voted", c.slidegraph.min_voted);
     read(n, "min_landmarks", c.slidegraph.min_landmarks);
     positive(n, "descriptor_radius", c.slidegraph.descriptor_radius);

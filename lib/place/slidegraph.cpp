@@ -73,6 +73,26 @@ std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, con
 }  // namespace
 
 PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
+  PlaceResult res = slideGraphOnce(a, b, params);
+  if (res.found || a.size() > params.small_map || b.size() > params.small_map || params.retry_tolerance_scale <= 1.0 ||
+      res.associations == 0)
+    return res;
+  SlideGraphParams loose = params;
+  loose.descriptor_radius *= params.retry_tolerance_scale;
+  loose.clipper.consistency.sigma *= params.retry_tolerance_scale;
+  loose.clipper.consistency.epsilon *= params.retry_tolerance_scale;
+  PlaceResult retry = slideGraphOnce(a, b, loose);
+  retry.ms += res.ms;
+  retry.cpu_ms += res.cpu_ms;
+  retry.stage_cpu_ms.insert(retry.stage_cpu_ms.begin(), res.stage_cpu_ms.begin(), res.stage_cpu_ms.end());
+  if (retry.found) return retry;
+  res.ms = retry.ms;
+  res.cpu_ms = retry.cpu_ms;
+  res.stage_cpu_ms = retry.stage_cpu_ms;
+  return res;
+}
+
+PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = threadCpuMs();
   double cpu_mark = cpu0;
@@ -115,7 +135,8 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   stage("consistency_graph");
   res.clipper_edges = graph.numEdges();
   std::vector<char> active(assoc.size(), 1);
-  PlaceResult first;
+  const bool small = a.size() <= params.small_map && b.size() <= params.small_map;
+  PlaceResult first, best;
   for (int h = 0; h < std::max(1, params.hypotheses); ++h) {
     const ClipperResult cl = solveClipper(graph, params.clipper, &active);
     stage("clipper");
@@ -139,14 +160,19 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
       trial.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
     }
     stage("verify");
-    if (trial.found) {
+    // Large maps: the first accepted set wins. Small maps (cheap): every hypothesis is
+    // verified and the one with most inliers wins, as a small alias can pass the test too.
+    if (trial.found && (!small || h + 1 >= std::max(1, params.hypotheses))) {
+      if (best.found && best.inliers.size() >= trial.inliers.size()) break;
       res = std::move(trial);
       return finish();
     }
+    if (trial.found && (!best.found || trial.inliers.size() > best.inliers.size())) best = trial;
     if (h == 0) first = trial;
     if (cl.selected.size() < params.verify.min_inliers) break;  // later sets are no denser
     for (std::size_t k : cl.selected) active[k] = 0;
   }
+  if (best.found) first = best;
   first.stage_cpu_ms = res.stage_cpu_ms;
   first.clipper_edges = res.clipper_edges;
   first.clipper_peak_bytes = res.clipper_peak_bytes;

@@ -17,6 +17,10 @@ struct SlideGraphParams {
   bool use_classes = true;                // vertex classes must agree
   std::size_t min_landmarks = 4;          // per map
   int hypotheses = 3;                     // CLIPPER sets tried (each without the previous ones)
+  // Small maps (both at most this many landmarks) that give no transform are tried once more
+  // with descriptor radius, CLIPPER sigma and epsilon scaled up (noisy real maps; cheap there).
+  std::size_t small_map = 200;
+  double retry_tolerance_scale = 1.6;
   ClipperParams clipper;
   VerifyParams verify;
 };
@@ -24,5 +28,7 @@ struct SlideGraphParams {
 // T_a_b mapping B's frame into A's, or no transform with the reason. Inlier indices refer to
 // the landmark vectors.
 PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params);
+// One attempt with exactly these tolerances (slideGraph() adds the small-map retry).
+PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params);
 
 }  // namespace slide

@@ -113,7 +113,11 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     const float c = static_cast<float>(std::cos(yaw)), s = static_cast<float>(std::sin(yaw));
     std::fill(acc.begin(), acc.end(), 0);
     const float inv = static_cast<float>(1.0 / bin), fx0 = static_cast<float>(tx0), fy0 = static_cast<float>(ty0);
-    for (const Landmark& l : b) {
+    bool out_of_time = false;
+    for (std::size_t jb = 0; jb < b.size() && !out_of_time; ++jb) {
+      // Very large maps: the budget is also checked within a yaw (the first yaw always completes).
+      if (k > 0 && jb % 64 == 63 && elapsed() > params.budget_ms) out_of_time = true;
+      const Landmark& l = b[jb];
       const auto it = a_by_class.find(l.class_id);
       if (it == a_by_class.end()) continue;
       const float qx = c * static_cast<float>(l.p.x()) - s * static_cast<float>(l.p.y());
@@ -123,8 +127,13 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
       const float ox = -qx - fx0, oy = -qy - fy0;
       for (std::size_t i = 0; i < xs.size(); ++i) {
         const long ix = static_cast<long>((xs[i] + ox) * inv), iy = static_cast<long>((ys[i] + oy) * inv);
-        ++acc[iy * nx + ix];  // always inside: the region covers every pair's translation
+        // The region covers every pair's translation; the check guards float rounding.
+        if (ix >= 0 && ix < nx && iy >= 0 && iy < ny) ++acc[iy * nx + ix];
       }
+    }
+    if (out_of_time) {
+      res.budget_exhausted = true;
+      break;
     }
     // Peak of 2x2 bin sums (a true peak straddles bin borders).
     Candidate best;

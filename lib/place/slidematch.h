@@ -4,8 +4,9 @@
 // yaw of a grid (step chosen so that B's far landmarks move about one bin per step), every
 // class-consistent landmark pair votes for the translation it implies, which scores every
 // translation of the region at once (per-class lists, no pair of different classes is ever
-// looked at). Yaws are visited outward from zero and the time budget is checked after each
-// one: the search is anytime and returns the best so far. Fine stage: the best coarse cells
+// looked at). The search grows outward from the centre of the yaw range (0, +step, -step, ...;
+// every translation of the region at each yaw) and the time budget is checked after each yaw
+// and every 64 landmarks within one: it is anytime and returns the best so far. Fine stage: the best coarse cells
 // are rescored exactly (class-consistent matches within the position and size thresholds,
 // per-class bucket grid) on finer grids, then refined and verified like SlideGraph's result.
 #include "place/verify.h"
@@ -18,7 +19,7 @@ struct SlideMatchParams {
   std::size_t max_coarse_bins = 4'000'000;  // bins of the voting grid; larger regions get coarser bins
   double min_yaw_step_deg = 0.5;  // bounds of the automatic yaw step
   double max_yaw_step_deg = 5.0;
-  std::size_t refine_candidates = 6;  // coarse peaks rescored on the fine grid
+  std::size_t refine_candidates = 12;  // coarse peaks rescored on the fine grid, verified best first
   std::size_t min_landmarks = 4;
   VerifyParams verify;
 };

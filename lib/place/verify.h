@@ -11,7 +11,7 @@ struct VerifyParams {
   double size_tolerance = 1.0;     // metres, see sizesAgree()
   std::size_t min_inliers = 5;     // fewer matches never make a transform
   double min_inlier_ratio = 0.3;   // of B's landmarks that land where A has landmarks
-  double significance = 4.0;       // inliers >= chance + significance * sqrt(chance)
+  double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
 };

@@ -177,6 +177,49 @@ ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const 
   return s;
 }
 
+AliasFigures aliasedRooms(unsigned seed, PlaceMethod method, const PlaceConfig& config, const ConsensusParams& consensus,
+                          int attempts) {
+  std::mt19937 rng(seed);
+  World room = indoorWorld(1, 1, rng);
+  World w = room;
+  for (Landmark l : room) {  // the twin room, 10 m further along x
+    l.p.x() += 10.0;
+    l.index = w.size();
+    w.push_back(l);
+  }
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 4; ++k) {  // what tells the rooms apart: a few objects only in the second
+    Landmark l;
+    l.class_id = 0;
+    l.p = {11.0 + 6.0 * u(rng), 1.0 + 6.0 * u(rng), 0.5};
+    l.size = {0.6, 0.6, 1.0};
+    l.index = w.size();
+    w.push_back(l);
+  }
+  const RobotMap a = observe(w, [](const Landmark&) { return true; }, randomFrame({9, 4}, 3, rng), {0.03, 0.03, 0.0}, rng);
+  const Pose T_w_b = randomFrame({14, 4}, 3, rng);
+  const Pose truth = a.T_w_r.inverse() * T_w_b;
+  ConsensusFilter filter(consensus);
+  AliasFigures f;
+  for (int k = 0; k < attempts; ++k) {
+    const RobotMap b = observe(w, [](const Landmark& l) { return l.p.x() > 9.0; }, T_w_b, {0.05, 0.05, 0.3}, rng);
+    const PlaceResult r = recognizePlace(method, a.lms, b.lms, config);
+    ++f.attempts;
+    if (!r.found) continue;
+    ++f.raw_found;
+    const auto wrong = [&](const Pose& T) {
+      const TransformError e = transformError(T, truth);
+      return e.trans_m > 1.0 || e.yaw_deg > 2.0;
+    };
+    f.raw_wrong += wrong(r.T_a_b);
+    const ConsensusFilter::Update up = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
+    if (up.outcome == ConsensusFilter::Outcome::Pending) continue;
+    ++f.published;
+    f.published_wrong += wrong(up.T);
+  }
+  return f;
+}
+
 Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod method, const PlaceConfig& config) {
   std::vector<Landmark> maps[3];
   for (int i = 0; i < 3; ++i) maps[i] = readReal(data_dir, set, i);

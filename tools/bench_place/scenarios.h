@@ -3,6 +3,7 @@
 // of running a method over them.
 #include <map>
 
+#include "place/consensus_filter.h"
 #include "place/place_config.h"
 #include "worlds.h"
 
@@ -44,6 +45,15 @@ struct ClipperStress {
   double ms = 0;
 };
 ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const ClipperParams& params, unsigned seed);
+
+// Two identical rooms side by side (perfect alias) plus a few objects only in the second; A
+// maps both, B re-maps the second room `attempts` times (new noise and missed objects each
+// time). Raw results and the consensus filter's held transform are scored against the truth.
+struct AliasFigures {
+  int attempts = 0, raw_found = 0, raw_wrong = 0, published = 0, published_wrong = 0;
+};
+AliasFigures aliasedRooms(unsigned seed, PlaceMethod method, const PlaceConfig& config, const ConsensusParams& consensus,
+                          int attempts);
 
 // Real robot maps: T01 * T12 * T20 for the three robots of `set`; false when a link is missing.
 struct Cycle {
