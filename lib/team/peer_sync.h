@@ -99,6 +99,7 @@ class PeerSyncNode {
   void sendMap(Micros now, TickOutput& out);
   void sendBundles(Micros now, TickOutput& out);
   void forgetKnown(Peer& p);
+  std::optional<Pose> odomOf(std::int32_t origin, std::int32_t seq) const;  // held bundle's odometry pose
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
