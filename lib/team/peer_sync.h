@@ -113,6 +113,7 @@ class PeerSyncNode {
   DropCounts drops_{};
   std::map<std::int32_t, Peer> peers_;
   Micros next_heartbeat_;
+  Micros counters_saved_at_ = 0;
 
   std::optional<SharedMap> own_map_;
   Bytes own_map_data_;
