@@ -127,16 +127,19 @@ int main(int argc, char** argv) {
   std::int32_t robot = 0;
   std::string state_dir, robot_url, team_url, team_key;
   double run_for_s = 0;
-  app.add_option("--config", config_path, "Peer-sync configuration (YAML)")->capture_default_str();
+  app.add_option("--config", config_path, "Peer-sync configuration (YAML; or a shared file with a peer_sync section)")
+      ->capture_default_str();
   app.add_option("--robot", robot, "This robot's id (must be in the config's team list)")->required();
   app.add_option("--state-dir", state_dir, "Folder for journal and counters (default: config state_dir/robot<id>)");
-  app.add_option("--robot-url", robot_url, "LCM URL of the robot bus (default: config robot_url)");
+  app.add_option("--robot-url,--lcm-url", robot_url, "LCM URL of the robot bus (default: config robot_url)");
   app.add_option("--team-url", team_url, "LCM URL of the team bus (default: config team_url)");
   app.add_option("--team-key", team_key, "Team HMAC key (default: config team_key)");
   app.add_option("--run-for", run_for_s, "Exit after this many seconds (0: until SIGINT/SIGTERM)");
 
   return runApp(app, common, argc, argv, [&]() {
-    const ConfigNode cfg = ConfigNode::load(config_path);
+    // Either a peer-sync file, or a shared file with a `peer_sync:` section.
+    const ConfigNode root = ConfigNode::load(config_path);
+    const ConfigNode cfg = root.has("peer_sync") ? root.child("peer_sync") : root;
     SyncConfig sync = SyncConfig::fromConfig(cfg, robot);
     if (!team_key.empty()) sync.team_key = team_key;
     const ConfigNode chn = cfg.child("channels");

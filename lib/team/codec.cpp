@@ -11,7 +11,10 @@ constexpr std::uint8_t kMapFormat = 1;
 constexpr std::size_t kMaxObjects = 100000;
 
 // Flags of a bundle header.
-constexpr std::uint8_t kFirst = 1, kHasSigma = 2;
+constexpr std::uint8_t kFirst = 1, kHasSigma = 2, kRelativeFromOdom = 4;
+// Relative odometry is left out when the float32 poses reproduce it this closely (metres,
+// rotation-matrix norm): far below odometry noise; float32 itself resolves 0.06 mm at 1 km.
+constexpr double kDerivedTranslationTol = 1e-4, kDerivedRotationTol = 1e-5;
 // Object tag bits: shape in bits 0-1, then defaults that were left out.
 constexpr std::uint8_t kShapeMask = 3, kUnitConfidence = 4, kOneObservation = 8, kUprightAxis = 16;
 // Rotation tag: index of the dropped (largest) quaternion component in bits 0-1; bit 2: yaw only.
@@ -256,22 +259,34 @@ std::optional<T> finish(ByteReader& r, T value, std::string* error) {
 
 }  // namespace
 
-Bytes encodeBundle(const Bundle& b) {
+Bytes encodeBundle(const Bundle& b, const Pose* previous_odom) {
   ByteWriter w;
   w.u8(kBundleFormat);
   bool has_sigma = false;
   for (float s : b.odom_sigma) has_sigma |= s != 0.0f;
-  w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (has_sigma ? kHasSigma : 0)));
+  bool derived = false;
+  if (!b.first && previous_odom) {
+    // What receivers would compute from the two float32 poses, against the true relative motion.
+    ByteWriter pw;
+    writePose(pw, b.odom_pose);
+    ByteReader pr(pw.data());
+    const Pose rel = previous_odom->inverse() * readPose(pr);
+    derived = (rel.translation() - b.relative_odom.translation()).norm() <= kDerivedTranslationTol &&
+              (rel.linear() - b.relative_odom.linear()).norm() <= kDerivedRotationTol;
+  }
+  w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (has_sigma ? kHasSigma : 0) |
+                                 (derived ? kRelativeFromOdom : 0)));
   w.svarint(b.utime);
   writePose(w, b.odom_pose);
-  writePose(w, b.relative_odom);
+  if (!derived) writePose(w, b.relative_odom);
   if (has_sigma)
     for (float s : b.odom_sigma) w.f32(s);
   writeObjects(w, b.objects);
   return w.take();
 }
 
-std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error) {
+std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
+                                   const Pose* previous_odom, bool* needs_previous) {
   ByteReader r(data);
   Bundle b;
   b.origin = origin;
@@ -279,11 +294,16 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   const std::uint8_t format = r.u8();
   if (r.ok() && format != kBundleFormat) r.fail("unknown bundle format " + std::to_string(format));
   const std::uint8_t flags = r.u8();
-  if (r.ok() && (flags & ~std::uint8_t(kFirst | kHasSigma))) r.fail("unknown bundle flags " + std::to_string(flags));
+  if (r.ok() && (flags & ~std::uint8_t(kFirst | kHasSigma | kRelativeFromOdom)))
+    r.fail("unknown bundle flags " + std::to_string(flags));
+  if (r.ok() && (flags & kFirst) && (flags & kRelativeFromOdom)) r.fail("first bundle cannot refer to a previous one");
   b.first = flags & kFirst;
   b.utime = r.svarint();
   b.odom_pose = readPose(r);
-  b.relative_odom = readPose(r);
+  const bool derived = flags & kRelativeFromOdom;
+  if (!derived) b.relative_odom = readPose(r);
+  else if (previous_odom) b.relative_odom = previous_odom->inverse() * b.odom_pose;
+  if (needs_previous) *needs_previous = derived && !previous_odom;
   if (flags & kHasSigma)
     for (float& s : b.odom_sigma) s = readScalar(r, "odom sigma");
   readObjects(r, &b.objects);

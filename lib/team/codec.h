@@ -12,9 +12,16 @@
 
 namespace slide::team {
 
-Bytes encodeBundle(const Bundle& b);
+// `previous_odom`: the odometry pose of the origin's bundle seq-1 as receivers decode it, when
+// known. If relative_odom equals previous_odom^-1 * odom_pose (as a tracker computes it) to
+// within 0.1 mm and 1e-5 rad, it is left out as redundant and receivers recompute it from the
+// two float32 poses.
+Bytes encodeBundle(const Bundle& b, const Pose* previous_odom = nullptr);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
-std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error);
+// A bundle whose relative odometry was left out needs `previous_odom`; without it the result
+// has relative_odom = identity and *needs_previous = true.
+std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
+                                   const Pose* previous_odom = nullptr, bool* needs_previous = nullptr);
 
 // Maps carry what place recognition uses: class, id, position, size and yaw (confidence,
 // observation counts, cylinder tilt and cuboid roll/pitch are dropped).

@@ -79,8 +79,9 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     if (d != Drop::kCount) return drop(d), d;
   }
   b.first = !have_any;
+  const std::optional<Pose> previous = odomOf(b.origin, b.seq - 1);
   ObservationDb::Entry e;
-  e.data = encodeBundle(b);
+  e.data = encodeBundle(b, previous ? &*previous : nullptr);
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
@@ -178,7 +179,9 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (refused) return drop(*refused);
   if (!payload) return;
   std::string error;
-  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error);
+  const std::optional<Pose> previous = odomOf(m.origin, m.seq - 1);
+  bool needs_previous = false;
+  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error, previous ? &*previous : nullptr, &needs_previous);
   if (!bundle) return drop(Drop::Malformed);
   // A bundle claiming to start its origin's stream must not contradict what is held.
   if (bundle->first && ((first && *first != m.seq) || (held != db_.held().end() && !held->second.empty() &&
@@ -187,7 +190,8 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   ObservationDb::Entry e;
   e.data = std::move(*payload);
   e.first = bundle->first;
-  e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
+  // (Distance for accounting only: unknown while the previous bundle is missing.)
+  e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, m.seq, std::move(e));
   scheduleAck(m.sender, m.origin, now);
 }
@@ -282,7 +286,12 @@ TickOutput PeerSyncNode::tick(Micros now) {
   }
   sendMap(now, out);
   sendBundles(now, out);
-  counters_.save();
+  // Accepted counters reach the disk at most once a second: after a crash, messages accepted
+  // in that last second could be accepted once more, which changes nothing (all idempotent).
+  if (now - counters_saved_at_ >= secs(1.0)) {
+    counters_.save();
+    counters_saved_at_ = now;
+  }
   return out;
 }
 
@@ -405,11 +414,25 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
 
 // ---- delivery ----
 
+std::optional<Pose> PeerSyncNode::odomOf(std::int32_t origin, std::int32_t seq) const {
+  const ObservationDb::Entry* e = db_.get(origin, seq);
+  if (!e) return std::nullopt;
+  std::string error;
+  const auto b = decodeBundle(e->data, origin, seq, &error);  // odom_pose never needs another bundle
+  if (!b) return std::nullopt;
+  return b->odom_pose;
+}
+
 std::optional<Bundle> PeerSyncNode::nextDelivery() const {
   const auto next = db_.nextToDeliver(cfg_.robot);
   if (!next) return std::nullopt;
   std::string error;
-  auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error);
+  // In per-origin order the previous bundle is always held (delivered just before).
+  const std::optional<Pose> previous = odomOf(next->first, next->second - 1);
+  bool needs_previous = false;
+  auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error,
+                        previous ? &*previous : nullptr, &needs_previous);
+  if (b && needs_previous) error = "previous bundle missing", b.reset();
   if (!b)
     throw std::logic_error("stored bundle " + std::to_string(next->first) + "/" + std::to_string(next->second) +
                            " does not decode: " + error);

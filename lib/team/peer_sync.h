@@ -99,6 +99,7 @@ class PeerSyncNode {
   void sendMap(Micros now, TickOutput& out);
   void sendBundles(Micros now, TickOutput& out);
   void forgetKnown(Peer& p);
+  std::optional<Pose> odomOf(std::int32_t origin, std::int32_t seq) const;  // held bundle's odometry pose
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
@@ -112,6 +113,7 @@ class PeerSyncNode {
   DropCounts drops_{};
   std::map<std::int32_t, Peer> peers_;
   Micros next_heartbeat_;
+  Micros counters_saved_at_ = 0;
 
   std::optional<SharedMap> own_map_;
   Bytes own_map_data_;

@@ -14,12 +14,12 @@ struct SyncConfig {
   std::vector<std::int32_t> team;  // every robot id allowed on the team bus (robot included)
   std::string team_key;            // HMAC key shared by the team
 
-  double heartbeat_period_s = 2.0;
-  double ack_delay_s = 1.5;          // acknowledgements are coalesced this long (a heartbeat acks all)
-  double resend_timeout_s = 3.0;     // unacknowledged data is sent again after this at the earliest,
+  double heartbeat_period_s = 3.0;
+  double ack_delay_s = 2.0;          // acknowledgements are coalesced this long (a heartbeat acks all)
+  double resend_timeout_s = 4.0;     // unacknowledged data is sent again after this at the earliest,
   double loss_grace_s = 0.5;         // once a heartbeat sent this long after it still lacks it
-  double relay_delay_s = 3.0;        // a third robot's bundle is relayed once a peer lacked it this long
-  double peer_timeout_s = 6.0;       // a peer is in reach while heard within this
+  double relay_delay_s = 4.0;        // a third robot's bundle is relayed once a peer lacked it this long
+  double peer_timeout_s = 8.0;       // a peer is in reach while heard within this
   double map_period_s = 60.0;        // own map sent at most this often when it changed
   double map_refresh_s = 120.0;      // and again this often when unchanged
   double rate_limit_bytes_per_s = 20000;

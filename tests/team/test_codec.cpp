@@ -115,3 +115,32 @@ TEST(Codec, MapRoundTrip) {
   }
   EXPECT_FALSE(decodeMap(Bytes(enc.begin(), enc.end() - 1), 2, 9, &err));
 }
+
+TEST(Codec, RelativeOdometryDerivableFromPosesIsLeftOut) {
+  std::mt19937 rng(21);
+  std::string err;
+  Bundle prev = randomBundle(rng, 1, 4, 3);
+  Bundle b = randomBundle(rng, 1, 5, 3);
+  b.odom_pose = prev.odom_pose * b.relative_odom;  // what a tracker publishes
+  const Bytes explicit_rel = encodeBundle(b);
+  const Pose prev_rx = decodeBundle(encodeBundle(prev), 1, 4, &err)->odom_pose;  // as receivers hold it
+  const Bytes derived = encodeBundle(b, &prev_rx);
+  EXPECT_EQ(explicit_rel.size() - derived.size(), 25u);  // one pose (tag, 3 + 3 floats) fewer
+  bool needs = false;
+  const auto alone = decodeBundle(derived, 1, 5, &err, nullptr, &needs);
+  ASSERT_TRUE(alone) << err;
+  EXPECT_TRUE(needs);
+  // The receiver has the float32 poses of both bundles: the relative motion comes back close.
+  const auto full = decodeBundle(derived, 1, 5, &err, &prev_rx, &needs);
+  ASSERT_TRUE(full) << err;
+  EXPECT_FALSE(needs);
+  EXPECT_LT((full->relative_odom.translation() - b.relative_odom.translation()).norm(), 1e-4);
+  EXPECT_LT((full->relative_odom.linear() - b.relative_odom.linear()).norm(), 1e-5);
+  // Not derivable (or a first bundle): written out.
+  Bundle other = b;
+  other.relative_odom = poseFromXyzYaw(1, 2, 0, 0.3);
+  EXPECT_EQ(encodeBundle(other, &prev_rx).size(), encodeBundle(other).size());
+  other = b;
+  other.first = true;
+  EXPECT_EQ(encodeBundle(other, &prev_rx).size(), explicit_rel.size());
+}

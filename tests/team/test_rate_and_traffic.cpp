@@ -58,3 +58,20 @@ TEST(PeerSyncSim, RateLimitBoundsWhatEachRobotSends) {
   EXPECT_EQ(net.delivered(0).size(), 60u);
   EXPECT_EQ(net.delivered(1).size(), 60u);
 }
+
+TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
+  const auto node = slide::ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/peer_sync.yaml");
+  const SyncConfig c = SyncConfig::fromConfig(node, 2);
+  EXPECT_EQ(c.robot, 2);
+  EXPECT_EQ(c.team.size(), 3u);
+  EXPECT_LE(c.max_chunk_bytes, 1300u);  // one LCM datagram per chunk
+  EXPECT_THROW(SyncConfig::fromConfig(node, 9), slide::ConfigError);  // not in the team
+  try {
+    SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\nmax_chunk_bytes: lots\n", "t.yaml"), 1);
+    FAIL() << "expected a ConfigError";
+  } catch (const slide::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_chunk_bytes"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
+               slide::ConfigError);
+}
