@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "io/ground_truth_objects.h"
 #include "io/kitti_scan.h"
 #include "io/robot_dataset.h"
 #include "sim/dataset_writer.h"
@@ -84,4 +85,31 @@ TEST(Dataset, RgbdScenarioReadsBack) {
   EXPECT_EQ(mask.class_id.size(), mask.object_id.size());
   for (int obj : mask.object_id) EXPECT_GE(obj, 1);
   fs::remove_all(out);
+}
+
+TEST(Dataset, EveryWorldForOneToThreeRobots) {
+  const bool kitti = fs::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/05.txt");
+  int robots = 1;
+  for (const std::string& world : worldNames()) {
+    if (world.rfind("kitti", 0) == 0 && !kitti) continue;
+    SCOPED_TRACE(world);
+    ScenarioSpec spec;
+    spec.world = world;
+    spec.robots = robots;
+    spec.frames = 2;
+    const Scenario sc = buildScenario(spec);
+    ASSERT_EQ(sc.robots.size(), static_cast<std::size_t>(robots));
+    const fs::path out = scratch("world_" + world);
+    SensorOptions sensors;
+    sensors.lidar = lidarModel("vlp-16");
+    writeScenarioDataset(sc, sensors, out.string());
+    EXPECT_EQ(readGroundTruthObjects((out / "objects.csv").string()).size(), sc.world.objects.size());
+    for (int r = 0; r < robots; ++r) {
+      const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
+      ASSERT_EQ(d.size(), 2u);
+      EXPECT_GT(readLabelledScan(d.scans[1]).size(), 1000u);
+    }
+    fs::remove_all(out);
+    robots = robots % 3 + 1;
+  }
 }
