@@ -368,6 +368,7 @@ bool OriginView::cast(const Eigen::Vector3d& d, double max_range, RayHit* hit) c
     const Entry& e = entries_[k];
     if (e.dmin >= std::min(best, limit) * h) break;  // everything further starts beyond the best hit
     const double z0 = o.z() + e.dmin * slope, z1 = o.z() + e.dmax * slope;
+    if (slope > 0 && z0 > caster_.scene_zmax_) break;  // climbing above every shape
     if (std::max(z0, z1) < e.zmin || std::min(z0, z1) > e.zmax) continue;
     const double t = caster_.intersect(caster_.prims_[e.prim], o, d);
     if (t < best) best = t, best_sem = caster_.prims_[e.prim].semantic, best_inst = caster_.prims_[e.prim].instance;

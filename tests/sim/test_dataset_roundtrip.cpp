@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "io/ground_truth_objects.h"
 #include "io/kitti_scan.h"
@@ -59,6 +61,27 @@ TEST(Dataset, LidarScenarioReadsBack) {
       }
   }
   fs::remove_all(out);
+}
+
+TEST(Dataset, OutputDoesNotDependOnThreads) {
+  ScenarioSpec spec;
+  spec.world = "urban";  // moving cars: frames depend on time
+  spec.robots = 2;
+  spec.frames = 3;
+  const Scenario sc = buildScenario(spec);
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  const fs::path a = scratch("threads1"), b = scratch("threads2");
+  writeScenarioDataset(sc, sensors, a.string(), {}, 1);
+  writeScenarioDataset(sc, sensors, b.string(), {}, 2);
+  for (const char* f : {"robot1/velodyne/000002.bin", "robot1/labels/000002.label", "robot0/odom.txt", "objects.csv"}) {
+    std::ifstream fa(a / f, std::ios::binary), fb(b / f, std::ios::binary);
+    const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+    EXPECT_FALSE(sa.empty()) << f;
+    EXPECT_EQ(sa, sb) << f;
+  }
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 TEST(Dataset, RgbdScenarioReadsBack) {
