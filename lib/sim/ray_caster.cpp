@@ -342,6 +342,24 @@ double OriginView::groundHit(const Eigen::Vector3d& d, double h, double slope, d
   if (j >= n) return std::numeric_limits<double>::infinity();
   const double t_start = j > 0 ? radii_[j - 1] / h : 0.0;
   if (t_start >= max_range) return std::numeric_limits<double>::infinity();
+  // Usually the crossing lies between the two table radii: false position there.
+  auto clearance = [&](double t) {
+    const Eigen::Vector3d p = o + t * d;
+    return p.z() - terrain.height(p.x(), p.y());
+  };
+  double lo = t_start, hi = radii_[j] / h;
+  double glo = clearance(lo), ghi = clearance(hi);
+  if (glo > 0 && ghi <= 0) {
+    double t = hi;
+    for (int i = 0; i < 6 && hi - lo > 1e-3; ++i) {
+      t = lo + (hi - lo) * glo / (glo - ghi);
+      const double g = clearance(t);
+      if (std::abs(g) < 1e-3) break;
+      if (g > 0) lo = t, glo = g;
+      else hi = t, ghi = g;
+    }
+    return t < max_range ? t : std::numeric_limits<double>::infinity();
+  }
   uint16_t label = 0;
   return terrain.intersect(o, d, max_range, &label, t_start);
 }
