@@ -313,8 +313,8 @@ OriginView::OriginView(const RayCaster& caster, const Eigen::Vector3d& origin, d
 
   const Terrain& terrain = caster.terrain_;
   if (!terrain.flat()) {
-    ground_bins_ = 1024;
-    for (double r = 0.2; r < max_range + 1; r += std::max(0.25, 0.025 * r)) radii_.push_back(r);
+    ground_bins_ = 720;
+    for (double r = 0.2; r < max_range + 1; r += std::max(0.25, 0.03 * r)) radii_.push_back(r);
     const std::size_t n = radii_.size();
     ground_slope_max_.resize(static_cast<std::size_t>(ground_bins_) * n);
     for (int b = 0; b < ground_bins_; ++b) {
