@@ -99,11 +99,6 @@ double RayCaster::intersect(const Primitive& p, const Eigen::Vector3d& o, const 
 }
 
 bool RayCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, RayHit* hit) const {
-  return castFromScratch(o, d, max_range, hit);
-}
-
-bool RayCaster::castFromScratch(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range,
-                                RayHit* hit) const {
   double best = std::numeric_limits<double>::infinity();
   uint16_t best_sem = 0, best_inst = 0;
   // Flat ground and ceilings are cheap: intersect first and stop the grid walk there.
