@@ -26,4 +26,11 @@ grep -q "$OUT" "$OUT/err" || fail "driver error does not name the folder"
 # Log only (no bus): the log holds the frames.
 "$BIN/slide-sensor-driver" "$OUT/indoor/robot0" --no-publish --rate 0 --log "$OUT/r0.lcm" --no-progress 2>/dev/null
 [[ -s "$OUT/r0.lcm" ]] || fail "empty log"
+# A config file sets the channels; the log shows them.
+printf 'sensor_driver:\n  rate: 0\n  channels:\n    scan: SCAN_R9\n    odom: ODOM_R9\n' > "$OUT/driver.yaml"
+"$BIN/slide-sensor-driver" "$OUT/indoor/robot0" --no-publish --config "$OUT/driver.yaml" --log "$OUT/r9.lcm" --no-progress 2>/dev/null
+grep -q SCAN_R9 "$OUT/r9.lcm" || fail "config channel not used"
+printf 'sensor_driver:\n  rate: fast\n' > "$OUT/bad.yaml"
+if "$BIN/slide-sensor-driver" "$OUT/indoor/robot0" --no-publish --config "$OUT/bad.yaml" --log "$OUT/x.lcm" 2>"$OUT/err"; then fail "bad config accepted"; fi
+grep -q "rate" "$OUT/err" || fail "config error does not name the key"
 echo "cli ok"
