@@ -7,6 +7,7 @@
 #include <csignal>
 
 #include "app/app.h"
+#include "config/config.h"
 #include "replay.h"
 
 namespace {
@@ -19,27 +20,46 @@ int main(int argc, char** argv) {
   slide::CommonOptions common;
   slide::addCommonOptions(app, common);
   slide::ReplayOptions opt;
-  std::string dataset, lcm_url, log_path;
+  std::string dataset, lcm_url, log_path, config_path;
   bool no_publish = false, no_progress = false;
   app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0)")->required();
   app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
   app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
-  app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
+  app.add_option("--config", config_path,
+                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, channels: scan, rgbd, odom, "
+                 "status); command-line options win");
+  auto* rate_opt = app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
       ->capture_default_str();
-  app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
-  app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
+  auto* start_frame_opt = app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
+  auto* start_time_opt = app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
   app.add_option("--frames", opt.max_frames, "Send at most N frames (0 = all)")->capture_default_str();
   app.add_option("--log", log_path, "Also write the messages to this LCM log file");
   app.add_flag("--no-publish", no_publish, "Do not publish on the bus (with --log: write the log only)");
   app.add_flag("--no-progress", no_progress, "No progress bar");
-  app.add_option("--scan-channel", opt.scan_channel, "LiDAR scan channel")->capture_default_str();
-  app.add_option("--rgbd-channel", opt.rgbd_channel, "RGBD frame channel")->capture_default_str();
-  app.add_option("--odom-channel", opt.odom_channel, "Odometry channel")->capture_default_str();
-  app.add_option("--status-channel", opt.status_channel, "Stream status channel")->capture_default_str();
+  auto* scan_opt = app.add_option("--scan-channel", opt.scan_channel, "LiDAR scan channel")->capture_default_str();
+  auto* rgbd_opt = app.add_option("--rgbd-channel", opt.rgbd_channel, "RGBD frame channel")->capture_default_str();
+  auto* odom_opt = app.add_option("--odom-channel", opt.odom_channel, "Odometry channel")->capture_default_str();
+  auto* status_opt = app.add_option("--status-channel", opt.status_channel, "Stream status channel")->capture_default_str();
 
   return slide::runApp(app, common, argc, argv, [&]() {
     if (no_publish && log_path.empty()) throw std::runtime_error("--no-publish needs --log FILE (nothing to do otherwise)");
     opt.progress = !no_progress;
+    if (!config_path.empty()) {
+      const slide::ConfigNode root = slide::ConfigNode::load(config_path);
+      if (root.has("sensor_driver")) {
+        const slide::ConfigNode c = root.child("sensor_driver");
+        if (!rate_opt->count()) opt.rate = c.get<double>("rate", opt.rate);
+        if (!start_frame_opt->count()) opt.start_frame = c.get<int>("start_frame", opt.start_frame);
+        if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
+        if (c.has("channels")) {
+          const slide::ConfigNode ch = c.child("channels");
+          if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);
+          if (!rgbd_opt->count()) opt.rgbd_channel = ch.get<std::string>("rgbd", opt.rgbd_channel);
+          if (!odom_opt->count()) opt.odom_channel = ch.get<std::string>("odom", opt.odom_channel);
+          if (!status_opt->count()) opt.status_channel = ch.get<std::string>("status", opt.status_channel);
+        }
+      }
+    }
     const slide::RobotDataset d = slide::openRobotDataset(dataset);
     std::unique_ptr<lcm::LCM> bus;
     if (!no_publish) {

@@ -99,11 +99,6 @@ double RayCaster::intersect(const Primitive& p, const Eigen::Vector3d& o, const 
 }
 
 bool RayCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, RayHit* hit) const {
-  return castFromScratch(o, d, max_range, hit);
-}
-
-bool RayCaster::castFromScratch(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range,
-                                RayHit* hit) const {
   double best = std::numeric_limits<double>::infinity();
   uint16_t best_sem = 0, best_inst = 0;
   // Flat ground and ceilings are cheap: intersect first and stop the grid walk there.
@@ -313,8 +308,8 @@ OriginView::OriginView(const RayCaster& caster, const Eigen::Vector3d& origin, d
 
   const Terrain& terrain = caster.terrain_;
   if (!terrain.flat()) {
-    ground_bins_ = 1024;
-    for (double r = 0.2; r < max_range + 1; r += std::max(0.25, 0.025 * r)) radii_.push_back(r);
+    ground_bins_ = 720;
+    for (double r = 0.2; r < max_range + 1; r += std::max(0.25, 0.03 * r)) radii_.push_back(r);
     const std::size_t n = radii_.size();
     ground_slope_max_.resize(static_cast<std::size_t>(ground_bins_) * n);
     for (int b = 0; b < ground_bins_; ++b) {
@@ -342,6 +337,24 @@ double OriginView::groundHit(const Eigen::Vector3d& d, double h, double slope, d
   if (j >= n) return std::numeric_limits<double>::infinity();
   const double t_start = j > 0 ? radii_[j - 1] / h : 0.0;
   if (t_start >= max_range) return std::numeric_limits<double>::infinity();
+  // Usually the crossing lies between the two table radii: false position there.
+  auto clearance = [&](double t) {
+    const Eigen::Vector3d p = o + t * d;
+    return p.z() - terrain.height(p.x(), p.y());
+  };
+  double lo = t_start, hi = radii_[j] / h;
+  double glo = clearance(lo), ghi = clearance(hi);
+  if (glo > 0 && ghi <= 0) {
+    double t = hi;
+    for (int i = 0; i < 6 && hi - lo > 1e-3; ++i) {
+      t = lo + (hi - lo) * glo / (glo - ghi);
+      const double g = clearance(t);
+      if (std::abs(g) < 1e-3) break;
+      if (g > 0) lo = t, glo = g;
+      else hi = t, ghi = g;
+    }
+    return t < max_range ? t : std::numeric_limits<double>::infinity();
+  }
   uint16_t label = 0;
   return terrain.intersect(o, d, max_range, &label, t_start);
 }
@@ -368,6 +381,7 @@ bool OriginView::cast(const Eigen::Vector3d& d, double max_range, RayHit* hit) c
     const Entry& e = entries_[k];
     if (e.dmin >= std::min(best, limit) * h) break;  // everything further starts beyond the best hit
     const double z0 = o.z() + e.dmin * slope, z1 = o.z() + e.dmax * slope;
+    if (slope > 0 && z0 > caster_.scene_zmax_) break;  // climbing above every shape
     if (std::max(z0, z1) < e.zmin || std::min(z0, z1) > e.zmax) continue;
     const double t = caster_.intersect(caster_.prims_[e.prim], o, d);
     if (t < best) best = t, best_sem = caster_.prims_[e.prim].semantic, best_inst = caster_.prims_[e.prim].instance;

@@ -36,7 +36,6 @@ class RayCaster {
     double zmin, zmax;
   };
   void add(const ObjectModel& m, uint16_t semantic, uint16_t instance);
-  bool castFromScratch(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double max_range, RayHit* hit) const;
   double intersect(const Primitive& p, const Eigen::Vector3d& o, const Eigen::Vector3d& d) const;
 
   Terrain terrain_;

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
+#include "io/ground_truth_objects.h"
 #include "io/kitti_scan.h"
 #include "io/robot_dataset.h"
 #include "sim/dataset_writer.h"
@@ -60,6 +63,27 @@ TEST(Dataset, LidarScenarioReadsBack) {
   fs::remove_all(out);
 }
 
+TEST(Dataset, OutputDoesNotDependOnThreads) {
+  ScenarioSpec spec;
+  spec.world = "urban";  // moving cars: frames depend on time
+  spec.robots = 2;
+  spec.frames = 3;
+  const Scenario sc = buildScenario(spec);
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  const fs::path a = scratch("threads1"), b = scratch("threads2");
+  writeScenarioDataset(sc, sensors, a.string(), {}, 1);
+  writeScenarioDataset(sc, sensors, b.string(), {}, 2);
+  for (const char* f : {"robot1/velodyne/000002.bin", "robot1/labels/000002.label", "robot0/odom.txt", "objects.csv"}) {
+    std::ifstream fa(a / f, std::ios::binary), fb(b / f, std::ios::binary);
+    const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+    EXPECT_FALSE(sa.empty()) << f;
+    EXPECT_EQ(sa, sb) << f;
+  }
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST(Dataset, RgbdScenarioReadsBack) {
   ScenarioSpec spec;
   spec.world = "indoor";
@@ -84,4 +108,31 @@ TEST(Dataset, RgbdScenarioReadsBack) {
   EXPECT_EQ(mask.class_id.size(), mask.object_id.size());
   for (int obj : mask.object_id) EXPECT_GE(obj, 1);
   fs::remove_all(out);
+}
+
+TEST(Dataset, EveryWorldForOneToThreeRobots) {
+  const bool kitti = fs::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/05.txt");
+  int robots = 1;
+  for (const std::string& world : worldNames()) {
+    if (world.rfind("kitti", 0) == 0 && !kitti) continue;
+    SCOPED_TRACE(world);
+    ScenarioSpec spec;
+    spec.world = world;
+    spec.robots = robots;
+    spec.frames = 2;
+    const Scenario sc = buildScenario(spec);
+    ASSERT_EQ(sc.robots.size(), static_cast<std::size_t>(robots));
+    const fs::path out = scratch("world_" + world);
+    SensorOptions sensors;
+    sensors.lidar = lidarModel("vlp-16");
+    writeScenarioDataset(sc, sensors, out.string());
+    EXPECT_EQ(readGroundTruthObjects((out / "objects.csv").string()).size(), sc.world.objects.size());
+    for (int r = 0; r < robots; ++r) {
+      const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
+      ASSERT_EQ(d.size(), 2u);
+      EXPECT_GT(readLabelledScan(d.scans[1]).size(), 1000u);
+    }
+    fs::remove_all(out);
+    robots = robots % 3 + 1;
+  }
 }

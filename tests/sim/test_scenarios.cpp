@@ -158,3 +158,53 @@ TEST(Odometry, DriftGrowsWithDistanceWhileRollPitchStayExact) {
   EXPECT_GT(mean_err, 0.5);
   EXPECT_LT(mean_err, 25);
 }
+
+TEST(Scenario, AerialRobotsChangeAltitudeGroundRobotsFollowTheGround) {
+  ScenarioSpec spec;
+  spec.robots = 1;
+  spec.distance = 100;
+  spec.forest.num_trees = 200;
+  for (bool aerial : {false, true}) {
+    spec.aerial = aerial;
+    const Scenario sc = buildScenario(spec);
+    double lo = 1e9, hi = -1e9;
+    for (const Pose& p : sc.robots[0].ground_truth.poses) {
+      const Eigen::Vector3d t = p.translation();
+      const double above = t.z() - sc.world.terrain.height(t.x(), t.y());
+      lo = std::min(lo, above);
+      hi = std::max(hi, above);
+    }
+    if (aerial) {
+      EXPECT_GT(hi - lo, 2.0);  // 3 m +- 1.5 m
+      EXPECT_GT(lo, 1.0);
+    } else {
+      EXPECT_NEAR(lo, 0.8, 1e-6);
+      EXPECT_NEAR(hi, 0.8, 1e-6);
+    }
+  }
+}
+
+TEST(Scenario, OverlapSharesTheRoutes) {
+  // Share of robot 1's poses within 3 m of robot 0's path.
+  auto shared = [](double overlap) {
+    ScenarioSpec spec;
+    spec.robots = 2;
+    spec.distance = 200;
+    spec.overlap = overlap;
+    spec.forest.num_trees = 200;
+    const Scenario sc = buildScenario(spec);
+    int near = 0;
+    const auto& a = sc.robots[0].ground_truth.poses;
+    const auto& b = sc.robots[1].ground_truth.poses;
+    for (std::size_t i = 0; i < b.size(); i += 5) {
+      bool close = false;
+      for (std::size_t k = 0; k < a.size() && !close; k += 2)
+        close = (a[k].translation() - b[i].translation()).head<2>().norm() < 3.0;
+      near += close;
+    }
+    return static_cast<double>(near) / static_cast<double>((b.size() + 4) / 5);
+  };
+  const double none = shared(0.0), most = shared(0.8);
+  EXPECT_GT(most, 0.5);
+  EXPECT_GT(most, none + 0.2);
+}

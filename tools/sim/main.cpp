@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", spec.seed, "Random seed (same seed, same dataset)")->capture_default_str();
   app.add_option("--out", out, "Output folder")->required();
   app.add_option("--sensor", sensor, "Sensor: lidar | rgbd")->check(CLI::IsMember({"lidar", "rgbd"}))->capture_default_str();
-  app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16")
+  auto* lidar_opt = app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16 (KITTI worlds: hdl-64e)")
       ->check(CLI::IsMember(slide::lidarModelNames()))
       ->capture_default_str();
   app.add_option("--camera", camera, "RGBD camera: d435 | d455")
@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error("output folder " + out + " is not empty (use --force to write into it)");
     slide::SensorOptions sensors;
     sensors.sensor = sensor;
+    if (lidar_opt->count() == 0 && spec.world.rfind("kitti", 0) == 0) lidar = "hdl-64e";  // KITTI's own sensor
     sensors.lidar = slide::lidarModel(lidar);
     sensors.camera = slide::cameraModel(camera);
     const auto t0 = std::chrono::steady_clock::now();
