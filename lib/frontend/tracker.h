@@ -16,7 +16,7 @@
 namespace slide {
 
 struct TrackerParams {
-  double gate_scale = 1.0;           // gate = class association_distance * gate_scale
+  double gate_scale = 0.5;           // gate = class association_distance * gate_scale
   int min_age = 3;                   // observations before a track yields objects
   int max_missed = 5;                // consecutive missed frames before deletion
   int report_max_missed = 1;         // tracks missed longer ago are not reported

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   int runs = 10;
   std::vector<std::string> worlds{"forest", "urban", "indoor"};
   double distance = 60.0, indoor_distance = 30.0, rate = 3.0;
-  bool skip_real = false;
+  bool skip_real = false, verbose = false;
   app.add_option("--json", json, "Write the results as JSON (BENCHMARKS.md) to this file");
   app.add_option("--data-dir", data_dir, "Folder of the shared real data sets")->capture_default_str();
   app.add_option("--config", config_file, "Front-end YAML (default: config/frontend.yaml)");
@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   app.add_option("--indoor-distance", indoor_distance, "Metres driven in the indoor world")->capture_default_str();
   app.add_option("--rate", rate, "Simulated frames per second")->capture_default_str();
   app.add_flag("--skip-real", skip_real, "Only the simulated worlds");
+  app.add_flag("--verbose", verbose, "List every missed ground-truth object");
   return runApp(app, common, argc, argv, [&]() {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
     const FrontendConfig cfg = config_file.empty() ? loadDefaultFrontendConfig() : loadFrontendConfig(config_file);
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
       spec.distance = w == "indoor" ? indoor_distance : distance;
       spec.rate = rate;
       spec.data_dir = data_dir;
+      spec.verbose = verbose;
       spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "labelled"} : std::vector<std::string>{"labelled", "geometric"};
       spdlog::info("world {}: {} m at {} Hz, modes {}", w, spec.distance, rate, fmt::join(spec.modes, ", "));
       const WorldEvalResult res = evaluateWorld(spec, classes, cfg);

@@ -1,6 +1,7 @@
 #include "world_eval.h"
 
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <set>
 #include <opencv2/core.hpp>
@@ -81,7 +82,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   bool need_lidar = false, need_rgbd = false;
   for (const auto& r : runners) (r.mode == "rgbd" ? need_rgbd : need_lidar) = true;
 
-  std::map<int, int> seen_lidar, seen_rgbd;  // object id -> frames with >= min_points
+  std::map<int, int> seen_lidar, seen_rgbd;
+  std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
   std::unique_ptr<RayCaster> caster;
   const std::size_t n = robot.ground_truth.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -98,8 +100,10 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       unlabelled.intensity = scan.intensity;
       count.clear();
       for (auto id : scan.instance) ++count[id];
-      for (const auto& [id, c] : count)
+      for (const auto& [id, c] : count) {
         if (id != 0 && c >= spec.min_points) ++seen_lidar[id];
+        max_points[id] = std::max(max_points[id], c);
+      }
     }
     if (need_rgbd) {
       const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
@@ -139,8 +143,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       if (it == seen.end() || it->second < spec.min_frames) continue;
       gt[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
     }
-    // The map: estimates of one group closer than the class's association distance are one
-    // landmark (what the back-end's data association does with re-created tracks).
+    // The map: estimates of one group closer than half the class's association distance are
+    // one landmark (what the back-end's data association does with re-created tracks).
     std::vector<Object> merged;
     for (const auto& [id, o] : r.latest) {
       const ClassInfo* c = classes.find(o.class_id);
@@ -148,7 +152,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       bool dup = false;
       for (const auto& m : merged)
         dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
-               (m.position() - o.position()).head<2>().norm() < c->association_distance;
+               (m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance;
       if (!dup) merged.push_back(o);
     }
     for (const auto& o : merged) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
@@ -166,7 +170,22 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         for (std::size_t i = 0; i < E.size(); ++i)
           for (std::size_t j = 0; j < G.size(); ++j)
             cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
-        for (int a : solveGatedAssignment(cost, info.association_distance)) matched += a >= 0;
+        const auto assign = solveGatedAssignment(cost, info.association_distance);
+        std::vector<char> hit(G.size(), 0);
+        for (int a : assign)
+          if (a >= 0) ++matched, hit[a] = 1;
+        if (spec.verbose)
+          for (std::size_t j = 0; j < G.size(); ++j) {
+            if (hit[j]) continue;
+            double nearest = 1e9;
+            for (const auto* e : E) nearest = std::min(nearest, (e->position() - G[j]->position()).head<2>().norm());
+            std::printf("  missed %s %s id %ld at (%.1f, %.1f): seen in %d frames, max %d points, nearest estimate %.2f m\n",
+                        r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
+                        G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
+          }
+      } else if (spec.verbose) {
+        for (const auto* g : G)
+          std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
       }
       auto& pc = m.per_class[info.name];
       pc = {static_cast<int>(E.size()), static_cast<int>(G.size()), matched};
