@@ -23,6 +23,7 @@ struct TrackerParams {
   int max_observations = 10;         // sliding window of observations per track
   int max_points_per_observation = 1500;
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
+  bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
 };
 
 struct Track {
@@ -32,6 +33,7 @@ struct Track {
   int missed = 0;
   bool moving = false;
   double confidence_sum = 0;
+  std::map<int, int> class_votes;    // observations per class; class_id is the majority
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
   std::deque<Cloud> observations;                           // odometry frame
   Cloud accumulated() const;
