@@ -54,6 +54,9 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "margin", p.margin, 0.0);
     opt(c, "min_points", p.min_points, 1);
     opt(c, "trunk_min_radius", p.trunk_min_radius, 0.0);
+    opt(c, "isolation_gap", p.isolation_gap, 0.0);
+    opt(c, "isolation_ring", p.isolation_ring, p.isolation_gap);
+    opt(c, "max_ring_fraction", p.max_ring_fraction, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
   }
