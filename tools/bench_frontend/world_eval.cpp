@@ -1,5 +1,6 @@
 #include "world_eval.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -43,6 +44,12 @@ bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfi
 int groupOf(const std::string& mode, int class_id, const FrontendConfig& cfg) {
   if (mode == "geometric" && class_id == cfg.geometric.pole_class) return cfg.geometric.trunk_class;
   return class_id;
+}
+
+bool insideFootprint(const Object& box, const Eigen::Vector3d& p) {
+  const Cuboid& c = std::get<Cuboid>(box.model);
+  const Eigen::Vector3d q = c.pose.inverse() * p;
+  return std::abs(q.x()) <= c.dims.x() / 2 && std::abs(q.y()) <= c.dims.y() / 2;
 }
 
 struct Runner {
@@ -143,16 +150,24 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       if (it == seen.end() || it->second < spec.min_frames) continue;
       gt[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
     }
-    // The map: estimates of one group closer than half the class's association distance are
-    // one landmark (what the back-end's data association does with re-created tracks).
+    // The map: estimates of one group that are the same landmark (what the back-end's data
+    // association does with re-created tracks) are kept once: cuboids whose centre lies in
+    // the other's footprint, other shapes closer than half the class's association distance.
+    // Best-observed estimates first: they survive as the landmark.
+    std::vector<Object> ordered;
+    for (const auto& [id, o] : r.latest) ordered.push_back(o);
+    std::stable_sort(ordered.begin(), ordered.end(),
+                     [](const Object& a, const Object& b) { return a.num_observations > b.num_observations; });
     std::vector<Object> merged;
-    for (const auto& [id, o] : r.latest) {
+    for (const auto& o : ordered) {
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
       bool dup = false;
       for (const auto& m : merged)
         dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
-               (m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance;
+               ((m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance ||
+                (o.shape() == Shape::Cuboid && m.shape() == Shape::Cuboid &&
+                 (insideFootprint(m, o.position()) || insideFootprint(o, m.position()))));
       if (!dup) merged.push_back(o);
     }
     for (const auto& o : merged) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
@@ -174,6 +189,21 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
           if (a >= 0) ++matched, hit[a] = 1;
+        if (spec.verbose)
+          for (std::size_t i = 0; i < E.size(); ++i) {
+            if (assign[i] >= 0) continue;
+            const GroundTruthObject* near = nullptr;
+            double d = 1e9;
+            for (const auto& g : sc.world.objects) {
+              const double dg = (g.object.position() - E[i]->position()).head<2>().norm();
+              if (dg < d) d = dg, near = &g;
+            }
+            const auto it = near ? seen.find(static_cast<int>(near->object.id)) : seen.end();
+            std::printf("  extra %s %s at (%.1f, %.1f): nearest object %ld (class %d%s, seen in %d frames) at %.2f m\n",
+                        r.mode.c_str(), info.name.c_str(), E[i]->position().x(), E[i]->position().y(),
+                        near ? static_cast<long>(near->object.id) : -1L, near ? near->object.class_id : -1,
+                        near && near->moving() ? ", moving" : "", it == seen.end() ? 0 : it->second, d);
+          }
         if (spec.verbose)
           for (std::size_t j = 0; j < G.size(); ++j) {
             if (hit[j]) continue;
