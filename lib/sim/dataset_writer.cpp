@@ -1,6 +1,10 @@
 #include "sim/dataset_writer.h"
 
+#include <atomic>
 #include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -133,12 +137,37 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
 }
 
 GenerationStats writeScenarioDataset(const Scenario& sc, const SensorOptions& s, const std::string& out_dir,
-                                     const ProgressFn& progress) {
+                                     const ProgressFn& progress, unsigned threads) {
   writeWorldFiles(sc, out_dir);
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, static_cast<unsigned>(sc.robots.size()));
+  std::mutex mutex;
+  const ProgressFn locked = [&](int r, int i, int n) {
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(mutex);
+    progress(r, i, n);
+  };
+  std::vector<GenerationStats> stats(sc.robots.size());
+  std::vector<std::exception_ptr> errors(sc.robots.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&]() {
+    for (std::size_t k = next++; k < sc.robots.size(); k = next++) {
+      const RobotRun& r = sc.robots[k];
+      try {
+        stats[k] = writeRobotDataset(sc, r, s, (fs::path(out_dir) / ("robot" + std::to_string(r.id))).string(), locked);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   GenerationStats total;
-  for (const RobotRun& r : sc.robots) {
-    const GenerationStats g =
-        writeRobotDataset(sc, r, s, (fs::path(out_dir) / ("robot" + std::to_string(r.id))).string(), progress);
+  for (const GenerationStats& g : stats) {
     total.frames += g.frames;
     total.points += g.points;
   }

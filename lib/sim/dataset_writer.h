@@ -30,7 +30,8 @@ struct GenerationStats {
   std::size_t points = 0;  // LiDAR points or valid depth pixels
 };
 
-// Called after each frame with (robot, frame index, frames of that robot).
+// Called after each frame with (robot, frame index, frames of that robot); with several
+// threads it is called from all of them (one call at a time).
 using ProgressFn = std::function<void(int, int, int)>;
 
 // The random generator of one sensor frame: depends only on the seed, robot and frame.
@@ -41,8 +42,9 @@ void writeWorldFiles(const Scenario& scenario, const std::string& out_dir);
 // Writes one robot's folder (trajectories and every sensor frame).
 GenerationStats writeRobotDataset(const Scenario& scenario, const RobotRun& robot, const SensorOptions& sensor,
                                   const std::string& robot_dir, const ProgressFn& progress = {});
-// Both of the above for every robot (OUT/robotN).
+// Both of the above for every robot (OUT/robotN), robots in parallel on up to `threads`
+// threads (0: one per core). The output does not depend on the thread count.
 GenerationStats writeScenarioDataset(const Scenario& scenario, const SensorOptions& sensor, const std::string& out_dir,
-                                     const ProgressFn& progress = {});
+                                     const ProgressFn& progress = {}, unsigned threads = 0);
 
 }  // namespace slide

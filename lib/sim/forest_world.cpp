@@ -104,6 +104,8 @@ World makeForestWorld(const ForestParams& p, uint64_t seed) {
   World w;
   w.name = "forest";
   w.terrain = unevenTerrain(p.terrain_amplitude, seed ^ 0x9e3779b97f4a7c15ULL, label::kTerrain);
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(0.5 * p.side + 130);
+  w.terrain.bake(Eigen::AlignedBox2d(-margin, margin), 1.0);
   const std::vector<Stem> stems = p.layout == "procedural" ? proceduralLayout(p, rng) : realLayout(p, rng);
   for (const Stem& s : stems) {
     const double radius = std::max(0.04, 0.5 * s.dbh);

@@ -1,11 +1,38 @@
 #include "sim/lidar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace slide {
 
 namespace {
+// SplitMix64 with Box-Muller normals: fast, deterministic per seed.
+struct FastRng {
+  explicit FastRng(uint64_t seed) : state(seed) {}
+  uint64_t next() {
+    uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  double normal() {
+    if (has_spare) {
+      has_spare = false;
+      return spare;
+    }
+    const double u1 = std::max(uniform(), 1e-300), u2 = uniform();
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    spare = r * std::sin(2 * M_PI * u2);
+    has_spare = true;
+    return r * std::cos(2 * M_PI * u2);
+  }
+  uint64_t state;
+  double spare = 0;
+  bool has_spare = false;
+};
+
 std::vector<double> uniformBeams(int n, double top, double bottom) {
   std::vector<double> e(n);
   for (int i = 0; i < n; ++i) e[i] = top + (bottom - top) * i / (n - 1);
@@ -57,8 +84,9 @@ LidarModel lidarModel(const std::string& name) {
 
 LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sensor, const LidarModel& model,
                                std::mt19937_64& rng) {
-  std::normal_distribution<double> noise(0.0, model.range_noise);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  FastRng fast(rng());  // per-point noise: a cheap generator seeded from the frame's
+  auto u = [&](FastRng& f) { return f.uniform(); };
+  auto noise = [&](FastRng& f) { return model.range_noise * f.normal(); };
   const Eigen::Matrix3d R = T_world_sensor.linear();
   const Eigen::Vector3d o = T_world_sensor.translation();
   std::vector<double> ce(model.beams()), se(model.beams());
@@ -73,18 +101,19 @@ LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sens
   scan.intensity.reserve(capacity);
   scan.semantic.reserve(capacity);
   scan.instance.reserve(capacity);
+  const OriginView view(caster, o, model.max_range);
   RayHit hit;
   for (int c = 0; c < model.columns; ++c) {
     const double az = 2 * M_PI * c / model.columns;
     const double ca = std::cos(az), sa = std::sin(az);
     for (int b = 0; b < model.beams(); ++b) {
       const Eigen::Vector3d dir_s(ce[b] * ca, ce[b] * sa, se[b]);
-      if (!caster.cast(o, R * dir_s, model.max_range, &hit)) continue;
+      if (!view.cast(R * dir_s, model.max_range, &hit)) continue;
       if (hit.range < model.min_range) continue;
-      if (model.dropout > 0 && u(rng) < model.dropout) continue;
-      const double r = std::max(model.min_range, hit.range + noise(rng));
+      if (model.dropout > 0 && u(fast) < model.dropout) continue;
+      const double r = std::max(model.min_range, hit.range + noise(fast));
       scan.xyz.push_back((r * dir_s).cast<float>());
-      const double i = reflectivity(hit.semantic) * (1.0 - 0.5 * hit.range / model.max_range) + 0.05 * u(rng);
+      const double i = reflectivity(hit.semantic) * (1.0 - 0.5 * hit.range / model.max_range) + 0.05 * u(fast);
       scan.intensity.push_back(static_cast<float>(std::min(1.0, i)));
       scan.semantic.push_back(hit.semantic);
       scan.instance.push_back(hit.instance);

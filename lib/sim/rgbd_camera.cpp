@@ -69,6 +69,7 @@ RgbdImage renderRgbd(const RayCaster& caster, const Pose& T_world_body, const Ca
   const Eigen::Matrix3d R = T_world_body.linear() * R_body_optical();
   const Eigen::Vector3d o = T_world_body.translation();
   std::map<uint16_t, uint16_t> local_id;  // object id -> per-frame instance id
+  const OriginView view(caster, o, 100.0);
   RayHit hit;
   for (int v = 0; v < cam.height; ++v) {
     auto* color = img.color.ptr<cv::Vec3b>(v);
@@ -77,7 +78,7 @@ RgbdImage renderRgbd(const RayCaster& caster, const Pose& T_world_body, const Ca
     for (int c = 0; c < cam.width; ++c) {
       const Eigen::Vector3d ray_cam((c + 0.5 - cam.cx) / cam.fx, (v + 0.5 - cam.cy) / cam.fy, 1.0);
       const double norm = ray_cam.norm();
-      if (!caster.cast(o, R * (ray_cam / norm), 100.0, &hit)) continue;
+      if (!view.cast(R * (ray_cam / norm), 100.0, &hit)) continue;
       const double z = hit.range / norm;  // depth along the optical axis
       const double shade = std::clamp(1.1 - 0.04 * z, 0.35, 1.0) * (0.9 + 0.1 * u(rng));
       const cv::Vec3b base = baseColor(hit.semantic);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   slide::ScenarioSpec spec;
   std::string out, sensor = "lidar", lidar = "os1-64", camera = "d455";
   bool force = false, quiet = false;
+  unsigned threads = 0;
   app.add_option("--world", spec.world, "World: forest | urban | indoor | kitti05 | kitti07")
       ->check(CLI::IsMember(slide::worldNames()))
       ->capture_default_str();
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", spec.seed, "Random seed (same seed, same dataset)")->capture_default_str();
   app.add_option("--out", out, "Output folder")->required();
   app.add_option("--sensor", sensor, "Sensor: lidar | rgbd")->check(CLI::IsMember({"lidar", "rgbd"}))->capture_default_str();
-  app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16")
+  auto* lidar_opt = app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16 (KITTI worlds: hdl-64e)")
       ->check(CLI::IsMember(slide::lidarModelNames()))
       ->capture_default_str();
   app.add_option("--camera", camera, "RGBD camera: d435 | d455")
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
   app.add_option("--data-dir", spec.data_dir, "Real data folder (KITTI poses/poles, forest inventory)");
   app.add_flag("--force", force, "Write into a non-empty output folder");
   app.add_flag("--quiet", quiet, "No progress bar");
+  app.add_option("--threads", threads, "Robots generated in parallel (0: one per core)")->capture_default_str();
 
   return slide::runApp(app, common, argc, argv, [&]() {
     namespace fs = std::filesystem;
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error("output folder " + out + " is not empty (use --force to write into it)");
     slide::SensorOptions sensors;
     sensors.sensor = sensor;
+    if (lidar_opt->count() == 0 && spec.world.rfind("kitti", 0) == 0) lidar = "hdl-64e";  // KITTI's own sensor
     sensors.lidar = slide::lidarModel(lidar);
     sensors.camera = slide::cameraModel(camera);
     const auto t0 = std::chrono::steady_clock::now();
@@ -67,16 +70,28 @@ int main(int argc, char** argv) {
                  sc.world.structures.size(), sc.robots.size());
     for (const auto& r : sc.robots)
       spdlog::info("robot {}: {} frames, {:.0f} m", r.id, r.ground_truth.size(), r.ground_truth.length());
+    // Progress: one line for all robots, redrawn in place on a terminal, every 10 % otherwise.
     const bool bar = !quiet && isatty(STDERR_FILENO);
+    std::vector<int> done(sc.robots.size(), 0);
+    int all = 0, last_decile = -1;
+    for (std::size_t r = 0; r < sc.robots.size(); ++r) all += static_cast<int>(sc.robots[r].ground_truth.size());
     const auto progress = [&](int robot, int i, int n) {
-      if (!bar && !quiet && (i + 1) % 100 != 0 && i + 1 != n) return;
       if (quiet) return;
-      const int width = 30, filled = n > 0 ? width * (i + 1) / n : width;
-      std::fprintf(stderr, "%srobot %d [%.*s%*s] %d/%d%s", bar ? "\r" : "", robot, filled,
-                   "##############################", width - filled, "", i + 1, n, bar && i + 1 < n ? "" : "\n");
+      done[robot] = i + 1;
+      int sum = 0;
+      for (int d : done) sum += d;
+      const int decile = all > 0 ? 10 * sum / all : 10;
+      if (!bar && decile == last_decile) return;
+      last_decile = decile;
+      const int width = 30, filled = all > 0 ? width * sum / all : width;
+      std::fprintf(stderr, "%s[%.*s%*s] %d/%d frames", bar ? "\r" : "", filled, "##############################",
+                   width - filled, "", sum, all);
+      for (std::size_t r = 0; r < done.size(); ++r) std::fprintf(stderr, "  r%zu %d", r, done[r]);
+      std::fprintf(stderr, "%s", bar && sum < all ? "" : "\n");
       std::fflush(stderr);
+      (void)n;
     };
-    const slide::GenerationStats st = slide::writeScenarioDataset(sc, sensors, out, progress);
+    const slide::GenerationStats st = slide::writeScenarioDataset(sc, sensors, out, progress, threads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     spdlog::info("wrote {} frames ({} {}) to {} in {:.1f} s", st.frames, st.points,
                  sensor == "lidar" ? "points" : "valid depth pixels", out, s);

@@ -1,0 +1,57 @@
+// slide-sensor-driver: replays one robot's dataset folder (simulator output, KITTI-style
+// LiDAR or TUM-style RGBD) onto the robot bus as SCAN / RGBD, ODOM and SENSOR_STATUS, and/or
+// into an LCM log that lcm-logplayer replays.
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+
+#include "app/app.h"
+#include "replay.h"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void onSignal(int) { g_stop = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Replay a robot dataset onto the robot bus (and/or into an LCM log)", "slide-sensor-driver"};
+  slide::CommonOptions common;
+  slide::addCommonOptions(app, common);
+  slide::ReplayOptions opt;
+  std::string dataset, lcm_url, log_path;
+  bool no_publish = false, no_progress = false;
+  app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0)")->required();
+  app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
+  app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
+      ->capture_default_str();
+  app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
+  app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
+  app.add_option("--frames", opt.max_frames, "Send at most N frames (0 = all)")->capture_default_str();
+  app.add_option("--log", log_path, "Also write the messages to this LCM log file");
+  app.add_flag("--no-publish", no_publish, "Do not publish on the bus (with --log: write the log only)");
+  app.add_flag("--no-progress", no_progress, "No progress bar");
+  app.add_option("--scan-channel", opt.scan_channel, "LiDAR scan channel")->capture_default_str();
+  app.add_option("--rgbd-channel", opt.rgbd_channel, "RGBD frame channel")->capture_default_str();
+  app.add_option("--odom-channel", opt.odom_channel, "Odometry channel")->capture_default_str();
+  app.add_option("--status-channel", opt.status_channel, "Stream status channel")->capture_default_str();
+
+  return slide::runApp(app, common, argc, argv, [&]() {
+    if (no_publish && log_path.empty()) throw std::runtime_error("--no-publish needs --log FILE (nothing to do otherwise)");
+    opt.progress = !no_progress;
+    const slide::RobotDataset d = slide::openRobotDataset(dataset);
+    std::unique_ptr<lcm::LCM> bus;
+    if (!no_publish) {
+      if (lcm_url.empty()) lcm_url = "udpm://239.255.76.67:" + std::to_string(7667 + opt.robot) + "?ttl=0";
+      bus = std::make_unique<lcm::LCM>(lcm_url);
+      if (!bus->good()) throw std::runtime_error("cannot open LCM bus " + lcm_url);
+      spdlog::info("publishing on {}", lcm_url);
+    }
+    slide::MessageSink sink(bus.get(), log_path);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    slide::replayDataset(d, opt, sink, [] { return g_stop.load(); });
+    return g_stop ? 130 : 0;
+  });
+}

@@ -1,0 +1,123 @@
+#include "replay.h"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "frame_messages.h"
+#include "io/io_error.h"
+#include "slide/stream_status_t.hpp"
+
+namespace slide {
+
+namespace {
+int64_t wallUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+void drawProgress(int done, int total, double data_t, double rate) {
+  const int width = 30, filled = total > 0 ? width * done / total : width;
+  std::fprintf(stderr, "\r[%.*s%*s] %d/%d frames  t=%.1f s  %s", filled, "##############################",
+               width - filled, "", done, total, data_t, rate > 0 ? ("x" + std::to_string(rate).substr(0, 4)).c_str() : "max");
+  std::fflush(stderr);
+}
+}  // namespace
+
+MessageSink::MessageSink(lcm::LCM* bus, const std::string& log_path) : bus_(bus) {
+  if (!log_path.empty()) {
+    log_ = std::make_unique<lcm::LogFile>(log_path, "w");
+    if (!log_->good()) throw IoError(log_path, "cannot open LCM log for writing");
+  }
+}
+
+void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& data, int64_t dataset_utime) {
+  if (bus_ && bus_->publish(channel, data.data(), static_cast<unsigned>(data.size())) != 0)
+    spdlog::warn("publishing on {} failed", channel);
+  if (log_) {
+    if (first_utime_ < 0) first_utime_ = dataset_utime, log_origin_ = wallUtime();
+    lcm::LogEvent ev;
+    ev.eventnum = event_num_++;
+    ev.timestamp = log_origin_ + (dataset_utime - first_utime_);
+    ev.channel = channel;
+    ev.datalen = static_cast<int32_t>(data.size());
+    ev.data = const_cast<uint8_t*>(data.data());
+    if (log_->writeEvent(&ev) != 0) throw std::runtime_error("writing the LCM log failed");
+  }
+}
+
+int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& sink, const std::function<bool()>& stop) {
+  const int n = static_cast<int>(d.size());
+  int first = std::clamp(o.start_frame, 0, n);
+  while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
+  int last = o.max_frames > 0 ? std::min(n, first + o.max_frames) : n;
+  const int total = last - first;
+  spdlog::info("replaying {} frames [{}, {}) of {} ({}), rate {}", total, first, last, d.dir,
+               d.sensor == RobotDataset::Sensor::Lidar ? "lidar" : "rgbd", o.rate > 0 ? std::to_string(o.rate) : "max");
+  if (d.odometry.empty()) spdlog::warn("{} has no odometry: no {} messages", d.dir, o.odom_channel);
+
+  const bool bar = o.progress && isatty(STDERR_FILENO);
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto last_status = wall0;
+  auto status = [&](int8_t state, int sent) {
+    stream_status_t s;
+    s.utime = wallUtime();
+    s.robot = o.robot;
+    s.state = state;
+    s.frames_sent = sent;
+    s.frames_total = total;
+    s.source = d.dir;
+    sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
+  };
+  status(stream_status_t::RUNNING, 0);
+  int sent = 0;
+  for (int i = first; i < last; ++i) {
+    if (stop && stop()) {
+      if (bar) std::fprintf(stderr, "\n");
+      spdlog::warn("interrupted after {} of {} frames", sent, total);
+      return sent;
+    }
+    const double rel = d.times[i] - d.times[first];
+    if (o.rate > 0) {
+      const auto due = wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(rel / o.rate));
+      std::this_thread::sleep_until(due);
+    }
+    const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
+    const int seq = i - first;
+    if (!d.odometry.empty()) {
+      const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
+      const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
+      sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
+    }
+    if (d.sensor == RobotDataset::Sensor::Lidar) {
+      sink.send(o.scan_channel, toScanMessage(readLabelledScan(d.scans[i]), utime, o.robot, seq), utime);
+    } else {
+      const std::filesystem::path dir(d.dir);
+      const cv::Mat color = readColorPng((dir / d.frames[i].rgb).string());
+      const cv::Mat depth = readDepthPng((dir / d.frames[i].depth).string());
+      const std::filesystem::path mask_png = dir / "instances" / std::filesystem::path(d.frames[i].rgb).filename();
+      std::unique_ptr<InstanceMask> mask;
+      if (std::filesystem::exists(mask_png)) mask = std::make_unique<InstanceMask>(readInstanceMask(mask_png.string()));
+      sink.send(o.rgbd_channel, toRgbdMessage(color, depth, mask.get(), d.camera, utime, o.robot, seq), utime);
+    }
+    ++sent;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_status > std::chrono::seconds(1)) {
+      status(stream_status_t::RUNNING, sent);
+      last_status = now;
+    }
+    if (bar) drawProgress(sent, total, rel, o.rate);
+    else if (o.progress && total >= 10 && sent % (total / 10) == 0) spdlog::info("{}/{} frames", sent, total);
+  }
+  if (bar) std::fprintf(stderr, "\n");
+  status(stream_status_t::FINISHED, sent);
+  spdlog::info("end of data: {} frames sent", sent);
+  return sent;
+}
+
+}  // namespace slide

@@ -1,0 +1,50 @@
+#pragma once
+// Replay of one robot's dataset: which frames, at what pace, and where the messages go.
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "io/robot_dataset.h"
+
+namespace slide {
+
+struct ReplayOptions {
+  int robot = 0;
+  double rate = 1.0;          // real-time factor; <= 0: as fast as possible
+  int start_frame = 0;        // skip the first K frames ...
+  double start_time = 0.0;    // ... or the first S seconds of data (whichever skips more)
+  int max_frames = 0;         // > 0: stop after this many frames
+  std::string scan_channel = "SCAN", rgbd_channel = "RGBD", odom_channel = "ODOM", status_channel = "SENSOR_STATUS";
+  bool progress = true;       // progress bar on stderr
+};
+
+// Where encoded messages go: the bus and/or an LCM log.
+class MessageSink {
+ public:
+  MessageSink(lcm::LCM* bus, const std::string& log_path);
+  // data: an encoded message; dataset_utime stamps log events (the log keeps data time).
+  void send(const std::string& channel, const std::vector<uint8_t>& data, int64_t dataset_utime);
+  template <class Msg>
+  void send(const std::string& channel, const Msg& msg, int64_t dataset_utime) {
+    std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
+    msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+    send(channel, buf, dataset_utime);
+  }
+
+ private:
+  lcm::LCM* bus_;
+  std::unique_ptr<lcm::LogFile> log_;
+  int64_t log_origin_ = 0;  // wall-clock utime of the first log event
+  int64_t first_utime_ = -1;
+  int64_t event_num_ = 0;
+};
+
+// Replays frames [start, end) of `dataset` into `sink`; returns frames sent. Publishes a
+// RUNNING status about once a second and FINISHED at the end of data. `stop` is polled
+// between frames (interrupts end the replay early, without FINISHED).
+int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, MessageSink& sink,
+                  const std::function<bool()>& stop);
+
+}  // namespace slide

@@ -1,0 +1,138 @@
+// Simulator output reads back through the project's readers.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "io/ground_truth_objects.h"
+#include "io/kitti_scan.h"
+#include "io/robot_dataset.h"
+#include "sim/dataset_writer.h"
+
+using namespace slide;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("slide_test_sim_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+}  // namespace
+
+TEST(Dataset, LidarScenarioReadsBack) {
+  ScenarioSpec spec;
+  spec.world = "urban";
+  spec.robots = 2;
+  spec.frames = 4;
+  const Scenario sc = buildScenario(spec);
+  const fs::path out = scratch("lidar");
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  const GenerationStats st = writeScenarioDataset(sc, sensors, out.string());
+  EXPECT_EQ(st.frames, 8u);
+
+  const std::vector<GroundTruthObject> objects = readGroundTruthObjects((out / "objects.csv").string());
+  ASSERT_EQ(objects.size(), sc.world.objects.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    EXPECT_EQ(objects[i].object.id, static_cast<int64_t>(i + 1));
+    EXPECT_EQ(objects[i].object.class_id, sc.world.objects[i].object.class_id);
+    EXPECT_TRUE(objects[i].object.position().isApprox(sc.world.objects[i].object.position(), 1e-5));
+    EXPECT_TRUE(objects[i].object.extent().isApprox(sc.world.objects[i].object.extent(), 1e-5));
+    EXPECT_TRUE(objects[i].velocity.isApprox(sc.world.objects[i].velocity, 1e-5));
+  }
+  for (int r = 0; r < 2; ++r) {
+    const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
+    EXPECT_EQ(d.sensor, RobotDataset::Sensor::Lidar);
+    ASSERT_EQ(d.size(), 4u);
+    ASSERT_EQ(d.odometry.size(), 4u);
+    ASSERT_EQ(d.ground_truth.size(), 4u);
+    EXPECT_TRUE(d.ground_truth[3].pose.isApprox(sc.robots[r].ground_truth.poses[3], 1e-6));
+    EXPECT_TRUE(d.odometry[3].pose.isApprox(sc.robots[r].odometry[3], 1e-6));
+    const LabelledScan scan = readLabelledScan(d.scans[2]);
+    ASSERT_TRUE(scan.hasLabels());
+    EXPECT_GT(scan.size(), 5000u);
+    // Every instance id names an object of the CSV whose class matches the point label.
+    for (std::size_t i = 0; i < scan.size(); ++i)
+      if (scan.instance[i] != 0) {
+        ASSERT_LE(scan.instance[i], objects.size());
+        ASSERT_EQ(scan.semantic[i], objects[scan.instance[i] - 1].semantic);
+      }
+  }
+  fs::remove_all(out);
+}
+
+TEST(Dataset, OutputDoesNotDependOnThreads) {
+  ScenarioSpec spec;
+  spec.world = "urban";  // moving cars: frames depend on time
+  spec.robots = 2;
+  spec.frames = 3;
+  const Scenario sc = buildScenario(spec);
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  const fs::path a = scratch("threads1"), b = scratch("threads2");
+  writeScenarioDataset(sc, sensors, a.string(), {}, 1);
+  writeScenarioDataset(sc, sensors, b.string(), {}, 2);
+  for (const char* f : {"robot1/velodyne/000002.bin", "robot1/labels/000002.label", "robot0/odom.txt", "objects.csv"}) {
+    std::ifstream fa(a / f, std::ios::binary), fb(b / f, std::ios::binary);
+    const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+    EXPECT_FALSE(sa.empty()) << f;
+    EXPECT_EQ(sa, sb) << f;
+  }
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+TEST(Dataset, RgbdScenarioReadsBack) {
+  ScenarioSpec spec;
+  spec.world = "indoor";
+  spec.robots = 1;
+  spec.frames = 2;
+  const Scenario sc = buildScenario(spec);
+  const fs::path out = scratch("rgbd");
+  SensorOptions sensors;
+  sensors.sensor = "rgbd";
+  writeScenarioDataset(sc, sensors, out.string());
+  const RobotDataset d = openRobotDataset((out / "robot0").string());
+  EXPECT_EQ(d.sensor, RobotDataset::Sensor::Rgbd);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d.camera.width, 640);
+  EXPECT_NEAR(d.camera.depth_scale, 0.001, 1e-12);
+  const cv::Mat depth = readDepthPng((out / "robot0" / d.frames[1].depth).string());
+  const cv::Mat color = readColorPng((out / "robot0" / d.frames[1].rgb).string());
+  EXPECT_EQ(depth.rows, 480);
+  EXPECT_EQ(color.type(), CV_8UC3);
+  EXPECT_GT(cv::countNonZero(depth), 640 * 480 / 2);
+  const InstanceMask mask = readInstanceMask((out / "robot0" / "instances" / "000001.png").string());
+  EXPECT_EQ(mask.class_id.size(), mask.object_id.size());
+  for (int obj : mask.object_id) EXPECT_GE(obj, 1);
+  fs::remove_all(out);
+}
+
+TEST(Dataset, EveryWorldForOneToThreeRobots) {
+  const bool kitti = fs::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/05.txt");
+  int robots = 1;
+  for (const std::string& world : worldNames()) {
+    if (world.rfind("kitti", 0) == 0 && !kitti) continue;
+    SCOPED_TRACE(world);
+    ScenarioSpec spec;
+    spec.world = world;
+    spec.robots = robots;
+    spec.frames = 2;
+    const Scenario sc = buildScenario(spec);
+    ASSERT_EQ(sc.robots.size(), static_cast<std::size_t>(robots));
+    const fs::path out = scratch("world_" + world);
+    SensorOptions sensors;
+    sensors.lidar = lidarModel("vlp-16");
+    writeScenarioDataset(sc, sensors, out.string());
+    EXPECT_EQ(readGroundTruthObjects((out / "objects.csv").string()).size(), sc.world.objects.size());
+    for (int r = 0; r < robots; ++r) {
+      const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
+      ASSERT_EQ(d.size(), 2u);
+      EXPECT_GT(readLabelledScan(d.scans[1]).size(), 1000u);
+    }
+    fs::remove_all(out);
+    robots = robots % 3 + 1;
+  }
+}
