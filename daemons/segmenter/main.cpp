@@ -76,13 +76,21 @@ class SegmenterNode {
       FrameInstances out;
       out.utime = utime;
       out.odom_pose = *pose;
+      bool usable = true;  // bad frames (empty scans, unusable images) are skipped, not published
       if (const auto* scan = std::get_if<lidar_scan_t>(&pending_.front())) {
         const LabelledScan s = scanFromMsg(*scan, issues);
         const bool labelled = cfg_.lidar_mode == "labelled" || (cfg_.lidar_mode == "auto" && s.hasLabels());
-        if (s.size() == 0) issues.count("empty scan");
+        usable = s.size() > 0;
+        if (!usable) issues.count("empty scan");
         else out.instances = labelled ? labelled_.segment(s, issues) : geometric_.segment(s, issues);
       } else if (auto frame = rgbdFromMsg(std::get<rgbd_frame_t>(pending_.front()), issues)) {
         out.instances = segmentRgbd(*frame, classes_, cfg_.rgbd, issues);
+      } else {
+        usable = false;
+      }
+      if (!usable) {
+        pending_.pop_front();
+        continue;
       }
       header_t h;
       h.utime = utime;

@@ -41,8 +41,26 @@ void fitAxis(const std::vector<SliceFit>& s, double z0, Eigen::Vector2d& base, E
 }
 }  // namespace
 
+// One attempt at a fixed slice height (defined below).
+std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParams& p, const Eigen::Vector3d& viewpoint,
+                                        std::string* why);
+
 std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p, const Eigen::Vector3d& viewpoint,
                                     std::string* why) {
+  // Sparse (distant) trunks: when no slice holds enough points, thicker slices are tried.
+  CylinderFitParams q = p;
+  for (int attempt = 0; attempt < 3; ++attempt, q.slice_height *= 2) {
+    std::string reason;
+    auto c = fitCylinderOnce(pts, q, viewpoint, &reason);
+    if (c) return c;
+    setWhy(why, reason);
+    if (reason != "no slice with enough points") break;
+  }
+  return std::nullopt;
+}
+
+std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParams& p, const Eigen::Vector3d& viewpoint,
+                                        std::string* why) {
   if (static_cast<int>(pts.size()) < p.min_points) {
     setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
     return std::nullopt;

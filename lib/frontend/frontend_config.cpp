@@ -54,6 +54,9 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "margin", p.margin, 0.0);
     opt(c, "min_points", p.min_points, 1);
     opt(c, "trunk_min_radius", p.trunk_min_radius, 0.0);
+    opt(c, "isolation_gap", p.isolation_gap, 0.0);
+    opt(c, "isolation_ring", p.isolation_ring, p.isolation_gap);
+    opt(c, "max_ring_fraction", p.max_ring_fraction, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
   }
@@ -154,6 +157,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "max_observations", p.max_observations, 1);
     opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
+    opt(c, "merge_same_shape", p.merge_same_shape);
   }
   if (root.has("keypose")) {
     const ConfigNode c = root.child("keypose");

@@ -139,6 +139,13 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
       if (covered < cp.min_coverage * num_bins) continue;
       c = {0.5 * (min_x + max_x), 0.5 * (min_y + max_y)};
       const double radius = 0.5 * std::hypot(max_x - min_x, max_y - min_y) + cp.margin;
+      // Isolation: a trunk or pole stands free; band points in a ring around it mean a wall
+      // or a hedge that the planar clustering cut into pieces.
+      int ring = 0;
+      for (int i : buckets.near(c, radius + cp.isolation_ring))
+        if (h[i] >= cp.band_low && h[i] <= cp.band_high && std::hypot(cloud[i].x() - c.x(), cloud[i].y() - c.y()) > radius + cp.isolation_gap)
+          ++ring;
+      if (ring > cp.max_ring_fraction * static_cast<double>(group.size())) continue;
       std::vector<int> column;
       double top = 0, ground_z = 0;
       for (int i : buckets.near(c, radius)) {

@@ -24,6 +24,9 @@ struct ColumnParams {
   double max_height = 8.0;       // column points kept up to this height
   double margin = 0.12;          // metres added to the band radius when collecting points
   int min_points = 8;            // band points
+  double isolation_gap = 0.25;   // band points between radius + gap and radius + ring ...
+  double isolation_ring = 1.0;
+  double max_ring_fraction = 0.5;  // ... may number at most this fraction of the column's
   double trunk_min_radius = 0.12;      // thicker columns are trunks
   double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
   double canopy_min_fraction = 0.2;    // ... in this fraction of the cluster make it a trunk
@@ -38,9 +41,9 @@ struct CarParams {
   double min_length = 1.2, max_length = 6.5;
   double max_width = 2.8;
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
-  // car bodies are smooth (~2 cm), vegetation is not (~8 cm). 0 disables; clusters with
+  // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.
-  double max_roughness = 0.045;
+  double max_roughness = 0.06;
 };
 
 struct GeometricSegmenterParams {

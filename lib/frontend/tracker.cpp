@@ -1,6 +1,8 @@
 #include "frontend/tracker.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/hungarian.h"
@@ -86,36 +88,64 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 
   std::map<std::int64_t, bool> matched;
-  for (auto& [class_id, obs] : by_class) {
-    const ClassInfo& info = classes_.at(class_id);
+  auto apply = [&](Track& t, Obs& o) {
+    ++t.hits;
+    t.missed = 0;
+    t.confidence_sum += o.confidence;
+    t.last_centroid = o.centroid;
+    ++t.class_votes[o.class_id];
+    t.class_id = std::max_element(t.class_votes.begin(), t.class_votes.end(),
+                                  [](const auto& x, const auto& y) { return x.second < y.second; })->first;
+    t.observations.push_back(std::move(o.points));
+    while (static_cast<int>(t.observations.size()) > params_.max_observations) t.observations.pop_front();
+    if (!t.moving && exceedsClassSize(t)) t.moving = true;
+    matched[t.id] = true;
+  };
+  // Gated Hungarian between observations and the unmatched tracks accepted by `compatible`;
+  // returns the observations left over.
+  auto associate = [&](std::vector<Obs> obs, const std::function<bool(const Track&)>& compatible, Shape shape, double gate) {
     std::vector<Track*> cand;
     for (auto& [id, t] : tracks_)
-      if (t.class_id == class_id) cand.push_back(&t);
+      if (!matched.count(id) && compatible(t)) cand.push_back(&t);
+    std::vector<Obs> left;
+    if (cand.empty()) return obs;
     Eigen::MatrixXd cost(obs.size(), cand.size());
     for (std::size_t i = 0; i < obs.size(); ++i)
-      for (std::size_t j = 0; j < cand.size(); ++j)
-        cost(i, j) = centroidDistance(info.shape, obs[i].centroid, cand[j]->last_centroid);
-    const std::vector<int> assign = cand.empty() ? std::vector<int>(obs.size(), -1)
-                                                 : solveGatedAssignment(cost, info.association_distance * params_.gate_scale);
+      for (std::size_t j = 0; j < cand.size(); ++j) cost(i, j) = centroidDistance(shape, obs[i].centroid, cand[j]->last_centroid);
+    const std::vector<int> assign = solveGatedAssignment(cost, gate);
     for (std::size_t i = 0; i < obs.size(); ++i) {
-      Track* t;
-      if (assign[i] >= 0) {
-        t = cand[assign[i]];
-      } else {
-        Track fresh;
-        fresh.id = next_id_++;
-        fresh.class_id = class_id;
-        t = &tracks_.emplace(fresh.id, fresh).first->second;
-      }
-      ++t->hits;
-      t->missed = 0;
-      t->confidence_sum += obs[i].confidence;
-      t->last_centroid = obs[i].centroid;
-      t->observations.push_back(std::move(obs[i].points));
-      while (static_cast<int>(t->observations.size()) > params_.max_observations) t->observations.pop_front();
-      if (!t->moving && exceedsClassSize(*t)) t->moving = true;
-      matched[t->id] = true;
+      if (assign[i] >= 0) apply(*cand[assign[i]], obs[i]);
+      else left.push_back(std::move(obs[i]));
     }
+    return left;
+  };
+  // 1. Per class. 2. Leftovers against unmatched tracks of other classes of the same shape
+  // (a segmenter may call one trunk a pole in some frames; the track's class is the majority
+  // of its observations). 3. New tracks for the rest.
+  std::vector<Obs> leftovers;
+  for (auto& [class_id, obs] : by_class) {
+    const ClassInfo& info = classes_.at(class_id);
+    const int cls = class_id;
+    auto left = associate(std::move(obs), [cls](const Track& t) { return t.class_id == cls; }, info.shape,
+                          info.association_distance * params_.gate_scale);
+    for (auto& o : left) leftovers.push_back(std::move(o));
+  }
+  std::vector<Obs> fresh;
+  for (auto& o : leftovers) {
+    const ClassInfo& info = classes_.at(o.class_id);
+    std::vector<Obs> one;
+    one.push_back(std::move(o));
+    auto left = params_.merge_same_shape
+                    ? associate(std::move(one), [&](const Track& t) { return classes_.at(t.class_id).shape == info.shape; },
+                                info.shape, info.association_distance * params_.gate_scale)
+                    : std::move(one);
+    for (auto& l : left) fresh.push_back(std::move(l));
+  }
+  for (auto& o : fresh) {
+    Track t;
+    t.id = next_id_++;
+    t.class_id = o.class_id;
+    apply(tracks_.emplace(t.id, t).first->second, o);
   }
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (!matched.count(it->first)) ++it->second.missed;

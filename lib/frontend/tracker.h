@@ -16,13 +16,14 @@
 namespace slide {
 
 struct TrackerParams {
-  double gate_scale = 1.0;           // gate = class association_distance * gate_scale
+  double gate_scale = 0.5;           // gate = class association_distance * gate_scale
   int min_age = 3;                   // observations before a track yields objects
   int max_missed = 5;                // consecutive missed frames before deletion
   int report_max_missed = 1;         // tracks missed longer ago are not reported
   int max_observations = 10;         // sliding window of observations per track
   int max_points_per_observation = 1500;
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
+  bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
 };
 
 struct Track {
@@ -32,6 +33,7 @@ struct Track {
   int missed = 0;
   bool moving = false;
   double confidence_sum = 0;
+  std::map<int, int> class_votes;    // observations per class; class_id is the majority
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
   std::deque<Cloud> observations;                           // odometry frame
   Cloud accumulated() const;

@@ -20,9 +20,10 @@ struct SceneObject {
 };
 
 // Scan seen from T_world_sensor (sensor 1.5 m above the ground at z = 0 of the world), points
-// in the sensor frame, spacing ~`step` metres on each surface.
+// in the sensor frame, spacing ~`step` metres on each surface (`ground_step` on the ground).
 inline LabelledScan syntheticScan(const std::vector<SceneObject>& objects, const Pose& T_world_sensor,
-                                  double step = 0.05, unsigned seed = 1, double noise = 0.01) {
+                                  double step = 0.05, unsigned seed = 1, double noise = 0.01,
+                                  double ground_step = 0.2) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise);
   LabelledScan s;
@@ -36,8 +37,8 @@ inline LabelledScan syntheticScan(const std::vector<SceneObject>& objects, const
     s.instance.push_back(static_cast<uint16_t>(inst));
   };
   // Ground ring around the sensor.
-  for (double r = 2.0; r < 20.0; r += 0.2)
-    for (double a = 0; a < 2 * M_PI; a += 0.2 / r) add(eye + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), -eye.z()), 40, 0);
+  for (double r = 2.0; r < 20.0; r += ground_step)
+    for (double a = 0; a < 2 * M_PI; a += ground_step / r) add(eye + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), -eye.z()), 40, 0);
   for (std::size_t k = 0; k < objects.size(); ++k) {
     const SceneObject& o = objects[k];
     const int inst = static_cast<int>(k) + 1;

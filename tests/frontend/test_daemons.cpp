@@ -26,7 +26,7 @@ extern char** environ;
 using namespace slide;
 
 namespace {
-const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";
+const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
 pid_t spawn(const std::string& exe, std::vector<std::string> args) {
   args.insert(args.begin(), exe);
@@ -92,6 +92,7 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
   const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {71, {12, -4, 0}, 0.35, 6.0},
                                               {10, {9, 5, 0}, 0, 0, 0.1}};
   const int frames = 24;
+  int expected = 0;  // instance messages: one per usable scan
   for (int k = 0; k < frames; ++k) {
     const Pose T = poseFromXyzYaw(0.4 * k, 0, 1.5, 0);
     header_t h;
@@ -106,7 +107,7 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
       lidar_scan_t empty = scanToMsg(LabelledScan{}, h);
       lcm.publish("SCAN", &empty);
     } else {
-      LabelledScan scan = synth::syntheticScan(scene, T, 0.08, k + 1);
+      LabelledScan scan = synth::syntheticScan(scene, T, 0.08, k + 1, 0.01, 0.6);
       if (k == 8) scan.xyz[3] = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
       const lidar_scan_t m = scanToMsg(scan, h);
       lcm.publish("SCAN", &m);
@@ -121,14 +122,17 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
       bad.depth.assign(10, 0);
       lcm.publish("RGBD", &bad);
     }
-    pump(lcm, 0.1);
+    // Lock step: the next frame goes out once this one's instances are back (a loaded
+    // machine would otherwise queue scans until the kernel drops datagrams).
+    expected += k != 5;
+    for (int i = 0; i < 150 && got.instances < expected; ++i) pump(lcm, 0.02);
   }
-  // The last frame's scan waits for odometry after it; send one more pose.
+  // One more pose after the last scan (a driver keeps sending odometry).
   odometry_t last{};
   last.header.utime = 1000000 + frames * 100000;
   last.pose = toMsg(poseFromXyzYaw(0.4 * frames, 0, 1.5, 0));
   lcm.publish("ODOM", &last);
-  for (int i = 0; i < 100 && got.instances < frames; ++i) pump(lcm, 0.05);
+  for (int i = 0; i < 200 && got.instances < expected; ++i) pump(lcm, 0.05);
   pump(lcm, 0.5);
 
   EXPECT_TRUE(alive(seg.pid)) << "segmenter died";
@@ -136,8 +140,8 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
   EXPECT_TRUE(seg.stop()) << "segmenter did not exit cleanly";
   EXPECT_TRUE(trk.stop()) << "tracker did not exit cleanly";
 
-  // One instance message per scan (the empty scan gives an empty one); the bad RGBD frame none.
-  EXPECT_EQ(got.instances, frames);
+  // One instance message per usable scan; the empty scan and the bad RGBD frame give none.
+  EXPECT_EQ(got.instances, frames - 1);
   ASSERT_GE(got.bundles.size(), 6u);  // ~9.2 m driven, a key pose per metre
   std::map<std::int64_t, int> seen_ids;
   for (std::size_t i = 0; i < got.bundles.size(); ++i) {

@@ -70,8 +70,8 @@ TEST(Tracker, StaticObjectsKeepOneTrackAndAppearAfterMinAge) {
 
 TEST(Tracker, MovingCarIsRejected) {
   Pipeline p;
-  // 1.5 m per frame (15 m/s at 10 Hz): its track smears beyond a car's length.
-  const auto bundles = p.run({{71, {8, 4, 0}, 0.3, 6.0}, {10, {6, -5, 0}, 0, 0, 0.0}}, 12, 1.5);
+  // 1 m per frame (10 m/s at 10 Hz): its track smears beyond a car's length.
+  const auto bundles = p.run({{71, {8, 4, 0}, 0.3, 6.0}, {10, {6, -5, 0}, 0, 0, 0.0}}, 12, 1.0);
   for (const auto& o : bundles.back().objects) EXPECT_NE(o.class_id, 10);
   bool moving = false;
   for (const auto& [id, t] : p.bundler.tracker().tracks()) moving |= t.moving;
@@ -137,4 +137,21 @@ TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
     std::ofstream(path) << "segmenter:\n  lidar_mode: magic\n";
   }
   EXPECT_THROW(loadFrontendConfig(path), ConfigError);
+}
+
+TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
+  const ClassTable classes = ClassTable::loadDefault();
+  Tracker tracker(classes, {}, {});
+  InputIssues issues;
+  for (int k = 0; k < 5; ++k) {
+    FrameInstances f;
+    Instance inst;
+    inst.class_id = k == 2 ? 80 : 71;  // one frame calls the trunk a pole
+    for (int i = 0; i < 30; ++i) inst.points.emplace_back(5 + 0.01f * i, 0, 0.1f * i);
+    f.instances = {inst};
+    tracker.update(f, issues);
+  }
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_EQ(tracker.tracks().begin()->second.class_id, 71);
+  EXPECT_EQ(tracker.tracks().begin()->second.hits, 5);
 }

@@ -36,7 +36,8 @@ struct KittiScanResult {
   std::vector<KittiTarget> targets;
   int cuboids = 0, cylinders = 0, ellipsoids = 0;   // fitted objects of the mode
   int unmatched_cuboids = 0, unmatched_cylinders = 0;
-  std::vector<double> segment_fit_ms;               // one per run
+  std::vector<double> segment_fit_ms;               // thread CPU time, one per run
+  std::vector<double> segment_fit_wall_ms;          // wall-clock time, one per run
 };
 
 // Runs `segmenter` + fitting `runs` times on the scan (timing each) and matches the fitted

@@ -1,6 +1,8 @@
 #include "world_eval.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <set>
 #include <opencv2/core.hpp>
@@ -44,6 +46,12 @@ int groupOf(const std::string& mode, int class_id, const FrontendConfig& cfg) {
   return class_id;
 }
 
+bool insideFootprint(const Object& box, const Eigen::Vector3d& p) {
+  const Cuboid& c = std::get<Cuboid>(box.model);
+  const Eigen::Vector3d q = c.pose.inverse() * p;
+  return std::abs(q.x()) <= c.dims.x() / 2 && std::abs(q.y()) <= c.dims.y() / 2;
+}
+
 struct Runner {
   std::string mode;
   std::unique_ptr<LidarSegmenter> lidar;
@@ -81,7 +89,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   bool need_lidar = false, need_rgbd = false;
   for (const auto& r : runners) (r.mode == "rgbd" ? need_rgbd : need_lidar) = true;
 
-  std::map<int, int> seen_lidar, seen_rgbd;  // object id -> frames with >= min_points
+  std::map<int, int> seen_lidar, seen_rgbd;
+  std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
   std::unique_ptr<RayCaster> caster;
   const std::size_t n = robot.ground_truth.size();
   for (std::size_t k = 0; k < n; ++k) {
@@ -98,8 +107,10 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       unlabelled.intensity = scan.intensity;
       count.clear();
       for (auto id : scan.instance) ++count[id];
-      for (const auto& [id, c] : count)
+      for (const auto& [id, c] : count) {
         if (id != 0 && c >= spec.min_points) ++seen_lidar[id];
+        max_points[id] = std::max(max_points[id], c);
+      }
     }
     if (need_rgbd) {
       const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
@@ -139,16 +150,24 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       if (it == seen.end() || it->second < spec.min_frames) continue;
       gt[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
     }
-    // The map: estimates of one group closer than the class's association distance are one
-    // landmark (what the back-end's data association does with re-created tracks).
+    // The map: estimates of one group that are the same landmark (what the back-end's data
+    // association does with re-created tracks) are kept once: cuboids whose centre lies in
+    // the other's footprint, other shapes closer than half the class's association distance.
+    // Best-observed estimates first: they survive as the landmark.
+    std::vector<Object> ordered;
+    for (const auto& [id, o] : r.latest) ordered.push_back(o);
+    std::stable_sort(ordered.begin(), ordered.end(),
+                     [](const Object& a, const Object& b) { return a.num_observations > b.num_observations; });
     std::vector<Object> merged;
-    for (const auto& [id, o] : r.latest) {
+    for (const auto& o : ordered) {
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
       bool dup = false;
       for (const auto& m : merged)
         dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
-               (m.position() - o.position()).head<2>().norm() < c->association_distance;
+               ((m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance ||
+                (o.shape() == Shape::Cuboid && m.shape() == Shape::Cuboid &&
+                 (insideFootprint(m, o.position()) || insideFootprint(o, m.position()))));
       if (!dup) merged.push_back(o);
     }
     for (const auto& o : merged) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
@@ -166,7 +185,37 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         for (std::size_t i = 0; i < E.size(); ++i)
           for (std::size_t j = 0; j < G.size(); ++j)
             cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
-        for (int a : solveGatedAssignment(cost, info.association_distance)) matched += a >= 0;
+        const auto assign = solveGatedAssignment(cost, info.association_distance);
+        std::vector<char> hit(G.size(), 0);
+        for (int a : assign)
+          if (a >= 0) ++matched, hit[a] = 1;
+        if (spec.verbose)
+          for (std::size_t i = 0; i < E.size(); ++i) {
+            if (assign[i] >= 0) continue;
+            const GroundTruthObject* near = nullptr;
+            double d = 1e9;
+            for (const auto& g : sc.world.objects) {
+              const double dg = (g.object.position() - E[i]->position()).head<2>().norm();
+              if (dg < d) d = dg, near = &g;
+            }
+            const auto it = near ? seen.find(static_cast<int>(near->object.id)) : seen.end();
+            std::printf("  extra %s %s at (%.1f, %.1f): nearest object %ld (class %d%s, seen in %d frames) at %.2f m\n",
+                        r.mode.c_str(), info.name.c_str(), E[i]->position().x(), E[i]->position().y(),
+                        near ? static_cast<long>(near->object.id) : -1L, near ? near->object.class_id : -1,
+                        near && near->moving() ? ", moving" : "", it == seen.end() ? 0 : it->second, d);
+          }
+        if (spec.verbose)
+          for (std::size_t j = 0; j < G.size(); ++j) {
+            if (hit[j]) continue;
+            double nearest = 1e9;
+            for (const auto* e : E) nearest = std::min(nearest, (e->position() - G[j]->position()).head<2>().norm());
+            std::printf("  missed %s %s id %ld at (%.1f, %.1f): seen in %d frames, max %d points, nearest estimate %.2f m\n",
+                        r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
+                        G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
+          }
+      } else if (spec.verbose) {
+        for (const auto* g : G)
+          std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
       }
       auto& pc = m.per_class[info.name];
       pc = {static_cast<int>(E.size()), static_cast<int>(G.size()), matched};

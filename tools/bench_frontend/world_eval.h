@@ -22,6 +22,7 @@ struct WorldEvalSpec {
   std::vector<std::string> modes{"labelled", "geometric"};  // labelled | geometric | rgbd
   int min_points = 15;       // a ground-truth object counts as seen ...
   int min_frames = 3;        // ... in this many frames
+  bool verbose = false;      // print every missed ground-truth object
 };
 
 struct ModeResult {
