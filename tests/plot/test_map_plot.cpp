@@ -77,8 +77,8 @@ TEST(MapPlot, DrawsObjectsTrajectoriesAndLegend) {
   const ClassTable classes = ClassTable::loadDefault();
   PlotMap est{"robot0 map", {car(0, 0, 0), car(10, 0, 0.5), trunk(5, 5)}, 0, false};
   PlotMap gt{"truth", {car(0.5, 0, 0), trunk(5, 5.5)}, 0, true};
-  PlotTrajectory traj{"robot0", {{-5, -5, 0}, {0, -5, 0}, {15, -5, 0}}, 0, false};
-  PlotTrajectory gt_traj{"gt", {{-5, -5.5, 0}, {15, -5.5, 0}}, 0, true};
+  PlotTrajectory traj{"robot0", {{-5, -5, 0}, {0, -5, 0}, {15, -5, 0}}, 0, false, {}};
+  PlotTrajectory gt_traj{"gt", {{-5, -5.5, 0}, {15, -5.5, 0}}, 0, true, {}};
   for (View v : {View::top(), View::oblique()}) {
     MapPlotOptions opts;
     opts.view = v;
