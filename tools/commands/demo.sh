@@ -42,7 +42,7 @@ main() {
   export PATH="$SLIDE_BIN:$PATH"
 
   log "1/3 simulating a $robots-robot $world mission ($distance m each, seed $seed) into $data"
-  slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --out "$data" ||
+  slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --rate 5 --out "$data" ||
     die "demo: simulation failed"
 
   local frames mission

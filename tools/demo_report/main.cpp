@@ -106,7 +106,13 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   ObjectMatchOptions mo;
   mo.threshold = opts.match_threshold;
   mo.planar = true;
+  // Recall: of the objects near some robot's path; precision: against every real object, so
+  // that a correctly mapped tree farther out is not counted as false.
   f.objects = scoreObjectMap(in_world, visible, mo);
+  const ObjectMappingScore against_all = scoreObjectMap(in_world, truth.objects, mo);
+  f.objects.overall.precision = against_all.overall.precision;
+  const double p = f.objects.overall.precision, r = f.objects.overall.recall;
+  f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
   for (const auto& [b, c] : log.closures) f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
   if (!log.update_ms.empty()) {
     f.update_ms_median = median(log.update_ms);
@@ -125,9 +131,9 @@ void plotRobot(int a, const RobotRunLog& log, const TeamTruth& truth, const std:
   maps.push_back(own);
   std::vector<PlotTrajectory> trajs;
   for (const RobotTruth& r : truth.robots)
-    trajs.push_back({"robot" + std::to_string(r.robot) + " truth", positions(r.ground_truth), r.robot, true});
+    trajs.push_back({"robot" + std::to_string(r.robot) + " truth", positions(r.ground_truth), r.robot, true, {}});
   for (const auto& [b, t] : log.trajectories)
-    trajs.push_back({"robot" + std::to_string(b) + " estimate", positions(stamped(t), T_w_a), b, false});
+    trajs.push_back({"robot" + std::to_string(b) + " estimate", positions(stamped(t), T_w_a), b, false, {}});
   MapPlotOptions po;
   po.view = view;
   po.title = "robot" + std::to_string(a) + ": merged map and all trajectories";
@@ -241,9 +247,11 @@ int main(int argc, char** argv) {
     for (const BenchResult& r : report.results())
       md << "| " << r.name << " | " << num(r.value) << " | " << r.unit << " | " << (r.target ? num(*r.target) : "-")
          << " | " << (r.paper ? num(*r.paper) : "-") << " |\n";
-    md << "\nObject scores count estimated landmarks (in the world through each robot's true start) against the "
-       << visible.size() << " static ground-truth objects within " << opts.visible_range
-       << " m of any robot's path, matched one-to-one within " << opts.match_threshold << " m (x, y).\n\n";
+    md << "\nObject scores place each robot's landmarks in the world through its true start and match them "
+       << "one-to-one within " << opts.match_threshold << " m (x, y): recall counts the " << visible.size()
+       << " static ground-truth objects within " << opts.visible_range
+       << " m of any robot's path, precision counts matches against all " << truth.objects.size()
+       << " static objects.\n\n";
     md << "## Per robot\n\n| robot | key poses | ATE m | odometry ATE m | landmarks | precision | recall | F1 | "
           "trajectories held | bundles own / peers | update ms median / p99 |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RobotFigures& f : figs)
