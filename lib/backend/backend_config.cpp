@@ -60,6 +60,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     read(n, "min_observations", c.min_observations);
     read(n, "association_sigmas", c.association_sigmas);
     read(n, "association_gate", c.association_gate);
+    if (c.association_gate < 0) n.fail("association_gate", "must not be negative (0 turns it off)");
     read(n, "outlier_sigmas", c.outlier_sigmas);
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");

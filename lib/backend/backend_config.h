@@ -45,7 +45,7 @@ struct BackendConfig {
   // association_sigmas times the detection's own position sigma (range-bearing model).
   int min_observations = 3;
   double association_sigmas = 2.0;
-  double association_gate = 3.0;
+  double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
   double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached  // Mahalanobis gate (sigmas) with the detection's covariance
 
   // Incremental solving.
