@@ -59,6 +59,9 @@ BackendConfig loadBackendConfig(const std::string& path) {
     const ConfigNode n = root.child("association");
     read(n, "min_observations", c.min_observations);
     read(n, "association_sigmas", c.association_sigmas);
+    read(n, "association_gate", c.association_gate);
+    if (c.association_gate < 0) n.fail("association_gate", "must not be negative (0 turns it off)");
+    read(n, "outlier_sigmas", c.outlier_sigmas);
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
   }
@@ -68,6 +71,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     read(n, "local_iterations", c.local_iterations);
     read(n, "settled_observations", c.settled_observations);
     read(n, "full_iterations", c.full_iterations);
+    read(n, "loop_iterations", c.loop_iterations);
     read(n, "final_iterations", c.final_iterations);
     read(n, "full_every", c.full_every);
     read(n, "loop_gap", c.loop_gap);

@@ -25,8 +25,8 @@ struct BackendConfig {
   double prior_rotation_sigma = 0.001;
   double peer_translation_sigma = 1.0;
   double peer_rotation_sigma = 0.05;
-  double loop_translation_sigma = 0.2;
-  double loop_rotation_sigma = 0.02;
+  double loop_translation_sigma = 0.05;
+  double loop_rotation_sigma = 0.005;
 
   // Object measurement noise (range-bearing model for positions).
   double range_sigma = 0.1;
@@ -45,12 +45,15 @@ struct BackendConfig {
   // association_sigmas times the detection's own position sigma (range-bearing model).
   int min_observations = 3;
   double association_sigmas = 2.0;
+  double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
+  double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached  // Mahalanobis gate (sigmas) with the detection's covariance
 
   // Incremental solving.
   int window_poses = 3;            // own latest poses optimized in each local solve
   int settled_observations = 8;    // landmarks seen this often stay fixed in local solves
   int local_iterations = 3;
   int full_iterations = 3;         // full solves during updates (warm-started)
+  int loop_iterations = 10;        // full solves when a loop closure or peer transform arrives
   int final_iterations = 100;      // full solves on request / at the end (to convergence)
   int full_every = 250;            // key poses between periodic full solves
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop

@@ -3,6 +3,9 @@
 #include "backend/assignment.h"
 #include "objects/association.h"
 
+#include <cmath>
+#include <Eigen/Cholesky>
+
 namespace slide {
 
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack) {
@@ -15,6 +18,18 @@ double associationCost(const Object& detection, const Object& landmark, const Cl
   return d + m;
 }
 
+double associationCost(const Detection& det, const Object& landmark, const ClassTable& classes) {
+  const double metric = associationCost(det.object, landmark, classes, det.slack);
+  if (metric < 0 || det.covariance.isZero()) return metric;
+  const ClassInfo& c = classes.at(det.object.class_id);
+  const Eigen::Matrix2d S =
+      det.covariance + 0.25 * c.association_distance * c.association_distance * Eigen::Matrix2d::Identity();
+  const Eigen::Vector2d d = (landmark.position() - det.object.position()).head<2>();
+  const double m = std::sqrt(d.dot(S.ldlt().solve(d)));
+  if (m > det.gate) return -1;
+  return m / det.gate + modelDifference(det.object, landmark) / c.model_difference;
+}
+
 std::vector<int> associateDetections(const std::vector<Detection>& detections,
                                      const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes) {
   std::vector<int> result(detections.size(), -1);
@@ -23,7 +38,7 @@ std::vector<int> associateDetections(const std::vector<Detection>& detections,
   bool any = false;
   for (std::size_t i = 0; i < detections.size(); ++i)
     for (std::size_t j = 0; j < candidates.size(); ++j) {
-      const double c = associationCost(detections[i].object, *candidates[j].object, classes, detections[i].slack);
+      const double c = associationCost(detections[i], *candidates[j].object, classes);
       if (c >= 0) {
         cost(i, j) = c;
         any = true;

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 
@@ -27,6 +28,7 @@ SolveReport report(const ceres::Solver::Summary& s) {
   r.final_cost = s.final_cost;
   r.iterations = static_cast<int>(s.iterations.size());
   r.residual_blocks = s.num_residual_blocks;
+  r.message = s.message;
   return r;
 }
 
@@ -97,7 +99,10 @@ int FactorGraph::addFactor(ceres::CostFunction* cost, std::vector<int> vars, boo
   f.robust = robust;
   const int n = f.cost->num_residuals();
   if (static_cast<int>(losses_.size()) <= n) losses_.resize(n + 1);
-  if (!losses_[n]) losses_[n] = std::make_unique<ceres::HuberLoss>(robust_scale_ * std::sqrt(static_cast<double>(n)));
+  if (!losses_[n]) {
+    const double a = robust_scale_ * std::sqrt(static_cast<double>(n));
+    losses_[n] = std::make_unique<ceres::HuberLoss>(a);
+  }
   std::vector<double*> blocks;
   for (int v : f.vars) blocks.push_back(vars_[v].value.data());
   f.global_id = global_->AddResidualBlock(f.cost.get(), lossFor(f), blocks);
@@ -187,6 +192,19 @@ FactorGraph::Values FactorGraph::solveBatch(int max_iterations, double function_
   if (out) *out = report(s);
   return values;
 }
+
+double FactorGraph::residualNorm(int id) const {
+  const Factor& f = factors_[id];
+  std::vector<const double*> blocks;
+  for (int v : f.vars) blocks.push_back(vars_[v].value.data());
+  std::vector<double> r(f.cost->num_residuals());
+  if (!f.cost->Evaluate(blocks.data(), r.data(), nullptr)) return std::numeric_limits<double>::infinity();
+  double s = 0;
+  for (double x : r) s += x * x;
+  return std::sqrt(s);
+}
+
+int FactorGraph::residualCount(int id) const { return factors_[id].cost->num_residuals(); }
 
 FactorGraph::Values FactorGraph::values() const {
   Values out(vars_.size());

@@ -7,6 +7,7 @@
 #include <array>
 #include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace ceres {
@@ -25,6 +26,7 @@ struct SolveReport {
   double final_cost = 0;
   int iterations = 0;
   int residual_blocks = 0;
+  std::string message;  // the solver's termination message
 };
 
 class FactorGraph {
@@ -65,6 +67,9 @@ class FactorGraph {
   Values solveBatch(int max_iterations, double function_tolerance, SolveReport* report = nullptr,
                     int num_threads = 1) const;
   Values values() const;
+  // Norm of a factor's (whitened) residual at the current values, and its dimension.
+  double residualNorm(int factor) const;
+  int residualCount(int factor) const;
   double cost() const;  // total cost (robust losses applied) at the current values
 
  private:

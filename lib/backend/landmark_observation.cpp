@@ -115,6 +115,31 @@ void Optimizer::moveObservations(Landmark& from, Landmark& to) {
   if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
 }
 
+int Optimizer::detachOutliers() {
+  int detached = 0;
+  const std::size_t count = landmarks_.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!landmarks_[i].alive || landmarks_[i].seen.size() < 2) continue;
+    std::vector<Observation> keep, bad;
+    for (const Observation& obs : landmarks_[i].seen) {
+      const double limit = cfg_.outlier_sigmas * std::sqrt(static_cast<double>(graph_.residualCount(obs.factor)));
+      (graph_.residualNorm(obs.factor) > limit ? bad : keep).push_back(obs);
+    }
+    if (bad.empty() || keep.empty()) continue;
+    landmarks_[i].seen = keep;
+    landmarks_[i].observations = static_cast<int>(keep.size());
+    for (const Observation& obs : bad) {
+      graph_.removeFactor(obs.factor);
+      const Pose T_w_b = fromPoseBlock(graph_.value(obs.pose_var));
+      const int index = addLandmark(transformObject(T_w_b, obs.body));
+      addObservation(obs.pose_var, T_w_b, obs.body, landmarks_[index]);
+      ++detached;
+    }
+  }
+  detached_ += detached;
+  return detached;
+}
+
 int Optimizer::mergeDuplicates() {
   int merged = 0;
   std::vector<int> near;

@@ -109,8 +109,19 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   world.reserve(objects.size());
   std::vector<int> near;
   for (const Object& o : objects) {
-    const double sigma = std::max(cfg_.range_sigma, cfg_.bearing_sigma * o.position().head<2>().norm());
-    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * sigma});
+    const Eigen::Vector2d p = o.position().head<2>();
+    const double rho = p.norm();
+    const double sr = std::max(cfg_.position_sigma_floor, cfg_.range_sigma);
+    const double st = std::max(cfg_.position_sigma_floor, cfg_.bearing_sigma * rho);
+    // Radial / tangential covariance of the detection, turned into the host frame.
+    const Eigen::Vector2d u = rho > 1e-6 ? Eigen::Vector2d(p / rho) : Eigen::Vector2d::UnitX();
+    Eigen::Matrix2d R;
+    R.col(0) = u;
+    R.col(1) = Eigen::Vector2d(-u.y(), u.x());
+    const Eigen::Matrix2d yaw = T_w_b.linear().topLeftCorner<2, 2>();
+    const Eigen::Matrix2d cov = yaw * R * Eigen::Vector2d(sr * sr, st * st).asDiagonal() * R.transpose() * yaw.transpose();
+    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * std::max(sr, st),
+                     cfg_.association_gate > 0 ? cov : Eigen::Matrix2d::Zero(), cfg_.association_gate});
     grid_.near(world.back().object.position(), max_association_distance_ + world.back().slack + 1.0, near);
   }
   std::sort(near.begin(), near.end());
@@ -163,8 +174,11 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
 
 SolveReport Optimizer::fullSolve() {
   SolveReport s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
-  for (int round = 0; round < 3 && mergeDuplicates() > 0; ++round)
+  for (int round = 0; round < 3; ++round) {
+    const int changed = detachOutliers() + mergeDuplicates();
+    if (changed == 0) break;
     s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
+  }
   return s;
 }
 
@@ -173,7 +187,7 @@ SolveReport Optimizer::solveAll(int max_iterations, double function_tolerance) {
   full_pending_ = false;
   last_full_step_ = step_;
   afterSolve({}, true);
-  if (max_iterations < cfg_.final_iterations && mergeDuplicates() > 0) afterSolve({}, true);
+  if (max_iterations < cfg_.final_iterations && detachOutliers() + mergeDuplicates() > 0) afterSolve({}, true);
   return s;
 }
 
@@ -217,7 +231,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   }
   if (!robot.keyposes.empty()) {
     r.full_solve = true;
-    r.solve = solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
+    r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
   }
   r.accepted = true;
   r.update_ms = msSince(t0);
@@ -237,15 +251,9 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   const auto it = loop_factors_.find(key);
   if (it != loop_factors_.end()) graph_.removeFactor(it->second);
   loop_factors_[key] = graph_.addFactor(
-      relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, true);
-  // A full solve now, or (rate-limited) as soon as min_full_gap key poses have passed.
-  full_pending_ = true;
-  if (step_ - last_full_step_ >= cfg_.min_full_gap) {
-    r.full_solve = true;
-    r.solve = solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
-  } else {
-    r.solve = graph_.solveLocal({a->var, b->var}, cfg_.local_iterations);
-  }
+      relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, false);
+  r.full_solve = true;
+  r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;

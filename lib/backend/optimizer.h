@@ -65,6 +65,7 @@ class Optimizer {
   int numHeld() const;
   int rejected() const { return rejected_; }
   int merges() const { return merges_; }
+  int detached() const { return detached_; }
   const std::map<std::string, int>& rejections() const { return rejections_; }
   double cost() const { return graph_.cost(); }
   const FactorGraph& graph() const { return graph_; }
@@ -126,6 +127,10 @@ class Optimizer {
   // the poses): same class, associable, never seen from the same key pose. Returns merges.
   int mergeDuplicates();
   void moveObservations(Landmark& from, Landmark& to);
+  // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
+  // landmark (a wrong association made while the poses had drifted): each becomes a new
+  // landmark, which mergeDuplicates() may join to the right one. Returns how many.
+  int detachOutliers();
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
@@ -145,6 +150,7 @@ class Optimizer {
   bool full_pending_ = false;
   int rejected_ = 0;
   int merges_ = 0;
+  int detached_ = 0;
   std::map<std::string, int> rejections_;
 };
 

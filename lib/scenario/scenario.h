@@ -14,6 +14,8 @@
 namespace slide {
 
 // Measurement and odometry noise of a simulated robot.
+// Cuboids and ellipsoids: range, azimuth and elevation noise on the centre. Cylinders (trunk
+// and pole fits): horizontal range and azimuth noise, elevation noise moving them vertically.
 struct ScenarioNoise {
   double range_sigma = 0.1;       // metres, on the range to an object's centre
   double bearing_sigma = 0.05;    // radians, on azimuth and elevation

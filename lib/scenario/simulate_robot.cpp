@@ -38,9 +38,20 @@ Eigen::Vector3d perturbRangeBearing(const Eigen::Vector3d& p, const ScenarioNois
   return r * Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
 }
 
+// A trunk's position comes from a horizontal fit: range and azimuth noise in the ground
+// plane, elevation noise only moves it vertically.
+Eigen::Vector3d perturbGroundRangeBearing(const Eigen::Vector3d& p, const ScenarioNoise& n, std::mt19937& rng) {
+  const double rho = p.head<2>().norm();
+  const double r = rho + gauss(rng, n.range_sigma);
+  const double az = std::atan2(p.y(), p.x()) + gauss(rng, n.bearing_sigma);
+  return {r * std::cos(az), r * std::sin(az), p.z() + rho * gauss(rng, n.bearing_sigma)};
+}
+
 Object observe(const Object& body_truth, const ScenarioNoise& n, std::mt19937& rng) {
   Object o = body_truth;
-  const Eigen::Vector3d shift = perturbRangeBearing(o.position(), n, rng) - o.position();
+  const Eigen::Vector3d seen = o.shape() == Shape::Cylinder ? perturbGroundRangeBearing(o.position(), n, rng)
+                                                            : perturbRangeBearing(o.position(), n, rng);
+  const Eigen::Vector3d shift = seen - o.position();
   if (auto* c = std::get_if<Cuboid>(&o.model)) {
     c->pose.translation() += shift;
     c->pose.linear() = c->pose.linear() * rotZ(gauss(rng, n.yaw_sigma));

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+
+#include "config/config.h"
 
 #include "backend/optimizer.h"
 #include "scenario/scenario.h"
@@ -155,4 +158,22 @@ TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
     worst = std::max(worst, (p.pose.translation() -
                              (s.robots[0].truth[0].inverse() * s.robots[1].truth[p.seq]).translation()).norm());
   EXPECT_LT(worst, 0.3);
+}
+
+TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
+  const BackendConfig c = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+  EXPECT_EQ(c.min_observations, 3);
+  EXPECT_DOUBLE_EQ(c.bearing_sigma, 0.05);
+  const std::string bad = ::testing::TempDir() + "/bad_backend.yaml";
+  {
+    std::ofstream out(bad);
+    out << "objects:\n  range_sigma: -1\n";
+  }
+  try {
+    loadBackendConfig(bad);
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("range_sigma"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad_backend.yaml"), std::string::npos) << e.what();
+  }
 }
