@@ -48,8 +48,12 @@ TEST(GroundRemoval, CarRoofIsNotGround) {
                                            poseFromXyzYaw(0, 0, 1.5, 0));
   const auto h = heightAboveGround(scan.xyz, {});
   for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (scan.semantic[i] == 40) EXPECT_LT(std::abs(h[i]), 0.1);
-    if (scan.semantic[i] == 10 && scan.xyz[i].z() > -0.5) EXPECT_GT(h[i], 0.9);
+    if (scan.semantic[i] == 40) {
+      EXPECT_LT(std::abs(h[i]), 0.1);
+    }
+    if (scan.semantic[i] == 10 && scan.xyz[i].z() > -0.5) {
+      EXPECT_GT(h[i], 0.9);
+    }
   }
 }
 
