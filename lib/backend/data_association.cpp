@@ -1,6 +1,6 @@
 #include "backend/data_association.h"
 
-#include "backend/assignment.h"
+#include "assignment/hungarian.h"
 #include "objects/association.h"
 
 #include <cmath>
@@ -34,7 +34,10 @@ std::vector<int> associateDetections(const std::vector<Detection>& detections,
                                      const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes) {
   std::vector<int> result(detections.size(), -1);
   if (detections.empty() || candidates.empty()) return result;
-  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(detections.size(), candidates.size(), backend::kForbidden);
+  // Pairs outside the gates cost kNotAllowed and are never assigned; among the allowed ones,
+  // as many detections as possible are associated, at the least total cost.
+  constexpr double kNotAllowed = 1e9;
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(detections.size(), candidates.size(), kNotAllowed);
   bool any = false;
   for (std::size_t i = 0; i < detections.size(); ++i)
     for (std::size_t j = 0; j < candidates.size(); ++j) {
@@ -45,7 +48,7 @@ std::vector<int> associateDetections(const std::vector<Detection>& detections,
       }
     }
   if (!any) return result;
-  const std::vector<int> assigned = backend::minCostAssignment(cost);
+  const std::vector<int> assigned = solveGatedAssignment(cost, 0.5 * kNotAllowed);
   for (std::size_t i = 0; i < detections.size(); ++i)
     if (assigned[i] >= 0) result[i] = candidates[assigned[i]].index;
   return result;

@@ -5,7 +5,7 @@
 #include <functional>
 #include <opencv2/imgproc.hpp>
 
-#include "frontend/hungarian.h"
+#include "assignment/hungarian.h"
 
 namespace slide {
 

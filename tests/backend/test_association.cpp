@@ -1,8 +1,7 @@
 // Data association: class and threshold gates, at most one detection per landmark, and an
-// optimal (not greedy) assignment; plus the private assignment solver on small cases.
+// optimal (not greedy) assignment.
 #include <gtest/gtest.h>
 
-#include "backend/assignment.h"
 #include "backend/data_association.h"
 
 using namespace slide;
@@ -21,24 +20,6 @@ Object table(double x, double y) {
   return o;
 }
 }  // namespace
-
-TEST(BackendAssignment, MinimizesTotalCostNotGreedy) {
-  // Greedy row by row would take (0,0) at cost 1 and then (1,1) at 10: total 11.
-  Eigen::MatrixXd c(2, 2);
-  c << 1, 2, 3, 10;
-  const std::vector<int> a = backend::minCostAssignment(c);
-  EXPECT_EQ(a, (std::vector<int>{1, 0}));  // total 5
-}
-
-TEST(BackendAssignment, RectangularAndForbidden) {
-  Eigen::MatrixXd c(3, 2);
-  c << 5, backend::kForbidden, backend::kForbidden, backend::kForbidden, 1, 4;
-  const std::vector<int> a = backend::minCostAssignment(c);
-  EXPECT_EQ(a[0], 0);
-  EXPECT_EQ(a[1], -1);  // nothing allowed
-  EXPECT_EQ(a[2], 1);
-  EXPECT_TRUE(backend::minCostAssignment(Eigen::MatrixXd(0, 3)).empty());
-}
 
 TEST(BackendAssociation, GatesOnClassDistanceAndModel) {
   const ClassTable classes = ClassTable::loadDefault();

@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "frontend/geometric_segmenter.h"
-#include "frontend/hungarian.h"
+#include "assignment/hungarian.h"
 #include "frontend/keypose.h"
 #include "frontend/labelled_segmenter.h"
 #include "frontend/rgbd_segmenter.h"

@@ -1,4 +1,4 @@
-#include "frontend/hungarian.h"
+#include "assignment/hungarian.h"
 
 #include <cmath>
 #include <limits>

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-#include "frontend/hungarian.h"
+#include "assignment/hungarian.h"
 
 using namespace slide;
 
