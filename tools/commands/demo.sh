@@ -4,7 +4,7 @@ source "$SLIDE_ROOT/tools/commands/lib/team_run.sh"
 demo_usage() {
   cat <<USAGE
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
-                    [--rate R] [--settle SEC] [--out DIR]
+                    [--overlap F] [--rate R] [--settle SEC] [--out DIR]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -12,20 +12,22 @@ slide-sheriff, with the team links cut and restored on a schedule so robots meet
 intermittently. Robot and team buses are recorded with lcm-logger; slide-demo-report then
 writes report.md with the merged map of each robot as pictures, inter-robot transform errors,
 ATE, object precision/recall and bandwidth. Needs root (network namespaces).
-Defaults: --world forest --robots 3 --seed 1 --distance 150 --rate 1 --settle 25
+--overlap is the fraction of each robot's path shared with the others (slide-sim).
+Defaults: --world forest --robots 3 --seed 1 --distance 150 --overlap 0.6 --rate 1 --settle 25
           --out runs/demo-<time>
 USAGE
 }
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 rate=1 settle=25 out=""
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out=""
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
       --robots) robots=$2; shift 2 ;;
       --seed) seed=$2; shift 2 ;;
       --distance) distance=$2; shift 2 ;;
+      --overlap) overlap=$2; shift 2 ;;
       --rate) rate=$2; shift 2 ;;
       --settle) settle=$2; shift 2 ;;
       --out) out=$2; shift 2 ;;
@@ -42,7 +44,7 @@ main() {
   export PATH="$SLIDE_BIN:$PATH"
 
   log "1/3 simulating a $robots-robot $world mission ($distance m each, seed $seed) into $data"
-  slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --rate 5 --out "$data" ||
+  slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --overlap "$overlap" --rate 5 --out "$data" ||
     die "demo: simulation failed"
 
   local frames mission
