@@ -12,13 +12,6 @@ find_package(Threads REQUIRED)
 find_package(Java COMPONENTS Development QUIET)
 find_program(LCM_GEN lcm-gen REQUIRED)
 
-# PCL is heavy to compile against: only targets that call slide_use_pcl() see its headers.
-macro(slide_use_pcl target)
-  find_package(PCL 1.10 QUIET REQUIRED COMPONENTS common kdtree search segmentation)
-  target_include_directories(${target} SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
-  target_link_libraries(${target} PRIVATE ${PCL_LIBRARIES})
-  target_compile_definitions(${target} PRIVATE ${PCL_DEFINITIONS})
-endmacro()
 
 # Real data (KITTI, SemanticKITTI, robot maps, forest inventories, TLS) read in place by tests
 # and benchmarks; override with -DSLIDE_DATA_DIR=... or the SLIDE_DATA environment variable.
