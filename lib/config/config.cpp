@@ -8,6 +8,7 @@ namespace slide {
 template <> const char* configTypeName<int>() { return "an integer"; }
 template <> const char* configTypeName<long>() { return "an integer"; }
 template <> const char* configTypeName<unsigned>() { return "a non-negative integer"; }
+template <> const char* configTypeName<unsigned long>() { return "a non-negative integer"; }
 template <> const char* configTypeName<double>() { return "a number"; }
 template <> const char* configTypeName<float>() { return "a number"; }
 template <> const char* configTypeName<bool>() { return "true or false"; }
@@ -47,6 +48,14 @@ std::string ConfigNode::where(const YAML::Node& n) const {
 
 void ConfigNode::fail(const std::string& key, const std::string& what) const {
   throw ConfigError(*file_ + ": " + keyPath(key) + ": " + what);
+}
+
+void ConfigNode::requirePositive(const std::string& key, double v) const {
+  if (!(v > 0)) fail(key, "must be positive");
+}
+
+void ConfigNode::requireNonNegative(const std::string& key, double v) const {
+  if (!(v >= 0)) fail(key, "must not be negative");
 }
 
 bool ConfigNode::has(const std::string& key) const {

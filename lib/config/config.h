@@ -32,6 +32,15 @@ class ConfigNode {
   template <typename T>
   std::vector<T> getList(const std::string& key, int n = -1) const;
 
+  // Optional scalar into `value`, which keeps what it holds when the key is missing.
+  template <typename T>
+  void read(const std::string& key, T& value) const {
+    value = get<T>(key, value);
+  }
+  // Throw a ConfigError at `key` unless v > 0 (v >= 0).
+  void requirePositive(const std::string& key, double v) const;
+  void requireNonNegative(const std::string& key, double v) const;
+
   bool has(const std::string& key) const;
   ConfigNode child(const std::string& key) const;  // required map or list
   std::size_t size() const;                        // list length (0 for others)

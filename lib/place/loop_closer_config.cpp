@@ -4,20 +4,10 @@
 
 namespace slide {
 
-namespace {
-template <typename T>
-void read(const ConfigNode& n, const std::string& key, T& value) {
-  value = n.get<T>(key, value);
-}
-void nonNegative(const ConfigNode& n, const std::string& key, double v) {
-  if (!(v >= 0)) n.fail(key, "must not be negative");
-}
-}  // namespace
-
 LoopCloserParams loadLoopCloserParams(const std::string& path) {
   const ConfigNode root = ConfigNode::load(path);
   LoopCloserParams p;
-  read(root, "robot", p.robot);
+  root.read("robot", p.robot);
   if (root.has("method")) {
     try {
       p.method = parsePlaceMethod(root.get<std::string>("method"));
@@ -37,20 +27,20 @@ LoopCloserParams loadLoopCloserParams(const std::string& path) {
   }
   if (root.has("inter_robot")) {
     const ConfigNode n = root.child("inter_robot");
-    read(n, "period_s", p.inter_period_s);
-    read(n, "stagger_s", p.stagger_s);
-    nonNegative(n, "period_s", p.inter_period_s);
-    nonNegative(n, "stagger_s", p.stagger_s);
+    n.read("period_s", p.inter_period_s);
+    n.read("stagger_s", p.stagger_s);
+    n.requireNonNegative("period_s", p.inter_period_s);
+    n.requireNonNegative("stagger_s", p.stagger_s);
   }
   if (root.has("intra_robot")) {
     const ConfigNode n = root.child("intra_robot");
-    read(n, "period_s", p.intra_period_s);
-    read(n, "trigger_radius_m", p.intra_trigger_radius_m);
-    read(n, "min_keypose_gap", p.intra_min_keypose_gap);
-    read(n, "local_radius_m", p.intra_local_radius_m);
-    nonNegative(n, "period_s", p.intra_period_s);
-    nonNegative(n, "trigger_radius_m", p.intra_trigger_radius_m);
-    nonNegative(n, "local_radius_m", p.intra_local_radius_m);
+    n.read("period_s", p.intra_period_s);
+    n.read("trigger_radius_m", p.intra_trigger_radius_m);
+    n.read("min_keypose_gap", p.intra_min_keypose_gap);
+    n.read("local_radius_m", p.intra_local_radius_m);
+    n.requireNonNegative("period_s", p.intra_period_s);
+    n.requireNonNegative("trigger_radius_m", p.intra_trigger_radius_m);
+    n.requireNonNegative("local_radius_m", p.intra_local_radius_m);
     if (p.intra_min_keypose_gap < 1) n.fail("min_keypose_gap", "must be at least 1");
   }
   if (root.has("min_objects")) {
@@ -60,11 +50,11 @@ LoopCloserParams loadLoopCloserParams(const std::string& path) {
   }
   if (root.has("consensus")) {
     const ConfigNode n = root.child("consensus");
-    read(n, "trans_tol", p.consensus.trans_tol);
-    read(n, "yaw_tol_deg", p.consensus.yaw_tol_deg);
-    read(n, "initial_confirmations", p.consensus.initial_confirmations);
-    read(n, "change_confirmations", p.consensus.change_confirmations);
-    read(n, "window", p.consensus.window);
+    n.read("trans_tol", p.consensus.trans_tol);
+    n.read("yaw_tol_deg", p.consensus.yaw_tol_deg);
+    n.read("initial_confirmations", p.consensus.initial_confirmations);
+    n.read("change_confirmations", p.consensus.change_confirmations);
+    n.read("window", p.consensus.window);
     if (p.consensus.window < 1) n.fail("window", "must be at least 1");
   }
   return p;

@@ -105,3 +105,22 @@ TEST(Config, OptionalAndNested) {
   expectError([&] { c.child("b").get<int>("d"); }, {"inline: b.d: expected an integer"});
   expectError([&] { c.child("a"); }, {"inline: a: expected a map or a list"});
 }
+
+TEST(Config, ReadKeepsDefaultsAndChecksSigns) {
+  const ConfigNode c = ConfigNode::parse("rate: 2.5\ncount: 7\nneg: -1\nzero: 0\n", "inline");
+  double rate = 1.0, missing = 4.0;
+  std::size_t count = 0;
+  c.read("rate", rate);
+  c.read("missing", missing);
+  c.read("count", count);
+  EXPECT_EQ(rate, 2.5);
+  EXPECT_EQ(missing, 4.0);
+  EXPECT_EQ(count, 7u);
+  std::size_t unsigned_value = 3;
+  expectError([&] { c.read("neg", unsigned_value); }, {"inline: neg: expected a non-negative integer, got '-1'"});
+  EXPECT_EQ(unsigned_value, 3u);
+  c.requirePositive("rate", rate);
+  expectError([&] { c.requirePositive("zero", 0.0); }, {"inline: zero: must be positive"});
+  c.requireNonNegative("zero", 0.0);
+  expectError([&] { c.requireNonNegative("neg", -1.0); }, {"inline: neg: must not be negative"});
+}
