@@ -295,6 +295,37 @@ TickOutput PeerSyncNode::tick(Micros now) {
   return out;
 }
 
+PeerSyncNode::SendResult PeerSyncNode::sendPayload(ChunkKind kind, std::int32_t receiver, std::int32_t origin,
+                                                   std::int32_t seq, const Bytes& payload,
+                                                   const std::vector<std::int32_t>& reach, Micros now,
+                                                   TickOutput& out) {
+  const auto parts = splitPayload(payload, cfg_.max_chunk_bytes);
+  if (parts.size() > 32767) return SendResult::TooLarge;
+  std::vector<Chunk> chunks;
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    Chunk c;
+    c.sender = cfg_.robot;
+    c.receiver = receiver;
+    c.kind = kind;
+    c.origin = origin;
+    c.seq = seq;
+    c.chunk_index = static_cast<std::int16_t>(i);
+    c.num_chunks = static_cast<std::int16_t>(parts.size());
+    c.data = parts[i];
+    bytes += wireBytes(c);
+    chunks.push_back(std::move(c));
+  }
+  if (!limiter_.tryTake(static_cast<double>(bytes), now)) return SendResult::RateLimited;
+  for (auto& c : chunks) {
+    c.counter = counters_.nextOwn();
+    auth_.sign(c);
+    out.chunks.push_back(std::move(c));
+  }
+  traffic_.sent(reach, bytes);
+  return SendResult::Sent;
+}
+
 void PeerSyncNode::sendMap(Micros now, TickOutput& out) {
   if (!own_map_) return;
   const auto reach = peersInReach(now);
@@ -303,30 +334,8 @@ void PeerSyncNode::sendMap(Micros now, TickOutput& out) {
   const Micros since = now - map_sent_at_;
   if (!((changed && (map_sent_version_ == 0 || since >= secs(cfg_.map_period_s))) || since >= secs(cfg_.map_refresh_s)))
     return;
-  const auto parts = splitPayload(own_map_data_, cfg_.max_chunk_bytes);
-  if (parts.size() > 32767) return;
-  std::vector<Chunk> chunks;
-  std::size_t bytes = 0;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    Chunk c;
-    c.sender = cfg_.robot;
-    c.receiver = -1;
-    c.kind = ChunkKind::Map;
-    c.origin = cfg_.robot;
-    c.seq = own_map_version_;
-    c.chunk_index = static_cast<std::int16_t>(i);
-    c.num_chunks = static_cast<std::int16_t>(parts.size());
-    c.data = parts[i];
-    bytes += wireBytes(c);
-    chunks.push_back(std::move(c));
-  }
-  if (!limiter_.tryTake(static_cast<double>(bytes), now)) return;
-  for (auto& c : chunks) {
-    c.counter = counters_.nextOwn();
-    auth_.sign(c);
-    out.chunks.push_back(std::move(c));
-  }
-  traffic_.sent(reach, bytes);
+  if (sendPayload(ChunkKind::Map, -1, cfg_.robot, own_map_version_, own_map_data_, reach, now, out) != SendResult::Sent)
+    return;
   map_sent_version_ = own_map_version_;
   map_sent_at_ = now;
 }
@@ -382,30 +391,9 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       const std::vector<std::int32_t>& to = it->second;
       ++it;
       const ObservationDb::Entry* e = db_.get(origin, seq);
-      const auto parts = splitPayload(e->data, cfg_.max_chunk_bytes);
-      if (parts.size() > 32767) continue;
-      std::vector<Chunk> chunks;
-      std::size_t bytes = 0;
-      for (std::size_t j = 0; j < parts.size(); ++j) {
-        Chunk c;
-        c.sender = cfg_.robot;
-        c.receiver = to.size() == 1 ? to[0] : -1;
-        c.kind = ChunkKind::Bundle;
-        c.origin = origin;
-        c.seq = seq;
-        c.chunk_index = static_cast<std::int16_t>(j);
-        c.num_chunks = static_cast<std::int16_t>(parts.size());
-        c.data = parts[j];
-        bytes += wireBytes(c);
-        chunks.push_back(std::move(c));
-      }
-      if (!limiter_.tryTake(static_cast<double>(bytes), now)) return;
-      for (auto& c : chunks) {
-        c.counter = counters_.nextOwn();
-        auth_.sign(c);
-        out.chunks.push_back(std::move(c));
-      }
-      traffic_.sent(to, bytes);
+      const SendResult r = sendPayload(ChunkKind::Bundle, to.size() == 1 ? to[0] : -1, origin, seq, e->data, to, now, out);
+      if (r == SendResult::TooLarge) continue;
+      if (r == SendResult::RateLimited) return;
       for (std::int32_t id : to) peers_[id].sent[{origin, seq}] = now;
       progress = true;
     }

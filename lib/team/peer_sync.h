@@ -96,6 +96,11 @@ class PeerSyncNode {
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
   std::vector<std::int32_t> peersInReach(Micros now) const;
+  enum class SendResult { Sent, TooLarge, RateLimited };
+  // Splits a payload into signed chunks and queues them when the rate limit allows; counts
+  // the bytes as sent to `reach`.
+  SendResult sendPayload(ChunkKind kind, std::int32_t receiver, std::int32_t origin, std::int32_t seq,
+                         const Bytes& payload, const std::vector<std::int32_t>& reach, Micros now, TickOutput& out);
   void sendMap(Micros now, TickOutput& out);
   void sendBundles(Micros now, TickOutput& out);
   void forgetKnown(Peer& p);
