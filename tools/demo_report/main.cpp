@@ -36,10 +36,15 @@ struct Options {
 
 struct RobotFigures {
   int robot = 0;
-  double ate = NAN, odom_ate = NAN;
+  double ate = NAN, odom_ate = NAN, ate_anchored = NAN;
   std::size_t poses = 0, landmarks = 0, trajectories = 0;
   ObjectMappingScore objects;
-  std::vector<std::pair<int, TransformError>> closures;  // per peer found
+  std::vector<std::pair<int, TransformError>> closures;  // per peer found (place recognition)
+  // What the optimizer made of each merged peer: its estimate of the peer's odometry frame
+  // (at the peer's first key pose it holds) and the RMS position error of the peer's key poses
+  // in this robot's frame, with no alignment.
+  std::vector<std::pair<int, TransformError>> merged;
+  std::vector<std::pair<int, double>> peer_traj_rmse;
   double update_ms_median = NAN, update_ms_p99 = NAN;
   int keypose_bundles = 0, peer_bundles = 0;
 };
@@ -88,6 +93,11 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     const AssociatedPoses est = associatePoses(stamped(it->second), rt.ground_truth, 0.05, 0.0, 3);
     f.poses = est.est.size();
     f.ate = absoluteTrajectoryError(est.est, est.ref, Alignment::Se3).rmse;
+    // Without alignment, through the true start: the error a peer inherits when it places this
+    // robot's map by a transform between the two odometry frames.
+    std::vector<Pose> in_world;
+    for (const Pose& p : est.est) in_world.push_back(rt.T_world_odom * p);
+    f.ate_anchored = absoluteTrajectoryError(in_world, est.ref, Alignment::None).rmse;
     // Raw odometry at the same instants, as the baseline.
     std::vector<double> key_t(est.t.begin(), est.t.end());
     std::vector<StampedPose> odom_at;
@@ -114,6 +124,25 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
   for (const auto& [b, c] : log.closures) f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
+  for (const auto& [b, traj] : log.trajectories) {
+    if (b == a || traj.frame_robot != a || traj.poses.size() < 3) continue;
+    const RobotTruth& peer = truth.robot(b);
+    AssociatedPoses in_odom, in_world;
+    try {
+      in_odom = associatePoses(stamped(traj), peer.odometry, 0.05, 0.0, 3);
+      in_world = associatePoses(stamped(traj), peer.ground_truth, 0.05, 0.0, 3);
+    } catch (const std::invalid_argument& e) {
+      spdlog::warn("robot {}'s trajectory of robot {}: {}", a, b, e.what());
+      continue;
+    }
+    // T_a_b as the optimizer holds it: the peer's first key pose in this robot's frame, composed
+    // with the inverse of where the peer's own odometry put that key pose.
+    f.merged.emplace_back(b, transformError(in_odom.est.front() * in_odom.ref.front().inverse(), truth.T_a_b(a, b)));
+    double sq = 0;
+    for (std::size_t i = 0; i < in_world.est.size(); ++i)
+      sq += (rt.T_world_odom * in_world.est[i].translation() - in_world.ref[i].translation()).squaredNorm();
+    f.peer_traj_rmse.emplace_back(b, std::sqrt(sq / static_cast<double>(in_world.est.size())));
+  }
   if (!log.update_ms.empty()) {
     f.update_ms_median = median(log.update_ms);
     f.update_ms_p99 = quantile(log.update_ms, 0.99);
@@ -208,14 +237,21 @@ int main(int argc, char** argv) {
     const BandwidthFigures bw = bandwidthFigures(double(team_bytes), max_landmarks, metres);
 
     std::vector<double> trans_err, yaw_err, ates, odom_ates, f1s, precisions, recalls;
+    std::vector<double> merged_trans_err, merged_yaw_err, peer_rmse, anchored_ates;
     std::size_t pairs_found = 0;
     for (const RobotFigures& f : figs) {
+      for (const auto& [b, e] : f.merged) {
+        merged_trans_err.push_back(e.translation_m);
+        merged_yaw_err.push_back(e.yaw_deg);
+      }
+      for (const auto& [b, r] : f.peer_traj_rmse) peer_rmse.push_back(r);
       for (const auto& [b, e] : f.closures) {
         trans_err.push_back(e.translation_m);
         yaw_err.push_back(e.yaw_deg);
         ++pairs_found;
       }
       if (std::isfinite(f.ate)) ates.push_back(f.ate);
+      if (std::isfinite(f.ate_anchored)) anchored_ates.push_back(f.ate_anchored);
       if (std::isfinite(f.odom_ate)) odom_ates.push_back(f.odom_ate);
       f1s.push_back(f.objects.overall.f1);
       precisions.push_back(f.objects.overall.precision);
@@ -228,8 +264,16 @@ int main(int argc, char** argv) {
     report.add("demo.inter_robot_trans_err_m", mean(trans_err), "m", true, 0.5, 0.54).note =
         "mean over " + std::to_string(pairs_found) + " of " + std::to_string(pairs_possible) + " ordered pairs found";
     report.add("demo.inter_robot_yaw_err_deg", mean(yaw_err), "deg", true, 2.0);
+    report.add("demo.merged_trans_err_m", mean(merged_trans_err), "m", true).note =
+        "the optimizer's estimate of each merged peer's frame, after the joint solve (" +
+        std::to_string(merged_trans_err.size()) + " ordered pairs)";
+    report.add("demo.merged_yaw_err_deg", mean(merged_yaw_err), "deg", true);
+    report.add("demo.peer_trajectory_rmse_m", mean(peer_rmse), "m", true).note =
+        "merged peers' key poses in the host's frame against truth, no alignment";
     report.add("demo.pairs_found_fraction", pairs_possible ? double(pairs_found) / pairs_possible : 0.0, "", false, 1.0);
     report.add("demo.ate_m", mean(ates), "m").note = "mean over robots of own-trajectory ATE (SE3 aligned)";
+    report.add("demo.ate_anchored_m", mean(anchored_ates), "m", true).note =
+        "own trajectory, no alignment: the estimate placed in the world by the robot's true start";
     report.add("demo.odom_ate_m", mean(odom_ates), "m").note = "raw odometry at the same key poses";
     report.add("demo.precision", mean(precisions), "", false, 0.95);
     report.add("demo.recall", mean(recalls), "", false, 0.92);
@@ -259,10 +303,20 @@ int main(int argc, char** argv) {
          << f.landmarks << " | " << num(f.objects.overall.precision) << " | " << num(f.objects.overall.recall) << " | "
          << num(f.objects.overall.f1) << " | " << f.trajectories << " | " << f.keypose_bundles << " / "
          << f.peer_bundles << " | " << num(f.update_ms_median, 2) << " / " << num(f.update_ms_p99, 2) << " |\n";
-    md << "\n## Inter-robot transforms\n\n| robot | peer | translation error m | yaw error deg |\n|---|---|---|---|\n";
+    md << "\n## Inter-robot transforms\n\nPlace recognition's transform (the loop closer's last), and the optimizer's "
+          "estimate of the peer's frame after merging, with the peer's key poses' RMS error in the host frame.\n\n"
+          "| robot | peer | place recognition: translation m / yaw deg | optimizer: translation m / yaw deg | "
+          "peer key poses RMSE m |\n|---|---|---|---|---|\n";
     for (const RobotFigures& f : figs)
-      for (const auto& [b, e] : f.closures)
-        md << "| " << f.robot << " | " << b << " | " << num(e.translation_m) << " | " << num(e.yaw_deg, 2) << " |\n";
+      for (const auto& [b, e] : f.closures) {
+        std::string opt = "not merged", rmse = "-";
+        for (const auto& [pb, m] : f.merged)
+          if (pb == b) opt = num(m.translation_m) + " / " + num(m.yaw_deg, 2);
+        for (const auto& [pb, r] : f.peer_traj_rmse)
+          if (pb == b) rmse = num(r);
+        md << "| " << f.robot << " | " << b << " | " << num(e.translation_m) << " / " << num(e.yaw_deg, 2) << " | "
+           << opt << " | " << rmse << " |\n";
+      }
     if (pairs_found == 0) md << "| - | - | no transform found | |\n";
     md << "\n## Pictures\n\n";
     for (int a : opts.robots)
