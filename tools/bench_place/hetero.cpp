@@ -40,8 +40,9 @@ void retrace(slide::Scenario& sc, int r, double climb) {
 // Ids of true objects that a landmark of `map` (odometry frame T_world_odom) lies near:
 // Within the class's association distance (horizontal), as the front-end benchmark scores maps.
 std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose& T_world_odom, const World& world,
-                                     const ClassTable& classes, int& hits) {
+                                     const ClassTable& classes, int& hits, double& median_err) {
   std::set<std::int64_t> ids;
+  std::vector<double> errs;
   hits = 0;
   for (const Object& o : map) {
     const Eigen::Vector3d p = T_world_odom * o.position();
@@ -54,10 +55,12 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
       nearest = std::min(nearest, d);
       if (d < best) best = d, id = g.object.id;
     }
-    if (id >= 0) ++hits, ids.insert(id);
+    if (id >= 0) ++hits, ids.insert(id), errs.push_back(best);
     spdlog::debug("  class {} at ({:.1f}, {:.1f}, {:.1f}) size {}: true object {} at {:.2f} m (nearest {:.2f})", o.class_id, p.x(), p.y(),
                   p.z(), o.class_id, id, best, nearest);
   }
+  std::sort(errs.begin(), errs.end());
+  median_err = errs.empty() ? 0.0 : errs[errs.size() / 2];
   return ids;
 }
 
@@ -146,8 +149,8 @@ HeteroFigures runHetero(const HeteroSpec& spec, const PlaceConfig& config, int r
   f.keyposes_a = a.keyposes, f.keyposes_b = b.keyposes;
   f.map_cpu_s_a = a.sim_cpu_s + a.frontend_cpu_s + a.backend_cpu_s;
   f.map_cpu_s_b = b.sim_cpu_s + b.frontend_cpu_s + b.backend_cpu_s;
-  const std::set<std::int64_t> ta = trueObjectsOf(a.objects, sc.robots[0].T_world_odom, sc.world, setup.classes, f.true_a);
-  const std::set<std::int64_t> tb = trueObjectsOf(b.objects, sc.robots[1].T_world_odom, sc.world, setup.classes, f.true_b);
+  const std::set<std::int64_t> ta = trueObjectsOf(a.objects, sc.robots[0].T_world_odom, sc.world, setup.classes, f.true_a, f.err_a);
+  const std::set<std::int64_t> tb = trueObjectsOf(b.objects, sc.robots[1].T_world_odom, sc.world, setup.classes, f.true_b, f.err_b);
   for (auto id : tb) f.shared += ta.count(id);
 
   const std::vector<Landmark> la = landmarksOf(ObjectMap(a.objects)), lb = landmarksOf(ObjectMap(b.objects));

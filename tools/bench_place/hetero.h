@@ -40,6 +40,7 @@ struct HeteroMethod {
 struct HeteroFigures {
   int objects_a = 0, objects_b = 0;  // confirmed landmarks in each robot's map
   int true_a = 0, true_b = 0, shared = 0;  // of them near a true object; true objects in both
+  double err_a = 0, err_b = 0;       // median horizontal distance of those to their true object
   int frames_a = 0, frames_b = 0, keyposes_a = 0, keyposes_b = 0;
   double map_cpu_s_a = 0, map_cpu_s_b = 0;  // simulation + front-end + back-end
   double wall_s = 0;

@@ -115,15 +115,19 @@ void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<He
     rep.add(prefix + "ms", median(ms), "ms").note =
         "thread CPU time, median over the worlds of the median of " + std::to_string(repeats) + " runs";
   }
-  double oa = 0, ob = 0, ta = 0, tb = 0, sh = 0, ca = 0, cb = 0, fa = 0, fb = 0, wall = 0;
+  double oa = 0, ob = 0, ta = 0, tb = 0, sh = 0, ca = 0, cb = 0, fa = 0, fb = 0, wall = 0, ea = 0, eb = 0;
   for (const HeteroFigures& f : trials) {
     oa += f.objects_a / n, ob += f.objects_b / n, ta += f.true_a / n, tb += f.true_b / n, sh += f.shared / n;
+    ea += f.err_a / n, eb += f.err_b / n;
     ca += f.map_cpu_s_a / n, cb += f.map_cpu_s_b / n, fa += f.frames_a / n, fb += f.frames_b / n, wall += f.wall_s;
   }
   rep.add(spec.name + ".objects_a", oa, "", false).note =
       spec.sensor_a + ", mean over the worlds; " + fmt::format("{:.1f}", ta) + " on a true object of their class";
   rep.add(spec.name + ".objects_b", ob, "", false).note =
       spec.sensor_b + ", mean; " + fmt::format("{:.1f}", tb) + " on a true object of their class";
+  rep.add(spec.name + ".object_err_m_a", ea, "m").note =
+      "median horizontal distance of A's landmarks to their true object (world frame, true odometry origin), mean";
+  rep.add(spec.name + ".object_err_m_b", eb, "m").note = "the same for B";
   rep.add(spec.name + ".shared_objects", sh, "", false).note = "true objects in both maps, mean";
   rep.add(spec.name + ".map_cpu_s_a", ca, "s").note =
       fmt::format("mean over the worlds; {:.0f} frames: simulation + front-end + back-end, CPU", fa);
