@@ -56,8 +56,8 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
       if (d < best) best = d, id = g.object.id;
     }
     if (id >= 0) ++hits, ids.insert(id), errs.push_back(best);
-    spdlog::debug("  class {} at ({:.1f}, {:.1f}, {:.1f}) size {}: true object {} at {:.2f} m (nearest {:.2f})", o.class_id, p.x(), p.y(),
-                  p.z(), o.class_id, id, best, nearest);
+    spdlog::debug("  class {} at ({:.1f}, {:.1f}, {:.1f}): true object {} (nearest of its class {:.2f} m)", o.class_id,
+                  p.x(), p.y(), p.z(), id, nearest);
   }
   std::sort(errs.begin(), errs.end());
   median_err = errs.empty() ? 0.0 : errs[errs.size() / 2];

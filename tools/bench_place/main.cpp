@@ -139,7 +139,7 @@ void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<He
 int main(int argc, char** argv) {
   CLI::App app{"Place-recognition benchmark: SlideGraph and SlideMatch on indoor, urban, forest, KITTI 05/07, the\n"
                "real SlideSLAM maps and two heterogeneous simulated teams (LiDAR + RGBD indoors, aerial + ground RGBD\n"
-               "over a parking lot) mapped through the front-end and back-end. Prints a table; --json writes the BENCHMARKS.md JSON (suite 'place').",
+               "over a parking lot) mapped through the front-end and back-end.\nPrints a table; --json writes the BENCHMARKS.md JSON (suite 'place').",
                "slide-bench-place"};
   CommonOptions common;
   addCommonOptions(app, common);
