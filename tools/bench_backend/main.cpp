@@ -10,6 +10,8 @@
 #include "backend/backend_config.h"
 #include "bench/report.h"
 #include "bench/stats.h"
+#include "io/kitti_poses.h"
+#include "map_size.h"
 #include "scenario_run.h"
 
 using namespace slide;
@@ -53,10 +55,32 @@ void report(BenchReport& rep, const std::string& name, const ScenarioRunResult& 
   rep.add(name + ".keyposes", r.keyposes, "", false).note =
       std::to_string(r.objects_per_keypose).substr(0, 4) + " objects per key pose";
 }
+// Object map sizes as shared (team::encodeMap) per robot and in total, against raw scans.
+void reportMapSizes(BenchReport& rep, const std::string& name, const std::vector<RobotMapSize>& sizes, double points) {
+  double kb = 0, raw_mb = 0;
+  int objects = 0;
+  long frames = 0;
+  for (const RobotMapSize& r : sizes) {
+    const std::string p = name + ".robot" + std::to_string(r.robot) + ".";
+    rep.add(p + "map_kb", r.map_bytes / 1000.0, "KB").note =
+        std::to_string(r.objects) + " objects, its own map encoded for sharing (team::encodeMap)";
+    rep.add(p + "map_objects", r.objects, "", false);
+    rep.add(p + "raw_scans_mb", r.raw_bytes / 1e6, "MB").note = std::to_string(r.frames) + " LiDAR frames";
+    kb += r.map_bytes / 1000.0, raw_mb += r.raw_bytes / 1e6, objects += r.objects, frames += r.frames;
+  }
+  const std::string n = std::to_string(sizes.size());
+  rep.add(name + ".map_kb", kb, "KB").note = "sum of the " + n + " robots' own object maps, encoded for sharing";
+  rep.add(name + ".map_objects", objects, "", false).note = "sum over the " + n + " robots";
+  rep.add(name + ".raw_scans_mb", raw_mb, "MB").note =
+      std::to_string(frames) + " frames x " + std::to_string(static_cast<long>(points)) +
+      " points (mean of the real SemanticKITTI HDL-64E scans) x 16 B";
+  rep.add(name + ".map_compression", kb > 0 ? raw_mb * 1000.0 / kb : 0.0, "x", false).note = "raw scans / object maps";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Back-end benchmark: incremental update time, batch baseline, ATE and landmarks per scenario"};
+  CLI::App app{"Back-end benchmark: incremental update time, batch baseline, ATE and landmarks per scenario; for KITTI\n"
+               "05/07 also each robot's object map size as shared (KB) against its raw scans (MB)"};
   CommonOptions common;
   std::string json, config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   std::string data_dir = SLIDE_DATA_DIR;
@@ -87,6 +111,10 @@ int main(int argc, char** argv) {
       const Scenario s = makeKittiScenario("kitti" + seq, data_dir + "/kitti/poses/" + seq + ".txt",
                                            data_dir + "/kitti/poles/" + seq + ".csv", 3);
       run("kitti" + seq, s, {std::nullopt, std::nullopt, seq == "05" ? 0.998 : 0.962, "3 robots, paper ATE in 'paper'"});
+      const double points = meanPointsPerScan(data_dir + "/semantickitti/sequences/08/velodyne");
+      const std::vector<Pose> lidar =
+          kittiLidarPoses(readKittiPoses(data_dir + "/kitti/poses/" + seq + ".txt"), kittiVeloToCamTr0410());
+      reportMapSizes(rep, "kitti" + seq, robotMapSizes(s, cfg, lidar, points), points);
     }
     rep.printTable(std::cout);
     if (!json.empty()) rep.writeJson(json);

@@ -17,20 +17,11 @@
 #include "sim/rgbd_camera.h"
 #include "sim/dataset_writer.h"
 #include "sim/scenario.h"
+#include "simmap/sensor_rig.h"
 
 namespace slide {
 
 namespace {
-RgbdFrame toFrame(const RgbdImage& img, const CameraModel& cam) {
-  RgbdFrame f;
-  f.intrinsics = {cam.width, cam.height, cam.fx, cam.fy, cam.cx, cam.cy, 0.001};
-  f.depth.assign(img.depth.begin<std::uint16_t>(), img.depth.end<std::uint16_t>());
-  f.mask.assign(img.instance.begin<std::uint16_t>(), img.instance.end<std::uint16_t>());
-  f.instance_class = img.instance_class;
-  f.instance_confidence.assign(img.instance_class.size(), 1.0f);
-  return f;
-}
-
 // Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
 bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
   if (mode == "labelled") return !c.semantickitti.empty();
@@ -114,7 +105,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     }
     if (need_rgbd) {
       const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
-      frame = toFrame(img, camera);
+      frame = rgbdFrameOf(img, camera);
       std::vector<int> pix(img.instance_object.size() + 1, 0);
       for (auto id : frame.mask)
         if (id > 0 && id < pix.size()) ++pix[id];

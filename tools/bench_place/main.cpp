@@ -8,6 +8,7 @@
 #include "bench/report.h"
 #include "bench/stats.h"
 #include "mapio/object_map_text.h"
+#include "hetero.h"
 #include "scenarios.h"
 
 using namespace slide;
@@ -64,16 +65,86 @@ void report(BenchReport& rep, const Scenario& s, PlaceMethod m, const MethodFigu
   rep.add(prefix + "wrong", f.wrong + f.false_positives, "", true, 0.0).note =
       "wrong transforms on overlapping pairs plus any on " + std::to_string(f.disjoint) + " disjoint pairs";
 }
+// One figure per method over the trials: found and correct (within 2 m and 10 deg: good enough
+// to seed a merge) as fractions, errors as medians over the trials that found a transform.
+void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<HeteroFigures>& trials, int repeats) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const bool lidar_rgbd = spec.name == "hetero_lidar_rgbd";
+  const double n = static_cast<double>(trials.size());
+  const std::string of = std::to_string(trials.size()) + " worlds (seeds " + std::to_string(spec.seed) + "..." +
+                         std::to_string(spec.seed + trials.size() - 1) + ")";
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    std::vector<double> t, y, ms;
+    int found = 0, correct = 0;
+    std::string reasons;
+    for (const HeteroFigures& f : trials) {
+      const HeteroMethod& h = m == PlaceMethod::SlideGraph ? f.slidegraph : f.slidematch;
+      ms.push_back(h.cpu_ms);
+      if (!h.found) {
+        reasons += (reasons.empty() ? "" : "; ") + h.reason;
+        continue;
+      }
+      ++found;
+      correct += h.trans_err_m < 2.0 && h.yaw_err_deg < 10.0;
+      t.push_back(h.trans_err_m);
+      y.push_back(h.yaw_err_deg);
+    }
+    const std::string prefix = spec.name + "." + methodName(m) + ".";
+    // Paper: LiDAR-RGBD 0.54-0.58 m, 2-4 deg (the paper does not split it by method);
+    // aerial-ground SlideMatch 0.245 m, SlideGraph fails.
+    std::optional<double> paper_t, paper_y, paper_found;
+    std::string paper_note;
+    if (lidar_rgbd) {
+      paper_t = 0.56, paper_y = 3.0, paper_found = 1.0, paper_note = "paper 0.54-0.58 m, 2-4 deg";
+    } else if (m == PlaceMethod::SlideMatch) {
+      paper_t = 0.245, paper_found = 1.0, paper_note = "paper 0.245 m";
+    } else {
+      paper_found = 0.0, paper_note = "paper: SlideGraph fails";
+    }
+    std::string errs;
+    for (std::size_t i = 0; i < t.size(); ++i)
+      errs += (i ? ", " : "") + fmt::format("{:.2f} m / {:.1f} deg", t[i], y[i]);
+    rep.add(prefix + "found", found / n, "", false, std::nullopt, paper_found).note =
+        std::to_string(found) + " of " + of + (reasons.empty() ? "" : "; none: " + reasons) + "; " + paper_note;
+    rep.add(prefix + "correct", correct / n, "", false).note =
+        std::to_string(correct) + " of " + std::to_string(trials.size()) + " within 2 m and 10 deg of the truth";
+    rep.add(prefix + "trans_err_m", t.empty() ? nan : median(t), "m", true, std::nullopt, paper_t).note =
+        (t.empty() ? "none found" : "median over the " + std::to_string(t.size()) + " found: " + errs) + "; " + paper_note;
+    rep.add(prefix + "yaw_err_deg", y.empty() ? nan : median(y), "deg", true, std::nullopt, paper_y).note =
+        t.empty() ? "none found" : "median over the found";
+    rep.add(prefix + "ms", median(ms), "ms").note =
+        "thread CPU time, median over the worlds of the median of " + std::to_string(repeats) + " runs";
+  }
+  double oa = 0, ob = 0, ta = 0, tb = 0, sh = 0, ca = 0, cb = 0, fa = 0, fb = 0, wall = 0, ea = 0, eb = 0;
+  for (const HeteroFigures& f : trials) {
+    oa += f.objects_a / n, ob += f.objects_b / n, ta += f.true_a / n, tb += f.true_b / n, sh += f.shared / n;
+    ea += f.err_a / n, eb += f.err_b / n;
+    ca += f.map_cpu_s_a / n, cb += f.map_cpu_s_b / n, fa += f.frames_a / n, fb += f.frames_b / n, wall += f.wall_s;
+  }
+  rep.add(spec.name + ".objects_a", oa, "", false).note =
+      spec.sensor_a + ", mean over the worlds; " + fmt::format("{:.1f}", ta) + " on a true object of their class";
+  rep.add(spec.name + ".objects_b", ob, "", false).note =
+      spec.sensor_b + ", mean; " + fmt::format("{:.1f}", tb) + " on a true object of their class";
+  rep.add(spec.name + ".object_err_m_a", ea, "m").note =
+      "median horizontal distance of A's landmarks to their true object (world frame, true odometry origin), mean";
+  rep.add(spec.name + ".object_err_m_b", eb, "m").note = "the same for B";
+  rep.add(spec.name + ".shared_objects", sh, "", false).note = "true objects in both maps, mean";
+  rep.add(spec.name + ".map_cpu_s_a", ca, "s").note =
+      fmt::format("mean over the worlds; {:.0f} frames: simulation + front-end + back-end, CPU", fa);
+  rep.add(spec.name + ".map_cpu_s_b", cb, "s").note = fmt::format("mean; {:.0f} frames", fb);
+  rep.add(spec.name + ".wall_s", wall, "s").note = "all worlds: simulation, mapping both robots, place recognition";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Place-recognition benchmark: SlideGraph and SlideMatch on indoor, urban, forest, KITTI 05/07 and the\n"
-               "real SlideSLAM maps. Prints a table; --json writes the BENCHMARKS.md JSON (suite 'place').",
+  CLI::App app{"Place-recognition benchmark: SlideGraph and SlideMatch on indoor, urban, forest, KITTI 05/07, the\n"
+               "real SlideSLAM maps and two heterogeneous simulated teams (LiDAR + RGBD indoors, aerial + ground RGBD\n"
+               "over a parking lot) mapped through the front-end and back-end.\nPrints a table; --json writes the BENCHMARKS.md JSON (suite 'place').",
                "slide-bench-place"};
   CommonOptions common;
   addCommonOptions(app, common);
   std::string json, data = SLIDE_DATA_DIR, config_path;
-  int repeats = 3;
+  int repeats = 3, hetero_worlds = 3;
   unsigned seed = 1;
   std::vector<std::string> only;
   std::string dump;
@@ -82,7 +153,11 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "Place-recognition parameters (default: config/place.yaml)");
   app.add_option("--repeats", repeats, "Timed runs per pair")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "Seed of the procedural worlds and noise")->capture_default_str();
-  app.add_option("--only", only, "Scenarios to run (default all): indoor urban forest kitti05 kitti07 parking_real indoor_real indoor_aliased");
+  app.add_option("--only", only, "Scenarios to run (default all): indoor urban forest kitti05 kitti07 parking_real indoor_real indoor_aliased\n"
+                 "hetero_lidar_rgbd hetero_aerial_ground");
+  app.add_option("--hetero-worlds", hetero_worlds, "Worlds (seeds seed, seed+1, ...) per heterogeneous case")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--dump", dump, "Write every pair's maps as DIR/<scenario>_<k>_{a,b}.txt (for ./slide match)");
   return runApp(app, common, argc, argv, [&]() {
     const PlaceConfig config = config_path.empty() ? loadDefaultPlaceConfig() : loadPlaceConfig(config_path);
@@ -174,6 +249,22 @@ int main(int argc, char** argv) {
             .note = std::to_string(a.published_wrong) + " wrong of " + std::to_string(a.published) +
                     " published by the consensus filter";
       }
+    }
+    for (const HeteroSpec& h : {heteroLidarRgbd(seed), heteroAerialGround(seed)}) {
+      if (!wanted(h.name)) continue;
+      spdlog::info("{}: {}", h.name, h.description);
+      std::vector<HeteroFigures> trials;
+      for (int k = 0; k < hetero_worlds; ++k) {
+        HeteroSpec one = h;
+        one.seed = h.seed + k;
+        trials.push_back(runHetero(one, config, repeats));
+        const HeteroFigures& f = trials.back();
+        spdlog::info("{} seed {}: maps of {} and {} objects ({} true objects in both) in {:.1f} s; SlideGraph {}, SlideMatch {}",
+                     h.name, one.seed, f.objects_a, f.objects_b, f.shared, f.wall_s,
+                     f.slidegraph.found ? fmt::format("{:.2f} m {:.1f} deg", f.slidegraph.trans_err_m, f.slidegraph.yaw_err_deg) : "none",
+                     f.slidematch.found ? fmt::format("{:.2f} m {:.1f} deg", f.slidematch.trans_err_m, f.slidematch.yaw_err_deg) : "none");
+      }
+      reportHetero(rep, h, trials, repeats);
     }
     rep.printTable(std::cout);
     if (!json.empty()) rep.writeJson(json);
