@@ -24,10 +24,39 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       auth_(cfg_.team_key),
       counters_(joinPath(state_dir, "counters.txt")),
       db_(joinPath(state_dir, "journal.bin")),
+      thinning_(cfg_.thinning()),
       reassembler_(cfg_.reassembly_bytes, secs(cfg_.reassembly_timeout_s)),
       limiter_(cfg_.rate_limit_bytes_per_s, cfg_.burst_bytes),
       traffic_(now),
-      next_heartbeat_(now) {}
+      next_heartbeat_(now) {
+  // What was shared of the journalled own bundles: the same stream through the same policy.
+  auto own = db_.held().find(cfg_.robot);
+  if (own == db_.held().end()) return;
+  for (const SeqRange& r : own->second.ranges())
+    for (std::int64_t seq = r.first; seq <= r.last; ++seq) {
+      const auto s = static_cast<std::int32_t>(seq);
+      own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
+    }
+}
+
+// The thinning sees the bundle as decoded from its journalled encoding, so that replaying the
+// journal gives the same decisions.
+Bytes PeerSyncNode::sharedEncoding(std::int32_t seq, const Bytes& full) {
+  const auto previous = contextOf(cfg_.robot, seq - 1);
+  std::string error;
+  const auto b = decodeBundle(full, cfg_.robot, seq, &error, previous ? &*previous : nullptr);
+  if (!b) throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error);
+  return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr);
+}
+
+const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) const {
+  if (origin == cfg_.robot) {
+    auto it = own_shared_.find(seq);
+    if (it != own_shared_.end()) return &it->second;
+  }  // (own bundles recovered from peers after losing the journal are held as shared)
+  const ObservationDb::Entry* e = db_.get(origin, seq);
+  return e ? &e->data : nullptr;
+}
 
 PeerSyncNode::~PeerSyncNode() {
   try {
@@ -79,9 +108,10 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     if (d != Drop::kCount) return drop(d), d;
   }
   b.first = !have_any;
-  const std::optional<Pose> previous = odomOf(b.origin, b.seq - 1);
+  const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
   ObservationDb::Entry e;
-  e.data = encodeBundle(b, previous ? &*previous : nullptr);
+  e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
+  own_shared_[b.seq] = sharedEncoding(b.seq, e.data);
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
@@ -179,9 +209,7 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (refused) return drop(*refused);
   if (!payload) return;
   std::string error;
-  const std::optional<Pose> previous = odomOf(m.origin, m.seq - 1);
-  bool needs_previous = false;
-  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error, previous ? &*previous : nullptr, &needs_previous);
+  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error);
   if (!bundle) return drop(Drop::Malformed);
   // A bundle claiming to start its origin's stream must not contradict what is held.
   if (bundle->first && ((first && *first != m.seq) || (held != db_.held().end() && !held->second.empty() &&
@@ -190,8 +218,7 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   ObservationDb::Entry e;
   e.data = std::move(*payload);
   e.first = bundle->first;
-  // (Distance for accounting only: unknown while the previous bundle is missing.)
-  e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
+  e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, m.seq, std::move(e));
   scheduleAck(m.sender, m.origin, now);
 }
@@ -390,8 +417,8 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       const std::int32_t origin = origins[i], seq = it->first;
       const std::vector<std::int32_t>& to = it->second;
       ++it;
-      const ObservationDb::Entry* e = db_.get(origin, seq);
-      const SendResult r = sendPayload(ChunkKind::Bundle, to.size() == 1 ? to[0] : -1, origin, seq, e->data, to, now, out);
+      const SendResult r =
+          sendPayload(ChunkKind::Bundle, to.size() == 1 ? to[0] : -1, origin, seq, *wirePayload(origin, seq), to, now, out);
       if (r == SendResult::TooLarge) continue;
       if (r == SendResult::RateLimited) return;
       for (std::int32_t id : to) peers_[id].sent[{origin, seq}] = now;
@@ -402,13 +429,30 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
 
 // ---- delivery ----
 
-std::optional<Pose> PeerSyncNode::odomOf(std::int32_t origin, std::int32_t seq) const {
-  const ObservationDb::Entry* e = db_.get(origin, seq);
-  if (!e) return std::nullopt;
-  std::string error;
-  const auto b = decodeBundle(e->data, origin, seq, &error);  // odom_pose never needs another bundle
-  if (!b) return std::nullopt;
-  return b->odom_pose;
+std::optional<BundleContext> PeerSyncNode::contextOf(std::int32_t origin, std::int32_t seq) const {
+  std::vector<std::int32_t> todo;  // held, context not known yet: newest first
+  std::optional<BundleContext> context;
+  for (std::int64_t s = seq; s >= INT32_MIN; --s) {
+    const Key key{origin, static_cast<std::int32_t>(s)};
+    if (auto it = contexts_.find(key); it != contexts_.end()) {
+      context = it->second;
+      break;
+    }
+    const ObservationDb::Entry* e = db_.get(key.first, key.second);
+    if (!e) return std::nullopt;
+    todo.push_back(key.second);
+    if (!chainedBundle(e->data)) break;
+  }
+  for (auto it = todo.rbegin(); it != todo.rend(); ++it) {
+    std::string error;
+    bool needs_previous = false;
+    const auto b = decodeBundle(db_.get(origin, *it)->data, origin, *it, &error, context ? &*context : nullptr,
+                                &needs_previous);
+    if (!b || needs_previous) return std::nullopt;
+    context = BundleContext::of(*b);
+    contexts_[{origin, *it}] = *context;
+  }
+  return context;
 }
 
 std::optional<Bundle> PeerSyncNode::nextDelivery() const {
@@ -416,7 +460,7 @@ std::optional<Bundle> PeerSyncNode::nextDelivery() const {
   if (!next) return std::nullopt;
   std::string error;
   // In per-origin order the previous bundle is always held (delivered just before).
-  const std::optional<Pose> previous = odomOf(next->first, next->second - 1);
+  const std::optional<BundleContext> previous = contextOf(next->first, next->second - 1);
   bool needs_previous = false;
   auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error,
                         previous ? &*previous : nullptr, &needs_previous);

@@ -14,7 +14,9 @@
 #include "team/counters.h"
 #include "team/drop_reason.h"
 #include "team/message_auth.h"
+#include "team/codec.h"
 #include "team/observation_db.h"
+#include "team/observation_thinning.h"
 #include "team/rate_limiter.h"
 #include "team/reassembly.h"
 #include "team/sync_config.h"
@@ -63,6 +65,8 @@ class PeerSyncNode {
 
   const SyncConfig& config() const { return cfg_; }
   const ObservationDb& db() const { return db_; }
+  // The encoding of a held bundle as it goes on the team bus (own bundles thinned), or null.
+  const Bytes* wirePayload(std::int32_t origin, std::int32_t seq) const;
   const DropCounts& drops() const { return drops_; }
   std::uint64_t dropped(Drop d) const { return drops_[static_cast<int>(d)]; }
   const BandwidthMeter& traffic() const { return traffic_; }
@@ -104,7 +108,10 @@ class PeerSyncNode {
   void sendMap(Micros now, TickOutput& out);
   void sendBundles(Micros now, TickOutput& out);
   void forgetKnown(Peer& p);
-  std::optional<Pose> odomOf(std::int32_t origin, std::int32_t seq) const;  // held bundle's odometry pose
+  // utime, odometry pose and sigma of a held bundle, once its chain back to a self-contained
+  // encoding is held (cached).
+  std::optional<BundleContext> contextOf(std::int32_t origin, std::int32_t seq) const;
+  Bytes sharedEncoding(std::int32_t seq, const Bytes& full);
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
@@ -112,6 +119,9 @@ class PeerSyncNode {
   MessageAuth auth_;
   CounterStore counters_;
   ObservationDb db_;
+  ObservationThinning thinning_;
+  std::map<std::int32_t, Bytes> own_shared_;  // own bundles as shared, by seq
+  mutable std::map<Key, BundleContext> contexts_;
   Reassembler reassembler_;
   RateLimiter limiter_;
   BandwidthMeter traffic_;

@@ -1,6 +1,7 @@
 #include "team/sync_config.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace slide::team {
@@ -26,6 +27,10 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
   c.reassembly_bytes = n.get<unsigned>("reassembly_bytes", static_cast<unsigned>(c.reassembly_bytes));
   c.reassembly_timeout_s = n.get<double>("reassembly_timeout_s", c.reassembly_timeout_s);
+  c.thin_observations = n.get<bool>("thin_observations", c.thin_observations);
+  c.thin_travel_m = n.get<double>("thin_travel_m", c.thin_travel_m);
+  c.thin_turn_deg = n.get<double>("thin_turn_deg", c.thin_turn_deg);
+  c.thin_size_change_m = n.get<double>("thin_size_change_m", c.thin_size_change_m);
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {
@@ -54,6 +59,9 @@ void SyncConfig::validate() const {
     throw std::invalid_argument("max_ranges_per_origin must be within 1..4096");
   if (max_sends_per_tick < 1) throw std::invalid_argument("max_sends_per_tick must be >= 1");
   if (max_seq_jump < 1) throw std::invalid_argument("max_seq_jump must be >= 1");
+  if (!(thin_travel_m >= 0) || !(thin_turn_deg >= 0) || !(thin_size_change_m >= 0) || !std::isfinite(thin_travel_m) ||
+      !std::isfinite(thin_turn_deg) || !std::isfinite(thin_size_change_m))
+    throw std::invalid_argument("thin_travel_m, thin_turn_deg and thin_size_change_m must be finite and >= 0");
   if (team_key.empty()) throw std::invalid_argument("team_key must not be empty");
   if (std::find(team.begin(), team.end(), robot) == team.end())
     throw std::invalid_argument("robot " + std::to_string(robot) + " is not in the team list");

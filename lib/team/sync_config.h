@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "config/config.h"
+#include "team/observation_thinning.h"
 
 namespace slide::team {
 
@@ -30,6 +31,14 @@ struct SyncConfig {
   std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused
   std::size_t reassembly_bytes = 4 << 20;   // space for partly received payloads
   double reassembly_timeout_s = 30.0;
+  // Own observations shared on the team bus (observation_thinning.h): a track again only after
+  // this much travel or turn, or a class, shape or size change.
+  bool thin_observations = true;
+  double thin_travel_m = 5.0;
+  double thin_turn_deg = 45.0;
+  double thin_size_change_m = 0.3;
+
+  ThinningPolicy thinning() const { return {thin_observations, thin_travel_m, thin_turn_deg, thin_size_change_m}; }
 
   // Throws ConfigError naming the file and key on a missing or invalid value. `robot`, when
   // given (the daemon's --robot), replaces the file's optional `robot` key.

@@ -47,6 +47,7 @@ class SimRun {
         d.robot = id;
         d.team = kTeam;
         d.team_key = cfgs.back().team_key;
+        d.thin_observations = false;
         cfgs.back() = d;
       }
     }
@@ -74,7 +75,7 @@ class SimRun {
         Bundle b = randomBundle(rng_, kIds[i], seq);
         ASSERT_FALSE(net_->node(i).addOwnBundle(b, net_->now()));
         b.first = k == 0;
-        sent_[i].push_back(b);
+        sent_[i].push_back(roundTrip(b));
       }
       net_->run(kSecond);
       if (s_.restarts && rng_() % 4 == 0) net_->restart(rng_() % kIds.size());
@@ -110,9 +111,9 @@ class SimRun {
         for (std::size_t k = 0; k < from_j.size(); ++k) {
           ASSERT_EQ(from_j[k].seq, sent_[j][k].seq) << "order at robot " << kIds[i];
           EXPECT_TRUE(bundlesNear(from_j[k], sent_[j][k])) << "content";
-          // The stored bytes are the origin's own, bit for bit, whoever relayed them.
+          // The stored bytes are what the origin shared, bit for bit, whoever relayed them.
           EXPECT_EQ(net_->node(i).db().get(kIds[j], from_j[k].seq)->data,
-                    net_->node(j).db().get(kIds[j], from_j[k].seq)->data);
+                    *net_->node(j).wirePayload(kIds[j], from_j[k].seq));
         }
       }
     }

@@ -41,8 +41,8 @@ TEST(PeerSyncSim, RateLimitBoundsWhatEachRobotSends) {
   std::vector<SyncConfig> cfgs;
   for (int id : {1, 2}) {
     SyncConfig c = teamConfig(id, {1, 2});
-    c.rate_limit_bytes_per_s = 4000;
-    c.burst_bytes = 2000;
+    c.rate_limit_bytes_per_s = 1500;
+    c.burst_bytes = 1000;
     cfgs.push_back(c);
   }
   SimNetwork net(cfgs, "", SimLinkModel{}, 3);
@@ -50,7 +50,7 @@ TEST(PeerSyncSim, RateLimitBoundsWhatEachRobotSends) {
   for (int s = 0; s < 60; ++s)
     for (int i = 0; i < 2; ++i) ASSERT_FALSE(net.node(i).addOwnBundle(randomBundle(rng, i + 1, s), 0));
   net.run(5000000);
-  const double limit = 2 * (4000.0 * 5 + 2000);  // two robots, 5 s
+  const double limit = 2 * (1500.0 * 5 + 1000);  // two robots, 5 s
   EXPECT_LE(net.bytesSent(), limit * 1.05);
   EXPECT_GT(net.bytesSent(), limit * 0.6);       // and the limit is used, not starved
   EXPECT_LT(net.delivered(0).size(), 60u);       // so not everything could be delivered yet
