@@ -16,9 +16,9 @@ namespace slide::team {
 
 struct ThinningPolicy {
   bool enabled = true;
-  double travel_m = 5.0;
+  double travel_m = 8.0;
   double turn_deg = 45.0;
-  double size_change_m = 0.3;
+  double size_change_m = 1.0;
 };
 
 class ObservationThinning {

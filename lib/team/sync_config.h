@@ -34,9 +34,9 @@ struct SyncConfig {
   // Own observations shared on the team bus (observation_thinning.h): a track again only after
   // this much travel or turn, or a class, shape or size change.
   bool thin_observations = true;
-  double thin_travel_m = 5.0;
+  double thin_travel_m = 8.0;
   double thin_turn_deg = 45.0;
-  double thin_size_change_m = 0.3;
+  double thin_size_change_m = 1.0;
 
   ThinningPolicy thinning() const { return {thin_observations, thin_travel_m, thin_turn_deg, thin_size_change_m}; }
 

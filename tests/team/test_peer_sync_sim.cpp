@@ -307,3 +307,39 @@ TEST(PeerSyncSim, MapsAreSharedAndNewestWins) {
   EXPECT_EQ(run.net().node(2).landmarks(kIds[0]), 400u);
   EXPECT_TRUE(run.net().node(2).takeMaps().empty());
 }
+
+TEST(PeerSyncSim, ThinnedPayloadsAreReproducedAfterARestart) {
+  const std::string dir = freshDir("thin_restart");
+  SyncConfig c = teamConfig(kIds[0], kTeam);
+  c.thin_observations = true;
+  std::mt19937 rng(17);
+  std::vector<Bytes> before;
+  std::size_t full_objects = 0, shared_objects = 0;
+  {
+    PeerSyncNode node(c, dir, 0);
+    Pose odom = Pose::Identity();
+    for (int k = 0; k < 120; ++k) {
+      Bundle b = randomBundle(rng, kIds[0], k, 0);
+      b.relative_odom = poseFromXyzYaw(1.4, 0, 0, 0.05 * std::sin(k * 0.1));
+      odom = odom * b.relative_odom;
+      b.odom_pose = odom;
+      for (int i = 0; i < 12; ++i) {  // each trunk seen in 12 key poses, with noise
+        Object o;
+        o.id = (k + i) / 12 * 12 + i;
+        o.class_id = 71;
+        o.confidence = 0.5 + 0.04 * i;
+        o.model = Cylinder{{3.0 + 0.01 * (rng() % 50), 1.0 * i - 6, 0}, Eigen::Vector3d::UnitZ(), 0.2, 5.0 + 0.01 * (rng() % 50)};
+        b.objects.push_back(o);
+      }
+      full_objects += b.objects.size();
+      ASSERT_FALSE(node.addOwnBundle(b, 0));
+      before.push_back(*node.wirePayload(kIds[0], k));
+      std::string err;
+      shared_objects += decodeBundle(before.back(), kIds[0], k, &err, nullptr)->objects.size();
+    }
+  }
+  EXPECT_LT(shared_objects, full_objects / 2);
+  PeerSyncNode again(c, dir, 0);
+  for (int k = 0; k < 120; ++k) ASSERT_EQ(*again.wirePayload(kIds[0], k), before[static_cast<std::size_t>(k)]) << k;
+  fs::remove_all(dir);
+}

@@ -146,6 +146,22 @@ void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, 
   rep.add(p + ".bytes_per_keypose", r.bytes / static_cast<double>(keyposes), "bytes");
   rep.add(p + ".bundle_chunks_per_bundle", static_cast<double>(r.bundle_chunks) / keyposes, "");
   rep.add(p + ".bundle_payload_mean", static_cast<double>(r.payload) / r.bundle_chunks, "bytes");
+  // What went on the bus per landmark: observations left after thinning, and their cost.
+  std::map<std::pair<int, int>, std::size_t> shared;  // (origin, seq) -> objects as delivered
+  for (const auto& robot : r.delivered)
+    for (const Bundle& b : robot) shared[{b.origin, b.seq}] = b.objects.size();
+  std::size_t observations = 0, observed = 0;
+  for (const auto& [key, n] : shared) observations += n;
+  for (const auto& rs : sc.robots)
+    for (const Bundle& b : rs.bundles) observed += b.objects.size();
+  const double landmarks = static_cast<double>(sc.landmarks_seen);
+  rep.add(p + ".observations_per_landmark", static_cast<double>(observed) / landmarks, "").note =
+      "observations made by the team per landmark";
+  rep.add(p + ".shared_observations_per_landmark", static_cast<double>(observations) / landmarks, "").note =
+      "observations put on the team bus per landmark (after thinning)";
+  rep.add(p + ".payload_bytes_per_shared_observation",
+          static_cast<double>(r.payload) / static_cast<double>(std::max<std::size_t>(1, observations)), "bytes")
+      .note = "bundle payload bytes (key-pose headers included) per shared observation";
   rep.add(p + ".share.bundles", r.traffic.bundle / r.bytes, "", true);
   rep.add(p + ".share.maps", r.traffic.map / r.bytes, "", true);
   rep.add(p + ".share.heartbeats", r.traffic.heartbeat / r.bytes, "", true);
