@@ -4,6 +4,7 @@
 #include <deque>
 #include <stdexcept>
 
+#include "team/bundle_pack.h"
 #include "team/codec.h"
 
 namespace slide::team {
@@ -112,6 +113,7 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   ObservationDb::Entry e;
   e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
   own_shared_[b.seq] = sharedEncoding(b.seq, e.data);
+  own_added_at_[b.seq] = now;
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
@@ -188,15 +190,7 @@ void PeerSyncNode::scheduleAck(std::int32_t peer, std::int32_t origin, Micros no
 
 void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (!inTeam(m.origin)) return drop(Drop::UnknownOrigin);
-  const Key key{m.origin, m.seq};
-  // Overheard or not, the addressees now have (or are getting) it: do not send it to them too.
-  for (auto& [id, p] : peers_)
-    if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
-  const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
-  if (db_.has(m.origin, m.seq)) {
-    if (for_me) scheduleAck(m.sender, m.origin, now);
-    return drop(Drop::Duplicate);
-  }
+  // The pack starts at m.seq: refuse it early when that is already implausible.
   const auto first = db_.firstSeq(m.origin);
   if (first && m.seq < *first) return drop(Drop::SeqBackwards);
   auto held = db_.held().find(m.origin);
@@ -209,17 +203,37 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (refused) return drop(*refused);
   if (!payload) return;
   std::string error;
-  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error);
+  auto bundles = unpackBundles(*payload, &error);
+  if (!bundles || static_cast<std::int64_t>(m.seq) + static_cast<std::int64_t>(bundles->size()) - 1 > INT32_MAX)
+    return drop(Drop::Malformed);
+  for (std::size_t i = 0; i < bundles->size(); ++i)
+    receiveBundle(m, static_cast<std::int32_t>(m.seq + static_cast<std::int64_t>(i)), std::move((*bundles)[i]), now);
+}
+
+void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now) {
+  const Key key{m.origin, seq};
+  // Overheard or not, the addressees now have it: do not send it to them too.
+  for (auto& [id, p] : peers_)
+    if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
+  const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
+  if (db_.has(m.origin, seq)) {
+    if (for_me) scheduleAck(m.sender, m.origin, now);
+    return drop(Drop::Duplicate);
+  }
+  const auto first = db_.firstSeq(m.origin);
+  auto held = db_.held().find(m.origin);
+  std::string error;
+  const auto bundle = decodeBundle(data, m.origin, seq, &error);
   if (!bundle) return drop(Drop::Malformed);
   // A bundle claiming to start its origin's stream must not contradict what is held.
-  if (bundle->first && ((first && *first != m.seq) || (held != db_.held().end() && !held->second.empty() &&
-                                                         held->second.min() < m.seq)))
+  if (bundle->first && ((first && *first != seq) || (held != db_.held().end() && !held->second.empty() &&
+                                                       held->second.min() < seq)))
     return drop(Drop::Malformed);
   ObservationDb::Entry e;
-  e.data = std::move(*payload);
+  e.data = std::move(data);
   e.first = bundle->first;
   e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
-  db_.add(m.origin, m.seq, std::move(e));
+  db_.add(m.origin, seq, std::move(e));
   scheduleAck(m.sender, m.origin, now);
 }
 
@@ -401,27 +415,56 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       }
     }
   }
+  // Per origin, packs of consecutive bundles due to the same peers, each within one chunk (a
+  // bundle larger than a chunk goes alone, in several).
+  struct Pack {
+    std::int32_t first;
+    std::vector<const Bytes*> bundles;
+    std::vector<std::int32_t> to;
+    std::size_t bytes;
+  };
+  std::vector<std::pair<std::int32_t, std::vector<Pack>>> packs;
+  for (const auto& [origin, seqs] : due) {
+    std::vector<Pack> list;
+    for (const auto& [seq, to] : seqs) {
+      const Bytes* data = wirePayload(origin, seq);
+      const std::size_t add = packedSize(data->size());
+      Pack* last = list.empty() ? nullptr : &list.back();
+      if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
+          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack) {
+        last->bundles.push_back(data);
+        last->bytes += add;
+      } else {
+        list.push_back({seq, {data}, to, 1 + add});
+      }
+    }
+    // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).
+    if (origin == cfg_.robot && list.size() == 1) {
+      const Pack& only = list[0];
+      bool fresh = true;
+      for (std::size_t k = 0; k < only.bundles.size() && fresh; ++k) fresh = own_added_at_.count(only.first + static_cast<std::int32_t>(k));
+      if (fresh && now - own_added_at_.at(only.first) < secs(cfg_.bundle_hold_s)) continue;
+    }
+    packs.emplace_back(origin, std::move(list));
+  }
   // Round robin over origins, each in sequence order, until the rate limit says stop.
-  std::vector<std::pair<std::map<std::int32_t, std::vector<std::int32_t>>::iterator,
-                        std::map<std::int32_t, std::vector<std::int32_t>>::iterator>>
-      cursors;
-  for (auto& [origin, seqs] : due) cursors.emplace_back(seqs.begin(), seqs.end());
-  std::vector<std::int32_t> origins;
-  for (auto& [origin, seqs] : due) origins.push_back(origin);
+  std::vector<std::size_t> next(packs.size(), 0);
   bool progress = true;
   while (progress) {
     progress = false;
-    for (std::size_t i = 0; i < cursors.size(); ++i) {
-      auto& [it, end] = cursors[i];
-      if (it == end) continue;
-      const std::int32_t origin = origins[i], seq = it->first;
-      const std::vector<std::int32_t>& to = it->second;
-      ++it;
-      const SendResult r =
-          sendPayload(ChunkKind::Bundle, to.size() == 1 ? to[0] : -1, origin, seq, *wirePayload(origin, seq), to, now, out);
+    for (std::size_t i = 0; i < packs.size(); ++i) {
+      const auto& [origin, list] = packs[i];
+      if (next[i] == list.size()) continue;
+      const Pack& pack = list[next[i]++];
+      const SendResult r = sendPayload(ChunkKind::Bundle, pack.to.size() == 1 ? pack.to[0] : -1, origin, pack.first,
+                                       packBundles(pack.bundles), pack.to, now, out);
       if (r == SendResult::TooLarge) continue;
       if (r == SendResult::RateLimited) return;
-      for (std::int32_t id : to) peers_[id].sent[{origin, seq}] = now;
+      for (std::size_t k = 0; k < pack.bundles.size(); ++k) {
+        const std::int32_t seq = pack.first + static_cast<std::int32_t>(k);
+        for (std::int32_t id : pack.to) peers_[id].sent[{origin, seq}] = now;
+        if (origin == cfg_.robot) own_added_at_.erase(seq);
+      }
       progress = true;
     }
   }

@@ -97,6 +97,7 @@ class PeerSyncNode {
   void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
   void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
   void receiveBundleChunk(const Chunk& m, Micros now);
+  void receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now);  // one of its pack
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
   std::vector<std::int32_t> peersInReach(Micros now) const;
@@ -121,6 +122,7 @@ class PeerSyncNode {
   ObservationDb db_;
   ObservationThinning thinning_;
   std::map<std::int32_t, Bytes> own_shared_;  // own bundles as shared, by seq
+  std::map<std::int32_t, Micros> own_added_at_;  // own bundles not sent yet: when they came
   mutable std::map<Key, BundleContext> contexts_;
   Reassembler reassembler_;
   RateLimiter limiter_;

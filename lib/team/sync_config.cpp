@@ -22,6 +22,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.rate_limit_bytes_per_s = n.get<double>("rate_limit_bytes_per_s", c.rate_limit_bytes_per_s);
   c.burst_bytes = n.get<double>("burst_bytes", c.burst_bytes);
   c.max_chunk_bytes = n.get<unsigned>("max_chunk_bytes", static_cast<unsigned>(c.max_chunk_bytes));
+  c.bundle_hold_s = n.get<double>("bundle_hold_s", c.bundle_hold_s);
   c.max_ranges_per_origin = n.get<unsigned>("max_ranges_per_origin", static_cast<unsigned>(c.max_ranges_per_origin));
   c.max_sends_per_tick = n.get<unsigned>("max_sends_per_tick", static_cast<unsigned>(c.max_sends_per_tick));
   c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
@@ -55,6 +56,7 @@ void SyncConfig::validate() const {
     throw std::invalid_argument("ack_delay_s, relay_delay_s and loss_grace_s must be >= 0");
   if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)
     throw std::invalid_argument("max_chunk_bytes must be within 64..60000 (LCM's UDP limit is ~64 KB)");
+  if (!(bundle_hold_s >= 0 && bundle_hold_s <= 60)) throw std::invalid_argument("bundle_hold_s must be within 0..60");
   if (max_ranges_per_origin < 1 || max_ranges_per_origin > 4096)
     throw std::invalid_argument("max_ranges_per_origin must be within 1..4096");
   if (max_sends_per_tick < 1) throw std::invalid_argument("max_sends_per_tick must be >= 1");

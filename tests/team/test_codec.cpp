@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "team/bundle_pack.h"
 #include "team/codec.h"
 #include "team/quantise.h"
 #include "team_test_util.h"
@@ -311,4 +312,25 @@ TEST(Quantise, HalfAUnitAndNoSilentClamping) {
   EXPECT_FALSE(quantiseU8(-0.01, 0.01));
   for (double a = -7; a < 7; a += 0.01)
     EXPECT_LE(std::abs(wrapAngle(turn16ToAngle(quantiseTurn16(a)) - a)), M_PI / 65536 + 1e-12);
+}
+
+TEST(BundlePack, RoundTripAndMalformedPacksAreNamed) {
+  const Bytes a = {1, 2, 3}, b(200, 7), empty;
+  const Bytes pack = packBundles({&a, &b, &empty});
+  EXPECT_EQ(pack.size(), 1 + packedSize(a.size()) + packedSize(b.size()) + packedSize(0));
+  std::string err;
+  const auto got = unpackBundles(pack, &err);
+  ASSERT_TRUE(got) << err;
+  EXPECT_EQ(*got, (std::vector<Bytes>{a, b, empty}));
+  auto rejects = [](const Bytes& data, const std::string& what) {
+    std::string e;
+    EXPECT_FALSE(unpackBundles(data, &e));
+    EXPECT_NE(e.find(what), std::string::npos) << e;
+  };
+  rejects({}, "truncated");
+  rejects({0}, "bundle count 0 out of range");
+  rejects({3, 1, 9}, "bundle count 3 out of range");
+  rejects({1, 5, 1, 2}, "bundle 0 length 5 exceeds");
+  rejects({1, 1, 9, 9}, "1 trailing bytes");
+  for (std::size_t n = 0; n < pack.size(); ++n) EXPECT_FALSE(unpackBundles(Bytes(pack.begin(), pack.begin() + n), &err));
 }
