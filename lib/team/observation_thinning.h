@@ -16,7 +16,7 @@ namespace slide::team {
 
 struct ThinningPolicy {
   bool enabled = true;
-  double travel_m = 8.0;
+  double travel_m = 10.0;
   double turn_deg = 45.0;
   double size_change_m = 1.0;
 };

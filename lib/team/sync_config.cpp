@@ -52,6 +52,8 @@ void SyncConfig::validate() const {
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");
+  if (peer_timeout_s <= heartbeat_period_s)
+    throw std::invalid_argument("peer_timeout_s must exceed heartbeat_period_s (peers would drop out between heartbeats)");
   if (ack_delay_s < 0 || relay_delay_s < 0 || loss_grace_s < 0)
     throw std::invalid_argument("ack_delay_s, relay_delay_s and loss_grace_s must be >= 0");
   if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)
