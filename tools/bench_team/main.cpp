@@ -11,6 +11,7 @@
 #include "app/app.h"
 #include "bench/report.h"
 #include "team/sim_network.h"
+#include "backend_map.h"
 #include "team_scenario.h"
 
 using namespace slide;
@@ -132,6 +133,24 @@ std::map<std::tuple<int, int, int, int>, Eigen::Vector3d> composedMap(const RunR
   return out;
 }
 
+// What robot 0's back-end is fed, in one order for every run: per key pose its own bundle,
+// then each peer's bundle of that sequence number as delivered (thinned, quantised).
+std::vector<Arrival> feedOfFirstRobot(const TeamScenario& sc, const RunResult& r) {
+  std::map<std::pair<int, int>, const Bundle*> got;
+  for (const Bundle& b : r.delivered[0]) got[{b.origin, b.seq}] = &b;
+  std::vector<Arrival> out;
+  for (std::size_t k = 0; k < sc.robots[0].bundles.size(); ++k) {
+    Arrival a;
+    a.bundles.push_back(sc.robots[0].bundles[k]);
+    for (std::size_t p = 1; p < sc.robots.size(); ++p) {
+      auto it = got.find({sc.robots[p].robot, static_cast<int>(k)});
+      if (it != got.end()) a.bundles.push_back(*it->second);
+    }
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
 void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, const RunResult& r) {
   double metres = 0;
   std::size_t keyposes = 0;
@@ -225,6 +244,21 @@ int main(int argc, char** argv) {
     rep.add("lossy.map_diff_m", diff, "m", true, 1e-6).note =
         "max distance between object positions composed from delivered bundles (odometry chain per origin), "
         "lossy vs lossless run; the optimizer is not in this bench";
+    // The back-end's map at robot 0 from what each run delivered, fed in the same order.
+    const BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+    std::map<std::int32_t, Pose> transforms;
+    for (std::size_t r = 1; r < sc.robots.size(); ++r)
+      transforms[sc.robots[r].robot] = sc.robots[0].start.inverse() * sc.robots[r].start;
+    const auto map_clean = backendMap(backend, sc.robots[0].robot, transforms, feedOfFirstRobot(sc, clean));
+    const auto map_lossy = backendMap(backend, sc.robots[0].robot, transforms, feedOfFirstRobot(sc, bad));
+    const MapComparison cmp = compareMaps(map_clean, map_lossy, 1.0);
+    rep.add("lossy.backend_map_diff_m", cmp.max_paired_m, "m", true, 1e-6).note =
+        "robot 0's back-end map (own bundles + delivered peers', full solve), lossy vs lossless: largest distance "
+        "between paired landmarks (nearest of the same class within 1 m)";
+    rep.add("lossy.backend_unpaired", static_cast<double>(cmp.unpaired), "", true, 0.0).note =
+        "landmarks of either map without a partner within 1 m";
+    rep.add("lossy.backend_landmarks", static_cast<double>(map_lossy.size()), "", false).note =
+        "landmarks in that map (lossless: " + std::to_string(map_clean.size()) + ")";
     double metres = 0;
     for (const auto& rs : sc.robots) metres += rs.metres;
     rep.add("lossy.bytes_per_metre", bad.bytes / metres, "bytes", true).note = "30% loss, links down half the time";
