@@ -14,9 +14,10 @@ constexpr std::uint8_t kMapFormat = 2;
 // Flags of a bundle header.
 constexpr std::uint8_t kFirst = 1;
 constexpr std::uint8_t kHasSigma = 2;       // sigma written (else zero, or the previous one when chained)
+constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
 constexpr std::uint8_t kChained = 4;        // utime, odometry pose and sigma relative to bundle seq-1
 constexpr std::uint8_t kRelativeFloat = 8;  // relative odometry as float32 (too large to quantise)
-constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat;
+constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat;
 
 constexpr double kMetre = 1e-3, kRadian = 1e-4;
 constexpr std::int64_t kTranslationLimit = 1000000000;  // 1000 km
@@ -117,6 +118,18 @@ Pose readPose(ByteReader& r, const char* what) {
   return T;
 }
 
+using SigmaCodes = std::array<std::uint8_t, 6>;
+
+std::optional<SigmaCodes> quantiseSigmas(const std::array<float, 6>& sigma) {
+  SigmaCodes q;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto c = quantiseSigma(sigma[i]);
+    if (!c) return std::nullopt;
+    q[i] = *c;
+  }
+  return q;
+}
+
 template <typename T>
 std::optional<T> finish(ByteReader& r, T value, std::string* error) {
   if (r.ok() && r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " trailing bytes");
@@ -138,14 +151,14 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
       chained_step = quantiseStep(step);
   }
   const std::optional<Quantised> relative = chained_step ? chained_step : quantiseStep(b.relative_odom);
-  bool sigma = false;
-  for (std::size_t i = 0; i < b.odom_sigma.size(); ++i)
-    sigma |= chained_step ? b.odom_sigma[i] != previous->odom_sigma[i] || std::signbit(b.odom_sigma[i])
-                          : b.odom_sigma[i] != 0.0f || std::signbit(b.odom_sigma[i]);
+  // Sigma is left out when it is zero (self-contained) or, chained, quantises as the previous.
+  const std::optional<SigmaCodes> sigma_codes = quantiseSigmas(b.odom_sigma);
+  const std::optional<SigmaCodes> implied = chained_step ? quantiseSigmas(previous->odom_sigma) : SigmaCodes{};
+  const bool sigma = !sigma_codes || !implied || *sigma_codes != *implied;
   ByteWriter w;
   w.u8(kBundleFormat);
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
-                                 (relative ? 0 : kRelativeFloat)));
+                                 (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0)));
   if (chained_step) {
     w.svarint(b.utime - previous->utime);
   } else {
@@ -154,7 +167,9 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   }
   if (relative) writeStep(w, *relative);
   else writePose(w, b.relative_odom);
-  if (sigma)
+  if (sigma && sigma_codes)
+    for (std::uint8_t q : *sigma_codes) w.u8(q);
+  else if (sigma)
     for (float s : b.odom_sigma) w.f32(s);
   writeObjects(w, b.objects, ObjectListKind::Bundle);
   return w.take();
@@ -185,11 +200,15 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
     b.utime = utime;
   }
   if (needs_previous) *needs_previous = chained && !previous;
-  if (flags & kHasSigma)
+  if (r.ok() && (flags & kSigmaFloat) && !(flags & kHasSigma)) r.fail("float32 sigma flag without a sigma");
+  if (flags & kSigmaFloat) {
     for (float& s : b.odom_sigma) {
       s = r.f32();
       if (r.ok() && !std::isfinite(s)) r.fail("non-finite odometry sigma");
     }
+  } else if (flags & kHasSigma) {
+    for (float& s : b.odom_sigma) s = static_cast<float>(sigmaOf(r.u8()));
+  }
   readObjects(r, &b.objects, ObjectListKind::Bundle);
   return finish(r, std::move(b), error);
 }

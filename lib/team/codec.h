@@ -15,10 +15,11 @@
 //   cuboid dimensions        5 cm (0..12.75 m)    ellipsoid radius  1 cm (0..2.55 m),
 //                                                 ellipsoid height  5 cm (0..12.75 m)
 //   confidence               1/255 (0..1)
+//   odometry sigma           1/16 octave (relative error <= 2.2%; 1.7e-4..10.9)
 // All of these are far below the measurement noise (several cm, degrees). A value outside its
 // range is never clamped: the object carries that group of fields as float32 under a flag
 // (positions beyond +-327 m in a body frame, sizes beyond the ranges above, confidence
-// outside 0..1). utime, odometry sigma, ids, classes and observation counts are exact.
+// outside 0..1, sigma outside its range). utime, ids, classes and observation counts are exact.
 #include <array>
 #include <optional>
 #include <string>
@@ -39,7 +40,8 @@ struct BundleContext {
 // `previous`: the decoded context of the origin's bundle seq-1, when known. If the bundle's
 // relative odometry agrees with previous->odom_pose^-1 * odom_pose (as a tracker computes it)
 // to within 2 mm and 2e-4 rad, the bundle is chained: utime as a difference, the odometry
-// pose derived from the previous one and the quantised step, sigma left out when unchanged.
+// pose derived from the previous one and the quantised step, sigma left out when it quantises
+// as the previous one.
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
 // A chained bundle needs `previous`; without it the result has only the relative odometry,

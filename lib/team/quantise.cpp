@@ -29,4 +29,14 @@ double turn16ToAngle(std::uint16_t q) {
   return wrapAngle(static_cast<double>(static_cast<std::int16_t>(q)) * (2 * M_PI / 65536.0));
 }
 
+std::optional<std::uint8_t> quantiseSigma(double s) {
+  if (s == 0) return 0;
+  if (!(s > 0) || !std::isfinite(s)) return std::nullopt;
+  const double q = std::round(std::log2(s) * 16 + 200);
+  if (q < 1 || q > 255) return std::nullopt;
+  return static_cast<std::uint8_t>(q);
+}
+
+double sigmaOf(std::uint8_t q) { return q == 0 ? 0.0 : std::exp2((q - 200) / 16.0); }
+
 }  // namespace slide::team
