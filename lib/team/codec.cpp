@@ -14,9 +14,9 @@ constexpr std::uint8_t kMapFormat = 2;
 // Flags of a bundle header.
 constexpr std::uint8_t kFirst = 1;
 constexpr std::uint8_t kHasSigma = 2;       // sigma written (else zero, or the previous one when chained)
-constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
 constexpr std::uint8_t kChained = 4;        // utime, odometry pose and sigma relative to bundle seq-1
 constexpr std::uint8_t kRelativeFloat = 8;  // relative odometry as float32 (too large to quantise)
+constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
 constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat;
 
 constexpr double kMetre = 1e-3, kRadian = 1e-4;
@@ -58,7 +58,8 @@ Pose readStep(ByteReader& r) {
   Quantised q;
   for (int i = 0; i < 6; ++i) {
     q[i] = r.svarint();
-    if (r.ok() && std::abs(q[i]) > (i < 3 ? kTranslationLimit : kRotationLimit))
+    const std::int64_t limit = i < 3 ? kTranslationLimit : kRotationLimit;
+    if (r.ok() && (q[i] < -limit || q[i] > limit))
       r.fail(std::string("relative odometry ") + (i < 3 ? "translation" : "rotation") + " out of range");
   }
   if (r.ok() && std::hypot(q[3], q[4], q[5]) * kRadian > M_PI + 1e-3) r.fail("relative odometry rotation exceeds pi");
@@ -160,7 +161,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
                                  (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0)));
   if (chained_step) {
-    w.svarint(b.utime - previous->utime);
+    w.svarint(static_cast<std::int64_t>(static_cast<std::uint64_t>(b.utime) - static_cast<std::uint64_t>(previous->utime)));
   } else {
     w.svarint(b.utime);
     writePose(w, b.odom_pose);
@@ -193,7 +194,7 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   if (!chained) b.odom_pose = readPose(r, "odometry pose");
   b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry") : readStep(r);
   if (chained && previous) {
-    b.utime = previous->utime + utime;
+    b.utime = static_cast<std::int64_t>(static_cast<std::uint64_t>(previous->utime) + static_cast<std::uint64_t>(utime));
     b.odom_pose = previous->odom_pose * b.relative_odom;
     b.odom_sigma = previous->odom_sigma;
   } else if (!chained) {

@@ -33,6 +33,16 @@ constexpr double kCylinderUnits[2] = {0.01, 0.1};
 constexpr double kCuboidUnit = 0.05;
 constexpr double kEllipsoidUnits[2] = {0.01, 0.05};
 
+// Id differences wrap around (defined for any ids, and for any input).
+std::int64_t wrappingAdd(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+}
+std::int64_t wrappingSub(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
+}
+
+bool within(std::int64_t v, std::int64_t limit) { return v >= -limit && v <= limit; }
+
 std::string at(std::uint64_t i, const char* what) { return "object " + std::to_string(i) + ": " + what; }
 
 Eigen::Vector3d rpyOf(const Eigen::Matrix3d& R) {
@@ -122,7 +132,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
       }
     }
     w.u8(tag);
-    w.svarint(o.id - prev_id);
+    w.svarint(wrappingSub(o.id, prev_id));
     prev_id = o.id;
     if (!(tag & kSameClass)) w.varint(static_cast<std::uint64_t>(cls));
     if (body) {
@@ -173,7 +183,7 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
     if ((tag & kAxisDown) && !(shape == 1 && (tag & kOriented)))
       return r.fail(at(i, "axis-down flag on an object without a tilted axis")), false;
     if (shape == 2 && (tag & kOriented)) return r.fail(at(i, "orientation flag on an ellipsoid")), false;
-    o.id = prev_id + r.svarint();
+    o.id = wrappingAdd(prev_id, r.svarint());
     prev_id = o.id;
     if (tag & kSameClass) {
       if (prev_class < 0) return r.fail(at(i, "same-class flag on the first object")), false;
@@ -195,8 +205,10 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
     } else {
       const std::int64_t limit = body ? kBodyPositionLimit : kMapPositionLimit;
       for (int k = 0; k < 3; ++k) {
-        const std::int64_t q = r.svarint() + (body ? 0 : prev_q[k]);
-        if (r.ok() && std::abs(q) > limit) return r.fail(at(i, "position out of range")), false;
+        const std::int64_t v = r.svarint();
+        if (r.ok() && !within(v, body ? limit : 2 * limit)) return r.fail(at(i, "position out of range")), false;
+        const std::int64_t q = v + (body ? 0 : prev_q[k]);
+        if (r.ok() && !within(q, limit)) return r.fail(at(i, "position out of range")), false;
         if (!body) prev_q[k] = q;
         p[k] = static_cast<double>(q) * kPositionUnit;
       }
@@ -208,7 +220,7 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
       const std::int64_t limit = shape == 0 ? kRollPitchLimit : 1000;
       for (double& t : tilt) {
         const std::int64_t q = r.svarint();
-        if (r.ok() && std::abs(q) > limit) return r.fail(at(i, "tilt out of range")), false;
+        if (r.ok() && !within(q, limit)) return r.fail(at(i, "tilt out of range")), false;
         t = static_cast<double>(q) * kTiltUnit;
       }
       if (shape == 1 && tilt[0] * tilt[0] + tilt[1] * tilt[1] > 1.0)

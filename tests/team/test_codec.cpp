@@ -310,6 +310,11 @@ TEST(Codec, MapRoundTripWithinQuantisation) {
   bad[0] = 1;
   EXPECT_FALSE(decodeMap(bad, 2, 9, &err));
   EXPECT_NE(err.find("unknown map format"), std::string::npos);
+  for (int k = 0; k < 3000; ++k) {  // random corruption: decodes or fails, never crashes
+    bad = enc;
+    for (int j = 0; j < 3; ++j) bad[rng() % bad.size()] = static_cast<std::uint8_t>(rng());
+    (void)decodeMap(bad, 2, 9, &err);
+  }
 }
 
 TEST(Quantise, HalfAUnitAndNoSilentClamping) {
