@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
     rep.add("lossy.duplicates", static_cast<double>(duplicates), "", true, 0.0);
     rep.add("lossy.map_diff_m", diff, "m", true, 1e-6).note =
         "max distance between object positions composed from delivered bundles (odometry chain per origin), "
-        "lossy vs lossless run; the optimizer is not in this bench";
+        "lossy vs lossless run";
     // The back-end's map at robot 0 from what each run delivered, fed in the same order.
     const BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
     std::map<std::int32_t, Pose> transforms;
@@ -269,7 +269,7 @@ int main(int argc, char** argv) {
     std::size_t keyposes_total = 0;
     for (const auto& rs : sc.robots) keyposes_total += rs.bundles.size();
     rep.add("lossy.bundle_sends_per_bundle", static_cast<double>(bad.bundle_chunks) / keyposes_total, "", true)
-        .note = "bundle chunks put on the medium per bundle (1 = each sent once to everyone)";
+        .note = "bundle chunks put on the medium per bundle (a chunk packs the bundles of up to bundle_hold_s)";
     rep.add("lossy.share.bundles", bad.traffic.bundle / bad.bytes, "", true);
     rep.add("lossy.share.heartbeats", bad.traffic.heartbeat / bad.bytes, "", true);
     rep.add("lossy.share.acks", bad.traffic.ack / bad.bytes, "", true);
