@@ -442,7 +442,8 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
     if (origin == cfg_.robot && list.size() == 1) {
       const Pack& only = list[0];
       bool fresh = true;
-      for (std::size_t k = 0; k < only.bundles.size() && fresh; ++k) fresh = own_added_at_.count(only.first + static_cast<std::int32_t>(k));
+      for (std::size_t k = 0; k < only.bundles.size() && fresh; ++k)
+        fresh = own_added_at_.count(only.first + static_cast<std::int32_t>(k)) > 0;
       if (fresh && now - own_added_at_.at(only.first) < secs(cfg_.bundle_hold_s)) continue;
     }
     packs.emplace_back(origin, std::move(list));

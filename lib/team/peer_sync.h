@@ -1,9 +1,10 @@
 #pragma once
 // One robot's peer-sync protocol engine: the observation database, per-peer bookmarks
-// (what each peer is known to hold, what was sent to it and when), relay of third robots'
-// bundles, map sharing, authentication, replay protection, rate limiting, traffic accounting
-// and in-order exactly-once delivery. Pure logic: messages in and out as structs, time as
-// microseconds; the daemon (or a simulated network) moves the messages.
+// (what each peer is known to hold, what was sent to it and when), thinning of the robot's own
+// observations before they go on the team bus, packing of consecutive bundles into one chunk,
+// relay of third robots' bundles, map sharing, authentication, replay protection, rate
+// limiting, traffic accounting and in-order exactly-once delivery. Pure logic: messages in and
+// out as structs, time as microseconds; the daemon (or a simulated network) moves the messages.
 #include <map>
 #include <optional>
 #include <set>
