@@ -223,7 +223,8 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
         if (r.ok() && !within(q, limit)) return r.fail(at(i, "tilt out of range")), false;
         t = static_cast<double>(q) * kTiltUnit;
       }
-      if (shape == 1 && tilt[0] * tilt[0] + tilt[1] * tilt[1] > 1.0)
+      // (Rounding a horizontal axis may take the components a little beyond unit norm.)
+      if (shape == 1 && tilt[0] * tilt[0] + tilt[1] * tilt[1] > 1.0 + 2e-3)
         return r.fail(at(i, "axis components exceed unit norm")), false;
     }
     double sizes[3] = {0, 0, 0};

@@ -145,6 +145,22 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
   EXPECT_FALSE(chainedBundle(encodeBundle(other, &*previous)));
 }
 
+TEST(Codec, AxesPointingDownOrSidewaysComeBack) {
+  Bundle b;
+  for (const Eigen::Vector3d& axis : {Eigen::Vector3d(0.1, 0.2, -0.97), Eigen::Vector3d(1, 0, 0),
+                                      Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(-0.6, 0.8, 0),
+                                      Eigen::Vector3d(0.70755, 0.70666, 0)}) {  // rounds beyond unit norm
+    Object o;
+    o.id = static_cast<std::int64_t>(b.objects.size());
+    o.model = Cylinder{{1, 2, 3}, axis.normalized(), 0.3, 4};
+    b.objects.push_back(o);
+  }
+  std::string err;
+  const auto d = decodeBundle(encodeBundle(b), 0, 0, &err);
+  ASSERT_TRUE(d) << err;
+  for (std::size_t i = 0; i < b.objects.size(); ++i) expectQuantisedCopy(d->objects[i], b.objects[i]);
+}
+
 TEST(Codec, OutOfRangeValuesAreEscapedNotClamped) {
   Bundle b;
   Object far;  // 400 m away in the body frame, size beyond 2.55 m radius, confidence > 1
@@ -255,7 +271,7 @@ TEST(Codec, MalformedFieldsAreNamed) {
   rejects(withObject({1, 0, 0xff, 0xff, 0x7f, 255, 2, 0, 0, 0, 10, 10}), "class id out of int16 range");
   rejects(withObject({2 | 8, 0, 1, 255, 2, 0, 0, 0, 10, 10, 0}), "orientation flag on an ellipsoid");
   rejects(withObject({1 | 128, 0, 71, 255, 2, 0, 0, 0, 10, 10, 0}), "axis-down flag");
-  // A tilted axis with components (0.9, 0.9): beyond unit norm.
+  // A tilted axis with components (0.9, 0.9): beyond unit norm (and rounding).
   rejects(withObject({1 | 8, 0, 71, 255, 2, 0, 0, 0, 0x8c, 0x0e, 0x8c, 0x0e, 10, 10}), "axis components exceed");
   // Position 40000 cm in a body frame: beyond the int16 range that the encoder escapes.
   rejects(withObject({1, 0, 71, 255, 2, 0x80, 0xf1, 0x04, 0, 0, 10, 10}), "position out of range");
