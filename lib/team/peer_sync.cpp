@@ -66,6 +66,10 @@ PeerSyncNode::~PeerSyncNode() {
   }
 }
 
+void PeerSyncNode::somethingNew() {
+  if (last_heartbeat_) next_heartbeat_ = std::min(next_heartbeat_, last_heartbeat_->at + secs(cfg_.heartbeat_period_s));
+}
+
 bool PeerSyncNode::inTeam(std::int32_t robot) const {
   return std::find(cfg_.team.begin(), cfg_.team.end(), robot) != cfg_.team.end();
 }
@@ -117,6 +121,7 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
+  somethingNew();
   return std::nullopt;
 }
 
@@ -127,6 +132,7 @@ void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
   m.version = own_map_version_;
   own_map_data_ = encodeMap(m);
   own_map_ = std::move(m);
+  somethingNew();
 }
 
 // ---- team input ----
@@ -234,6 +240,7 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   e.first = bundle->first;
   e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, seq, std::move(e));
+  somethingNew();
   scheduleAck(m.sender, m.origin, now);
 }
 
@@ -290,7 +297,13 @@ TickOutput PeerSyncNode::tick(Micros now) {
     limiter_.force(static_cast<double>(bytes), now);
     traffic_.sent(peersInReach(now), bytes);
     out.heartbeats.push_back(std::move(h));
-    next_heartbeat_ = now + secs(cfg_.heartbeat_period_s);
+    // Nothing new since the previous heartbeat: the next one waits twice as long, up to
+    // heartbeat_idle_factor periods (somethingNew() pulls it back in).
+    const bool unchanged = last_heartbeat_ && last_heartbeat_->held == h.held && last_heartbeat_->map_version == h.map_version;
+    heartbeat_interval_ = unchanged ? std::min(2 * heartbeat_interval_, secs(cfg_.heartbeat_period_s * cfg_.heartbeat_idle_factor))
+                                    : secs(cfg_.heartbeat_period_s);
+    last_heartbeat_ = LastHeartbeat{now, h.held, h.map_version};
+    next_heartbeat_ = now + heartbeat_interval_;
   }
   // Acknowledgements due: one message for every peer waiting (receiver -1 when several); a
   // heartbeat just sent says the same to everyone, so it acknowledges all.

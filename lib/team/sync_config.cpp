@@ -12,6 +12,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.team = n.getList<std::int32_t>("team");
   c.team_key = n.get<std::string>("team_key");
   c.heartbeat_period_s = n.get<double>("heartbeat_period_s", c.heartbeat_period_s);
+  c.heartbeat_idle_factor = n.get<double>("heartbeat_idle_factor", c.heartbeat_idle_factor);
   c.ack_delay_s = n.get<double>("ack_delay_s", c.ack_delay_s);
   c.resend_timeout_s = n.get<double>("resend_timeout_s", c.resend_timeout_s);
   c.relay_delay_s = n.get<double>("relay_delay_s", c.relay_delay_s);
@@ -52,8 +53,11 @@ void SyncConfig::validate() const {
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");
-  if (peer_timeout_s <= heartbeat_period_s)
-    throw std::invalid_argument("peer_timeout_s must exceed heartbeat_period_s (peers would drop out between heartbeats)");
+  if (!(heartbeat_idle_factor >= 1 && heartbeat_idle_factor <= 100))
+    throw std::invalid_argument("heartbeat_idle_factor must be within 1..100");
+  if (peer_timeout_s <= heartbeat_period_s * heartbeat_idle_factor)
+    throw std::invalid_argument(
+        "peer_timeout_s must exceed heartbeat_period_s * heartbeat_idle_factor (peers would drop out between heartbeats)");
   if (ack_delay_s < 0 || relay_delay_s < 0 || loss_grace_s < 0)
     throw std::invalid_argument("ack_delay_s, relay_delay_s and loss_grace_s must be >= 0");
   if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)

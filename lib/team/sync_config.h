@@ -16,6 +16,7 @@ struct SyncConfig {
   std::string team_key;            // HMAC key shared by the team
 
   double heartbeat_period_s = 8.0;
+  double heartbeat_idle_factor = 2.0;  // while nothing changes the period doubles up to this many times it
   double ack_delay_s = 8.0;          // acknowledgements are coalesced this long (a heartbeat acks all)
   double resend_timeout_s = 4.0;     // unacknowledged data is sent again after this at the earliest,
   double loss_grace_s = 0.5;         // once a heartbeat sent this long after it still lacks it

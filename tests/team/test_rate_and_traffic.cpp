@@ -75,3 +75,28 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
   EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
                slide::ConfigError);
 }
+
+TEST(PeerSyncSim, IdleHeartbeatsBackOffAndComeBackWithNews) {
+  std::vector<SyncConfig> cfgs = {teamConfig(1, {1, 2}), teamConfig(2, {1, 2})};  // 1 s period, 3 s timeout
+  SimNetwork net(cfgs, "", SimLinkModel{}, 3);
+  std::size_t heartbeats = 0;
+  net.on_send = [&](std::size_t from, const TeamMessage& m) { heartbeats += from == 0 && std::holds_alternative<Heartbeat>(m); };
+  net.run(30000000);
+  EXPECT_LE(heartbeats, 17u);  // every 2 s (heartbeat_idle_factor 2) instead of every second
+  EXPECT_GE(heartbeats, 14u);
+  EXPECT_TRUE(net.node(1).inReach(1, net.now()));
+  std::mt19937 rng(4);
+  heartbeats = 0;
+  for (int k = 0; k < 10; ++k) {  // news every second: back to the normal period
+    ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, k), net.now()));
+    net.run(1000000);
+  }
+  EXPECT_GE(heartbeats, 9u);
+  EXPECT_THROW(
+      [] {
+        SyncConfig c = teamConfig(1, {1, 2});
+        c.heartbeat_idle_factor = 4;  // 4 s between heartbeats with a 3 s peer timeout
+        c.validate();
+      }(),
+      std::invalid_argument);
+}
