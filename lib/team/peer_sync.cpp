@@ -46,7 +46,9 @@ Bytes PeerSyncNode::sharedEncoding(std::int32_t seq, const Bytes& full) {
   const auto previous = contextOf(cfg_.robot, seq - 1);
   std::string error;
   const auto b = decodeBundle(full, cfg_.robot, seq, &error, previous ? &*previous : nullptr);
-  if (!b) throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error);
+  if (!b)
+    throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error +
+                             " (a journal from another encoding version? remove the state directory)");
   return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr);
 }
 
