@@ -74,6 +74,15 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
   }
   EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
                slide::ConfigError);
+  for (const std::string bad : {"bundle_hold_s: -1\n", "bundle_hold_s: 100\n", "heartbeat_idle_factor: 0.5\n",
+                                "heartbeat_idle_factor: 3\n"}) {  // 3 * 8 s beyond the 20 s peer timeout
+    try {
+      SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\n" + bad, "t.yaml"), 1);
+      FAIL() << "accepted " << bad;
+    } catch (const slide::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.substr(0, bad.find(':'))), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(PeerSyncSim, IdleHeartbeatsBackOffAndComeBackWithNews) {
