@@ -13,6 +13,7 @@ using Bytes = std::vector<std::uint8_t>;
 class ByteWriter {
  public:
   void u8(std::uint8_t v) { out_.push_back(v); }
+  void u16(std::uint16_t v) { u8(static_cast<std::uint8_t>(v)), u8(static_cast<std::uint8_t>(v >> 8)); }
   void u32(std::uint32_t v);
   void u64(std::uint64_t v);
   void f32(float v);
@@ -32,6 +33,10 @@ class ByteReader {
   explicit ByteReader(const Bytes& b) : ByteReader(b.data(), b.size()) {}
 
   std::uint8_t u8();
+  std::uint16_t u16() {
+    const std::uint8_t lo = u8();
+    return static_cast<std::uint16_t>(lo | (u8() << 8));
+  }
   std::uint32_t u32();
   std::uint64_t u64();
   float f32();

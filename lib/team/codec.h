@@ -1,9 +1,26 @@
 #pragma once
-// Compact binary encodings of bundles and object maps for the team bus: float32 numbers,
-// varints for integers, unit quaternions and axes by their smallest components, defaults
-// (confidence 1, one observation, upright axis, zero sigma) as flag bits, and no field that
-// the chunk header already carries (origin, sequence number). Decoding validates everything
-// and reports the first problem instead of throwing.
+// Compact binary encodings (format 2) of bundles and object maps for the team bus. Integers are
+// varints, defaults are flag bits, and nothing the chunk header carries (origin, sequence
+// number) is repeated. Decoding validates everything and reports the first problem (naming
+// the field) instead of throwing.
+//
+// Quantisation (value = integer * unit; the error is at most half a unit):
+//   relative odometry        translation 1 mm per axis, rotation vector 1e-4 rad per component
+//   chained odometry pose    within 0.9 mm and 1e-4 rad of the origin's pose (no drift: each
+//                            step is quantised against the previous pose as receivers decode it)
+//   object positions         1 cm per axis (body frame in bundles, map frame in maps)
+//   cuboid yaw               1/65536 turn (1e-4 rad); roll and pitch 1e-3 rad
+//   cylinder axis            x and y components 1e-3 (tilt error < 1e-3 rad)
+//   cylinder radius          1 cm (0..2.55 m)     cylinder length   10 cm (0..25.5 m)
+//   cuboid dimensions        5 cm (0..12.75 m)    ellipsoid radius  1 cm (0..2.55 m),
+//                                                 ellipsoid height  5 cm (0..12.75 m)
+//   confidence               1/255 (0..1)
+//   odometry sigma           1/16 octave (relative error <= 2.2%; 1.7e-4..10.9)
+// All of these are far below the measurement noise (several cm, degrees). A value outside its
+// range is never clamped: the object carries that group of fields as float32 under a flag
+// (positions beyond +-327 m in a body frame, sizes beyond the ranges above, confidence
+// outside 0..1, sigma outside its range). utime, ids, classes and observation counts are exact.
+#include <array>
 #include <optional>
 #include <string>
 
@@ -12,19 +29,32 @@
 
 namespace slide::team {
 
-// `previous_odom`: the odometry pose of the origin's bundle seq-1 as receivers decode it, when
-// known. If relative_odom equals previous_odom^-1 * odom_pose (as a tracker computes it) to
-// within 0.1 mm and 1e-5 rad, it is left out as redundant and receivers recompute it from the
-// two float32 poses.
-Bytes encodeBundle(const Bundle& b, const Pose* previous_odom = nullptr);
+// What a bundle may take from its origin's bundle seq-1 (as receivers decode it).
+struct BundleContext {
+  std::int64_t utime = 0;
+  Pose odom_pose = Pose::Identity();
+  std::array<float, 6> odom_sigma{};
+  static BundleContext of(const Bundle& b) { return {b.utime, b.odom_pose, b.odom_sigma}; }
+};
+
+// `previous`: the decoded context of the origin's bundle seq-1, when known. If the bundle's
+// relative odometry agrees with previous->odom_pose^-1 * odom_pose (as a tracker computes it)
+// to within 2 mm and 2e-4 rad, the bundle is chained: utime as a difference, the odometry
+// pose derived from the previous one and the quantised step, sigma left out when it quantises
+// as the previous one.
+Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
-// A bundle whose relative odometry was left out needs `previous_odom`; without it the result
-// has relative_odom = identity and *needs_previous = true.
+// A chained bundle needs `previous`; without it the result has only the relative odometry,
+// objects and flags right (utime, odom_pose and sigma are not) and *needs_previous = true.
 std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
-                                   const Pose* previous_odom = nullptr, bool* needs_previous = nullptr);
+                                   const BundleContext* previous = nullptr, bool* needs_previous = nullptr);
+
+// True when the encoding takes utime and pose from bundle seq-1 (reads the flags only).
+bool chainedBundle(const Bytes& data);
 
 // Maps carry what place recognition uses: class, id, position, size and yaw (confidence,
-// observation counts, cylinder tilt and cuboid roll/pitch are dropped).
+// observation counts, cylinder tilt and cuboid roll/pitch are dropped). Positions travel as
+// centimetre differences from the previous object's.
 Bytes encodeMap(const SharedMap& m);
 std::optional<SharedMap> decodeMap(const Bytes& data, std::int32_t robot, std::int32_t version, std::string* error);
 

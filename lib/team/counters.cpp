@@ -26,7 +26,7 @@ CounterStore::CounterStore(std::string path) : path_(std::move(path)) {
       std::int32_t id;
       std::int64_t c;
       ss >> id >> c;
-      accepted_[id] = c;
+      accepted_[id] = Seen{c};
     } else {
       ss.setstate(std::ios::failbit);
     }
@@ -45,15 +45,31 @@ std::int64_t CounterStore::nextOwn() {
 
 bool CounterStore::accept(std::int32_t sender, std::int64_t counter) {
   auto it = accepted_.find(sender);
-  if (it != accepted_.end() && counter <= it->second) return false;
-  accepted_[sender] = counter;
+  if (it == accepted_.end()) {
+    accepted_[sender] = Seen{counter};
+  } else {
+    Seen& s = it->second;
+    if (counter > s.highest) {
+      const std::int64_t shift = counter - s.highest;
+      // The old highest becomes bit shift-1; older ones move up (and out of the window).
+      if (shift < kWindow) s.below = (s.below << shift) | (std::uint64_t{1} << (shift - 1));
+      else s.below = shift == kWindow ? std::uint64_t{1} << 63 : 0;
+      s.highest = counter;
+    } else {
+      const std::int64_t back = s.highest - counter;  // >= 0
+      if (back == 0 || back > kWindow) return false;
+      const std::uint64_t bit = std::uint64_t{1} << (back - 1);
+      if (s.below & bit) return false;
+      s.below |= bit;
+    }
+  }
   dirty_ = true;
   return true;
 }
 
 std::int64_t CounterStore::lastAccepted(std::int32_t sender) const {
   auto it = accepted_.find(sender);
-  return it == accepted_.end() ? -1 : it->second;
+  return it == accepted_.end() ? -1 : it->second.highest;
 }
 
 void CounterStore::save() {
@@ -67,7 +83,7 @@ void CounterStore::write() {
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << "own " << reserved_ << "\n";
-    for (const auto& [id, c] : accepted_) out << "sender " << id << " " << c << "\n";
+    for (const auto& [id, c] : accepted_) out << "sender " << id << " " << c.highest << "\n";
     out.flush();
     if (!out) throw std::runtime_error("cannot write counter file " + tmp);
   }

@@ -8,7 +8,7 @@ namespace slide::team {
 enum class Drop : int {
   UnknownSender,   // sender not in the team list
   BadMac,          // wrong key, forged or tampered
-  Replay,          // counter not above the last accepted from that sender
+  Replay,          // counter already accepted from that sender, or older than its window
   Malformed,       // undecodable LCM bytes, inconsistent chunk header or payload
   UnknownOrigin,   // bundle of a robot not in the team
   WrongOrigin,     // own-bundle input not from this robot, map not from its sender

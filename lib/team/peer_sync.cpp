@@ -4,6 +4,7 @@
 #include <deque>
 #include <stdexcept>
 
+#include "team/bundle_pack.h"
 #include "team/codec.h"
 
 namespace slide::team {
@@ -24,16 +25,51 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       auth_(cfg_.team_key),
       counters_(joinPath(state_dir, "counters.txt")),
       db_(joinPath(state_dir, "journal.bin")),
+      thinning_(cfg_.thinning()),
       reassembler_(cfg_.reassembly_bytes, secs(cfg_.reassembly_timeout_s)),
       limiter_(cfg_.rate_limit_bytes_per_s, cfg_.burst_bytes),
       traffic_(now),
-      next_heartbeat_(now) {}
+      next_heartbeat_(now) {
+  // What was shared of the journalled own bundles: the same stream through the same policy.
+  auto own = db_.held().find(cfg_.robot);
+  if (own == db_.held().end()) return;
+  for (const SeqRange& r : own->second.ranges())
+    for (std::int64_t seq = r.first; seq <= r.last; ++seq) {
+      const auto s = static_cast<std::int32_t>(seq);
+      own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
+    }
+}
+
+// The thinning sees the bundle as decoded from its journalled encoding, so that replaying the
+// journal gives the same decisions.
+Bytes PeerSyncNode::sharedEncoding(std::int32_t seq, const Bytes& full) {
+  const auto previous = contextOf(cfg_.robot, seq - 1);
+  std::string error;
+  const auto b = decodeBundle(full, cfg_.robot, seq, &error, previous ? &*previous : nullptr);
+  if (!b)
+    throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error +
+                             " (a journal from another encoding version? remove the state directory)");
+  return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr);
+}
+
+const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) const {
+  if (origin == cfg_.robot) {
+    auto it = own_shared_.find(seq);
+    if (it != own_shared_.end()) return &it->second;
+  }  // (own bundles recovered from peers after losing the journal are held as shared)
+  const ObservationDb::Entry* e = db_.get(origin, seq);
+  return e ? &e->data : nullptr;
+}
 
 PeerSyncNode::~PeerSyncNode() {
   try {
     counters_.save();
   } catch (...) {
   }
+}
+
+void PeerSyncNode::somethingNew() {
+  if (last_heartbeat_) next_heartbeat_ = std::min(next_heartbeat_, last_heartbeat_->at + secs(cfg_.heartbeat_period_s));
 }
 
 bool PeerSyncNode::inTeam(std::int32_t robot) const {
@@ -79,12 +115,15 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     if (d != Drop::kCount) return drop(d), d;
   }
   b.first = !have_any;
-  const std::optional<Pose> previous = odomOf(b.origin, b.seq - 1);
+  const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
   ObservationDb::Entry e;
-  e.data = encodeBundle(b, previous ? &*previous : nullptr);
+  e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
+  own_shared_[b.seq] = sharedEncoding(b.seq, e.data);
+  own_added_at_[b.seq] = now;
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
+  somethingNew();
   return std::nullopt;
 }
 
@@ -95,6 +134,7 @@ void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
   m.version = own_map_version_;
   own_map_data_ = encodeMap(m);
   own_map_ = std::move(m);
+  somethingNew();
 }
 
 // ---- team input ----
@@ -158,15 +198,7 @@ void PeerSyncNode::scheduleAck(std::int32_t peer, std::int32_t origin, Micros no
 
 void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (!inTeam(m.origin)) return drop(Drop::UnknownOrigin);
-  const Key key{m.origin, m.seq};
-  // Overheard or not, the addressees now have (or are getting) it: do not send it to them too.
-  for (auto& [id, p] : peers_)
-    if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
-  const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
-  if (db_.has(m.origin, m.seq)) {
-    if (for_me) scheduleAck(m.sender, m.origin, now);
-    return drop(Drop::Duplicate);
-  }
+  // The pack starts at m.seq: refuse it early when that is already implausible.
   const auto first = db_.firstSeq(m.origin);
   if (first && m.seq < *first) return drop(Drop::SeqBackwards);
   auto held = db_.held().find(m.origin);
@@ -179,20 +211,38 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (refused) return drop(*refused);
   if (!payload) return;
   std::string error;
-  const std::optional<Pose> previous = odomOf(m.origin, m.seq - 1);
-  bool needs_previous = false;
-  const auto bundle = decodeBundle(*payload, m.origin, m.seq, &error, previous ? &*previous : nullptr, &needs_previous);
+  auto bundles = unpackBundles(*payload, &error);
+  if (!bundles || static_cast<std::int64_t>(m.seq) + static_cast<std::int64_t>(bundles->size()) - 1 > INT32_MAX)
+    return drop(Drop::Malformed);
+  for (std::size_t i = 0; i < bundles->size(); ++i)
+    receiveBundle(m, static_cast<std::int32_t>(m.seq + static_cast<std::int64_t>(i)), std::move((*bundles)[i]), now);
+}
+
+void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now) {
+  const Key key{m.origin, seq};
+  // Overheard or not, the addressees now have it: do not send it to them too.
+  for (auto& [id, p] : peers_)
+    if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
+  const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
+  if (db_.has(m.origin, seq)) {
+    if (for_me) scheduleAck(m.sender, m.origin, now);
+    return drop(Drop::Duplicate);
+  }
+  const auto first = db_.firstSeq(m.origin);
+  auto held = db_.held().find(m.origin);
+  std::string error;
+  const auto bundle = decodeBundle(data, m.origin, seq, &error);
   if (!bundle) return drop(Drop::Malformed);
   // A bundle claiming to start its origin's stream must not contradict what is held.
-  if (bundle->first && ((first && *first != m.seq) || (held != db_.held().end() && !held->second.empty() &&
-                                                         held->second.min() < m.seq)))
+  if (bundle->first && ((first && *first != seq) || (held != db_.held().end() && !held->second.empty() &&
+                                                       held->second.min() < seq)))
     return drop(Drop::Malformed);
   ObservationDb::Entry e;
-  e.data = std::move(*payload);
+  e.data = std::move(data);
   e.first = bundle->first;
-  // (Distance for accounting only: unknown while the previous bundle is missing.)
-  e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
-  db_.add(m.origin, m.seq, std::move(e));
+  e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
+  db_.add(m.origin, seq, std::move(e));
+  somethingNew();
   scheduleAck(m.sender, m.origin, now);
 }
 
@@ -249,7 +299,13 @@ TickOutput PeerSyncNode::tick(Micros now) {
     limiter_.force(static_cast<double>(bytes), now);
     traffic_.sent(peersInReach(now), bytes);
     out.heartbeats.push_back(std::move(h));
-    next_heartbeat_ = now + secs(cfg_.heartbeat_period_s);
+    // Nothing new since the previous heartbeat: the next one waits twice as long, up to
+    // heartbeat_idle_factor periods (somethingNew() pulls it back in).
+    const bool unchanged = last_heartbeat_ && last_heartbeat_->held == h.held && last_heartbeat_->map_version == h.map_version;
+    heartbeat_interval_ = unchanged ? std::min(2 * heartbeat_interval_, secs(cfg_.heartbeat_period_s * cfg_.heartbeat_idle_factor))
+                                    : secs(cfg_.heartbeat_period_s);
+    last_heartbeat_ = LastHeartbeat{now, h.held, h.map_version};
+    next_heartbeat_ = now + heartbeat_interval_;
   }
   // Acknowledgements due: one message for every peer waiting (receiver -1 when several); a
   // heartbeat just sent says the same to everyone, so it acknowledges all.
@@ -374,27 +430,57 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       }
     }
   }
+  // Per origin, packs of consecutive bundles due to the same peers, each within one chunk (a
+  // bundle larger than a chunk goes alone, in several).
+  struct Pack {
+    std::int32_t first;
+    std::vector<const Bytes*> bundles;
+    std::vector<std::int32_t> to;
+    std::size_t bytes;
+  };
+  std::vector<std::pair<std::int32_t, std::vector<Pack>>> packs;
+  for (const auto& [origin, seqs] : due) {
+    std::vector<Pack> list;
+    for (const auto& [seq, to] : seqs) {
+      const Bytes* data = wirePayload(origin, seq);
+      const std::size_t add = packedSize(data->size());
+      Pack* last = list.empty() ? nullptr : &list.back();
+      if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
+          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack) {
+        last->bundles.push_back(data);
+        last->bytes += add;
+      } else {
+        list.push_back({seq, {data}, to, 1 + add});
+      }
+    }
+    // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).
+    if (origin == cfg_.robot && list.size() == 1) {
+      const Pack& only = list[0];
+      bool fresh = true;
+      for (std::size_t k = 0; k < only.bundles.size() && fresh; ++k)
+        fresh = own_added_at_.count(only.first + static_cast<std::int32_t>(k)) > 0;
+      if (fresh && now - own_added_at_.at(only.first) < secs(cfg_.bundle_hold_s)) continue;
+    }
+    packs.emplace_back(origin, std::move(list));
+  }
   // Round robin over origins, each in sequence order, until the rate limit says stop.
-  std::vector<std::pair<std::map<std::int32_t, std::vector<std::int32_t>>::iterator,
-                        std::map<std::int32_t, std::vector<std::int32_t>>::iterator>>
-      cursors;
-  for (auto& [origin, seqs] : due) cursors.emplace_back(seqs.begin(), seqs.end());
-  std::vector<std::int32_t> origins;
-  for (auto& [origin, seqs] : due) origins.push_back(origin);
+  std::vector<std::size_t> next(packs.size(), 0);
   bool progress = true;
   while (progress) {
     progress = false;
-    for (std::size_t i = 0; i < cursors.size(); ++i) {
-      auto& [it, end] = cursors[i];
-      if (it == end) continue;
-      const std::int32_t origin = origins[i], seq = it->first;
-      const std::vector<std::int32_t>& to = it->second;
-      ++it;
-      const ObservationDb::Entry* e = db_.get(origin, seq);
-      const SendResult r = sendPayload(ChunkKind::Bundle, to.size() == 1 ? to[0] : -1, origin, seq, e->data, to, now, out);
+    for (std::size_t i = 0; i < packs.size(); ++i) {
+      const auto& [origin, list] = packs[i];
+      if (next[i] == list.size()) continue;
+      const Pack& pack = list[next[i]++];
+      const SendResult r = sendPayload(ChunkKind::Bundle, pack.to.size() == 1 ? pack.to[0] : -1, origin, pack.first,
+                                       packBundles(pack.bundles), pack.to, now, out);
       if (r == SendResult::TooLarge) continue;
       if (r == SendResult::RateLimited) return;
-      for (std::int32_t id : to) peers_[id].sent[{origin, seq}] = now;
+      for (std::size_t k = 0; k < pack.bundles.size(); ++k) {
+        const std::int32_t seq = pack.first + static_cast<std::int32_t>(k);
+        for (std::int32_t id : pack.to) peers_[id].sent[{origin, seq}] = now;
+        if (origin == cfg_.robot) own_added_at_.erase(seq);
+      }
       progress = true;
     }
   }
@@ -402,13 +488,30 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
 
 // ---- delivery ----
 
-std::optional<Pose> PeerSyncNode::odomOf(std::int32_t origin, std::int32_t seq) const {
-  const ObservationDb::Entry* e = db_.get(origin, seq);
-  if (!e) return std::nullopt;
-  std::string error;
-  const auto b = decodeBundle(e->data, origin, seq, &error);  // odom_pose never needs another bundle
-  if (!b) return std::nullopt;
-  return b->odom_pose;
+std::optional<BundleContext> PeerSyncNode::contextOf(std::int32_t origin, std::int32_t seq) const {
+  std::vector<std::int32_t> todo;  // held, context not known yet: newest first
+  std::optional<BundleContext> context;
+  for (std::int64_t s = seq; s >= INT32_MIN; --s) {
+    const Key key{origin, static_cast<std::int32_t>(s)};
+    if (auto it = contexts_.find(key); it != contexts_.end()) {
+      context = it->second;
+      break;
+    }
+    const ObservationDb::Entry* e = db_.get(key.first, key.second);
+    if (!e) return std::nullopt;
+    todo.push_back(key.second);
+    if (!chainedBundle(e->data)) break;
+  }
+  for (auto it = todo.rbegin(); it != todo.rend(); ++it) {
+    std::string error;
+    bool needs_previous = false;
+    const auto b = decodeBundle(db_.get(origin, *it)->data, origin, *it, &error, context ? &*context : nullptr,
+                                &needs_previous);
+    if (!b || needs_previous) return std::nullopt;
+    context = BundleContext::of(*b);
+    contexts_[{origin, *it}] = *context;
+  }
+  return context;
 }
 
 std::optional<Bundle> PeerSyncNode::nextDelivery() const {
@@ -416,7 +519,7 @@ std::optional<Bundle> PeerSyncNode::nextDelivery() const {
   if (!next) return std::nullopt;
   std::string error;
   // In per-origin order the previous bundle is always held (delivered just before).
-  const std::optional<Pose> previous = odomOf(next->first, next->second - 1);
+  const std::optional<BundleContext> previous = contextOf(next->first, next->second - 1);
   bool needs_previous = false;
   auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error,
                         previous ? &*previous : nullptr, &needs_previous);

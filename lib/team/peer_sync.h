@@ -1,9 +1,10 @@
 #pragma once
 // One robot's peer-sync protocol engine: the observation database, per-peer bookmarks
-// (what each peer is known to hold, what was sent to it and when), relay of third robots'
-// bundles, map sharing, authentication, replay protection, rate limiting, traffic accounting
-// and in-order exactly-once delivery. Pure logic: messages in and out as structs, time as
-// microseconds; the daemon (or a simulated network) moves the messages.
+// (what each peer is known to hold, what was sent to it and when), thinning of the robot's own
+// observations before they go on the team bus, packing of consecutive bundles into one chunk,
+// relay of third robots' bundles, map sharing, authentication, replay protection, rate
+// limiting, traffic accounting and in-order exactly-once delivery. Pure logic: messages in and
+// out as structs, time as microseconds; the daemon (or a simulated network) moves the messages.
 #include <map>
 #include <optional>
 #include <set>
@@ -14,7 +15,9 @@
 #include "team/counters.h"
 #include "team/drop_reason.h"
 #include "team/message_auth.h"
+#include "team/codec.h"
 #include "team/observation_db.h"
+#include "team/observation_thinning.h"
 #include "team/rate_limiter.h"
 #include "team/reassembly.h"
 #include "team/sync_config.h"
@@ -63,6 +66,8 @@ class PeerSyncNode {
 
   const SyncConfig& config() const { return cfg_; }
   const ObservationDb& db() const { return db_; }
+  // The encoding of a held bundle as it goes on the team bus (own bundles thinned), or null.
+  const Bytes* wirePayload(std::int32_t origin, std::int32_t seq) const;
   const DropCounts& drops() const { return drops_; }
   std::uint64_t dropped(Drop d) const { return drops_[static_cast<int>(d)]; }
   const BandwidthMeter& traffic() const { return traffic_; }
@@ -90,9 +95,11 @@ class PeerSyncNode {
 
   bool admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes);
   bool inTeam(std::int32_t robot) const;
+  void somethingNew();  // held bundles or own map changed: heartbeats at the normal period again
   void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
   void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
   void receiveBundleChunk(const Chunk& m, Micros now);
+  void receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now);  // one of its pack
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
   std::vector<std::int32_t> peersInReach(Micros now) const;
@@ -104,7 +111,10 @@ class PeerSyncNode {
   void sendMap(Micros now, TickOutput& out);
   void sendBundles(Micros now, TickOutput& out);
   void forgetKnown(Peer& p);
-  std::optional<Pose> odomOf(std::int32_t origin, std::int32_t seq) const;  // held bundle's odometry pose
+  // utime, odometry pose and sigma of a held bundle, once its chain back to a self-contained
+  // encoding is held (cached).
+  std::optional<BundleContext> contextOf(std::int32_t origin, std::int32_t seq) const;
+  Bytes sharedEncoding(std::int32_t seq, const Bytes& full);
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
@@ -112,12 +122,23 @@ class PeerSyncNode {
   MessageAuth auth_;
   CounterStore counters_;
   ObservationDb db_;
+  ObservationThinning thinning_;
+  std::map<std::int32_t, Bytes> own_shared_;  // own bundles as shared, by seq
+  std::map<std::int32_t, Micros> own_added_at_;  // own bundles not sent yet: when they came
+  mutable std::map<Key, BundleContext> contexts_;
   Reassembler reassembler_;
   RateLimiter limiter_;
   BandwidthMeter traffic_;
   DropCounts drops_{};
   std::map<std::int32_t, Peer> peers_;
   Micros next_heartbeat_;
+  Micros heartbeat_interval_ = 0;
+  struct LastHeartbeat {
+    Micros at;
+    OriginRanges held;
+    std::int32_t map_version;
+  };
+  std::optional<LastHeartbeat> last_heartbeat_;
   Micros counters_saved_at_ = 0;
 
   std::optional<SharedMap> own_map_;

@@ -38,7 +38,7 @@ inline std::string writeTestConfig(const std::string& dir, const std::string& te
                          "channels: {own_bundle: KEYPOSE_BUNDLE, own_map: OBJECT_MAP, peer_bundle: PEER_BUNDLE,\n"
                          "           peer_map: PEER_MAP, heartbeat: TEAM_HEARTBEAT, chunk: TEAM_CHUNK, ack: TEAM_ACK}\n"
                          "tick_period_s: 0.02\nstats_period_s: 3\nheartbeat_period_s: 0.3\nack_delay_s: 0.05\n"
-                         "resend_timeout_s: 0.6\nrelay_delay_s: 0.6\npeer_timeout_s: 2.0\n"
+                         "resend_timeout_s: 0.6\nrelay_delay_s: 0.6\npeer_timeout_s: 2.0\nbundle_hold_s: 0.3\n"
                          "rate_limit_bytes_per_s: 200000\nburst_bytes: 50000\n";
   return path;
 }

@@ -51,7 +51,7 @@ inline Bundle randomBundle(std::mt19937& rng, std::int32_t origin, std::int32_t 
   return b;
 }
 
-// True when b is a (float32-rounded) copy of a.
+// True when b is a copy of a within `tol` (compare with roundTrip() for what receivers get).
 inline bool bundlesNear(const Bundle& a, const Bundle& b, double tol = 1e-5) {
   if (a.origin != b.origin || a.seq != b.seq || a.first != b.first || a.utime != b.utime ||
       a.odom_sigma != b.odom_sigma || a.objects.size() != b.objects.size())
@@ -67,7 +67,7 @@ inline bool bundlesNear(const Bundle& a, const Bundle& b, double tol = 1e-5) {
   return true;
 }
 
-// What a receiver gets back for a bundle: the float32 rounding of the original.
+// What a receiver gets back for a bundle: the quantised original (codec.h).
 inline Bundle roundTrip(const Bundle& b) {
   std::string err;
   return *decodeBundle(encodeBundle(b), b.origin, b.seq, &err);
@@ -85,6 +85,7 @@ inline SyncConfig teamConfig(std::int32_t robot, std::vector<std::int32_t> team,
   c.ack_delay_s = 0.2;
   c.rate_limit_bytes_per_s = 50000;
   c.burst_bytes = 20000;
+  c.thin_observations = false;  // protocol tests compare whole bundles
   return c;
 }
 

@@ -121,7 +121,29 @@ TEST(CounterStore, OwnCountersGrowAcrossRestartsAndAcceptedPersist) {
   EXPECT_GT(c.nextOwn(), last);
   EXPECT_FALSE(c.accept(3, 100));
   EXPECT_TRUE(c.accept(3, 101));
+  EXPECT_FALSE(c.accept(3, 99));  // at or below the persisted highest: too old to tell
   std::ofstream(path) << "own x\n";
   EXPECT_THROW(CounterStore bad(path), std::runtime_error);
   fs::remove_all(dir);
+}
+
+TEST(CounterStore, ReorderedCountersWithinTheWindowAreTakenOnce) {
+  CounterStore c("");
+  EXPECT_TRUE(c.accept(3, 1000));
+  EXPECT_TRUE(c.accept(3, 1005));
+  EXPECT_TRUE(c.accept(3, 1003));  // overtaken in flight
+  EXPECT_FALSE(c.accept(3, 1003));
+  EXPECT_FALSE(c.accept(3, 1000));
+  EXPECT_FALSE(c.accept(3, 1005));
+  EXPECT_TRUE(c.accept(3, 1001));
+  EXPECT_TRUE(c.accept(3, 1005 + CounterStore::kWindow - 1));
+  EXPECT_TRUE(c.accept(3, 1004));  // still inside the window
+  EXPECT_FALSE(c.accept(3, 1002 + CounterStore::kWindow - 1 - CounterStore::kWindow));  // 1001 again
+  EXPECT_TRUE(c.accept(3, 1200));
+  EXPECT_FALSE(c.accept(3, 1200 - CounterStore::kWindow - 1));  // beyond the window
+  EXPECT_TRUE(c.accept(3, 1200 - CounterStore::kWindow));     // the window's oldest, never seen
+  EXPECT_FALSE(c.accept(3, 1200 - CounterStore::kWindow));
+  EXPECT_TRUE(c.accept(3, 1264));
+  EXPECT_FALSE(c.accept(3, 1200));  // now exactly kWindow below and seen
+  EXPECT_EQ(c.lastAccepted(3), 1264);
 }

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "team/bundle_pack.h"
 #include "team/sim_network.h"
 #include "team_test_util.h"
 
@@ -27,6 +28,7 @@ struct Scenario {
   bool restarts = false;  // random restarts of any node
   bool line = false;      // robots 0 and 2 never hear each other
   bool default_timing = false;  // SyncConfig defaults instead of the quick test timings
+  bool thinning = false;        // own observations thinned (the default policy)
 };
 
 std::string freshDir(const std::string& name) {
@@ -47,8 +49,10 @@ class SimRun {
         d.robot = id;
         d.team = kTeam;
         d.team_key = cfgs.back().team_key;
+        d.thin_observations = false;
         cfgs.back() = d;
       }
+      cfgs.back().thin_observations = s.thinning;
     }
     SimLinkModel link;
     link.loss = s.loss;
@@ -71,10 +75,10 @@ class SimRun {
     for (int k = 0; k < s_.bundles; ++k) {
       for (std::size_t i = 0; i < kIds.size(); ++i) {
         const std::int32_t seq = 100 * static_cast<std::int32_t>(i) + k;  // origins start at different seqs
-        Bundle b = randomBundle(rng_, kIds[i], seq);
+        Bundle b = s_.thinning ? trackerBundle(i, seq) : randomBundle(rng_, kIds[i], seq);
         ASSERT_FALSE(net_->node(i).addOwnBundle(b, net_->now()));
         b.first = k == 0;
-        sent_[i].push_back(b);
+        sent_[i].push_back(s_.thinning ? shared(i, b) : roundTrip(b));
       }
       net_->run(kSecond);
       if (s_.restarts && rng_() % 4 == 0) net_->restart(rng_() % kIds.size());
@@ -110,23 +114,58 @@ class SimRun {
         for (std::size_t k = 0; k < from_j.size(); ++k) {
           ASSERT_EQ(from_j[k].seq, sent_[j][k].seq) << "order at robot " << kIds[i];
           EXPECT_TRUE(bundlesNear(from_j[k], sent_[j][k])) << "content";
-          // The stored bytes are the origin's own, bit for bit, whoever relayed them.
+          // The stored bytes are what the origin shared, bit for bit, whoever relayed them.
           EXPECT_EQ(net_->node(i).db().get(kIds[j], from_j[k].seq)->data,
-                    net_->node(j).db().get(kIds[j], from_j[k].seq)->data);
+                    *net_->node(j).wirePayload(kIds[j], from_j[k].seq));
         }
       }
     }
   }
 
   SimNetwork& net() { return *net_; }
+  std::size_t thinnedOut() const { return thinned_out_; }
 
  private:
+  // Odometry composed from the steps (chained encodings) and trunks seen over several key poses.
+  Bundle trackerBundle(std::size_t i, std::int32_t seq) {
+    Bundle b = randomBundle(rng_, kIds[i], seq, 0);
+    b.relative_odom = poseFromXyzYaw(1.4, 0.01 * (rng_() % 5), 0, 0.02 * (static_cast<int>(rng_() % 11) - 5));
+    odom_[i] = odom_[i] * b.relative_odom;
+    b.odom_pose = odom_[i];
+    for (int j = 0; j < 8; ++j) {
+      Object o;
+      o.id = (seq + j) / 8 * 8 + j;
+      o.class_id = 71;
+      o.num_observations = seq % 8 + 1;
+      o.model = Cylinder{{4.0 + 0.01 * (rng_() % 30), j - 4.0, 0}, Eigen::Vector3d::UnitZ(), 0.2, 5.0};
+      b.objects.push_back(o);
+    }
+    return b;
+  }
+
+  // What receivers get of an own bundle: the origin's full encoding decoded, thinned, encoded
+  // again and decoded (each chained to the previous bundle as decoded).
+  Bundle shared(std::size_t i, const Bundle& b) {
+    const BundleContext* previous = context_[i] ? &*context_[i] : nullptr;
+    std::string err;
+    const Bundle full = *decodeBundle(encodeBundle(b, previous), b.origin, b.seq, &err, previous);
+    const Bundle out = *decodeBundle(encodeBundle(thinning_[i].thin(full), previous), b.origin, b.seq, &err, previous);
+    context_[i] = BundleContext::of(full);
+    thinned_out_ += full.objects.size() - out.objects.size();
+    return out;
+  }
+
   Scenario s_;
   std::string dir_;
   std::mt19937 rng_;
   bool healed_ = false;
   std::unique_ptr<SimNetwork> net_;
   std::vector<std::vector<Bundle>> sent_;
+  std::vector<ObservationThinning> thinning_ =
+      std::vector<ObservationThinning>(kIds.size(), ObservationThinning(ThinningPolicy{}));
+  std::vector<Pose> odom_ = std::vector<Pose>(kIds.size(), Pose::Identity());
+  std::vector<std::optional<BundleContext>> context_ = std::vector<std::optional<BundleContext>>(kIds.size());
+  std::size_t thinned_out_ = 0;
 };
 
 }  // namespace
@@ -138,15 +177,21 @@ TEST_P(PeerSyncTiming, LosslessDeliversEverythingOnceAndSendsEachBundleOnce) {
   Scenario s;
   s.default_timing = GetParam();
   SimRun run(s, std::string("lossless") + (s.default_timing ? "_default" : ""));
-  std::size_t bundle_chunks = 0;
+  std::size_t bundles_sent = 0, bundle_chunks = 0;
   run.net().on_send = [&](std::size_t, const TeamMessage& m) {
-    if (auto* c = std::get_if<Chunk>(&m)) bundle_chunks += c->kind == ChunkKind::Bundle;
+    auto* c = std::get_if<Chunk>(&m);
+    if (!c || c->kind != ChunkKind::Bundle) return;
+    ++bundle_chunks;
+    std::string err;
+    bundles_sent += unpackBundles(c->data, &err)->size();  // (small bundles: one chunk each pack)
   };
   run.produce();
   run.converge(30 * kSecond);
   run.expectExactlyOnceInOrder();
-  // Multicast and overhearing: each bundle goes on the medium once, not once per peer.
-  EXPECT_EQ(bundle_chunks, 3u * s.bundles);
+  // Multicast and overhearing: each bundle goes on the medium once, not once per peer, and
+  // bundles produced within bundle_hold_s share a chunk.
+  EXPECT_EQ(bundles_sent, 3u * s.bundles);
+  EXPECT_LT(bundle_chunks, bundles_sent / 2);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(run.net().node(i).dropped(Drop::BadMac), 0u);
     EXPECT_EQ(run.net().node(i).dropped(Drop::Replay), 0u);
@@ -168,6 +213,26 @@ TEST(PeerSyncSim, RandomLossDuplicationReorderingCutsAndRestarts) {
     run.produce();
     run.converge(120 * kSecond);
     run.expectExactlyOnceInOrder();
+  }
+}
+
+TEST(PeerSyncSim, ThinnedStreamsUnderLossDuplicationReorderingCutsAndRestarts) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scenario s;
+    s.seed = seed;
+    s.loss = 0.3;
+    s.duplicate = 0.2;
+    s.jitter_s = 0.4;
+    s.cuts = true;
+    s.restarts = true;
+    s.thinning = true;
+    s.bundles = 25;
+    SimRun run(s, "thinned" + std::to_string(seed));
+    run.produce();
+    run.converge(120 * kSecond);
+    run.expectExactlyOnceInOrder();
+    EXPECT_GT(run.thinnedOut(), 3u * s.bundles);  // most of the 8 trunks per key pose stay home
   }
 }
 
@@ -211,7 +276,8 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   c.origin = 3;
   c.seq = 5;
   std::mt19937 rng(1);
-  c.data = encodeBundle(randomBundle(rng, 3, 5));
+  const Bytes forged = encodeBundle(randomBundle(rng, 3, 5));
+  c.data = packBundles({&forged});
   // Tampered: signed, then changed.
   Chunk t = c;
   auth.sign(t);
@@ -305,4 +371,40 @@ TEST(PeerSyncSim, MapsAreSharedAndNewestWins) {
   EXPECT_EQ(maps[0].objects.size(), 400u);
   EXPECT_EQ(run.net().node(2).landmarks(kIds[0]), 400u);
   EXPECT_TRUE(run.net().node(2).takeMaps().empty());
+}
+
+TEST(PeerSyncSim, ThinnedPayloadsAreReproducedAfterARestart) {
+  const std::string dir = freshDir("thin_restart");
+  SyncConfig c = teamConfig(kIds[0], kTeam);
+  c.thin_observations = true;
+  std::mt19937 rng(17);
+  std::vector<Bytes> before;
+  std::size_t full_objects = 0, shared_objects = 0;
+  {
+    PeerSyncNode node(c, dir, 0);
+    Pose odom = Pose::Identity();
+    for (int k = 0; k < 120; ++k) {
+      Bundle b = randomBundle(rng, kIds[0], k, 0);
+      b.relative_odom = poseFromXyzYaw(1.4, 0, 0, 0.05 * std::sin(k * 0.1));
+      odom = odom * b.relative_odom;
+      b.odom_pose = odom;
+      for (int i = 0; i < 12; ++i) {  // each trunk seen in 12 key poses, with noise
+        Object o;
+        o.id = (k + i) / 12 * 12 + i;
+        o.class_id = 71;
+        o.confidence = 0.5 + 0.04 * i;
+        o.model = Cylinder{{3.0 + 0.01 * (rng() % 50), 1.0 * i - 6, 0}, Eigen::Vector3d::UnitZ(), 0.2, 5.0 + 0.01 * (rng() % 50)};
+        b.objects.push_back(o);
+      }
+      full_objects += b.objects.size();
+      ASSERT_FALSE(node.addOwnBundle(b, 0));
+      before.push_back(*node.wirePayload(kIds[0], k));
+      std::string err;
+      shared_objects += decodeBundle(before.back(), kIds[0], k, &err, nullptr)->objects.size();
+    }
+  }
+  EXPECT_LT(shared_objects, full_objects / 2);
+  PeerSyncNode again(c, dir, 0);
+  for (int k = 0; k < 120; ++k) ASSERT_EQ(*again.wirePayload(kIds[0], k), before[static_cast<std::size_t>(k)]) << k;
+  fs::remove_all(dir);
 }

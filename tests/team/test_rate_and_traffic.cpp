@@ -41,8 +41,8 @@ TEST(PeerSyncSim, RateLimitBoundsWhatEachRobotSends) {
   std::vector<SyncConfig> cfgs;
   for (int id : {1, 2}) {
     SyncConfig c = teamConfig(id, {1, 2});
-    c.rate_limit_bytes_per_s = 4000;
-    c.burst_bytes = 2000;
+    c.rate_limit_bytes_per_s = 1500;
+    c.burst_bytes = 1000;
     cfgs.push_back(c);
   }
   SimNetwork net(cfgs, "", SimLinkModel{}, 3);
@@ -50,7 +50,7 @@ TEST(PeerSyncSim, RateLimitBoundsWhatEachRobotSends) {
   for (int s = 0; s < 60; ++s)
     for (int i = 0; i < 2; ++i) ASSERT_FALSE(net.node(i).addOwnBundle(randomBundle(rng, i + 1, s), 0));
   net.run(5000000);
-  const double limit = 2 * (4000.0 * 5 + 2000);  // two robots, 5 s
+  const double limit = 2 * (1500.0 * 5 + 1000);  // two robots, 5 s
   EXPECT_LE(net.bytesSent(), limit * 1.05);
   EXPECT_GT(net.bytesSent(), limit * 0.6);       // and the limit is used, not starved
   EXPECT_LT(net.delivered(0).size(), 60u);       // so not everything could be delivered yet
@@ -74,4 +74,38 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
   }
   EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
                slide::ConfigError);
+  for (const std::string bad : {"bundle_hold_s: -1\n", "bundle_hold_s: 100\n", "heartbeat_idle_factor: 0.5\n",
+                                "heartbeat_idle_factor: 3\n"}) {  // 3 * 8 s beyond the 20 s peer timeout
+    try {
+      SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\n" + bad, "t.yaml"), 1);
+      FAIL() << "accepted " << bad;
+    } catch (const slide::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.substr(0, bad.find(':'))), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(PeerSyncSim, IdleHeartbeatsBackOffAndComeBackWithNews) {
+  std::vector<SyncConfig> cfgs = {teamConfig(1, {1, 2}), teamConfig(2, {1, 2})};  // 1 s period, 3 s timeout
+  SimNetwork net(cfgs, "", SimLinkModel{}, 3);
+  std::size_t heartbeats = 0;
+  net.on_send = [&](std::size_t from, const TeamMessage& m) { heartbeats += from == 0 && std::holds_alternative<Heartbeat>(m); };
+  net.run(30000000);
+  EXPECT_LE(heartbeats, 17u);  // every 2 s (heartbeat_idle_factor 2) instead of every second
+  EXPECT_GE(heartbeats, 14u);
+  EXPECT_TRUE(net.node(1).inReach(1, net.now()));
+  std::mt19937 rng(4);
+  heartbeats = 0;
+  for (int k = 0; k < 10; ++k) {  // news every second: back to the normal period
+    ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, k), net.now()));
+    net.run(1000000);
+  }
+  EXPECT_GE(heartbeats, 9u);
+  EXPECT_THROW(
+      [] {
+        SyncConfig c = teamConfig(1, {1, 2});
+        c.heartbeat_idle_factor = 4;  // 4 s between heartbeats with a 3 s peer timeout
+        c.validate();
+      }(),
+      std::invalid_argument);
 }

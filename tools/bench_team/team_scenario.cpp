@@ -131,6 +131,7 @@ TeamScenario makeScenario(const std::string& kind, int robots, int keyposes, std
     } else {
       truth = urbanPath(rng, size, block, keyposes, Eigen::Vector2i(r % 3 + 1, (r / 3) % 3 + 1));
     }
+    rs.start = truth.front();
     Pose odom = Pose::Identity();  // odometry frame = first true pose
     std::map<std::int64_t, std::int64_t> track_of;  // landmark -> tracker id
     std::map<std::int64_t, int> observations;

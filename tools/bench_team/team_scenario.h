@@ -20,6 +20,7 @@ struct RobotStream {
   std::vector<Bundle> bundles;        // seq 0.., in order
   std::vector<SharedMap> maps;        // map after each bundle (own odometry frame)
   double metres = 0;                  // true distance travelled
+  Pose start = Pose::Identity();      // true first pose: the odometry frame in the world
 };
 
 struct TeamScenario {
