@@ -58,6 +58,19 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
     if (id >= 0) ++hits, ids.insert(id), errs.push_back(best);
     spdlog::debug("  class {} at ({:.1f}, {:.1f}, {:.1f}): true object {} (nearest of its class {:.2f} m)", o.class_id,
                   p.x(), p.y(), p.z(), id, nearest);
+    // Cuboids: heading (world frame) and extents against the associated true box.
+    const auto* box = std::get_if<Cuboid>(&o.model);
+    const GroundTruthObject* truth = nullptr;
+    for (const auto& g : world.objects)
+      if (g.object.id == id) truth = &g;
+    const auto* true_box = truth ? std::get_if<Cuboid>(&truth->object.model) : nullptr;
+    if (box && true_box) {
+      const double yaw = yawOf(T_world_odom.linear() * box->pose.linear()), true_yaw = yawOf(true_box->pose.linear());
+      spdlog::debug("    box yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); true yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); "
+                    "yaw error (mod 180) {:.0f} deg", yaw * 180 / M_PI, box->dims.x(), box->dims.y(), box->dims.z(),
+                    true_yaw * 180 / M_PI, true_box->dims.x(), true_box->dims.y(), true_box->dims.z(),
+                    std::abs(wrapAngle(2 * (yaw - true_yaw))) * 90 / M_PI);
+    }
   }
   std::sort(errs.begin(), errs.end());
   median_err = errs.empty() ? 0.0 : errs[errs.size() / 2];
