@@ -65,9 +65,12 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
       if (g.object.id == id) truth = &g;
     const auto* true_box = truth ? std::get_if<Cuboid>(&truth->object.model) : nullptr;
     if (box && true_box) {
-      const double yaw = yawOf(T_world_odom.linear() * box->pose.linear()), true_yaw = yawOf(true_box->pose.linear());
+      // x along the longer side on both (a box with yaw + 90 deg and swapped extents is the same box).
+      auto longYaw = [](double yaw, const Eigen::Vector3d& d) { return d.x() >= d.y() ? yaw : yaw + M_PI / 2; };
+      const double yaw = longYaw(yawOf(T_world_odom.linear() * box->pose.linear()), box->dims);
+      const double true_yaw = longYaw(yawOf(true_box->pose.linear()), true_box->dims);
       spdlog::debug("    box yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); true yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); "
-                    "yaw error (mod 180) {:.0f} deg", yaw * 180 / M_PI, box->dims.x(), box->dims.y(), box->dims.z(),
+                    "yaw error of the long side {:.0f} deg", yaw * 180 / M_PI, box->dims.x(), box->dims.y(), box->dims.z(),
                     true_yaw * 180 / M_PI, true_box->dims.x(), true_box->dims.y(), true_box->dims.z(),
                     std::abs(wrapAngle(2 * (yaw - true_yaw))) * 90 / M_PI);
     }
