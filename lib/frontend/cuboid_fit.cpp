@@ -55,17 +55,30 @@ double footprintYaw(const std::vector<cv::Point2f>& foot, double step) {
   return best_yaw;
 }
 
-// Extends [lo, hi] to at least `min_len`, growing away from the viewpoint coordinate `v`.
-void completeInterval(double& lo, double& hi, double min_len, double v) {
-  const double len = hi - lo;
-  if (len >= min_len) return;
-  if (v <= 0.5 * (lo + hi)) hi = lo + min_len;
-  else lo = hi - min_len;
+// Extends [lo, hi] to `len` when it is shorter than `min_len` (too short to be the whole
+// extent: part of the object went unseen), growing away from the viewpoint coordinate `v`.
+void completeInterval(double& lo, double& hi, double min_len, double len, double v) {
+  if (hi - lo >= min_len) return;
+  if (v <= 0.5 * (lo + hi)) hi = lo + len;
+  else lo = hi - len;
+}
+
+// Which of the two visible horizontal extents is the object's width. The longer one is the
+// length, unless it fits the class width but is too short for a length: then the view is of
+// an end (a car's front or rear, seen from a parking aisle) with the length running along the
+// other axis, hidden or partly seen. When both extents could be the width, the one closer
+// (in ratio) to the class's typical width is taken.
+bool longerExtentIsWidth(double longer, double shorter, const Eigen::Vector3d& size_min,
+                         const Eigen::Vector3d& size_max, const Eigen::Vector3d& typical, double tol) {
+  if (longer >= size_min.x() || longer > size_max.y() * tol || longer < size_min.y()) return false;
+  if (shorter < size_min.y()) return true;  // only an end face is seen
+  return std::abs(std::log(longer / typical.y())) < std::abs(std::log(shorter / typical.y()));
 }
 }  // namespace
 
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
-                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max, std::string* why) {
+                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
+                                const Eigen::Vector3d& size_typical, std::string* why) {
   if (static_cast<int>(pts.size()) < p.min_points) {
     setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
     return std::nullopt;
@@ -90,7 +103,10 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   double yaw_x = yaw;
   double lo_u, hi_u, lo_v, hi_v;
   extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
-  if (hi_v - lo_v > hi_u - lo_u) {  // x along the longer side
+  const double longer = std::max(hi_u - lo_u, hi_v - lo_v), shorter = std::min(hi_u - lo_u, hi_v - lo_v);
+  const bool u_longer = hi_u - lo_u >= hi_v - lo_v;
+  const bool end_view = longerExtentIsWidth(longer, shorter, size_min, size_max, size_typical, p.size_tolerance);
+  if (u_longer == end_view) {  // x (the length) along the other axis
     yaw_x += M_PI / 2;
     extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
   }
@@ -98,9 +114,8 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   for (const auto& q : pts) zs.push_back(q.z());
   double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
 
-  const double visible_len = hi_u - lo_u;
-  if (visible_len < p.min_visible_fraction * size_min.x()) {
-    setWhy(why, "visible length " + std::to_string(visible_len) + " m too short");
+  if (longer < p.min_visible_fraction * size_min.x()) {
+    setWhy(why, "visible length " + std::to_string(longer) + " m too short");
     return std::nullopt;
   }
   const Eigen::Vector3d observed(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
@@ -109,11 +124,13 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
                     std::to_string(observed.z()) + ") exceed the class maximum");
     return std::nullopt;
   }
-  // Partly seen boxes grow to the class minimum, away from the sensor.
+  // Extents too short for the class were partly hidden: they grow to the class's typical size,
+  // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
+  // may be whole and are kept.
   const double c = std::cos(yaw_x), s = std::sin(yaw_x);
-  completeInterval(lo_u, hi_u, size_min.x(), c * viewpoint.x() + s * viewpoint.y());
-  completeInterval(lo_v, hi_v, size_min.y(), -s * viewpoint.x() + c * viewpoint.y());
-  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_min.z();  // the bottom is what goes unseen
+  completeInterval(lo_u, hi_u, size_min.x(), size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
+  completeInterval(lo_v, hi_v, size_min.y(), size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
+  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
 
   const double cu = 0.5 * (lo_u + hi_u), cv_ = 0.5 * (lo_v + hi_v);
   Cuboid box;
