@@ -24,32 +24,49 @@ std::vector<cv::Point2f> thinFootprint(const Cloud& pts, double cell) {
   return out;
 }
 
+// Closeness of the footprint to the edges of its bounding rectangle at heading `a`: the sum
+// of the points' inverse distances to the nearest edge, each capped at distance `floor`.
+double edgeScore(const std::vector<cv::Point2f>& foot, double a, double floor, std::vector<double>& u,
+                 std::vector<double>& v) {
+  const double c = std::cos(a), s = std::sin(a);
+  double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
+  for (std::size_t i = 0; i < foot.size(); ++i) {
+    u[i] = c * foot[i].x + s * foot[i].y;
+    v[i] = -s * foot[i].x + c * foot[i].y;
+    u0 = std::min(u0, u[i]), u1 = std::max(u1, u[i]), v0 = std::min(v0, v[i]), v1 = std::max(v1, v[i]);
+  }
+  double score = 0;
+  for (std::size_t i = 0; i < foot.size(); ++i) {
+    const double d = std::min(std::min(u[i] - u0, u1 - u[i]), std::min(v[i] - v0, v1 - v[i]));
+    score += 1.0 / std::max(d, floor);
+  }
+  return score;
+}
+
 // Heading of a footprint's rectangle by search over [0, 90) deg maximizing the closeness of
 // the points to the nearest rectangle edge (robust for the L-shaped views of partly seen
-// cars, where the minimum-area rectangle aligns with the diagonal).
-double footprintYaw(const std::vector<cv::Point2f>& foot, double step) {
+// cars, where the minimum-area rectangle aligns with the diagonal). The search caps each
+// point's weight at the footprint's cell `cell` (nearer is not resolved; a finer cap lets the
+// noisy faces of RGBD views tilt the rectangle by tens of degrees), then refines within three
+// steps of the best heading with a cap of 0.4 cells.
+double footprintYaw(const std::vector<cv::Point2f>& foot, double step, double cell) {
   if (foot.size() < 3) return 0.0;
   if (step <= 0) {
     cv::Point2f corners[4];
     cv::minAreaRect(foot).points(corners);
     return std::atan2(corners[1].y - corners[0].y, corners[1].x - corners[0].x);
   }
-  constexpr double kMinDistance = 0.02;  // metres: caps each point's weight
-  double best_yaw = 0, best_score = -1;
   std::vector<double> u(foot.size()), v(foot.size());
+  double coarse = 0, best_score = -1;
   for (double a = 0; a < M_PI / 2; a += step) {
-    const double c = std::cos(a), s = std::sin(a);
-    double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
-    for (std::size_t i = 0; i < foot.size(); ++i) {
-      u[i] = c * foot[i].x + s * foot[i].y;
-      v[i] = -s * foot[i].x + c * foot[i].y;
-      u0 = std::min(u0, u[i]), u1 = std::max(u1, u[i]), v0 = std::min(v0, v[i]), v1 = std::max(v1, v[i]);
-    }
-    double score = 0;
-    for (std::size_t i = 0; i < foot.size(); ++i) {
-      const double d = std::min(std::min(u[i] - u0, u1 - u[i]), std::min(v[i] - v0, v1 - v[i]));
-      score += 1.0 / std::max(d, kMinDistance);
-    }
+    const double score = edgeScore(foot, a, cell, u, v);
+    if (score > best_score) best_score = score, coarse = a;
+  }
+  double best_yaw = coarse;
+  best_score = -1;
+  for (int k = -3; k <= 3; ++k) {
+    const double a = coarse + k * step;
+    const double score = edgeScore(foot, a, 0.4 * cell, u, v);
     if (score > best_score) best_score = score, best_yaw = a;
   }
   return best_yaw;
@@ -84,7 +101,7 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     return std::nullopt;
   }
   const std::vector<cv::Point2f> foot = thinFootprint(pts, p.footprint_cell);
-  const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0);
+  const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0, p.footprint_cell);
   // Robust extents along the rectangle's axes and in z.
   auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v) {
     const double c = std::cos(a), s = std::sin(a);
