@@ -73,6 +73,8 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
                     "yaw error of the long side {:.0f} deg", yaw * 180 / M_PI, box->dims.x(), box->dims.y(), box->dims.z(),
                     true_yaw * 180 / M_PI, true_box->dims.x(), true_box->dims.y(), true_box->dims.z(),
                     std::abs(wrapAngle(2 * (yaw - true_yaw))) * 90 / M_PI);
+      const Eigen::Vector3d e = true_box->pose.linear().transpose() * (p - true_box->pose.translation());
+      spdlog::debug("    position error along the true box's x {:.2f} m, y {:.2f} m", e.x(), e.y());
     }
   }
   std::sort(errs.begin(), errs.end());
