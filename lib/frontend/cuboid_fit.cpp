@@ -80,16 +80,16 @@ void completeInterval(double& lo, double& hi, double min_len, double len, double
   else lo = hi - len;
 }
 
-// Which of the two visible horizontal extents is the object's width. The longer one is the
-// length, unless it fits the class width but is too short for a length: then the view is of
-// an end (a car's front or rear, seen from a parking aisle) with the length running along the
-// other axis, hidden or partly seen. When both extents could be the width, the one closer
-// (in ratio) to the class's typical width is taken.
+// Whether the longer of the two visible horizontal extents is the object's width. It is the
+// length, unless it fits the class width but is too short for a length while the other extent
+// is too short for a width: then a lone end face is seen (a car's front or rear, from a
+// parking aisle) and the length runs along the other axis, hidden. (When both extents could
+// be the width, the longer is taken as the length: tried the one nearer the typical width,
+// and the one across the line of sight; both gave more duplicate cars in the urban world.)
 bool longerExtentIsWidth(double longer, double shorter, const Eigen::Vector3d& size_min,
-                         const Eigen::Vector3d& size_max, const Eigen::Vector3d& typical, double tol) {
+                         const Eigen::Vector3d& size_max, double tol) {
   if (longer >= size_min.x() || longer > size_max.y() * tol || longer < size_min.y()) return false;
-  if (shorter < size_min.y()) return true;  // only an end face is seen
-  return std::abs(std::log(longer / typical.y())) < std::abs(std::log(shorter / typical.y()));
+  return shorter < size_min.y();
 }
 }  // namespace
 
@@ -122,7 +122,7 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
   const double longer = std::max(hi_u - lo_u, hi_v - lo_v), shorter = std::min(hi_u - lo_u, hi_v - lo_v);
   const bool u_longer = hi_u - lo_u >= hi_v - lo_v;
-  const bool end_view = longerExtentIsWidth(longer, shorter, size_min, size_max, size_typical, p.size_tolerance);
+  const bool end_view = longerExtentIsWidth(longer, shorter, size_min, size_max, p.size_tolerance);
   if (u_longer == end_view) {  // x (the length) along the other axis
     yaw_x += M_PI / 2;
     extents(yaw_x, lo_u, hi_u, lo_v, hi_v);

@@ -53,8 +53,9 @@ std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p
                                     std::string* why = nullptr);
 // size_min/size_max: the class's plausible extents (length, width, height); size_typical: the
 // extents a partly seen box is completed to (away from the viewpoint) along the axes seen
-// shorter. The box's x is its length: a visible face that fits the class width but not its
-// length is taken as an end (a car's front or rear) and the length runs along the other axis.
+// shorter. The box's x is its length: a lone visible face (little depth) that fits the class
+// width but not its length is taken as an end (a car's front or rear) and the length runs
+// along the other axis.
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
                                 const Eigen::Vector3d& size_typical, std::string* why = nullptr);
