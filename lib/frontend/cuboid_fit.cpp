@@ -103,34 +103,44 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   const std::vector<cv::Point2f> foot = thinFootprint(pts, p.footprint_cell);
   const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0, p.footprint_cell);
   // Robust extents along the rectangle's axes and in z.
-  auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v) {
+  std::vector<double> zs;
+  for (const auto& q : pts) zs.push_back(q.z());
+  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
+  auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v, double below = 1e30) {
     const double c = std::cos(a), s = std::sin(a);
     std::vector<double> u, v;
     u.reserve(pts.size());
     v.reserve(pts.size());
     for (const auto& q : pts) {
+      if (q.z() > below) continue;
       u.push_back(c * q.x() + s * q.y());
       v.push_back(-s * q.x() + c * q.y());
+    }
+    if (u.empty()) {
+      lo_u = hi_u = lo_v = hi_v = 0;
+      return 0;
     }
     lo_u = quantileInPlace(u, p.low_percentile);
     hi_u = quantileInPlace(u, p.high_percentile);
     lo_v = quantileInPlace(v, p.low_percentile);
     hi_v = quantileInPlace(v, p.high_percentile);
+    return static_cast<int>(u.size());
   };
   double yaw_x = yaw;
   double lo_u, hi_u, lo_v, hi_v;
   extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
-  const double longer = std::max(hi_u - lo_u, hi_v - lo_v), shorter = std::min(hi_u - lo_u, hi_v - lo_v);
-  const bool u_longer = hi_u - lo_u >= hi_v - lo_v;
-  const bool end_view = longerExtentIsWidth(longer, shorter, size_min, size_max, p.size_tolerance);
+  const double longer = std::max(hi_u - lo_u, hi_v - lo_v);
+  // Which face is seen is judged on the lower half of the points: the vertical faces, without
+  // the top (a hood or roof seen from above adds depth whichever face is in view).
+  double su0, su1, sv0, sv1;
+  if (extents(yaw_x, su0, su1, sv0, sv1, 0.5 * (lo_z + hi_z)) < p.min_points) su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
+  const bool u_longer = su1 - su0 >= sv1 - sv0;
+  const bool end_view = longerExtentIsWidth(std::max(su1 - su0, sv1 - sv0), std::min(su1 - su0, sv1 - sv0), size_min,
+                                            size_max, p.size_tolerance);
   if (u_longer == end_view) {  // x (the length) along the other axis
     yaw_x += M_PI / 2;
     extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
   }
-  std::vector<double> zs;
-  for (const auto& q : pts) zs.push_back(q.z());
-  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
-
   if (longer < p.min_visible_fraction * size_min.x()) {
     setWhy(why, "visible length " + std::to_string(longer) + " m too short");
     return std::nullopt;
