@@ -222,6 +222,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       } else if (spec.verbose) {
         for (const auto* g : G)
           std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
+        for (const auto* e : E) {
+          const auto* b = std::get_if<Cuboid>(&e->model);
+          std::printf("  extra %s %s at (%.1f, %.1f): no ground truth of the class", r.mode.c_str(), info.name.c_str(),
+                      e->position().x(), e->position().y());
+          if (b) std::printf("; box yaw %.0f deg dims %.1f x %.1f x %.1f, %d observations", yawOf(b->pose.linear()) * 180 / M_PI,
+                             b->dims.x(), b->dims.y(), b->dims.z(), e->num_observations);
+          std::printf("\n");
+        }
       }
       auto& pc = m.per_class[info.name];
       pc = {static_cast<int>(E.size()), static_cast<int>(G.size()), matched};
