@@ -24,83 +24,125 @@ std::vector<cv::Point2f> thinFootprint(const Cloud& pts, double cell) {
   return out;
 }
 
+// Closeness of the footprint to the edges of its bounding rectangle at heading `a`: the sum
+// of the points' inverse distances to the nearest edge, each capped at distance `floor`.
+double edgeScore(const std::vector<cv::Point2f>& foot, double a, double floor, std::vector<double>& u,
+                 std::vector<double>& v) {
+  const double c = std::cos(a), s = std::sin(a);
+  double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
+  for (std::size_t i = 0; i < foot.size(); ++i) {
+    u[i] = c * foot[i].x + s * foot[i].y;
+    v[i] = -s * foot[i].x + c * foot[i].y;
+    u0 = std::min(u0, u[i]), u1 = std::max(u1, u[i]), v0 = std::min(v0, v[i]), v1 = std::max(v1, v[i]);
+  }
+  double score = 0;
+  for (std::size_t i = 0; i < foot.size(); ++i) {
+    const double d = std::min(std::min(u[i] - u0, u1 - u[i]), std::min(v[i] - v0, v1 - v[i]));
+    score += 1.0 / std::max(d, floor);
+  }
+  return score;
+}
+
 // Heading of a footprint's rectangle by search over [0, 90) deg maximizing the closeness of
 // the points to the nearest rectangle edge (robust for the L-shaped views of partly seen
-// cars, where the minimum-area rectangle aligns with the diagonal).
-double footprintYaw(const std::vector<cv::Point2f>& foot, double step) {
+// cars, where the minimum-area rectangle aligns with the diagonal). The search caps each
+// point's weight at the footprint's cell `cell` (nearer is not resolved; a finer cap lets the
+// noisy faces of RGBD views tilt the rectangle by tens of degrees), then refines within three
+// steps of the best heading with a cap of 0.4 cells.
+double footprintYaw(const std::vector<cv::Point2f>& foot, double step, double cell) {
   if (foot.size() < 3) return 0.0;
   if (step <= 0) {
     cv::Point2f corners[4];
     cv::minAreaRect(foot).points(corners);
     return std::atan2(corners[1].y - corners[0].y, corners[1].x - corners[0].x);
   }
-  constexpr double kMinDistance = 0.02;  // metres: caps each point's weight
-  double best_yaw = 0, best_score = -1;
   std::vector<double> u(foot.size()), v(foot.size());
+  double coarse = 0, best_score = -1;
   for (double a = 0; a < M_PI / 2; a += step) {
-    const double c = std::cos(a), s = std::sin(a);
-    double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
-    for (std::size_t i = 0; i < foot.size(); ++i) {
-      u[i] = c * foot[i].x + s * foot[i].y;
-      v[i] = -s * foot[i].x + c * foot[i].y;
-      u0 = std::min(u0, u[i]), u1 = std::max(u1, u[i]), v0 = std::min(v0, v[i]), v1 = std::max(v1, v[i]);
-    }
-    double score = 0;
-    for (std::size_t i = 0; i < foot.size(); ++i) {
-      const double d = std::min(std::min(u[i] - u0, u1 - u[i]), std::min(v[i] - v0, v1 - v[i]));
-      score += 1.0 / std::max(d, kMinDistance);
-    }
+    const double score = edgeScore(foot, a, cell, u, v);
+    if (score > best_score) best_score = score, coarse = a;
+  }
+  double best_yaw = coarse;
+  best_score = -1;
+  for (int k = -3; k <= 3; ++k) {
+    const double a = coarse + k * step;
+    const double score = edgeScore(foot, a, 0.4 * cell, u, v);
     if (score > best_score) best_score = score, best_yaw = a;
   }
   return best_yaw;
 }
 
-// Extends [lo, hi] to at least `min_len`, growing away from the viewpoint coordinate `v`.
-void completeInterval(double& lo, double& hi, double min_len, double v) {
-  const double len = hi - lo;
-  if (len >= min_len) return;
-  if (v <= 0.5 * (lo + hi)) hi = lo + min_len;
-  else lo = hi - min_len;
+// Extends [lo, hi] to `len` when it is shorter than `min_len` (too short to be the whole
+// extent: part of the object went unseen), growing away from the viewpoint coordinate `v`.
+void completeInterval(double& lo, double& hi, double min_len, double len, double v) {
+  if (hi - lo >= min_len) return;
+  if (v <= 0.5 * (lo + hi)) hi = lo + len;
+  else lo = hi - len;
+}
+
+// Whether the longer of the two visible horizontal extents is the object's width. It is the
+// length, unless it fits the class width but is too short for a length while the other extent
+// is too short for a width: then a lone end face is seen (a car's front or rear, from a
+// parking aisle) and the length runs along the other axis, hidden. (When both extents could
+// be the width, the longer is taken as the length: tried the one nearer the typical width,
+// and the one across the line of sight; both gave more duplicate cars in the urban world.)
+bool longerExtentIsWidth(double longer, double shorter, const Eigen::Vector3d& size_min,
+                         const Eigen::Vector3d& size_max, double tol) {
+  if (longer >= size_min.x() || longer > size_max.y() * tol || longer < size_min.y()) return false;
+  return shorter < size_min.y();
 }
 }  // namespace
 
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
-                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max, std::string* why) {
+                                const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
+                                const Eigen::Vector3d& size_typical, std::string* why) {
   if (static_cast<int>(pts.size()) < p.min_points) {
     setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
     return std::nullopt;
   }
   const std::vector<cv::Point2f> foot = thinFootprint(pts, p.footprint_cell);
-  const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0);
+  const double yaw = footprintYaw(foot, p.yaw_step_deg * M_PI / 180.0, p.footprint_cell);
   // Robust extents along the rectangle's axes and in z.
-  auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v) {
+  std::vector<double> zs;
+  for (const auto& q : pts) zs.push_back(q.z());
+  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
+  auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v, double below = 1e30) {
     const double c = std::cos(a), s = std::sin(a);
     std::vector<double> u, v;
     u.reserve(pts.size());
     v.reserve(pts.size());
     for (const auto& q : pts) {
+      if (q.z() > below) continue;
       u.push_back(c * q.x() + s * q.y());
       v.push_back(-s * q.x() + c * q.y());
+    }
+    if (u.empty()) {
+      lo_u = hi_u = lo_v = hi_v = 0;
+      return 0;
     }
     lo_u = quantileInPlace(u, p.low_percentile);
     hi_u = quantileInPlace(u, p.high_percentile);
     lo_v = quantileInPlace(v, p.low_percentile);
     hi_v = quantileInPlace(v, p.high_percentile);
+    return static_cast<int>(u.size());
   };
   double yaw_x = yaw;
   double lo_u, hi_u, lo_v, hi_v;
   extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
-  if (hi_v - lo_v > hi_u - lo_u) {  // x along the longer side
+  const double longer = std::max(hi_u - lo_u, hi_v - lo_v);
+  // Which face is seen is judged on the lower half of the points: the vertical faces, without
+  // the top (a hood or roof seen from above adds depth whichever face is in view).
+  double su0, su1, sv0, sv1;
+  if (extents(yaw_x, su0, su1, sv0, sv1, 0.5 * (lo_z + hi_z)) < p.min_points) su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
+  const bool u_longer = su1 - su0 >= sv1 - sv0;
+  const bool end_view = longerExtentIsWidth(std::max(su1 - su0, sv1 - sv0), std::min(su1 - su0, sv1 - sv0), size_min,
+                                            size_max, p.size_tolerance);
+  if (u_longer == end_view) {  // x (the length) along the other axis
     yaw_x += M_PI / 2;
     extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
   }
-  std::vector<double> zs;
-  for (const auto& q : pts) zs.push_back(q.z());
-  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
-
-  const double visible_len = hi_u - lo_u;
-  if (visible_len < p.min_visible_fraction * size_min.x()) {
-    setWhy(why, "visible length " + std::to_string(visible_len) + " m too short");
+  if (longer < p.min_visible_fraction * size_min.x()) {
+    setWhy(why, "visible length " + std::to_string(longer) + " m too short");
     return std::nullopt;
   }
   const Eigen::Vector3d observed(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
@@ -109,11 +151,13 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
                     std::to_string(observed.z()) + ") exceed the class maximum");
     return std::nullopt;
   }
-  // Partly seen boxes grow to the class minimum, away from the sensor.
+  // Extents too short for the class were partly hidden: they grow to the class's typical size,
+  // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
+  // may be whole and are kept.
   const double c = std::cos(yaw_x), s = std::sin(yaw_x);
-  completeInterval(lo_u, hi_u, size_min.x(), c * viewpoint.x() + s * viewpoint.y());
-  completeInterval(lo_v, hi_v, size_min.y(), -s * viewpoint.x() + c * viewpoint.y());
-  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_min.z();  // the bottom is what goes unseen
+  completeInterval(lo_u, hi_u, size_min.x(), size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
+  completeInterval(lo_v, hi_v, size_min.y(), size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
+  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
 
   const double cu = 0.5 * (lo_u + hi_u), cv_ = 0.5 * (lo_v + hi_v);
   Cuboid box;

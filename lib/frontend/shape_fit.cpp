@@ -13,7 +13,7 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
   o.class_id = class_id;
   switch (info->shape) {
     case Shape::Cuboid: {
-      auto box = fitCuboid(pts, p.cuboid, viewpoint, info->size_min, info->size_max, why);
+      auto box = fitCuboid(pts, p.cuboid, viewpoint, info->size_min, info->size_max, info->typicalSize(), why);
       if (!box) return std::nullopt;
       o.model = *box;
       break;

@@ -51,10 +51,14 @@ struct FitParams {
 // Each returns nullopt (and a reason in *why) when the points do not support the model.
 std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p, const Eigen::Vector3d& viewpoint,
                                     std::string* why = nullptr);
-// size_min/size_max: the class's plausible extents (length, width, height).
+// size_min/size_max: the class's plausible extents (length, width, height); size_typical: the
+// extents a partly seen box is completed to (away from the viewpoint) along the axes seen
+// shorter. The box's x is its length: a lone visible face (little depth) that fits the class
+// width but not its length is taken as an end (a car's front or rear) and the length runs
+// along the other axis.
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
-                                std::string* why = nullptr);
+                                const Eigen::Vector3d& size_typical, std::string* why = nullptr);
 std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, std::string* why = nullptr);
 
 // The model of the object's class (ClassTable shape), with class size gates applied.

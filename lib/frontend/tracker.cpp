@@ -31,6 +31,16 @@ Cloud Track::accumulated() const {
   return out;
 }
 
+Eigen::Vector3d Track::viewpoint() const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double n = 0;
+  for (std::size_t i = 0; i < observations.size() && i < viewpoints.size(); ++i) {
+    sum += static_cast<double>(observations[i].size()) * viewpoints[i];
+    n += static_cast<double>(observations[i].size());
+  }
+  return n > 0 ? Eigen::Vector3d(sum / n) : last_centroid;
+}
+
 Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
     : classes_(std::move(classes)), params_(params), fit_(fit) {}
 
@@ -63,6 +73,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     float confidence;
     Cloud points;
     Eigen::Vector3d centroid;
+    Eigen::Vector3d viewpoint;
   };
   std::map<int, std::vector<Obs>> by_class;
   for (const auto& inst : frame.instances) {
@@ -82,7 +93,8 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
       issues.count("empty instance");
       continue;
     }
-    Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {}};
+    Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {},
+          frame.odom_pose.translation()};
     o.centroid = centroidOf(o.points);
     by_class[inst.class_id].push_back(std::move(o));
   }
@@ -97,7 +109,11 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.class_id = std::max_element(t.class_votes.begin(), t.class_votes.end(),
                                   [](const auto& x, const auto& y) { return x.second < y.second; })->first;
     t.observations.push_back(std::move(o.points));
-    while (static_cast<int>(t.observations.size()) > params_.max_observations) t.observations.pop_front();
+    t.viewpoints.push_back(o.viewpoint);
+    while (static_cast<int>(t.observations.size()) > params_.max_observations) {
+      t.observations.pop_front();
+      t.viewpoints.pop_front();
+    }
     if (!t.moving && exceedsClassSize(t)) t.moving = true;
     matched[t.id] = true;
   };
@@ -159,7 +175,9 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body) const {
   const Pose T_body_odom = T_odom_body.inverse();
   for (const auto& [id, t] : tracks_) {
     if (t.moving || t.hits < params_.min_age || t.missed > params_.report_max_missed) continue;
-    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, Eigen::Vector3d::Zero());
+    // Completion away from where the points were seen (not from the current pose: the robot
+    // may have passed the object since).
+    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint());
     if (!o) continue;
     o->id = id;
     o->num_observations = t.hits;

@@ -36,7 +36,11 @@ struct Track {
   std::map<int, int> class_votes;    // observations per class; class_id is the majority
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
   std::deque<Cloud> observations;                           // odometry frame
+  std::deque<Eigen::Vector3d> viewpoints;  // odometry frame: the body position of each observation
   Cloud accumulated() const;
+  // Where the accumulated points were seen from: the mean of the observations' viewpoints,
+  // weighted by their points (a partly seen object is completed away from it).
+  Eigen::Vector3d viewpoint() const;
 };
 
 class Tracker {

@@ -1,5 +1,7 @@
 #include "objects/class_table.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "config/config.h"
@@ -44,6 +46,12 @@ ClassTable ClassTable::load(const std::string& path) {
     info.size_max = vec3(c, "size_max");
     if ((info.size_min.array() < 0).any() || (info.size_max.array() < info.size_min.array()).any())
       c.fail("size_max", "sizes must satisfy 0 <= size_min <= size_max per axis");
+    if (c.has("size_typical")) {
+      info.size_typical = vec3(c, "size_typical");
+      if ((info.size_typical->array() < info.size_min.array()).any() ||
+          (info.size_typical->array() > info.size_max.array()).any())
+        c.fail("size_typical", "must lie between size_min and size_max per axis");
+    }
     info.semantickitti = intList(c, "semantickitti");
     info.map_labels = intList(c, "map_labels");
     if (c.has("color")) {
@@ -57,6 +65,13 @@ ClassTable ClassTable::load(const std::string& path) {
     }
   }
   return table;
+}
+
+Eigen::Vector3d ClassInfo::typicalSize() const {
+  if (size_typical) return *size_typical;
+  Eigen::Vector3d e;
+  for (int i = 0; i < 3; ++i) e[i] = std::sqrt(std::max(size_min[i], 1e-3) * std::max(size_max[i], 1e-3));
+  return e.cwiseMin(size_max).cwiseMax(size_min);
 }
 
 ClassTable ClassTable::loadDefault() { return load(std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml"); }

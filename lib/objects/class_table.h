@@ -18,6 +18,9 @@ struct ClassInfo {
   double model_difference = 1.0;      // metres, see modelDifference()
   Eigen::Vector3d size_min = Eigen::Vector3d::Zero();  // bounding-box extents, see Object::extent()
   Eigen::Vector3d size_max = Eigen::Vector3d::Constant(1e9);
+  // Typical extents (completion of partly seen objects); default per axis sqrt(size_min * size_max).
+  std::optional<Eigen::Vector3d> size_typical;
+  Eigen::Vector3d typicalSize() const;
   std::vector<int> semantickitti;     // SemanticKITTI class ids of this class
   std::vector<int> map_labels;        // labels meaning this class in object-map text files
   Eigen::Vector3i color{128, 128, 128};  // RGB for plots

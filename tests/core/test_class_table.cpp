@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "config/config.h"
@@ -68,6 +69,20 @@ TEST(ClassTable, SizePlausibility) {
 TEST(ClassTable, GoodFileLoads) {
   const ClassTable t = ClassTable::load(writeTemp("good.yaml", kGood));
   EXPECT_EQ(t.ids(), std::vector<int>{10});
+  // Without size_typical: per axis the geometric mean of size_min and size_max.
+  EXPECT_FALSE(t.at(10).size_typical.has_value());
+  EXPECT_TRUE(t.at(10).typicalSize().isApprox(Eigen::Vector3d(std::sqrt(2.5 * 6.5), std::sqrt(1.3 * 2.6), std::sqrt(2.8))));
+}
+
+TEST(ClassTable, TypicalSizeGivenOrCheckedAgainstTheRange) {
+  EXPECT_TRUE(ClassTable::loadDefault().at(10).typicalSize().isApprox(Eigen::Vector3d(4.5, 1.8, 1.5)));
+  std::string typical = kGood;
+  typical.insert(typical.find("    semantickitti"), "    size_typical: [4.0, 1.7, 1.4]\n");
+  EXPECT_TRUE(ClassTable::load(writeTemp("typical.yaml", typical)).at(10).typicalSize().isApprox(Eigen::Vector3d(4.0, 1.7, 1.4)));
+  std::string outside = kGood;
+  outside.insert(outside.find("    semantickitti"), "    size_typical: [7.0, 1.7, 1.4]\n");
+  expectError([&] { ClassTable::load(writeTemp("outside.yaml", outside)); },
+              {"classes[0].size_typical", "between size_min and size_max"});
 }
 
 TEST(ClassTable, ErrorsNameFileKeyAndExpectation) {

@@ -23,6 +23,41 @@ Cloud cylinderCloud(const Eigen::Vector3d& root, const Eigen::Vector3d& axis, do
     }
   return c;
 }
+
+// Points on the faces of a box (centre on the ground plane z = 0, heading `yaw`, extents
+// `dims`) that face `view`: the vertical sides whose outward normal points towards it and the
+// top when seen from above; `hide` keeps a side's points with |along-face coordinate| <= hide
+// times its half length (1: all).
+Cloud visibleBoxCloud(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector3d& dims, const Eigen::Vector3d& view,
+                      double step = 0.04) {
+  const Eigen::Matrix3d R = rotZ(yaw);
+  const Eigen::Vector3d c(centre.x(), centre.y(), 0.5 * dims.z());
+  const Eigen::Vector3d v = R.transpose() * (view - c);  // viewpoint in the box frame
+  const Eigen::Vector3d h = 0.5 * dims;
+  Cloud out;
+  auto add = [&](const Eigen::Vector3d& q) { out.push_back((c + R * q).cast<float>()); };
+  for (int axis = 0; axis < 2; ++axis)
+    for (int sign : {-1, 1}) {
+      if (sign * v[axis] <= h[axis]) continue;  // this side faces away
+      const int other = 1 - axis;
+      for (double a = -h[other]; a <= h[other] + 1e-9; a += step)
+        for (double z = -h.z(); z <= h.z() + 1e-9; z += step) {
+          Eigen::Vector3d q;
+          q[axis] = sign * h[axis], q[other] = a, q.z() = z;
+          add(q);
+        }
+    }
+  if (v.z() > h.z())
+    for (double x = -h.x(); x <= h.x() + 1e-9; x += step)
+      for (double y = -h.y(); y <= h.y() + 1e-9; y += step) add(Eigen::Vector3d(x, y, h.z()));
+  return out;
+}
+
+// Heading difference of two boxes' long sides, in [0, 90] degrees.
+double longSideYawErrorDeg(const Cuboid& b, double true_yaw) {
+  const double yaw = yawOf(b.pose.linear()) + (b.dims.x() >= b.dims.y() ? 0.0 : M_PI / 2);
+  return std::abs(wrapAngle(2 * (yaw - true_yaw))) / 2 * 180 / M_PI;
+}
 }  // namespace
 
 TEST(CircleFit, AlgebraicExactAndRansacWithOutliers) {
@@ -93,7 +128,7 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   }
   const ClassTable classes = ClassTable::loadDefault();
   const ClassInfo& car = classes.at(10);
-  const auto box = fitCuboid(pts, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max);
+  const auto box = fitCuboid(pts, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(box);
   EXPECT_NEAR(std::abs(wrapAngle(2 * (yawOf(box->pose.linear()) - yaw))) / 2, 0, 0.03);
   EXPECT_NEAR(box->dims.x(), 4.5, 0.25);  // 2nd-98th percentile extents
@@ -104,7 +139,7 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   Cloud face;
   for (double z = -0.75; z <= 0.75; z += 0.05)
     for (double y = -0.9; y <= 0.9; y += 0.05) face.push_back(Eigen::Vector3f(10, y, z));
-  const auto completed = fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max);
+  const auto completed = fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(completed);
   EXPECT_GE(completed->dims.x(), car.size_min.x() - 1e-9);
   EXPECT_GE(completed->dims.y(), car.size_min.y() - 1e-9);
@@ -113,7 +148,7 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   for (double z = -0.75; z <= 0.75; z += 0.05)
     for (double y = -0.3; y <= 0.3; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
   std::string why;
-  EXPECT_FALSE(fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, &why)) << "too little seen";
+  EXPECT_FALSE(fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(), &why)) << "too little seen";
   EXPECT_NE(why.find("too short"), std::string::npos) << why;
   // A wall is not a car.
   Cloud wall;
@@ -121,6 +156,72 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
     for (double z = 0; z <= 1.5; z += 0.1) wall.push_back(Eigen::Vector3f(x, 5, z));
   EXPECT_FALSE(fitObject(wall, 10, classes, {}, Eigen::Vector3d::Zero(), &why));
   EXPECT_NE(why.find("exceed"), std::string::npos) << why;
+}
+
+// Partial views of a 4.2 x 1.8 x 1.5 car: the box must keep the car's heading (length along the
+// car) and its centre must land within a few decimetres of the truth (completion to the class's
+// typical 4.5 x 1.8 x 1.5 car).
+TEST(CuboidFit, EndFaceSeenHeadOnIsCompletedAlongTheViewingDirection) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  const Eigen::Vector3d dims(4.2, 1.8, 1.5);
+  // From a parking aisle: the rear face only, sensor 1 m up (below the roof), 8 m away.
+  const Cloud rear = visibleBoxCloud({10.1, 0.3}, 0.0, dims, Eigen::Vector3d(0, 0, 1.0));
+  const auto box = fitCuboid(rear, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(box);
+  EXPECT_LT(longSideYawErrorDeg(*box, 0.0), 2.0);
+  EXPECT_NEAR(box->dims.x(), car.typicalSize().x(), 1e-9) << "length completed to the typical car";
+  EXPECT_NEAR((box->pose.translation().head<2>() - Eigen::Vector2d(10.1, 0.3)).norm(), 0, 0.25);
+  // The same car turned 90 deg, in front of a sensor looking along +y, at another heading.
+  const double yaw = 100 * M_PI / 180;
+  const Eigen::Vector2d centre(-3.0, 7.0);
+  const Eigen::Vector2d back = centre - 2.1 * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+  const Eigen::Vector3d view(back.x() - 6 * std::cos(yaw), back.y() - 6 * std::sin(yaw), 1.0);
+  const Cloud front = visibleBoxCloud(centre, yaw, dims, view);
+  const auto turned = fitCuboid(front, {}, view, car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(turned);
+  EXPECT_LT(longSideYawErrorDeg(*turned, yaw), 2.0);
+  EXPECT_NEAR((turned->pose.translation().head<2>() - centre).norm(), 0, 0.25);
+}
+
+TEST(CuboidFit, SideSeenBroadsideKeepsLengthAndGrowsWidthAway) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  const Eigen::Vector3d dims(4.4, 1.9, 1.6);
+  // Parked along a street, 7 m to the left of a LiDAR 1.7 m up (higher than the roof: the
+  // roof is seen too), and at the same distance from a sensor below the roof.
+  for (double view_z : {1.0, 1.7}) {
+    const Cloud side = visibleBoxCloud({0.5, 7.0}, 0.02, dims, Eigen::Vector3d(0, 0, view_z));
+    const auto box = fitCuboid(side, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+    ASSERT_TRUE(box) << view_z;
+    EXPECT_LT(longSideYawErrorDeg(*box, 0.02), 2.0) << view_z;
+    EXPECT_NEAR(box->dims.x(), 4.4, 0.2) << view_z;
+    EXPECT_NEAR((box->pose.translation().head<2>() - Eigen::Vector2d(0.5, 7.0)).norm(), 0, 0.2) << view_z;
+  }
+}
+
+TEST(CuboidFit, CornerViewOfBothFacesFitsHeadingAndCentre) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  const Eigen::Vector3d dims(4.6, 1.9, 1.5);
+  for (double yaw_deg : {-60.0, -20.0, 30.0, 75.0}) {
+    const double yaw = yaw_deg * M_PI / 180;
+    const Eigen::Vector2d centre(9.0, 6.0);
+    const Cloud corner = visibleBoxCloud(centre, yaw, dims, Eigen::Vector3d(0, 0, 1.0));
+    const auto box = fitCuboid(corner, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+    ASSERT_TRUE(box) << yaw_deg;
+    EXPECT_LT(longSideYawErrorDeg(*box, yaw), 2.0) << yaw_deg;
+    EXPECT_NEAR((box->pose.translation().head<2>() - centre).norm(), 0, 0.15) << yaw_deg;
+  }
+  // A corner where only 1.2 m of the side is seen beside the whole front (the rest out of the
+  // camera's view): the front is the width, the length grows away from the sensor.
+  Cloud part;
+  for (const auto& q : visibleBoxCloud({9.0, 6.0}, M_PI / 2, dims, Eigen::Vector3d(8.0, 0, 1.0)))
+    if (q.y() < 3.7 + 1.2 + 1e-3) part.push_back(q);
+  const auto box = fitCuboid(part, {}, Eigen::Vector3d(8.0, 0, 1.0), car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(box);
+  EXPECT_LT(longSideYawErrorDeg(*box, M_PI / 2), 2.0);
+  EXPECT_NEAR((box->pose.translation().head<2>() - Eigen::Vector2d(9.0, 6.0)).norm(), 0, 0.2);
 }
 
 TEST(EllipsoidFit, CentroidRadiusHeight) {

@@ -155,3 +155,33 @@ TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
   EXPECT_EQ(tracker.tracks().begin()->second.class_id, 71);
   EXPECT_EQ(tracker.tracks().begin()->second.hits, 5);
 }
+
+TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
+  // The near side of a car (4.4 m long along x, 1.8 m wide, centre (10, 5.9)) seen from the
+  // aisle at y = 0; the fit is asked for from a body pose past it, on the car's far side
+  // (y = 10): the hidden width still grows away from the aisle.
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  Tracker tracker(classes, cfg.tracker, cfg.fit);
+  InputIssues issues;
+  for (int k = 0; k < 4; ++k) {
+    const Pose T = poseFromXyzYaw(8.0 + 0.5 * k, 0, 0, 0);
+    Instance inst;
+    inst.id = 1;
+    inst.class_id = 10;
+    inst.confidence = 1;
+    for (double x = 7.8; x <= 12.2; x += 0.05)
+      for (double z = 0.1; z <= 1.5; z += 0.1) inst.points.push_back((T.inverse() * Eigen::Vector3d(x, 5.0, z)).cast<float>());
+    FrameInstances f;
+    f.utime = k * 100000;
+    f.odom_pose = T;
+    f.instances.push_back(inst);
+    tracker.update(f, issues);
+  }
+  const Pose T_far = poseFromXyzYaw(10.0, 10.0, 0, M_PI);
+  const auto objects = tracker.objectsInBody(T_far);
+  ASSERT_EQ(objects.size(), 1u);
+  const Eigen::Vector3d world = T_far * objects[0].position();
+  EXPECT_NEAR(world.x(), 10.0, 0.1);
+  EXPECT_NEAR(world.y(), 5.9, 0.1) << "grown away from the aisle, not from the current pose";
+}

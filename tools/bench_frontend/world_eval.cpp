@@ -194,6 +194,21 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
                         r.mode.c_str(), info.name.c_str(), E[i]->position().x(), E[i]->position().y(),
                         near ? static_cast<long>(near->object.id) : -1L, near ? near->object.class_id : -1,
                         near && near->moving() ? ", moving" : "", it == seen.end() ? 0 : it->second, d);
+            // Cuboids: this box and the estimates near the same object, against the true box.
+            auto describe = [](const Object& o) {
+              char buf[160];
+              const auto* b = std::get_if<Cuboid>(&o.model);
+              if (!b) return std::string();
+              std::snprintf(buf, sizeof buf, "(%.1f, %.1f) yaw %.0f deg dims %.1f x %.1f, %d observations", o.position().x(),
+                            o.position().y(), yawOf(b->pose.linear()) * 180 / M_PI, b->dims.x(), b->dims.y(), o.num_observations);
+              return std::string(buf);
+            };
+            if (near && std::holds_alternative<Cuboid>(E[i]->model)) {
+              std::printf("    this box %s; true box %s\n", describe(*E[i]).c_str(), describe(near->object).c_str());
+              for (std::size_t j = 0; j < E.size(); ++j)
+                if (j != i && (E[j]->position() - near->object.position()).head<2>().norm() < 4.0)
+                  std::printf("    other estimate %s\n", describe(*E[j]).c_str());
+            }
           }
         if (spec.verbose)
           for (std::size_t j = 0; j < G.size(); ++j) {
@@ -207,6 +222,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       } else if (spec.verbose) {
         for (const auto* g : G)
           std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
+        for (const auto* e : E) {
+          const auto* b = std::get_if<Cuboid>(&e->model);
+          std::printf("  extra %s %s at (%.1f, %.1f): no ground truth of the class", r.mode.c_str(), info.name.c_str(),
+                      e->position().x(), e->position().y());
+          if (b) std::printf("; box yaw %.0f deg dims %.1f x %.1f x %.1f, %d observations", yawOf(b->pose.linear()) * 180 / M_PI,
+                             b->dims.x(), b->dims.y(), b->dims.z(), e->num_observations);
+          std::printf("\n");
+        }
       }
       auto& pc = m.per_class[info.name];
       pc = {static_cast<int>(E.size()), static_cast<int>(G.size()), matched};

@@ -58,6 +58,24 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
     if (id >= 0) ++hits, ids.insert(id), errs.push_back(best);
     spdlog::debug("  class {} at ({:.1f}, {:.1f}, {:.1f}): true object {} (nearest of its class {:.2f} m)", o.class_id,
                   p.x(), p.y(), p.z(), id, nearest);
+    // Cuboids: heading (world frame) and extents against the associated true box.
+    const auto* box = std::get_if<Cuboid>(&o.model);
+    const GroundTruthObject* truth = nullptr;
+    for (const auto& g : world.objects)
+      if (g.object.id == id) truth = &g;
+    const auto* true_box = truth ? std::get_if<Cuboid>(&truth->object.model) : nullptr;
+    if (box && true_box) {
+      // x along the longer side on both (a box with yaw + 90 deg and swapped extents is the same box).
+      auto longYaw = [](double yaw, const Eigen::Vector3d& d) { return d.x() >= d.y() ? yaw : yaw + M_PI / 2; };
+      const double yaw = longYaw(yawOf(T_world_odom.linear() * box->pose.linear()), box->dims);
+      const double true_yaw = longYaw(yawOf(true_box->pose.linear()), true_box->dims);
+      spdlog::debug("    box yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); true yaw {:.0f} deg dims ({:.1f}, {:.1f}, {:.1f}); "
+                    "yaw error of the long side {:.0f} deg", yaw * 180 / M_PI, box->dims.x(), box->dims.y(), box->dims.z(),
+                    true_yaw * 180 / M_PI, true_box->dims.x(), true_box->dims.y(), true_box->dims.z(),
+                    std::abs(wrapAngle(2 * (yaw - true_yaw))) * 90 / M_PI);
+      const Eigen::Vector3d e = true_box->pose.linear().transpose() * (p - true_box->pose.translation());
+      spdlog::debug("    position error along the true box's x {:.2f} m, y {:.2f} m", e.x(), e.y());
+    }
   }
   std::sort(errs.begin(), errs.end());
   median_err = errs.empty() ? 0.0 : errs[errs.size() / 2];
