@@ -1,5 +1,6 @@
 #include "geometry/pose.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slide {
@@ -26,6 +27,10 @@ Pose poseFromXyzYaw(const Eigen::Vector4d& v) { return poseFromXyzYaw(v[0], v[1]
 Eigen::Vector4d xyzYawOf(const Pose& T) {
   const Eigen::Vector3d t = T.translation();
   return {t.x(), t.y(), t.z(), yawOf(T.linear())};
+}
+
+Eigen::Vector3d rpyOf(const Eigen::Matrix3d& R) {
+  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)), yawOf(R)};
 }
 
 Pose poseFromXyzRpy(const Eigen::Vector3d& t, double roll, double pitch, double yaw) {

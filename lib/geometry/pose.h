@@ -27,6 +27,8 @@ Eigen::Vector4d xyzYawOf(const Pose& T);
 
 // Pose from translation and ZYX Euler angles (roll, pitch, yaw).
 Pose poseFromXyzRpy(const Eigen::Vector3d& t, double roll, double pitch, double yaw);
+// ZYX Euler angles (roll, pitch, yaw) of a rotation: the inverse of poseFromXyzRpy.
+Eigen::Vector3d rpyOf(const Eigen::Matrix3d& R);
 
 // SE(3) exponential and logarithm; tangent ordered (translation rho, rotation phi).
 Pose expSE3(const Vector6d& xi);

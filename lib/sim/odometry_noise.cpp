@@ -1,17 +1,8 @@
 #include "sim/odometry_noise.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace slide {
-
-namespace {
-// Roll and pitch (ZYX) of a rotation.
-void rollPitchOf(const Eigen::Matrix3d& R, double& roll, double& pitch) {
-  pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  roll = std::atan2(R(2, 1), R(2, 2));
-}
-}  // namespace
 
 Pose odometryOrigin(const Pose& T0) {
   const Eigen::Vector3d t = T0.translation();
@@ -52,8 +43,8 @@ std::vector<Pose> simulateOdometry(const std::vector<Pose>& gt, const OdometryNo
       p += rotZ(yaw) * dp_noisy;
       yaw = wrapAngle(yaw + dyaw_noisy);
     }
-    double roll, pitch;
-    rollPitchOf(gt[k].linear(), roll, pitch);
+    const Eigen::Vector3d rpy = rpyOf(gt[k].linear());
+    double roll = rpy[0], pitch = rpy[1];
     roll += n.roll_pitch_noise_deg * deg * n01(rng);
     pitch += n.roll_pitch_noise_deg * deg * n01(rng);
     out.push_back(poseFromXyzRpy(p, roll, pitch, yaw));

@@ -45,10 +45,6 @@ bool within(std::int64_t v, std::int64_t limit) { return v >= -limit && v <= lim
 
 std::string at(std::uint64_t i, const char* what) { return "object " + std::to_string(i) + ": " + what; }
 
-Eigen::Vector3d rpyOf(const Eigen::Matrix3d& R) {
-  return {std::atan2(R(2, 1), R(2, 2)), std::asin(std::clamp(-R(2, 0), -1.0, 1.0)), std::atan2(R(1, 0), R(0, 0))};
-}
-
 Eigen::Vector3d positionOf(const Object& o) {
   if (const auto* b = std::get_if<Cuboid>(&o.model)) return b->pose.translation();
   if (const auto* c = std::get_if<Cylinder>(&o.model)) return c->root;

@@ -29,6 +29,13 @@ TEST(Pose, YawIgnoresRollAndPitch) {
   EXPECT_NEAR(yawOf(T.linear()), 1.2, 1e-12);
 }
 
+TEST(Pose, RpyOfInvertsPoseFromXyzRpy) {
+  const Pose T = poseFromXyzRpy({0, 0, 0}, 0.05, -0.03, 1.2);
+  EXPECT_TRUE(rpyOf(T.linear()).isApprox(Eigen::Vector3d(0.05, -0.03, 1.2), 1e-12));
+  const Pose U = poseFromXyzRpy({0, 0, 0}, -2.9, 1.1, -3.0);
+  EXPECT_TRUE(rpyOf(U.linear()).isApprox(Eigen::Vector3d(-2.9, 1.1, -3.0), 1e-12));
+}
+
 TEST(Pose, ExpLogInverse) {
   Vector6d xi;
   xi << 0.4, -1.0, 2.0, 0.3, -0.2, 1.1;
