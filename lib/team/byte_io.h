@@ -10,6 +10,15 @@ namespace slide::team {
 
 using Bytes = std::vector<std::uint8_t>;
 
+// Differences of ids and timestamps as sent (defined for any values, also untrusted ones:
+// they wrap around instead of overflowing).
+inline std::int64_t wrappingAdd(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
+}
+inline std::int64_t wrappingSub(std::int64_t a, std::int64_t b) {
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
+}
+
 class ByteWriter {
  public:
   void u8(std::uint8_t v) { out_.push_back(v); }

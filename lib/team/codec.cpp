@@ -161,7 +161,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
                                  (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0)));
   if (chained_step) {
-    w.svarint(static_cast<std::int64_t>(static_cast<std::uint64_t>(b.utime) - static_cast<std::uint64_t>(previous->utime)));
+    w.svarint(wrappingSub(b.utime, previous->utime));
   } else {
     w.svarint(b.utime);
     writePose(w, b.odom_pose);
@@ -194,7 +194,7 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   if (!chained) b.odom_pose = readPose(r, "odometry pose");
   b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry") : readStep(r);
   if (chained && previous) {
-    b.utime = static_cast<std::int64_t>(static_cast<std::uint64_t>(previous->utime) + static_cast<std::uint64_t>(utime));
+    b.utime = wrappingAdd(previous->utime, utime);
     b.odom_pose = previous->odom_pose * b.relative_odom;
     b.odom_sigma = previous->odom_sigma;
   } else if (!chained) {

@@ -33,14 +33,6 @@ constexpr double kCylinderUnits[2] = {0.01, 0.1};
 constexpr double kCuboidUnit = 0.05;
 constexpr double kEllipsoidUnits[2] = {0.01, 0.05};
 
-// Id differences wrap around (defined for any ids, and for any input).
-std::int64_t wrappingAdd(std::int64_t a, std::int64_t b) {
-  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) + static_cast<std::uint64_t>(b));
-}
-std::int64_t wrappingSub(std::int64_t a, std::int64_t b) {
-  return static_cast<std::int64_t>(static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b));
-}
-
 bool within(std::int64_t v, std::int64_t limit) { return v >= -limit && v <= limit; }
 
 std::string at(std::uint64_t i, const char* what) { return "object " + std::to_string(i) + ": " + what; }
