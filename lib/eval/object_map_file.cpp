@@ -72,7 +72,7 @@ std::vector<Object> readText(std::ifstream& in, const std::string& path, const C
     if (v.size() != 4 && v.size() != 7 && v.size() != 8)
       throw IoError(where, "expected 'label x y z [sx sy sz [yaw]]', got " + std::to_string(v.size()) + " numbers");
     const ClassInfo& cls = classForLabel(classes, v[0], where);
-    const Eigen::Vector3d extent = v.size() >= 7 ? Eigen::Vector3d(v[4], v[5], v[6]) : typicalExtent(cls);
+    const Eigen::Vector3d extent = v.size() >= 7 ? Eigen::Vector3d(v[4], v[5], v[6]) : cls.typicalSize();
     if ((extent.array() < 0).any()) throw IoError(where, "negative size");
     Object o = makeObject(cls, cls.shape, {v[1], v[2], v[3]}, extent, v.size() == 8 ? v[7] : 0.0);
     o.id = static_cast<std::int64_t>(out.size());
@@ -122,7 +122,7 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
       if (!s) throw IoError(where, "field shape: '" + cells[*c_shape] + "' is not cuboid, cylinder or ellipsoid");
       shape = *s;
     }
-    Eigen::Vector3d extent = typicalExtent(cls);
+    Eigen::Vector3d extent = cls.typicalSize();
     if (auto r = num(c_r, "radius")) extent.x() = extent.y() = 2 * *r;
     if (auto v = num(c_sx, "size_x")) extent.x() = *v;
     if (auto v = num(c_sy, "size_y")) extent.y() = *v;
@@ -144,12 +144,6 @@ std::vector<Object> readCsv(std::ifstream& in, const std::string& path, const st
   return out;
 }
 }  // namespace
-
-Eigen::Vector3d typicalExtent(const ClassInfo& cls) {
-  Eigen::Vector3d e;
-  for (int i = 0; i < 3; ++i) e[i] = std::sqrt(std::max(cls.size_min[i], 1e-3) * std::max(cls.size_max[i], 1e-3));
-  return e;
-}
 
 Object makeObject(const ClassInfo& cls, Shape shape, const Eigen::Vector3d& centre, const Eigen::Vector3d& extent,
                   double yaw) {

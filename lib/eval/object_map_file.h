@@ -32,7 +32,5 @@ void writeObjectMapCsv(const std::string& path, const std::vector<Object>& objec
 // with bounding-box extents `extent` and yaw; used by both readers.
 Object makeObject(const ClassInfo& cls, Shape shape, const Eigen::Vector3d& centre, const Eigen::Vector3d& extent,
                   double yaw);
-// The class's typical extents: per axis sqrt(size_min * size_max).
-Eigen::Vector3d typicalExtent(const ClassInfo& cls);
 
 }  // namespace slide
