@@ -8,7 +8,7 @@
 namespace slide::team {
 namespace {
 
-constexpr std::uint8_t kBundleFormat = 2;
+constexpr std::uint8_t kBundleFormat = 3;  // 3: chained utime predicted from the previous step
 constexpr std::uint8_t kMapFormat = 2;
 
 // Flags of a bundle header.
@@ -143,6 +143,10 @@ std::optional<T> finish(ByteReader& r, T value, std::string* error) {
 
 }  // namespace
 
+BundleContext BundleContext::of(const Bundle& b, const BundleContext* chained_to) {
+  return {b.utime, b.odom_pose, b.odom_sigma, chained_to ? wrappingSub(b.utime, chained_to->utime) : 0};
+}
+
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   std::optional<Quantised> chained_step;
   if (!b.first && previous) {
@@ -161,7 +165,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
                                  (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0)));
   if (chained_step) {
-    w.svarint(wrappingSub(b.utime, previous->utime));
+    w.svarint(wrappingSub(wrappingSub(b.utime, previous->utime), previous->dt));
   } else {
     w.svarint(b.utime);
     writePose(w, b.odom_pose);
@@ -194,7 +198,7 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   if (!chained) b.odom_pose = readPose(r, "odometry pose");
   b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry") : readStep(r);
   if (chained && previous) {
-    b.utime = wrappingAdd(previous->utime, utime);
+    b.utime = wrappingAdd(wrappingAdd(previous->utime, previous->dt), utime);
     b.odom_pose = previous->odom_pose * b.relative_odom;
     b.odom_sigma = previous->odom_sigma;
   } else if (!chained) {

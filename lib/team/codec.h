@@ -29,19 +29,24 @@
 
 namespace slide::team {
 
-// What a bundle may take from its origin's bundle seq-1 (as receivers decode it).
+// What a bundle may take from its origin's bundle seq-1 (as receivers decode it): the pose,
+// utime and sigma it is chained to, and the time step that predicts its own.
 struct BundleContext {
   std::int64_t utime = 0;
   Pose odom_pose = Pose::Identity();
   std::array<float, 6> odom_sigma{};
-  static BundleContext of(const Bundle& b) { return {b.utime, b.odom_pose, b.odom_sigma}; }
+  std::int64_t dt = 0;  // that bundle's utime step (0: not chained)
+  // `chained_to`: the context b's encoding is chained to (null when self-contained, see
+  // chainedBundle()). Sender and receivers build contexts alike, from decoded bundles.
+  static BundleContext of(const Bundle& b, const BundleContext* chained_to);
 };
 
 // `previous`: the decoded context of the origin's bundle seq-1, when known. If the bundle's
 // relative odometry agrees with previous->odom_pose^-1 * odom_pose (as a tracker computes it)
-// to within 2 mm and 2e-4 rad, the bundle is chained: utime as a difference, the odometry
-// pose derived from the previous one and the quantised step, sigma left out when it quantises
-// as the previous one.
+// to within 2 mm and 2e-4 rad, the bundle is chained: the odometry pose derived from the
+// previous one and the quantised step, sigma left out when it quantises as the previous one,
+// and utime and step written as their differences from the previous bundle's (a robot moving
+// steadily repeats its last step, so the differences are small).
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
 // A chained bundle needs `previous`; without it the result has only the relative odometry,

@@ -69,7 +69,13 @@ PeerSyncNode::~PeerSyncNode() {
 }
 
 void PeerSyncNode::somethingNew() {
-  if (last_heartbeat_) next_heartbeat_ = std::min(next_heartbeat_, last_heartbeat_->at + secs(cfg_.heartbeat_period_s));
+  news_ = true;
+  if (last_heartbeat_at_) next_heartbeat_ = std::min(next_heartbeat_, *last_heartbeat_at_ + secs(cfg_.heartbeat_period_s));
+}
+
+bool PeerSyncNode::lacksSome(std::int32_t origin) const {
+  auto held = db_.held().find(origin);
+  return held != db_.held().end() && (held->second.ranges().size() > 1 || !db_.firstSeq(origin));
 }
 
 bool PeerSyncNode::inTeam(std::int32_t robot) const {
@@ -123,7 +129,6 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   db_.add(b.origin, b.seq, std::move(e));
-  somethingNew();
   return std::nullopt;
 }
 
@@ -134,7 +139,6 @@ void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
   m.version = own_map_version_;
   own_map_data_ = encodeMap(m);
   own_map_ = std::move(m);
-  somethingNew();
 }
 
 // ---- team input ----
@@ -157,7 +161,10 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   Peer& p = peers_[m.sender];
   // Back in reach after a silence: relays wait relay_delay_s again, so the origin (or whoever
   // hears the peer too) gets the first chance and relays do not pile up on the same bundles.
-  if (!was_in_reach) p.lacking_since.clear();
+  if (!was_in_reach) {
+    p.lacking_since.clear();
+    somethingNew();  // it needs our heartbeat to count us in reach
+  }
   p.heard_heartbeat = true;
   p.last_heard = now;
   p.last_heartbeat = now;
@@ -242,7 +249,9 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   e.first = bundle->first;
   e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, seq, std::move(e));
-  somethingNew();
+  // In order, the next heartbeat acknowledges it whenever it goes; a gap means a loss that only
+  // our heartbeat gets resent.
+  if (lacksSome(m.origin)) somethingNew();
   scheduleAck(m.sender, m.origin, now);
 }
 
@@ -299,12 +308,15 @@ TickOutput PeerSyncNode::tick(Micros now) {
     limiter_.force(static_cast<double>(bytes), now);
     traffic_.sent(peersInReach(now), bytes);
     out.heartbeats.push_back(std::move(h));
-    // Nothing new since the previous heartbeat: the next one waits twice as long, up to
-    // heartbeat_idle_factor periods (somethingNew() pulls it back in).
-    const bool unchanged = last_heartbeat_ && last_heartbeat_->held == h.held && last_heartbeat_->map_version == h.map_version;
-    heartbeat_interval_ = unchanged ? std::min(2 * heartbeat_interval_, secs(cfg_.heartbeat_period_s * cfg_.heartbeat_idle_factor))
-                                    : secs(cfg_.heartbeat_period_s);
-    last_heartbeat_ = LastHeartbeat{now, h.held, h.map_version};
+    // No news (a peer back in reach, a gap in what we hold): the next heartbeat waits twice as
+    // long, up to heartbeat_idle_factor periods; somethingNew() pulls it back in. Peers learn
+    // our own bundles and map from the chunks, and what arrived in order can wait to be
+    // acknowledged (nothing is resent before a heartbeat says it is lacking).
+    const Micros longest = secs(cfg_.heartbeat_period_s * cfg_.heartbeat_idle_factor);
+    heartbeat_interval_ = news_ || heartbeat_interval_ == 0 ? secs(cfg_.heartbeat_period_s)
+                                                            : std::min(2 * heartbeat_interval_, longest);
+    news_ = false;
+    last_heartbeat_at_ = now;
     next_heartbeat_ = now + heartbeat_interval_;
   }
   // Acknowledgements due: one message for every peer waiting (receiver -1 when several); a
@@ -505,10 +517,10 @@ std::optional<BundleContext> PeerSyncNode::contextOf(std::int32_t origin, std::i
   for (auto it = todo.rbegin(); it != todo.rend(); ++it) {
     std::string error;
     bool needs_previous = false;
-    const auto b = decodeBundle(db_.get(origin, *it)->data, origin, *it, &error, context ? &*context : nullptr,
-                                &needs_previous);
+    const Bytes& data = db_.get(origin, *it)->data;
+    const auto b = decodeBundle(data, origin, *it, &error, context ? &*context : nullptr, &needs_previous);
     if (!b || needs_previous) return std::nullopt;
-    context = BundleContext::of(*b);
+    context = BundleContext::of(*b, chainedBundle(data) ? &*context : nullptr);
     contexts_[{origin, *it}] = *context;
   }
   return context;

@@ -95,7 +95,8 @@ class PeerSyncNode {
 
   bool admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes);
   bool inTeam(std::int32_t robot) const;
-  void somethingNew();  // held bundles or own map changed: heartbeats at the normal period again
+  void somethingNew();  // a peer back in reach, or a gap: heartbeats at the normal period again
+  bool lacksSome(std::int32_t origin) const;  // a gap in what is held of `origin`, or not its start
   void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
   void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
   void receiveBundleChunk(const Chunk& m, Micros now);
@@ -133,12 +134,8 @@ class PeerSyncNode {
   std::map<std::int32_t, Peer> peers_;
   Micros next_heartbeat_;
   Micros heartbeat_interval_ = 0;
-  struct LastHeartbeat {
-    Micros at;
-    OriginRanges held;
-    std::int32_t map_version;
-  };
-  std::optional<LastHeartbeat> last_heartbeat_;
+  std::optional<Micros> last_heartbeat_at_;
+  bool news_ = false;  // since the last heartbeat
   Micros counters_saved_at_ = 0;
 
   std::optional<SharedMap> own_map_;

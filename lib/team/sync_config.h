@@ -16,18 +16,18 @@ struct SyncConfig {
   std::string team_key;            // HMAC key shared by the team
 
   double heartbeat_period_s = 8.0;
-  double heartbeat_idle_factor = 2.0;  // while nothing changes the period doubles up to this many times it
-  double ack_delay_s = 8.0;          // acknowledgements are coalesced this long (a heartbeat acks all)
+  double heartbeat_idle_factor = 3.0;  // without news the period doubles up to this many times it
+  double ack_delay_s = 24.0;         // acknowledgements are coalesced this long (a heartbeat acks all)
   double resend_timeout_s = 4.0;     // unacknowledged data is sent again after this at the earliest,
   double loss_grace_s = 0.5;         // once a heartbeat sent this long after it still lacks it
   double relay_delay_s = 10.0;       // a third robot's bundle is relayed once a peer lacked it this long
-  double peer_timeout_s = 20.0;      // a peer is in reach while heard within this
+  double peer_timeout_s = 40.0;      // a peer is in reach while heard within this
   double map_period_s = 90.0;        // own map sent at most this often when it changed
   double map_refresh_s = 120.0;      // and again this often when unchanged
   double rate_limit_bytes_per_s = 20000;
   double burst_bytes = 8000;
   std::size_t max_chunk_bytes = 1024;       // payload bytes per chunk
-  double bundle_hold_s = 5.0;               // own new bundles wait this long to share a chunk
+  double bundle_hold_s = 15.0;               // own new bundles wait this long to share a chunk
   std::size_t max_ranges_per_origin = 64;   // in heartbeats and acks
   std::size_t max_sends_per_tick = 64;      // bundles considered per peer and tick
   std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused

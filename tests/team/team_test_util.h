@@ -79,6 +79,7 @@ inline SyncConfig teamConfig(std::int32_t robot, std::vector<std::int32_t> team,
   c.team = std::move(team);
   c.team_key = std::move(key);
   c.heartbeat_period_s = 1.0;
+  c.heartbeat_idle_factor = 2.0;
   c.resend_timeout_s = 1.5;
   c.relay_delay_s = 1.5;
   c.peer_timeout_s = 3.0;

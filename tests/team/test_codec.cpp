@@ -133,7 +133,7 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
       ASSERT_TRUE(alone) << err;
       EXPECT_TRUE(needs);
     }
-    previous = BundleContext::of(*d);
+    previous = BundleContext::of(*d, chainedBundle(enc) ? &*previous : nullptr);
   }
   EXPECT_LT(chained_bytes + 25 * (stream.size() - 1), alone_bytes);  // >= 25 bytes saved each
   // Not consistent with the poses (or a first bundle): self-contained.
@@ -225,7 +225,7 @@ TEST(Codec, MalformedFieldsAreNamed) {
   };
   // Header: format, flags, then a self-contained pose and step.
   ByteWriter head;
-  head.u8(2);
+  head.u8(3);
   head.u8(0);
   head.svarint(0);
   head.u8(4);  // yaw-only rotation

@@ -148,9 +148,10 @@ class SimRun {
   Bundle shared(std::size_t i, const Bundle& b) {
     const BundleContext* previous = context_[i] ? &*context_[i] : nullptr;
     std::string err;
-    const Bundle full = *decodeBundle(encodeBundle(b, previous), b.origin, b.seq, &err, previous);
+    const Bytes full_data = encodeBundle(b, previous);
+    const Bundle full = *decodeBundle(full_data, b.origin, b.seq, &err, previous);
     const Bundle out = *decodeBundle(encodeBundle(thinning_[i].thin(full), previous), b.origin, b.seq, &err, previous);
-    context_[i] = BundleContext::of(full);
+    context_[i] = BundleContext::of(full, chainedBundle(full_data) ? previous : nullptr);
     thinned_out_ += full.objects.size() - out.objects.size();
     return out;
   }

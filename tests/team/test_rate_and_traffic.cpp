@@ -75,7 +75,7 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
   EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
                slide::ConfigError);
   for (const std::string bad : {"bundle_hold_s: -1\n", "bundle_hold_s: 100\n", "heartbeat_idle_factor: 0.5\n",
-                                "heartbeat_idle_factor: 3\n"}) {  // 3 * 8 s beyond the 20 s peer timeout
+                                "heartbeat_idle_factor: 6\n"}) {  // 6 * 8 s beyond the 40 s peer timeout
     try {
       SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\n" + bad, "t.yaml"), 1);
       FAIL() << "accepted " << bad;
@@ -87,20 +87,52 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
 
 TEST(PeerSyncSim, IdleHeartbeatsBackOffAndComeBackWithNews) {
   std::vector<SyncConfig> cfgs = {teamConfig(1, {1, 2}), teamConfig(2, {1, 2})};  // 1 s period, 3 s timeout
-  SimNetwork net(cfgs, "", SimLinkModel{}, 3);
-  std::size_t heartbeats = 0;
-  net.on_send = [&](std::size_t from, const TeamMessage& m) { heartbeats += from == 0 && std::holds_alternative<Heartbeat>(m); };
+  for (auto& c : cfgs) c.ack_delay_s = 2.0, c.bundle_hold_s = 0;  // heartbeats acknowledge
+  bool cut = false;
+  SimLinkModel link;
+  link.link_up = [&cut](std::int32_t, std::int32_t, Micros) { return !cut; };
+  SimNetwork net(cfgs, "", link, 3);
+  std::size_t heartbeats[2] = {0, 0}, acks = 0;
+  std::vector<Micros> receiver_heartbeats;
+  net.on_send = [&](std::size_t from, const TeamMessage& m) {
+    heartbeats[from] += std::holds_alternative<Heartbeat>(m);
+    if (from == 1 && std::holds_alternative<Heartbeat>(m)) receiver_heartbeats.push_back(net.now());
+    acks += std::holds_alternative<Ack>(m);
+  };
   net.run(30000000);
-  EXPECT_LE(heartbeats, 17u);  // every 2 s (heartbeat_idle_factor 2) instead of every second
-  EXPECT_GE(heartbeats, 14u);
+  EXPECT_LE(heartbeats[0], 17u);  // every 2 s (heartbeat_idle_factor 2) instead of every second
+  EXPECT_GE(heartbeats[0], 14u);
   EXPECT_TRUE(net.node(1).inReach(1, net.now()));
+  // Own bundles every second, received in order: neither side hurries its heartbeats (the
+  // receiver's idle heartbeats acknowledge them), and everything arrives.
   std::mt19937 rng(4);
-  heartbeats = 0;
-  for (int k = 0; k < 10; ++k) {  // news every second: back to the normal period
-    ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, k), net.now()));
+  heartbeats[0] = heartbeats[1] = 0;
+  int seq = 0;
+  for (; seq < 10; ++seq) {
+    ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, seq), net.now()));
     net.run(1000000);
   }
-  EXPECT_GE(heartbeats, 9u);
+  EXPECT_LE(heartbeats[0], 6u);
+  EXPECT_LE(heartbeats[1], 6u);
+  EXPECT_EQ(acks, 0u);
+  EXPECT_EQ(net.delivered(1).size(), 10u);
+  // A bundle lost on the way leaves a gap at the receiver once the next one arrives: that is
+  // news, so its next heartbeat goes one period after the previous (not the idle two), and the
+  // sender fills the gap.
+  cut = true;
+  ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, seq++), net.now()));
+  net.run(100000);
+  cut = false;
+  const Micros before_gap = receiver_heartbeats.back();
+  ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, seq++), net.now()));
+  net.run(100000);
+  ASSERT_EQ(receiver_heartbeats.back(), before_gap) << "the test needs the gap seen between two heartbeats";
+  net.run(2000000);
+  const auto after = std::upper_bound(receiver_heartbeats.begin(), receiver_heartbeats.end(), before_gap);
+  ASSERT_NE(after, receiver_heartbeats.end());
+  EXPECT_LE(*after - before_gap, 1100000);
+  net.run(2000000);
+  EXPECT_EQ(net.delivered(1).size(), 12u);
   EXPECT_THROW(
       [] {
         SyncConfig c = teamConfig(1, {1, 2});
