@@ -9,7 +9,7 @@ namespace slide::team {
 namespace {
 
 constexpr std::uint8_t kBundleFormat = 3;  // 3: chained utime predicted from the previous step
-constexpr std::uint8_t kMapFormat = 2;
+constexpr std::uint8_t kMapFormat = 3;  // 3: positions in 5 cm, cuboid yaw in 8 bits
 
 // Flags of a bundle header.
 constexpr std::uint8_t kFirst = 1;
@@ -17,7 +17,8 @@ constexpr std::uint8_t kHasSigma = 2;       // sigma written (else zero, or the 
 constexpr std::uint8_t kChained = 4;        // utime, odometry pose and sigma relative to bundle seq-1
 constexpr std::uint8_t kRelativeFloat = 8;  // relative odometry as float32 (too large to quantise)
 constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
-constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat;
+constexpr std::uint8_t kTeam = 32;          // objects as the team bus carries them (ObjectListKind::TeamBundle)
+constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat | kTeam;
 
 constexpr double kMetre = 1e-3, kRadian = 1e-4;
 constexpr std::int64_t kTranslationLimit = 1000000000;  // 1000 km
@@ -147,7 +148,8 @@ BundleContext BundleContext::of(const Bundle& b, const BundleContext* chained_to
   return {b.utime, b.odom_pose, b.odom_sigma, chained_to ? wrappingSub(b.utime, chained_to->utime) : 0};
 }
 
-Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
+Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail detail) {
+  const bool team = detail == BundleDetail::Team;
   std::optional<Quantised> chained_step;
   if (!b.first && previous) {
     const Pose step = previous->odom_pose.inverse() * b.odom_pose;
@@ -163,7 +165,8 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
   ByteWriter w;
   w.u8(kBundleFormat);
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
-                                 (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0)));
+                                 (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0) |
+                                 (team ? kTeam : 0)));
   if (chained_step) {
     w.svarint(wrappingSub(wrappingSub(b.utime, previous->utime), previous->dt));
   } else {
@@ -176,7 +179,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous) {
     for (std::uint8_t q : *sigma_codes) w.u8(q);
   else if (sigma)
     for (float s : b.odom_sigma) w.f32(s);
-  writeObjects(w, b.objects, ObjectListKind::Bundle);
+  writeObjects(w, b.objects, team ? ObjectListKind::TeamBundle : ObjectListKind::Bundle);
   return w.take();
 }
 
@@ -214,7 +217,7 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   } else if (flags & kHasSigma) {
     for (float& s : b.odom_sigma) s = static_cast<float>(sigmaOf(r.u8()));
   }
-  readObjects(r, &b.objects, ObjectListKind::Bundle);
+  readObjects(r, &b.objects, (flags & kTeam) ? ObjectListKind::TeamBundle : ObjectListKind::Bundle);
   return finish(r, std::move(b), error);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Compact binary encodings (format 2) of bundles and object maps for the team bus. Integers are
+// Compact binary encodings (format 3) of bundles and object maps for the team bus. Integers are
 // varints, defaults are flag bits, and nothing the chunk header carries (origin, sequence
 // number) is repeated. Decoding validates everything and reports the first problem (naming
 // the field) instead of throwing.
@@ -8,8 +8,9 @@
 //   relative odometry        translation 1 mm per axis, rotation vector 1e-4 rad per component
 //   chained odometry pose    within 0.9 mm and 1e-4 rad of the origin's pose (no drift: each
 //                            step is quantised against the previous pose as receivers decode it)
-//   object positions         1 cm per axis (body frame in bundles, map frame in maps)
-//   cuboid yaw               1/65536 turn (1e-4 rad); roll and pitch 1e-3 rad
+//   object positions         1 cm per axis in bundles (body frame), 5 cm in maps (map frame)
+//   cuboid yaw               1/65536 turn (1e-4 rad) in bundles, 1/256 turn (0.7 deg) in maps;
+//                            roll and pitch 1e-3 rad
 //   cylinder axis            x and y components 1e-3 (tilt error < 1e-3 rad)
 //   cylinder radius          1 cm (0..2.55 m)     cylinder length   10 cm (0..25.5 m)
 //   cuboid dimensions        5 cm (0..12.75 m)    ellipsoid radius  1 cm (0..2.55 m),
@@ -47,7 +48,11 @@ struct BundleContext {
 // previous one and the quantised step, sigma left out when it quantises as the previous one,
 // and utime and step written as their differences from the previous bundle's (a robot moving
 // steadily repeats its last step, so the differences are small).
-Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr);
+// Full: everything the robot's own stack has (its journal). Team: as peers get it, without the
+// detector confidence and the tracks' observation counts (nothing downstream of peer sync
+// reads them for a peer's bundle; they decode as 1.0 and 1).
+enum class BundleDetail { Full, Team };
+Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr, BundleDetail detail = BundleDetail::Full);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
 // A chained bundle needs `previous`; without it the result has only the relative odometry,
 // objects and flags right (utime, odom_pose and sigma are not) and *needs_previous = true.

@@ -22,9 +22,10 @@ constexpr std::uint8_t kConfidenceFloat = 64; // bundle: confidence as float32 (
 constexpr std::uint8_t kAxisDown = 128;       // bundle, tilted cylinder: axis z < 0
 constexpr std::uint8_t kMapBits = kShapeMask | kSameClass | kPositionFloat | kSizeFloat;
 
-constexpr double kPositionUnit = 0.01;
+constexpr double kPositionUnit = 0.01;     // bundles (body frame)
+constexpr double kMapPositionUnit = 0.05;  // maps: place recognition works at decimetres
 constexpr std::int64_t kBodyPositionLimit = 32767;        // +-327 m
-constexpr std::int64_t kMapPositionLimit = 1LL << 31;     // +-21000 km
+constexpr std::int64_t kMapPositionLimit = 1LL << 31;     // +-107000 km
 constexpr double kTiltUnit = 1e-3;                        // axis components, roll, pitch
 constexpr std::int64_t kRollPitchLimit = 3142;            // pi
 constexpr double kConfidenceUnit = 1.0 / 255;
@@ -76,7 +77,8 @@ float readFinite(ByteReader& r, std::uint64_t i, const char* what) {
 }  // namespace
 
 void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListKind kind) {
-  const bool body = kind == ObjectListKind::Bundle;
+  const bool body = kind != ObjectListKind::Map, detail = kind == ObjectListKind::Bundle;
+  const double unit = body ? kPositionUnit : kMapPositionUnit;
   w.varint(objects.size());
   std::int64_t prev_id = 0;
   int prev_class = -1;
@@ -90,7 +92,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
     // Position.
     const Eigen::Vector3d p = positionOf(o);
     const std::int64_t limit = body ? kBodyPositionLimit : kMapPositionLimit;
-    const auto qp = quantiseAll({p.x(), p.y(), p.z()}, [&](double v, std::size_t) { return quantise(v, kPositionUnit, limit); });
+    const auto qp = quantiseAll({p.x(), p.y(), p.z()}, [&](double v, std::size_t) { return quantise(v, unit, limit); });
     if (!qp) tag |= kPositionFloat;
     // Sizes.
     const auto sizes = sizesOf(o);
@@ -104,7 +106,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
         o.confidence >= 0 && o.confidence <= 1 ? quantiseU8(o.confidence, kConfidenceUnit) : std::nullopt;
     std::int64_t tilt[2] = {0, 0};
     if (body) {
-      if (!qconf) tag |= kConfidenceFloat;
+      if (detail && !qconf) tag |= kConfidenceFloat;
       if (const auto* c = std::get_if<Cylinder>(&o.model)) {
         const Eigen::Vector3d a = c->axis.normalized();
         // (A degenerate, non-finite axis goes as upright.)
@@ -123,7 +125,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
     w.svarint(wrappingSub(o.id, prev_id));
     prev_id = o.id;
     if (!(tag & kSameClass)) w.varint(static_cast<std::uint64_t>(cls));
-    if (body) {
+    if (detail) {
       if (!(tag & kConfidenceFloat)) w.u8(qconf.value_or(0));
       else w.f32(static_cast<float>(o.confidence));
       w.svarint(o.num_observations);
@@ -135,7 +137,9 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
       for (int i = 0; i < 3; ++i) w.f32(static_cast<float>(p[i]));
     }
     if (const auto* b = std::get_if<Cuboid>(&o.model)) {
-      w.u16(quantiseTurn16(rpyOf(b->pose.linear())[2]));
+      const double yaw = rpyOf(b->pose.linear())[2];
+      if (body) w.u16(quantiseTurn16(yaw));
+      else w.u8(quantiseTurn8(yaw));
       if (tag & kOriented) w.svarint(tilt[0]), w.svarint(tilt[1]);
     } else if (tag & kOriented) {
       w.svarint(tilt[0]);
@@ -149,7 +153,8 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
 }
 
 bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
-  const bool body = kind == ObjectListKind::Bundle;
+  const bool body = kind != ObjectListKind::Map, detail = kind == ObjectListKind::Bundle;
+  const double unit = body ? kPositionUnit : kMapPositionUnit;
   const std::uint64_t n = r.varint();
   if (!r.ok()) return false;
   if (n > kMaxObjects || n * kMinObjectBytes > r.remaining()) {
@@ -181,7 +186,8 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
       prev_class = static_cast<int>(cls);
     }
     o.class_id = static_cast<std::int16_t>(static_cast<std::uint16_t>(prev_class));
-    if (body) {
+    if (!detail && (tag & kConfidenceFloat)) return r.fail(at(i, "confidence flag in a bundle without confidences")), false;
+    if (detail) {
       o.confidence = (tag & kConfidenceFloat) ? readFinite(r, i, "confidence") : r.u8() * kConfidenceUnit;
       const std::int64_t nobs = r.svarint();
       if (r.ok() && (nobs < INT32_MIN || nobs > INT32_MAX)) return r.fail(at(i, "num_observations out of range")), false;
@@ -198,12 +204,12 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
         const std::int64_t q = v + (body ? 0 : prev_q[k]);
         if (r.ok() && !within(q, limit)) return r.fail(at(i, "position out of range")), false;
         if (!body) prev_q[k] = q;
-        p[k] = static_cast<double>(q) * kPositionUnit;
+        p[k] = static_cast<double>(q) * unit;
       }
     }
     double tilt[2] = {0, 0};
     double yaw = 0;
-    if (shape == 0) yaw = turn16ToAngle(r.u16());
+    if (shape == 0) yaw = body ? turn16ToAngle(r.u16()) : turn8ToAngle(r.u8());
     if (tag & kOriented) {
       const std::int64_t limit = shape == 0 ? kRollPitchLimit : 1000;
       for (double& t : tilt) {

@@ -1,9 +1,10 @@
 #pragma once
-// Object lists inside the format-2 bundle and map encodings (codec.h states the quantisation).
-// Per object: a tag byte (shape, flags), the id as a difference from the previous object's,
-// the class unless it repeats, then the quantised fields. In a bundle (body frame) positions
-// are absolute; in a map they are differences from the previous object's, and only what place
-// recognition uses is kept.
+// Object lists inside the bundle and map encodings (codec.h states the quantisation). Per
+// object: a tag byte (shape, flags), the id as a difference from the previous object's, the
+// class unless it repeats, then the quantised fields. In a bundle (body frame) positions are
+// absolute; in a map they are differences from the previous object's, and only what place
+// recognition uses is kept. A bundle as the team bus carries it leaves out the detector
+// confidence and the track's observation count (no peer uses them; they decode as 1.0 and 1).
 #include <vector>
 
 #include "objects/object.h"
@@ -11,7 +12,7 @@
 
 namespace slide::team {
 
-enum class ObjectListKind { Bundle, Map };
+enum class ObjectListKind { Bundle, TeamBundle, Map };
 
 void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListKind kind);
 // Replaces *out; on failure marks `r` failed (naming the object and field) and returns false.

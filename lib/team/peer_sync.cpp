@@ -49,7 +49,8 @@ Bytes PeerSyncNode::sharedEncoding(std::int32_t seq, const Bytes& full) {
   if (!b)
     throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error +
                              " (a journal from another encoding version? remove the state directory)");
-  return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr);
+  return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr,
+                      cfg_.thin_observations ? BundleDetail::Team : BundleDetail::Full);
 }
 
 const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) const {
@@ -171,6 +172,16 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   p.known = m.held;
   p.map_version = m.map_version;
   forgetKnown(p);
+  // It holds something we lack (announced only once sent, so this is a loss or a relay to
+  // come): our heartbeat should say so soon.
+  static const RangeSet kNone;
+  for (const auto& [origin, set] : m.held) {
+    auto mine = db_.held().find(origin);
+    if (!set.minus(mine == db_.held().end() ? kNone : mine->second, 1).empty()) {
+      somethingNew();
+      break;
+    }
+  }
 }
 
 void PeerSyncNode::receive(const Ack& m, Micros now) {
@@ -293,6 +304,20 @@ OriginRanges PeerSyncNode::truncated(const OriginRanges& r, const std::set<std::
   return out;
 }
 
+OriginRanges PeerSyncNode::announced() const {
+  OriginRanges held = truncated(db_.held(), nullptr);
+  // Own bundles still waiting for company have not gone out: peers could not have them.
+  auto own = held.find(cfg_.robot);
+  if (own != held.end() && !own_added_at_.empty()) {
+    std::vector<SeqRange> sent;
+    for (SeqRange r : own->second.ranges())
+      if (r.first < own_added_at_.begin()->first) sent.push_back({r.first, std::min(r.last, own_added_at_.begin()->first - 1)});
+    if (sent.empty()) held.erase(own);
+    else own->second = RangeSet::fromRanges(sent);
+  }
+  return held;
+}
+
 TickOutput PeerSyncNode::tick(Micros now) {
   TickOutput out;
   reassembler_.expire(now);
@@ -302,7 +327,7 @@ TickOutput PeerSyncNode::tick(Micros now) {
     h.sender = cfg_.robot;
     h.counter = counters_.nextOwn();
     h.map_version = own_map_version_;
-    h.held = truncated(db_.held(), nullptr);
+    h.held = announced();
     auth_.sign(h);
     const std::size_t bytes = encodedSize(h) + lcmPacketOverhead(channels_.heartbeat);
     limiter_.force(static_cast<double>(bytes), now);
@@ -458,11 +483,12 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       const std::size_t add = packedSize(data->size());
       Pack* last = list.empty() ? nullptr : &list.back();
       if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
-          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack) {
+          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack &&
+          last->bundles[0]->front() == data->front()) {
         last->bundles.push_back(data);
         last->bytes += add;
       } else {
-        list.push_back({seq, {data}, to, 1 + add});
+        list.push_back({seq, {data}, to, 2 + add});  // format byte, count
       }
     }
     // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).

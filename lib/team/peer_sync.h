@@ -103,6 +103,7 @@ class PeerSyncNode {
   void receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now);  // one of its pack
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
+  OriginRanges announced() const;  // what heartbeats say is held (own bundles once sent)
   std::vector<std::int32_t> peersInReach(Micros now) const;
   enum class SendResult { Sent, TooLarge, RateLimited };
   // Splits a payload into signed chunks and queues them when the rate limit allows; counts

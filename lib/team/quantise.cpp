@@ -29,6 +29,15 @@ double turn16ToAngle(std::uint16_t q) {
   return wrapAngle(static_cast<double>(static_cast<std::int16_t>(q)) * (2 * M_PI / 65536.0));
 }
 
+std::uint8_t quantiseTurn8(double angle) {
+  if (!std::isfinite(angle)) return 0;
+  return static_cast<std::uint8_t>(std::llround(wrapAngle(angle) / (2 * M_PI) * 256.0) & 0xff);
+}
+
+double turn8ToAngle(std::uint8_t q) {
+  return wrapAngle(static_cast<double>(static_cast<std::int8_t>(q)) * (2 * M_PI / 256.0));
+}
+
 std::optional<std::uint8_t> quantiseSigma(double s) {
   if (s == 0) return 0;
   if (!(s > 0) || !std::isfinite(s)) return std::nullopt;

@@ -150,7 +150,9 @@ class SimRun {
     std::string err;
     const Bytes full_data = encodeBundle(b, previous);
     const Bundle full = *decodeBundle(full_data, b.origin, b.seq, &err, previous);
-    const Bundle out = *decodeBundle(encodeBundle(thinning_[i].thin(full), previous), b.origin, b.seq, &err, previous);
+    const BundleDetail detail = s_.thinning ? BundleDetail::Team : BundleDetail::Full;
+    const Bundle out =
+        *decodeBundle(encodeBundle(thinning_[i].thin(full), previous, detail), b.origin, b.seq, &err, previous);
     context_[i] = BundleContext::of(full, chainedBundle(full_data) ? previous : nullptr);
     thinned_out_ += full.objects.size() - out.objects.size();
     return out;
