@@ -63,7 +63,6 @@ sync_heartbeat_t toLcm(const Heartbeat& m) {
   sync_heartbeat_t o;
   o.sender = m.sender;
   o.counter = m.counter;
-  o.map_version = m.map_version;
   o.held = toLcm(m.held);
   o.num_origins = static_cast<int16_t>(o.held.size());
   std::copy(m.mac.begin(), m.mac.end(), o.mac);
@@ -81,7 +80,7 @@ sync_chunk_t toLcm(const Chunk& m) {
   o.chunk_index = m.chunk_index;
   o.num_chunks = m.num_chunks;
   o.data = m.data;
-  o.size = static_cast<int32_t>(o.data.size());
+  o.size = static_cast<int16_t>(o.data.size());
   std::copy(m.mac.begin(), m.mac.end(), o.mac);
   return o;
 }
@@ -101,7 +100,6 @@ std::optional<Heartbeat> fromLcm(const sync_heartbeat_t& m, std::string* why) {
   Heartbeat h;
   h.sender = m.sender;
   h.counter = m.counter;
-  h.map_version = m.map_version;
   if (!fromLcm(m.held, &h.held, why)) return std::nullopt;
   copyMac(m, h.mac);
   return h;

@@ -32,7 +32,6 @@ Bytes MessageAuth::canonical(const Heartbeat& m) {
   w.u8('H');
   w.u32(static_cast<std::uint32_t>(m.sender));
   w.u64(static_cast<std::uint64_t>(m.counter));
-  w.u32(static_cast<std::uint32_t>(m.map_version));
   writeRanges(w, m.held);
   return w.take();
 }

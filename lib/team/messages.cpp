@@ -6,13 +6,13 @@ constexpr std::size_t kFingerprint = 8, kMac = 16;
 
 std::size_t rangesSize(const OriginRanges& r) {
   std::size_t n = 2;  // num_origins
-  for (const auto& [origin, set] : r) n += 4 + 2 + 8 * set.ranges().size();
+  for (const auto& [origin, set] : r) n += 2 + 2 + 8 * set.ranges().size();
   return n;
 }
 }  // namespace
 
-std::size_t encodedSize(const Heartbeat& m) { return kFingerprint + 4 + 8 + 4 + rangesSize(m.held) + kMac; }
-std::size_t encodedSize(const Chunk& m) { return kFingerprint + 4 + 4 + 8 + 1 + 4 + 4 + 2 + 2 + 4 + m.data.size() + kMac; }
-std::size_t encodedSize(const Ack& m) { return kFingerprint + 4 + 4 + 8 + rangesSize(m.acked) + kMac; }
+std::size_t encodedSize(const Heartbeat& m) { return kFingerprint + 2 + 8 + rangesSize(m.held) + kMac; }
+std::size_t encodedSize(const Chunk& m) { return kFingerprint + 2 + 2 + 8 + 1 + 2 + 4 + 2 + 2 + 2 + m.data.size() + kMac; }
+std::size_t encodedSize(const Ack& m) { return kFingerprint + 2 + 2 + 8 + rangesSize(m.acked) + kMac; }
 
 }  // namespace slide::team

@@ -15,8 +15,7 @@ using Mac = std::array<std::uint8_t, 16>;
 struct Heartbeat {
   std::int32_t sender = 0;
   std::int64_t counter = 0;
-  std::int32_t map_version = 0;  // sender's own map version, 0: none yet
-  OriginRanges held;             // what the sender holds, per origin
+  OriginRanges held;  // what the sender holds, per origin (its own bundles once sent)
   Mac mac{};
 };
 

@@ -11,7 +11,7 @@ namespace slide::team {
 namespace {
 
 Micros secs(double s) { return static_cast<Micros>(s * 1e6); }
-constexpr std::size_t kMaxChunkOnWire = 60000;
+constexpr std::size_t kMaxChunkBytes = 32767;  // the team bus's int16 size
 
 std::string joinPath(const std::string& dir, const char* name) {
   return dir.empty() ? std::string() : dir + "/" + name;
@@ -170,7 +170,6 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   p.last_heard = now;
   p.last_heartbeat = now;
   p.known = m.held;
-  p.map_version = m.map_version;
   forgetKnown(p);
   // It holds something we lack (announced only once sent, so this is a loss or a relay to
   // come): our heartbeat should say so soon.
@@ -198,7 +197,7 @@ void PeerSyncNode::receive(const Chunk& m, Micros now) {
   if (m.sender == cfg_.robot) return;
   if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), wireBytes(m))) return;
   peers_[m.sender].last_heard = now;
-  if (m.num_chunks < 1 || m.chunk_index < 0 || m.chunk_index >= m.num_chunks || m.data.size() > kMaxChunkOnWire ||
+  if (m.num_chunks < 1 || m.chunk_index < 0 || m.chunk_index >= m.num_chunks || m.data.size() > kMaxChunkBytes ||
       m.seq < 0 || (m.kind != ChunkKind::Bundle && m.kind != ChunkKind::Map))
     return drop(Drop::Malformed);
   if (m.kind == ChunkKind::Bundle) receiveBundleChunk(m, now);
@@ -326,7 +325,6 @@ TickOutput PeerSyncNode::tick(Micros now) {
     Heartbeat h;
     h.sender = cfg_.robot;
     h.counter = counters_.nextOwn();
-    h.map_version = own_map_version_;
     h.held = announced();
     auth_.sign(h);
     const std::size_t bytes = encodedSize(h) + lcmPacketOverhead(channels_.heartbeat);

@@ -90,7 +90,6 @@ class PeerSyncNode {
     bool ack_pending = false;
     Micros ack_due = 0;
     std::set<std::int32_t> ack_origins;
-    std::int32_t map_version = 0;       // its own map's version, from its heartbeats
   };
 
   bool admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes);

@@ -60,8 +60,8 @@ void SyncConfig::validate() const {
         "peer_timeout_s must exceed heartbeat_period_s * heartbeat_idle_factor (peers would drop out between heartbeats)");
   if (ack_delay_s < 0 || relay_delay_s < 0 || loss_grace_s < 0)
     throw std::invalid_argument("ack_delay_s, relay_delay_s and loss_grace_s must be >= 0");
-  if (max_chunk_bytes < 64 || max_chunk_bytes > 60000)
-    throw std::invalid_argument("max_chunk_bytes must be within 64..60000 (LCM's UDP limit is ~64 KB)");
+  if (max_chunk_bytes < 64 || max_chunk_bytes > 32767)
+    throw std::invalid_argument("max_chunk_bytes must be within 64..32767 (the team bus's chunk size is an int16)");
   if (!(bundle_hold_s >= 0 && bundle_hold_s <= 60)) throw std::invalid_argument("bundle_hold_s must be within 0..60");
   if (max_ranges_per_origin < 1 || max_ranges_per_origin > 4096)
     throw std::invalid_argument("max_ranges_per_origin must be within 1..4096");
@@ -71,6 +71,9 @@ void SyncConfig::validate() const {
       !std::isfinite(thin_turn_deg) || !std::isfinite(thin_size_change_m))
     throw std::invalid_argument("thin_travel_m, thin_turn_deg and thin_size_change_m must be finite and >= 0");
   if (team_key.empty()) throw std::invalid_argument("team_key must not be empty");
+  for (std::int32_t id : team)
+    if (id < 0 || id > 32767)
+      throw std::invalid_argument("team id " + std::to_string(id) + " outside 0..32767 (int16 on the team bus)");
   if (std::find(team.begin(), team.end(), robot) == team.end())
     throw std::invalid_argument("robot " + std::to_string(robot) + " is not in the team list");
 }

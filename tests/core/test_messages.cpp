@@ -216,7 +216,6 @@ TEST(Messages, PeerSync) {
   sync_heartbeat_t h;
   h.sender = 1;
   h.counter = 99;
-  h.map_version = 3;
   h.held = {ranges(0), ranges(1)};
   h.num_origins = 2;
   for (int i = 0; i < 16; ++i) h.mac[i] = static_cast<uint8_t>(i * 7);

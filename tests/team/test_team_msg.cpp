@@ -14,7 +14,6 @@ TEST(TeamMsg, RoundTripsKeepTheMacValidAndSizesMatchLcm) {
   Heartbeat h;
   h.sender = 2;
   h.counter = 99;
-  h.map_version = 7;
   h.held[1].insert(SeqRange{0, 10});
   h.held[1].insert(SeqRange{20, 30});
   h.held[3].insert(5);
