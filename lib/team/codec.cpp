@@ -8,7 +8,7 @@
 namespace slide::team {
 namespace {
 
-constexpr std::uint8_t kBundleFormat = 3;  // 3: chained utime predicted from the previous step
+constexpr std::uint8_t kBundleFormat = 3;  // 3: chained utime and step predicted from the previous ones
 constexpr std::uint8_t kMapFormat = 3;  // 3: positions in 5 cm, cuboid yaw in 8 bits
 
 // Flags of a bundle header.
@@ -51,19 +51,30 @@ Pose stepOf(const Quantised& q) {
   return T;
 }
 
-void writeStep(ByteWriter& w, const Quantised& q) {
-  for (std::int64_t v : q) w.svarint(v);
+// A chained bundle is predicted to repeat its predecessor's step (zero when there is none).
+Quantised predictedStep(const BundleContext* previous) {
+  return previous ? quantiseStep(previous->relative_odom).value_or(Quantised{}) : Quantised{};
 }
 
-Pose readStep(ByteReader& r) {
+void writeStep(ByteWriter& w, const Quantised& q, const Quantised& predicted) {
+  for (int i = 0; i < 6; ++i) w.svarint(q[i] - predicted[i]);
+}
+
+// `predicted`: null when the prediction is not known (the step read is then a residual, only
+// checked against twice the limits).
+Pose readStep(ByteReader& r, const Quantised* predicted) {
   Quantised q;
   for (int i = 0; i < 6; ++i) {
-    q[i] = r.svarint();
     const std::int64_t limit = i < 3 ? kTranslationLimit : kRotationLimit;
-    if (r.ok() && (q[i] < -limit || q[i] > limit))
+    const std::int64_t v = r.svarint();
+    if (r.ok() && (v < -2 * limit || v > 2 * limit))
+      r.fail(std::string("relative odometry ") + (i < 3 ? "translation" : "rotation") + " out of range");
+    q[i] = v + (predicted ? (*predicted)[i] : 0);
+    if (r.ok() && predicted && (q[i] < -limit || q[i] > limit))
       r.fail(std::string("relative odometry ") + (i < 3 ? "translation" : "rotation") + " out of range");
   }
-  if (r.ok() && std::hypot(q[3], q[4], q[5]) * kRadian > M_PI + 1e-3) r.fail("relative odometry rotation exceeds pi");
+  if (r.ok() && predicted && std::hypot(q[3], q[4], q[5]) * kRadian > M_PI + 1e-3)
+    r.fail("relative odometry rotation exceeds pi");
   return r.ok() ? stepOf(q) : Pose::Identity();
 }
 
@@ -145,7 +156,7 @@ std::optional<T> finish(ByteReader& r, T value, std::string* error) {
 }  // namespace
 
 BundleContext BundleContext::of(const Bundle& b, const BundleContext* chained_to) {
-  return {b.utime, b.odom_pose, b.odom_sigma, chained_to ? wrappingSub(b.utime, chained_to->utime) : 0};
+  return {b.utime, b.odom_pose, b.odom_sigma, b.relative_odom, chained_to ? wrappingSub(b.utime, chained_to->utime) : 0};
 }
 
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail detail) {
@@ -173,7 +184,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail 
     w.svarint(b.utime);
     writePose(w, b.odom_pose);
   }
-  if (relative) writeStep(w, *relative);
+  if (relative) writeStep(w, *relative, chained_step ? predictedStep(previous) : Quantised{});
   else writePose(w, b.relative_odom);
   if (sigma && sigma_codes)
     for (std::uint8_t q : *sigma_codes) w.u8(q);
@@ -199,7 +210,9 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   b.first = flags & kFirst;
   const std::int64_t utime = r.svarint();
   if (!chained) b.odom_pose = readPose(r, "odometry pose");
-  b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry") : readStep(r);
+  const Quantised none{}, predicted = chained ? predictedStep(previous) : none;
+  b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry")
+                                             : readStep(r, chained && !previous ? nullptr : &predicted);
   if (chained && previous) {
     b.utime = wrappingAdd(wrappingAdd(previous->utime, previous->dt), utime);
     b.odom_pose = previous->odom_pose * b.relative_odom;

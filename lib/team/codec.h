@@ -31,12 +31,13 @@
 namespace slide::team {
 
 // What a bundle may take from its origin's bundle seq-1 (as receivers decode it): the pose,
-// utime and sigma it is chained to, and the time step that predicts its own.
+// utime and sigma it is chained to, and the motion and time steps that predict its own.
 struct BundleContext {
   std::int64_t utime = 0;
   Pose odom_pose = Pose::Identity();
   std::array<float, 6> odom_sigma{};
-  std::int64_t dt = 0;  // that bundle's utime step (0: not chained)
+  Pose relative_odom = Pose::Identity();  // that bundle's step
+  std::int64_t dt = 0;                    // its utime step (0: not chained)
   // `chained_to`: the context b's encoding is chained to (null when self-contained, see
   // chainedBundle()). Sender and receivers build contexts alike, from decoded bundles.
   static BundleContext of(const Bundle& b, const BundleContext* chained_to);
@@ -48,14 +49,15 @@ struct BundleContext {
 // previous one and the quantised step, sigma left out when it quantises as the previous one,
 // and utime and step written as their differences from the previous bundle's (a robot moving
 // steadily repeats its last step, so the differences are small).
+//
 // Full: everything the robot's own stack has (its journal). Team: as peers get it, without the
 // detector confidence and the tracks' observation counts (nothing downstream of peer sync
 // reads them for a peer's bundle; they decode as 1.0 and 1).
 enum class BundleDetail { Full, Team };
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr, BundleDetail detail = BundleDetail::Full);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
-// A chained bundle needs `previous`; without it the result has only the relative odometry,
-// objects and flags right (utime, odom_pose and sigma are not) and *needs_previous = true.
+// A chained bundle needs `previous`; without it the result has only its objects and flags
+// right (utime, odometry and sigma are not) and *needs_previous = true.
 std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
                                    const BundleContext* previous = nullptr, bool* needs_previous = nullptr);
 

@@ -248,7 +248,11 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   const auto first = db_.firstSeq(m.origin);
   auto held = db_.held().find(m.origin);
   std::string error;
-  const auto bundle = decodeBundle(data, m.origin, seq, &error);
+  // With its predecessor held (the usual, in-order case) the step is known: it counts towards
+  // the metres travelled; otherwise only the structure is checked and the step counts 0.
+  const auto previous = contextOf(m.origin, seq - 1);
+  bool needs_previous = false;
+  const auto bundle = decodeBundle(data, m.origin, seq, &error, previous ? &*previous : nullptr, &needs_previous);
   if (!bundle) return drop(Drop::Malformed);
   // A bundle claiming to start its origin's stream must not contradict what is held.
   if (bundle->first && ((first && *first != seq) || (held != db_.held().end() && !held->second.empty() &&
@@ -257,7 +261,7 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   ObservationDb::Entry e;
   e.data = std::move(data);
   e.first = bundle->first;
-  e.step_m = static_cast<float>(bundle->first ? 0.0 : bundle->relative_odom.translation().norm());
+  e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, seq, std::move(e));
   // In order, the next heartbeat acknowledges it whenever it goes; a gap means a loss that only
   // our heartbeat gets resent.

@@ -27,7 +27,7 @@ struct SyncConfig {
   double rate_limit_bytes_per_s = 20000;
   double burst_bytes = 8000;
   std::size_t max_chunk_bytes = 1024;       // payload bytes per chunk
-  double bundle_hold_s = 15.0;               // own new bundles wait this long to share a chunk
+  double bundle_hold_s = 20.0;               // own new bundles wait this long to share a chunk
   std::size_t max_ranges_per_origin = 64;   // in heartbeats and acks
   std::size_t max_sends_per_tick = 64;      // bundles considered per peer and tick
   std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused
