@@ -59,6 +59,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     const ConfigNode n = root.child("incremental");
     n.read("window_poses", c.window_poses);
     n.read("local_iterations", c.local_iterations);
+    n.read("local_function_tolerance", c.local_function_tolerance);
     n.read("settled_observations", c.settled_observations);
     n.read("full_iterations", c.full_iterations);
     n.read("loop_iterations", c.loop_iterations);
@@ -68,6 +69,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("min_full_gap", c.min_full_gap);
     n.read("full_function_tolerance", c.full_function_tolerance);
     n.read("final_function_tolerance", c.final_function_tolerance);
+    n.read("full_trust_region_radius", c.full_trust_region_radius);
     n.read("num_threads", c.num_threads);
     for (const auto& k : n.keys())
       if (!(n.get<double>(k) > 0)) n.fail(k, "must be positive");
