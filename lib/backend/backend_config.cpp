@@ -63,6 +63,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("settled_observations", c.settled_observations);
     n.read("full_iterations", c.full_iterations);
     n.read("loop_iterations", c.loop_iterations);
+    c.spread_loops = n.get<bool>("spread_loops", c.spread_loops);
     n.read("final_iterations", c.final_iterations);
     n.read("full_every", c.full_every);
     n.read("loop_gap", c.loop_gap);
@@ -72,7 +73,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("full_trust_region_radius", c.full_trust_region_radius);
     n.read("num_threads", c.num_threads);
     for (const auto& k : n.keys())
-      if (!(n.get<double>(k) > 0)) n.fail(k, "must be positive");
+      if (k != "spread_loops" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
   }
   return c;
 }

@@ -54,7 +54,8 @@ struct BackendConfig {
   int local_iterations = 3;
   double local_function_tolerance = 1e-3;  // local solves stop once the cost falls by less
   int full_iterations = 2;         // full solves during updates (warm-started)
-  int loop_iterations = 3;         // full solves when a loop closure or peer transform arrives
+  int loop_iterations = 1;         // full solves when a loop closure or peer transform arrives
+  bool spread_loops = true;        // spread a loop closure's error along its loop before that solve
   int final_iterations = 100;      // full solves on request / at the end (to convergence)
   int full_every = 250;            // key poses between periodic full solves
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop

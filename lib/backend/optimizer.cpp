@@ -254,6 +254,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   loop_factors_[key] = graph_.addFactor(
       relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, false);
   r.full_solve = true;
+  if (cfg_.spread_loops && a->seq < b->seq) spreadLoop(*a, *b, T_a_b);
   r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
   r.accepted = true;
   r.update_ms = msSince(t0);
