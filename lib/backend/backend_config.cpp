@@ -59,18 +59,21 @@ BackendConfig loadBackendConfig(const std::string& path) {
     const ConfigNode n = root.child("incremental");
     n.read("window_poses", c.window_poses);
     n.read("local_iterations", c.local_iterations);
+    n.read("local_function_tolerance", c.local_function_tolerance);
     n.read("settled_observations", c.settled_observations);
     n.read("full_iterations", c.full_iterations);
     n.read("loop_iterations", c.loop_iterations);
+    c.spread_loops = n.get<bool>("spread_loops", c.spread_loops);
     n.read("final_iterations", c.final_iterations);
     n.read("full_every", c.full_every);
     n.read("loop_gap", c.loop_gap);
     n.read("min_full_gap", c.min_full_gap);
     n.read("full_function_tolerance", c.full_function_tolerance);
     n.read("final_function_tolerance", c.final_function_tolerance);
+    n.read("full_trust_region_radius", c.full_trust_region_radius);
     n.read("num_threads", c.num_threads);
     for (const auto& k : n.keys())
-      if (!(n.get<double>(k) > 0)) n.fail(k, "must be positive");
+      if (k != "spread_loops" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
   }
   return c;
 }

@@ -46,20 +46,24 @@ struct BackendConfig {
   int min_observations = 3;
   double association_sigmas = 2.0;
   double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
-  double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached  // Mahalanobis gate (sigmas) with the detection's covariance
+  double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached
 
   // Incremental solving.
   int window_poses = 3;            // own latest poses optimized in each local solve
   int settled_observations = 8;    // landmarks seen this often stay fixed in local solves
   int local_iterations = 3;
-  int full_iterations = 3;         // full solves during updates (warm-started)
-  int loop_iterations = 10;        // full solves when a loop closure or peer transform arrives
+  double local_function_tolerance = 1e-3;  // local solves stop once the cost falls by less
+  int full_iterations = 2;         // full solves during updates (warm-started)
+  int loop_iterations = 1;         // full solves when a loop closure or peer transform arrives
+  bool spread_loops = true;        // spread a loop closure's error along its loop before that solve
   int final_iterations = 100;      // full solves on request / at the end (to convergence)
   int full_every = 250;            // key poses between periodic full solves
   int loop_gap = 40;               // a landmark unseen for this many key poses closes a loop
   int min_full_gap = 120;          // key poses between loop-triggered full solves
   double full_function_tolerance = 1e-6;
   double final_function_tolerance = 1e-10;
+  // Initial Levenberg-Marquardt trust region of full solves (all start from the last solution).
+  double full_trust_region_radius = 1e8;
   int num_threads = 1;
 };
 

@@ -32,7 +32,8 @@ SolveReport report(const ceres::Solver::Summary& s) {
   return r;
 }
 
-ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance, int num_threads) {
+ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance, int num_threads,
+                                   double trust_region_radius = 1e4) {
   ceres::Solver::Options o;
   o.linear_solver_type = ceres::SPARSE_SCHUR;
   o.max_num_iterations = max_iterations;
@@ -40,6 +41,7 @@ ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance
   o.gradient_tolerance = 1e-10;
   o.parameter_tolerance = 1e-10;
   o.num_threads = num_threads;
+  o.initial_trust_region_radius = trust_region_radius;
   o.logging_type = ceres::SILENT;
   return o;
 }
@@ -133,7 +135,7 @@ void FactorGraph::removeVariable(int var) {
   v.removed = true;
 }
 
-SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iterations) {
+SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iterations, double function_tolerance) {
   ceres::Problem::Options po = sharedOptions();
   po.disable_all_safety_checks = true;
   ceres::Problem problem(po);
@@ -156,6 +158,7 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
   o.linear_solver_type = ceres::DENSE_SCHUR;
   o.linear_solver_ordering.reset(ordering);
   o.max_num_iterations = max_iterations;
+  o.function_tolerance = function_tolerance;
   o.logging_type = ceres::SILENT;
   o.num_threads = 1;
   ceres::Solver::Summary s;
@@ -163,8 +166,9 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
   return report(s);
 }
 
-SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance, int num_threads) {
-  ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads);
+SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance, int num_threads,
+                                   double trust_region_radius) {
+  ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads, trust_region_radius);
   auto* ordering = new ceres::ParameterBlockOrdering;
   for (auto& v : vars_)
     if (!v.removed) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);

@@ -58,10 +58,15 @@ class FactorGraph {
   std::size_t numFactors() const { return factors_.size() - removed_; }
   bool eliminatedFirst(int var) const { return vars_[var].eliminate_first; }
 
-  // Solves over `active` variables with every factor that touches one of them.
-  SolveReport solveLocal(const std::vector<int>& active, int max_iterations);
-  // Solves over every variable in the persistent problem.
-  SolveReport solveFull(int max_iterations, double function_tolerance, int num_threads = 1);
+  // Solves over `active` variables with every factor that touches one of them; stops once an
+  // iteration lowers the cost by less than function_tolerance (relative).
+  SolveReport solveLocal(const std::vector<int>& active, int max_iterations, double function_tolerance = 1e-6);
+  // Solves over every variable in the persistent problem. The graph is warm (its values are
+  // the last solution), so Levenberg-Marquardt may start with a wide trust region
+  // (trust_region_radius, Ceres's initial radius; its default 1e4 damps the long, weakly
+  // constrained modes a loop closure moves and needs several extra iterations for them).
+  SolveReport solveFull(int max_iterations, double function_tolerance, int num_threads = 1,
+                        double trust_region_radius = 1e4);
   // Solves a fresh problem of the same factors starting from each variable's initial value;
   // returns the solution without touching the graph's values.
   Values solveBatch(int max_iterations, double function_tolerance, SolveReport* report = nullptr,

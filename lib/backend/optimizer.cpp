@@ -167,7 +167,7 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   }
   std::sort(active.begin(), active.end());
   active.erase(std::unique(active.begin(), active.end()), active.end());
-  const SolveReport s = graph_.solveLocal(active, cfg_.local_iterations);
+  const SolveReport s = graph_.solveLocal(active, cfg_.local_iterations, cfg_.local_function_tolerance);
   afterSolve(touched, false);
   return s;
 }
@@ -183,7 +183,8 @@ SolveReport Optimizer::fullSolve() {
 }
 
 SolveReport Optimizer::solveAll(int max_iterations, double function_tolerance) {
-  const SolveReport s = graph_.solveFull(max_iterations, function_tolerance, cfg_.num_threads);
+  const SolveReport s =
+      graph_.solveFull(max_iterations, function_tolerance, cfg_.num_threads, cfg_.full_trust_region_radius);
   full_pending_ = false;
   last_full_step_ = step_;
   afterSolve({}, true);
@@ -253,6 +254,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   loop_factors_[key] = graph_.addFactor(
       relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, false);
   r.full_solve = true;
+  if (cfg_.spread_loops && a->seq < b->seq) spreadLoop(*a, *b, T_a_b);
   r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
   r.accepted = true;
   r.update_ms = msSince(t0);

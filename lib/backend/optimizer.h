@@ -133,6 +133,9 @@ class Optimizer {
   int detachOutliers();
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
+  // Before the full solve of a new loop closure a-b: spreads its error along a robot's key
+  // poses from a on (loop_spread.h) and moves each landmark with its least-moved observer.
+  void spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b);
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
 
   BackendConfig cfg_;
