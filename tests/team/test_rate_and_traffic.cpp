@@ -141,3 +141,36 @@ TEST(PeerSyncSim, IdleHeartbeatsBackOffAndComeBackWithNews) {
       }(),
       std::invalid_argument);
 }
+
+TEST(PeerSyncSim, HeartbeatsAnnounceOwnBundlesOnceSent) {
+  std::vector<SyncConfig> cfgs = {teamConfig(1, {1, 2}), teamConfig(2, {1, 2})};
+  cfgs[0].bundle_hold_s = 3.0;  // own bundles wait for company
+  SimNetwork net(cfgs, "", SimLinkModel{}, 5);
+  std::vector<std::pair<Micros, Heartbeat>> sent;  // robot 1's heartbeats
+  std::vector<Micros> chunk_times;
+  net.on_send = [&](std::size_t from, const TeamMessage& m) {
+    if (from != 0) return;
+    if (auto* h = std::get_if<Heartbeat>(&m)) sent.emplace_back(net.now(), *h);
+    if (std::holds_alternative<Chunk>(m)) chunk_times.push_back(net.now());
+  };
+  net.run(3000000);  // both in reach
+  std::mt19937 rng(6);
+  for (int seq = 0; seq < 2; ++seq) ASSERT_FALSE(net.node(0).addOwnBundle(randomBundle(rng, 1, seq), net.now()));
+  sent.clear();
+  net.run(6000000);
+  ASSERT_EQ(chunk_times.size(), 1u);  // both bundles in one chunk, after the hold
+  bool before = false, after = false;
+  for (const auto& [t, h] : sent) {
+    const bool announces = h.held.count(1) > 0;
+    if (t < chunk_times[0]) {
+      before = true;
+      EXPECT_FALSE(announces) << "announced at " << t << " before the send";
+    } else {
+      after = true;
+      EXPECT_TRUE(announces && h.held.at(1).count() == 2);
+    }
+  }
+  EXPECT_TRUE(before);
+  EXPECT_TRUE(after);
+  EXPECT_EQ(net.delivered(1).size(), 2u);
+}
