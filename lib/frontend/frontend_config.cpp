@@ -142,6 +142,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "band_margin", p.band_margin, 0.0);
       opt(c, "min_depth", p.min_depth, 0.0);
       opt(c, "max_depth", p.max_depth, p.min_depth);
+      opt(c, "median_radius", p.median_radius, 0);
       opt(c, "stride", p.stride, 1);
       opt(c, "min_points", p.min_points, 1);
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "frontend/depth_filter.h"
 #include "frontend/point_stats.h"
 
 namespace slide {
@@ -22,6 +23,7 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
     issues.count("instance arrays differ in length");
     return {};
   }
+  const std::vector<std::uint16_t> depth = medianDepthWithinMasks(f.depth, f.mask, K.width, K.height, p.median_radius);
   const int num = static_cast<int>(f.instance_class.size());
   std::vector<std::vector<int>> pixels(num);
   long missing_depth = 0, stray_ids = 0;
@@ -35,7 +37,7 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
         ++stray_ids;
         continue;
       }
-      if (f.depth[i] == 0) {
+      if (depth[i] == 0) {
         ++missing_depth;
         continue;
       }
@@ -53,7 +55,7 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
     if (!(f.instance_confidence[k] >= p.min_confidence) || static_cast<int>(pixels[k].size()) < p.min_points) continue;
     std::vector<double> d;
     d.reserve(pixels[k].size());
-    for (int i : pixels[k]) d.push_back(f.depth[i] * K.depth_scale);
+    for (int i : pixels[k]) d.push_back(depth[i] * K.depth_scale);
     std::vector<double> tmp = d;
     const double lo = std::max(p.min_depth, quantileInPlace(tmp, 0.5 - 0.5 * p.band_fraction) - p.band_margin);
     const double hi = std::min(p.max_depth, quantileInPlace(tmp, 0.5 + 0.5 * p.band_fraction) + p.band_margin);

@@ -1,5 +1,6 @@
 #pragma once
-// RGBD instances: each instance mask is backprojected with the depth image, keeping only
+// RGBD instances: each instance mask's depth is median-filtered within the mask
+// (depth_filter.h), then the mask is backprojected with the depth image, keeping only
 // pixels whose depth lies in a percentile band around the mask's median depth (drops the
 // background and mixed edge pixels), after a detector-confidence gate. A learned detector
 // (YOLO-style) plugs in as a MaskDetector that fills the masks from the colour image.
@@ -39,9 +40,10 @@ class MaskDetector {
 
 struct RgbdSegmenterParams {
   double min_confidence = 0.5;
-  double band_fraction = 0.5;  // keep depths between the (0.5 -+ band/2) quantiles of the mask
+  double band_fraction = 0.8;  // keep depths between the (0.5 -+ band/2) quantiles of the mask
   double band_margin = 0.05;   // metres added on both sides of the band
-  double min_depth = 0.2, max_depth = 8.0;  // metres
+  double min_depth = 0.2, max_depth = 12.0;  // metres
+  int median_radius = 2;       // depth median window (pixels) within each mask, 0 = off
   int stride = 1;              // pixel step (1 = every pixel)
   int min_points = 30;
 };
