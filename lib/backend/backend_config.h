@@ -36,7 +36,7 @@ struct BackendConfig {
   double cuboid_rotation_sigma = 0.1;
   double cuboid_dims_sigma = 0.3;
   double cylinder_along_axis_sigma = 2.0;
-  double cylinder_axis_sigma = 0.02;  // per tilt component of the measured unit axis (radians)
+  double cylinder_axis_sigma = 0.1;
   double cylinder_radius_sigma = 0.05;
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
   double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)
