@@ -64,7 +64,7 @@ struct BackendConfig {
   double final_function_tolerance = 1e-10;
   // Initial Levenberg-Marquardt trust region of full solves (all start from the last solution).
   double full_trust_region_radius = 1e8;
-  int num_threads = 1;
+  int num_threads = 2;  // Ceres threads of full solves (per-key-pose solves use one)
 };
 
 // Loads backend.yaml; every key is optional (defaults above); errors name file and key.
