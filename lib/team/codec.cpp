@@ -184,7 +184,7 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail 
     w.svarint(b.utime);
     writePose(w, b.odom_pose);
   }
-  if (relative) writeStep(w, *relative, chained_step ? predictedStep(previous) : Quantised{});
+  if (relative) writeStep(w, *relative, predictedStep(chained_step ? previous : nullptr));
   else writePose(w, b.relative_odom);
   if (sigma && sigma_codes)
     for (std::uint8_t q : *sigma_codes) w.u8(q);
@@ -210,7 +210,7 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   b.first = flags & kFirst;
   const std::int64_t utime = r.svarint();
   if (!chained) b.odom_pose = readPose(r, "odometry pose");
-  const Quantised none{}, predicted = chained ? predictedStep(previous) : none;
+  const Quantised predicted = predictedStep(chained ? previous : nullptr);
   b.relative_odom = (flags & kRelativeFloat) ? readPose(r, "relative odometry")
                                              : readStep(r, chained && !previous ? nullptr : &predicted);
   if (chained && previous) {
