@@ -6,29 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 namespace slide {
 
 namespace {
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      out += ' ';
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string jsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
-}
-
 std::string cell(const std::optional<double>& v) {
   if (!v) return "-";
   std::ostringstream s;
@@ -73,20 +55,22 @@ void BenchReport::printTable(std::ostream& out) const {
 }
 
 std::string BenchReport::toJson() const {
-  std::ostringstream s;
-  s << "{\n  \"suite\": " << jsonString(suite_) << ",\n  \"results\": [";
-  for (std::size_t i = 0; i < results_.size(); ++i) {
-    const BenchResult& r = results_[i];
-    s << (i ? "," : "") << "\n    {\"name\": " << jsonString(r.name) << ", \"value\": " << jsonNumber(r.value)
-      << ", \"unit\": " << jsonString(r.unit);
-    if (r.target) s << ", \"target\": " << jsonNumber(*r.target);
-    if (r.paper) s << ", \"paper\": " << jsonNumber(*r.paper);
-    s << ", \"better\": " << (r.lower_is_better ? "\"lower\"" : "\"higher\"");
-    if (!r.note.empty()) s << ", \"note\": " << jsonString(r.note);
-    s << "}";
+  nlohmann::ordered_json results = nlohmann::ordered_json::array();
+  for (const BenchResult& r : results_) {
+    nlohmann::ordered_json j;
+    j["name"] = r.name;
+    j["value"] = r.value;  // NaN and infinities are written as null
+    j["unit"] = r.unit;
+    if (r.target) j["target"] = *r.target;
+    if (r.paper) j["paper"] = *r.paper;
+    j["better"] = r.lower_is_better ? "lower" : "higher";
+    if (!r.note.empty()) j["note"] = r.note;
+    results.push_back(std::move(j));
   }
-  s << "\n  ]\n}\n";
-  return s.str();
+  nlohmann::ordered_json doc;
+  doc["suite"] = suite_;
+  doc["results"] = std::move(results);
+  return doc.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 void BenchReport::writeJson(const std::string& path) const {

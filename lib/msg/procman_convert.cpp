@@ -34,7 +34,7 @@ procman_lcm::orders_t makeOrders(const std::string& deputy_id, const std::string
     procman_lcm::cmd_desired_t c;
     c.cmd = toMsg(d.spec);
     c.desired_runid = d.desired_runid;
-    c.force_quit = d.force_quit ? 1 : 0;
+    c.force_quit = d.force_quit;
     m.cmds.push_back(c);
   }
   m.ncmds = static_cast<int32_t>(m.cmds.size());
@@ -43,7 +43,7 @@ procman_lcm::orders_t makeOrders(const std::string& deputy_id, const std::string
 
 std::vector<procman::DesiredCommand> desiredCommands(const procman_lcm::orders_t& m) {
   std::vector<procman::DesiredCommand> out;
-  for (const procman_lcm::cmd_desired_t& c : m.cmds) out.push_back({fromMsg(c.cmd), c.desired_runid, c.force_quit != 0});
+  for (const procman_lcm::cmd_desired_t& c : m.cmds) out.push_back({fromMsg(c.cmd), c.desired_runid, c.force_quit});
   return out;
 }
 

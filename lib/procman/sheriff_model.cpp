@@ -34,7 +34,9 @@ void SheriffModel::onDeputyInfo(const std::string& deputy, const std::vector<Com
     if (c.deputy != deputy) continue;
     auto it = std::find_if(reports.begin(), reports.end(), [&](const CommandReport& r) { return r.spec.id == c.spec.id; });
     if (it == reports.end()) {
-      c.reported = true;  // the deputy does not have it (yet): it is not running there
+      // The deputy does not hold it (it has not accepted our orders, or not yet): whatever
+      // runs there is unknown, and a script waiting for any state must not see it reached.
+      c.reported = false;
       c.report = CommandReport{};
       c.report.spec = c.spec;
       if (!c.ordered) c.force_quit = true;

@@ -20,28 +20,28 @@ const char* statusName(SuiteRun::Status s) {
 }
 
 std::vector<BenchResult> parseSuiteResults(const Json& doc, const std::string& source) {
-  const Json* results = doc.find("results");
-  if (!results || !results->isArray()) throw JsonError(source + ": no \"results\" array");
+  const Json* results = member(doc, "results");
+  if (!results || !results->is_array()) throw JsonError(source + ": no \"results\" array");
   std::vector<BenchResult> out;
-  for (std::size_t i = 0; i < results->asArray().size(); ++i) {
-    const Json& r = results->asArray()[i];
+  for (std::size_t i = 0; i < results->size(); ++i) {
+    const Json& r = (*results)[i];
     const std::string where = source + ": results[" + std::to_string(i) + "]";
-    const Json* name = r.find("name");
-    const Json* value = r.find("value");
-    if (!name || !name->isString()) throw JsonError(where + ": \"name\" must be a string");
-    if (!value || !(value->isNumber() || value->isNull()))
-      throw JsonError(where + " (" + name->asString() + "): \"value\" must be a number or null");
+    const Json* name = member(r, "name");
+    const Json* value = member(r, "value");
+    if (!name || !name->is_string()) throw JsonError(where + ": \"name\" must be a string");
+    if (!value || !(value->is_number() || value->is_null()))
+      throw JsonError(where + " (" + name->get<std::string>() + "): \"value\" must be a number or null");
     BenchResult b;
-    b.name = name->asString();
-    b.value = value->isNull() ? std::nan("") : value->asNumber();
-    if (const Json* u = r.find("unit"); u && u->isString()) b.unit = u->asString();
-    if (const Json* t = r.find("target"); t && t->isNumber()) b.target = t->asNumber();
-    if (const Json* p = r.find("paper"); p && p->isNumber()) b.paper = p->asNumber();
-    if (const Json* n = r.find("note"); n && n->isString()) b.note = n->asString();
-    if (const Json* better = r.find("better"); better && better->isString()) {
-      if (better->asString() != "lower" && better->asString() != "higher")
+    b.name = name->get<std::string>();
+    b.value = value->is_null() ? std::nan("") : value->get<double>();
+    if (const Json* u = member(r, "unit"); u && u->is_string()) b.unit = u->get<std::string>();
+    if (const Json* t = member(r, "target"); t && t->is_number()) b.target = t->get<double>();
+    if (const Json* p = member(r, "paper"); p && p->is_number()) b.paper = p->get<double>();
+    if (const Json* n = member(r, "note"); n && n->is_string()) b.note = n->get<std::string>();
+    if (const Json* better = member(r, "better"); better && better->is_string()) {
+      if (better->get<std::string>() != "lower" && better->get<std::string>() != "higher")
         throw JsonError(where + " (" + b.name + "): \"better\" must be \"lower\" or \"higher\"");
-      b.lower_is_better = better->asString() == "lower";
+      b.lower_is_better = better->get<std::string>() == "lower";
     }
     out.push_back(b);
   }
@@ -107,14 +107,14 @@ std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
 namespace {
 Json resultJson(const BenchResult& r) {
   Json j;
-  j.set("name", r.name);
-  j.set("value", r.value);
-  j.set("unit", r.unit);
-  if (r.target) j.set("target", *r.target);
-  if (r.paper) j.set("paper", *r.paper);
-  j.set("better", r.lower_is_better ? "lower" : "higher");
-  if (r.target) j.set("pass", BenchReport::meetsTarget(r));
-  if (!r.note.empty()) j.set("note", r.note);
+  j["name"] = r.name;
+  j["value"] = r.value;
+  j["unit"] = r.unit;
+  if (r.target) j["target"] = *r.target;
+  if (r.paper) j["paper"] = *r.paper;
+  j["better"] = r.lower_is_better ? "lower" : "higher";
+  if (r.target) j["pass"] = BenchReport::meetsTarget(r);
+  if (!r.note.empty()) j["note"] = r.note;
   return j;
 }
 
@@ -162,36 +162,36 @@ Totals totals(const std::vector<SuiteRun>& runs) {
 
 Json combinedJson(const std::vector<SuiteRun>& runs, const BenchSummaryInfo& info) {
   Json doc;
-  doc.set("started_utc", info.started_utc);
-  doc.set("host", info.host);
-  doc.set("command", info.command);
-  doc.set("total_wall_s", info.total_wall_s);
+  doc["started_utc"] = info.started_utc;
+  doc["host"] = info.host;
+  doc["command"] = info.command;
+  doc["total_wall_s"] = info.total_wall_s;
   Json suites = Json::array();
   for (const auto& r : runs) {
     Json s;
-    s.set("suite", r.suite);
-    s.set("status", statusName(r.status));
-    s.set("exit_code", r.exit_code);
-    s.set("wall_s", r.wall_s);
-    if (!r.problem.empty()) s.set("problem", r.problem);
-    if (!r.log_path.empty()) s.set("log", r.log_path);
+    s["suite"] = r.suite;
+    s["status"] = statusName(r.status);
+    s["exit_code"] = r.exit_code;
+    s["wall_s"] = r.wall_s;
+    if (!r.problem.empty()) s["problem"] = r.problem;
+    if (!r.log_path.empty()) s["log"] = r.log_path;
     Json res = Json::array();
-    for (const auto& b : r.results) res.push(resultJson(b));
-    s.set("results", res);
-    suites.push(s);
+    for (const auto& b : r.results) res.push_back(resultJson(b));
+    s["results"] = res;
+    suites.push_back(s);
   }
-  doc.set("suites", suites);
+  doc["suites"] = suites;
   const Totals t = totals(runs);
   Json tj;
-  tj.set("suites", runs.size());
-  tj.set("ok", t.passed);
-  tj.set("failed", t.failed);
-  tj.set("missing", t.missing);
-  tj.set("no_results", t.no_results);
-  tj.set("figures", t.figures);
-  tj.set("targets", t.targets);
-  tj.set("targets_met", t.met);
-  doc.set("totals", tj);
+  tj["suites"] = runs.size();
+  tj["ok"] = t.passed;
+  tj["failed"] = t.failed;
+  tj["missing"] = t.missing;
+  tj["no_results"] = t.no_results;
+  tj["figures"] = t.figures;
+  tj["targets"] = t.targets;
+  tj["targets_met"] = t.met;
+  doc["totals"] = tj;
   return doc;
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <sstream>
 
@@ -21,15 +23,20 @@ TEST(BenchReport, JsonFollowsConvention) {
   r.add("forest.update_ms.median", 3.2, "ms", true, 5.0, 36.46);
   r.add("forest.landmarks", 860, "", false).note = "confirmed \"landmarks\"";
   r.add("forest.bad", NAN, "m");
-  const std::string j = r.toJson();
-  EXPECT_NE(j.find("\"suite\": \"backend\""), std::string::npos);
-  EXPECT_NE(j.find("{\"name\": \"forest.update_ms.median\", \"value\": 3.2, \"unit\": \"ms\", \"target\": 5, "
-                   "\"paper\": 36.46, \"better\": \"lower\"}"),
-            std::string::npos)
-      << j;
-  EXPECT_NE(j.find("\"better\": \"higher\""), std::string::npos);
-  EXPECT_NE(j.find("\\\"landmarks\\\""), std::string::npos);
-  EXPECT_NE(j.find("\"value\": null"), std::string::npos);
+  const auto j = nlohmann::json::parse(r.toJson());
+  EXPECT_EQ(j.at("suite"), "backend");
+  const auto& first = j.at("results").at(0);
+  EXPECT_EQ(first.at("name"), "forest.update_ms.median");
+  EXPECT_DOUBLE_EQ(first.at("value").get<double>(), 3.2);
+  EXPECT_EQ(first.at("unit"), "ms");
+  EXPECT_DOUBLE_EQ(first.at("target").get<double>(), 5);
+  EXPECT_DOUBLE_EQ(first.at("paper").get<double>(), 36.46);
+  EXPECT_EQ(first.at("better"), "lower");
+  EXPECT_FALSE(first.contains("note"));
+  EXPECT_EQ(j.at("results").at(1).at("better"), "higher");
+  EXPECT_EQ(j.at("results").at(1).at("note"), "confirmed \"landmarks\"");
+  EXPECT_FALSE(j.at("results").at(1).contains("target"));
+  EXPECT_TRUE(j.at("results").at(2).at("value").is_null());
   EXPECT_TRUE(BenchReport::meetsTarget(r.results()[0]));
   EXPECT_FALSE(BenchReport::meetsTarget(r.results()[1]));
   std::ostringstream table;

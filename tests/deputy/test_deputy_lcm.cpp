@@ -7,6 +7,8 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <fstream>
+#include <sstream>
 
 #include "deputy_harness.h"
 #include "netns.h"
@@ -155,4 +157,37 @@ TEST_F(DeputyLcm, SigtermStopsAllChildren) {
   EXPECT_TRUE(st >= 0 && WIFEXITED(st) && WEXITSTATUS(st) == 0) << st;
   EXPECT_FALSE(alive(px));
   EXPECT_FALSE(alive(py));
+}
+
+// Orders exactly as procman's sheriff encodes them (bytes made by procman's own types, see
+// fixtures/procman_lcm/README.md) start a command on slide-deputy.
+TEST(DeputyProcmanWire, ProcmanEncodedOrdersStartACommand) {
+  const std::string why = enterPrivateNetns();
+  if (!why.empty()) GTEST_SKIP() << "needs a private network namespace: " << why;
+  std::ifstream in(std::string(SLIDE_SOURCE_DIR) + "/tests/deputy/fixtures/procman_lcm/pm_orders_start_hello.hex");
+  ASSERT_TRUE(in.good());
+  std::string hex, line;
+  while (std::getline(in, line)) hex += line;
+  std::vector<uint8_t> bytes;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) bytes.push_back(uint8_t(std::stoi(hex.substr(i, 2), nullptr, 16)));
+  ASSERT_GT(bytes.size(), 16u);
+
+  SheriffStub stub;  // receives PM_INFO / PM_OUTPUT; sends nothing of its own
+  const pid_t deputy = startDeputy("robot1");
+  lcm::LCM raw(kTestUrl);
+  ASSERT_TRUE(raw.good());
+  bool started = false;
+  for (int i = 0; i < 20 && !started; ++i) {
+    timeval tv;
+    gettimeofday(&tv, nullptr);
+    const uint64_t now = uint64_t(tv.tv_sec) * 1000000 + uint64_t(tv.tv_usec);
+    for (int b = 0; b < 8; ++b) bytes[8 + b] = uint8_t(now >> (56 - 8 * b));  // utime, big-endian
+    raw.publish("PM_ORDERS", bytes.data(), static_cast<unsigned>(bytes.size()));
+    stub.spin(0.5);
+    const auto* c = stub.have_info ? findCommand(stub.info, "hello") : nullptr;
+    started = c && c->actual_runid == 1 && stub.output.find("hello-from-procman") != std::string::npos;
+  }
+  EXPECT_TRUE(started) << "output: " << stub.output;
+  kill(deputy, SIGTERM);
+  if (waitExit(deputy, 6.0) < 0) kill(deputy, SIGKILL), waitExit(deputy, 2.0);
 }

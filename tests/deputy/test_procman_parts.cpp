@@ -4,6 +4,7 @@
 
 #include "procman/exec_args.h"
 #include "procman/output_batcher.h"
+#include "procman/output_lines.h"
 #include "procman/proc_stats.h"
 
 using namespace slide::procman;
@@ -76,4 +77,12 @@ TEST(OutputBatcher, MergesPerCommandAndFlushesOnSizeOrAge) {
   EXPECT_TRUE(b.empty());
   b.add("c", "0123456789", 5000);
   EXPECT_TRUE(b.due(5000));
+}
+
+TEST(OutputLines, EndsLinesAtNewlineAndDropsAPtysCarriageReturn) {
+  EXPECT_EQ(outputLines("a\r\nb\n"), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(outputLines("one\ntwo"), (std::vector<std::string>{"one", "two"}));
+  EXPECT_EQ(outputLines("\r\n\n"), (std::vector<std::string>{"", ""}));
+  EXPECT_EQ(outputLines("mid\rline\r\n"), (std::vector<std::string>{"mid\rline"}));
+  EXPECT_TRUE(outputLines("").empty());
 }

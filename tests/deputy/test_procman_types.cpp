@@ -83,6 +83,17 @@ TEST(ProcmanTypes, FingerprintsMatchProcman) {
   EXPECT_EQ(fingerprint(ref, "discovery_t"), uint64_t(procman_lcm::discovery_t::getHash()));
 }
 
+TEST(ProcmanTypes, FingerprintsEqualProcmansOwn) {
+  // getHash() of the C++ types lcm-gen makes from procman's definitions (fixtures/README.md).
+  EXPECT_EQ(uint64_t(procman_lcm::cmd_t::getHash()), 0x2277f449a855d330ULL);
+  EXPECT_EQ(uint64_t(procman_lcm::cmd_desired_t::getHash()), 0xb2a6c7a09ba54539ULL);
+  EXPECT_EQ(uint64_t(procman_lcm::cmd_status_t::getHash()), 0xa8e0208786cf86e3ULL);
+  EXPECT_EQ(uint64_t(procman_lcm::deputy_info_t::getHash()), 0x8876aeb040efd01fULL);
+  EXPECT_EQ(uint64_t(procman_lcm::orders_t::getHash()), 0xd343f45b171ab855ULL);
+  EXPECT_EQ(uint64_t(procman_lcm::output_t::getHash()), 0x8efa5caf5da01eb3ULL);
+  EXPECT_EQ(uint64_t(procman_lcm::discovery_t::getHash()), 0xb1c83182bed74b95ULL);
+}
+
 TEST(ProcmanTypes, ALayoutChangeChangesTheFingerprint) {
   // Guards the comparison above: one renamed field must show.
   const fs::path dir = scratch("changed");

@@ -63,7 +63,7 @@ TEST(ScriptRunner, RunsNestedScriptsToTheEnd) {
   int64_t now = 0;
   EXPECT_EQ(r.step(now, &changed), ScriptRunner::Result::kRunning);
   EXPECT_TRUE(changed);
-  EXPECT_EQ(model.state(0), CommandState::kStarting);
+  EXPECT_EQ(model.state(0), CommandState::kUnknown);  // ordered, not yet held by its deputy
   EXPECT_EQ(model.ordersFor("d1").at(0).desired_runid, 1);
   obey(model, "d1", pid);
   obey(model, "d2", pid);
@@ -118,11 +118,31 @@ TEST(ScriptRunner, RejectsUnknownNamesAndRecursion) {
   }
 }
 
+TEST(SheriffModel, ACommandTheDeputyNeverReportsStaysUnknown) {
+  // A deputy that rejects our orders (e.g. a type mismatch) never lists the command: a stop
+  // must not look done, and a script waiting for "stopped" must fail.
+  const PmdConfig cfg = parsePmd(kConfig, "t.pmd");
+  SheriffModel model(cfg.commands);
+  model.stop(0);
+  for (int i = 0; i < 3; ++i) model.onDeputyInfo("d1", {});
+  EXPECT_EQ(model.state(0), CommandState::kUnknown);
+  ScriptRunner r(cfg, model, "down", 0.5);
+  ScriptRunner::Result res = ScriptRunner::Result::kRunning;
+  for (int64_t t = 0; t <= 2000 * kMs && res == ScriptRunner::Result::kRunning; t += 100 * kMs) {
+    model.onDeputyInfo("d1", {});
+    model.onDeputyInfo("d2", {});
+    res = r.step(t, nullptr);
+  }
+  EXPECT_EQ(res, ScriptRunner::Result::kFailed);
+  ASSERT_FALSE(r.failures().empty());
+  EXPECT_NE(r.failures()[0].find("is unknown"), std::string::npos) << r.failures()[0];
+}
+
 TEST(SheriffModel, AdoptsRunningCommandsWithoutRestart) {
   const PmdConfig cfg = parsePmd(kConfig, "t.pmd");
   SheriffModel model(cfg.commands);
-  model.onDeputyInfo("d1", {});  // not there yet: it shows as stopped
-  EXPECT_EQ(model.state(0), CommandState::kStoppedOk);
+  model.onDeputyInfo("d1", {});  // not there yet: its state is unknown, not "stopped"
+  EXPECT_EQ(model.state(0), CommandState::kUnknown);
   CommandReport a;
   a.spec = cfg.commands[0].spec;
   a.pid = 42;

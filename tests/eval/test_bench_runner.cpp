@@ -32,26 +32,26 @@ TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
   EXPECT_NE(WEXITSTATUS(status), 0) << "a failing or missing suite must fail the run";
 
   const Json doc = readJsonFile((dir / "all.json").string());
-  const auto& suites = doc.find("suites")->asArray();
+  const auto& suites = doc.at("suites");
   ASSERT_EQ(suites.size(), 5u);
   auto suite = [&](std::size_t i, const char* field) -> const Json& { return *suites[i].find(field); };
-  EXPECT_EQ(suite(0, "suite").asString(), "good");
-  EXPECT_EQ(suite(0, "status").asString(), "ok");
-  ASSERT_EQ(suite(0, "results").asArray().size(), 2u);
-  const Json& ate = suite(0, "results").asArray()[0];
-  EXPECT_DOUBLE_EQ(ate.find("value")->asNumber(), 0.5);
-  EXPECT_DOUBLE_EQ(ate.find("paper")->asNumber(), 0.54);
-  EXPECT_TRUE(ate.find("pass")->asBool());
-  EXPECT_FALSE(suite(0, "results").asArray()[1].find("pass")->asBool());
-  EXPECT_EQ(suite(1, "status").asString(), "failed");
-  EXPECT_EQ(suite(1, "exit_code").asNumber(), 3);
-  EXPECT_EQ(suite(1, "results").asArray().size(), 2u);  // figures of a failed suite are kept
-  EXPECT_EQ(suite(2, "status").asString(), "missing");
-  EXPECT_EQ(suite(3, "status").asString(), "no-results");
-  EXPECT_NE(suite(3, "problem").asString().find("bad JSON"), std::string::npos);
-  EXPECT_EQ(suite(4, "status").asString(), "no-results");
-  EXPECT_GE(doc.find("total_wall_s")->asNumber(), 0.0);
-  EXPECT_EQ(doc.find("totals")->find("targets_met")->asNumber(), 2);
+  EXPECT_EQ(suite(0, "suite").get<std::string>(), "good");
+  EXPECT_EQ(suite(0, "status").get<std::string>(), "ok");
+  ASSERT_EQ(suite(0, "results").size(), 2u);
+  const Json& ate = suite(0, "results")[0];
+  EXPECT_DOUBLE_EQ(ate.at("value").get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(ate.at("paper").get<double>(), 0.54);
+  EXPECT_TRUE(ate.at("pass").get<bool>());
+  EXPECT_FALSE(suite(0, "results")[1].at("pass").get<bool>());
+  EXPECT_EQ(suite(1, "status").get<std::string>(), "failed");
+  EXPECT_EQ(suite(1, "exit_code").get<double>(), 3);
+  EXPECT_EQ(suite(1, "results").size(), 2u);  // figures of a failed suite are kept
+  EXPECT_EQ(suite(2, "status").get<std::string>(), "missing");
+  EXPECT_EQ(suite(3, "status").get<std::string>(), "no-results");
+  EXPECT_NE(suite(3, "problem").get<std::string>().find("bad JSON"), std::string::npos);
+  EXPECT_EQ(suite(4, "status").get<std::string>(), "no-results");
+  EXPECT_GE(doc.at("total_wall_s").get<double>(), 0.0);
+  EXPECT_EQ(doc.at("totals").at("targets_met").get<double>(), 2);
 
   std::ifstream md_in(dir / "all.md");
   ASSERT_TRUE(md_in) << "no Markdown report beside the JSON";

@@ -50,12 +50,12 @@ TEST_F(EvalCli, AteOfTumAgainstKittiWithHandComputedError) {
   ASSERT_EQ(run("slide-eval", "ate " + path("est.tum") + " " + path("ref.txt") + " --align none --json " + path("a.json")), 0)
       << output();
   const Json j = readJsonFile(path("a.json"));
-  EXPECT_EQ(j.find("pairs")->asNumber(), 4);
-  EXPECT_NEAR(j.find("translation_m")->find("rmse")->asNumber(), std::sqrt(3 * 0.09 / 4), 1e-6);
+  EXPECT_EQ(j.at("pairs").get<double>(), 4);
+  EXPECT_NEAR(j.at("translation_m").at("rmse").get<double>(), std::sqrt(3 * 0.09 / 4), 1e-6);
   EXPECT_NE(output().find("rmse 0.2598 m"), std::string::npos) << output();
   // RPE over 1 frame: errors 0.3, 0, 0.
   ASSERT_EQ(run("slide-eval", "rpe " + path("est.tum") + " " + path("ref.txt") + " --json " + path("r.json")), 0) << output();
-  EXPECT_NEAR(readJsonFile(path("r.json")).find("translation_m")->find("max")->asNumber(), 0.3, 1e-6);
+  EXPECT_NEAR(readJsonFile(path("r.json")).at("translation_m").at("max").get<double>(), 0.3, 1e-6);
   // A bad file gives a clear error naming it, and exit code 1.
   std::ofstream(path("bad.txt")) << "1 2 3\n";
   EXPECT_EQ(run("slide-eval", "ate " + path("bad.txt") + " " + path("ref.txt")), 1);
@@ -68,27 +68,27 @@ TEST_F(EvalCli, ObjectsTransformAndPlots) {
   ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + " " + path("gt.txt") + " --json " + path("o.json")), 0)
       << output();
   const Json o = readJsonFile(path("o.json"));
-  EXPECT_NEAR(o.find("overall")->find("precision")->asNumber(), 2.0 / 3, 1e-9);
-  EXPECT_NEAR(o.find("overall")->find("recall")->asNumber(), 2.0 / 3, 1e-9);
-  EXPECT_NEAR(o.find("overall")->find("position_rmse_m")->asNumber(), std::sqrt((0.16 + 0.04) / 2), 1e-9);
+  EXPECT_NEAR(o.at("overall").at("precision").get<double>(), 2.0 / 3, 1e-9);
+  EXPECT_NEAR(o.at("overall").at("recall").get<double>(), 2.0 / 3, 1e-9);
+  EXPECT_NEAR(o.at("overall").at("position_rmse_m").get<double>(), std::sqrt((0.16 + 0.04) / 2), 1e-9);
   // --list names every match, false positive and miss.
   ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + " " + path("gt.txt") + " --list --json " + path("l.json")), 0);
   const Json listed = readJsonFile(path("l.json"));
-  const Json* listing = listed.find("listing");
+  const Json* listing = member(listed, "listing");
   ASSERT_NE(listing, nullptr);
-  EXPECT_EQ(listing->find("matches")->asArray().size(), 2u);
-  EXPECT_EQ(listing->find("false_positives")->asArray()[0].find("class")->asString(), "monitor");
-  EXPECT_EQ(listing->find("missed")->asArray()[0].find("index")->asNumber(), 1);
+  EXPECT_EQ(listing->at("matches").size(), 2u);
+  EXPECT_EQ(listing->at("false_positives")[0].at("class").get<std::string>(), "monitor");
+  EXPECT_EQ(listing->at("missed")[0].at("index").get<double>(), 1);
   // Placing the estimate 0.4 m back along x makes the car exact.
   ASSERT_EQ(run("slide-eval", "objects " + path("est.txt") + "@-0.4,0,0,0 " + path("gt.txt") + " --json " + path("o2.json")),
             0);
-  EXPECT_NEAR(readJsonFile(path("o2.json")).find("per_class")->asArray()[0].find("position_rmse_m")->asNumber(), 0.0,
+  EXPECT_NEAR(readJsonFile(path("o2.json")).at("per_class")[0].at("position_rmse_m").get<double>(), 0.0,
               1e-9);
 
   ASSERT_EQ(run("slide-eval", "transform --est 1,2,0,10 --truth '1 2 0.5 0 0 0 1' --json " + path("t.json")), 0);
   const Json t = readJsonFile(path("t.json"));
-  EXPECT_NEAR(t.find("translation_m")->asNumber(), 0.5, 1e-9);
-  EXPECT_NEAR(t.find("yaw_deg")->asNumber(), 10, 1e-9);
+  EXPECT_NEAR(t.at("translation_m").get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(t.at("yaw_deg").get<double>(), 10, 1e-9);
 
   std::vector<StampedPose> traj;
   for (int i = 0; i < 20; ++i) traj.push_back({0.1 * i, poseFromXyzYaw(0.5 * i, 0.1 * i, 0, 0)});

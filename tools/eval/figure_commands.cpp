@@ -66,10 +66,10 @@ EvalCommand addTransformCommand(CLI::App* cmd) {
     std::printf("transform error: translation %.4f m, yaw %.4f deg, rotation %.4f deg\n", e.translation_m, e.yaw_deg,
                 e.rotation_deg);
     Json j;
-    j.set("metric", "transform");
-    j.set("translation_m", e.translation_m);
-    j.set("yaw_deg", e.yaw_deg);
-    j.set("rotation_deg", e.rotation_deg);
+    j["metric"] = "transform";
+    j["translation_m"] = e.translation_m;
+    j["yaw_deg"] = e.yaw_deg;
+    j["rotation_deg"] = e.rotation_deg;
     return j;
   };
 }
@@ -99,12 +99,12 @@ EvalCommand addBandwidthCommand(CLI::App* cmd) {
     std::printf("bandwidth: %.0f bytes, %.1f bytes per landmark (%zu landmarks), %.1f bytes per metre (%.1f m)\n", f.bytes,
                 f.bytes_per_landmark, a->landmarks, f.bytes_per_metre, std::max(0.0, metres));
     Json j;
-    j.set("metric", "bandwidth");
-    j.set("bytes", f.bytes);
-    j.set("landmarks", a->landmarks);
-    j.set("metres", std::max(0.0, metres));
-    j.set("bytes_per_landmark", f.bytes_per_landmark);
-    j.set("bytes_per_metre", f.bytes_per_metre);
+    j["metric"] = "bandwidth";
+    j["bytes"] = f.bytes;
+    j["landmarks"] = a->landmarks;
+    j["metres"] = std::max(0.0, metres);
+    j["bytes_per_landmark"] = f.bytes_per_landmark;
+    j["bytes_per_metre"] = f.bytes_per_metre;
     return j;
   };
 }
@@ -123,17 +123,17 @@ EvalCommand addTimingCommand(CLI::App* cmd) {
     for (const StageTiming& t : stageTimings(samples)) {
       std::printf("  %-24s %8zu %10.3f %10.3f %10.3f %10.3f\n", t.stage.c_str(), t.count, t.median, t.p99, t.mean, t.max);
       Json s;
-      s.set("stage", t.stage);
-      s.set("count", t.count);
-      s.set("median", t.median);
-      s.set("p99", t.p99);
-      s.set("mean", t.mean);
-      s.set("max", t.max);
-      stages.push(s);
+      s["stage"] = t.stage;
+      s["count"] = t.count;
+      s["median"] = t.median;
+      s["p99"] = t.p99;
+      s["mean"] = t.mean;
+      s["max"] = t.max;
+      stages.push_back(s);
     }
     Json j;
-    j.set("metric", "timing");
-    j.set("stages", stages);
+    j["metric"] = "timing";
+    j["stages"] = stages;
     return j;
   };
 }

@@ -54,22 +54,22 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
     Json per_class = Json::array();
     auto classJson = [](const std::string& name, const ClassScore& c) {
       Json j;
-      j.set("class", name);
-      j.set("class_id", c.class_id);
-      j.set("estimated", c.num_est);
-      j.set("ground_truth", c.num_gt);
-      j.set("matched", c.true_positives);
-      j.set("precision", c.precision);
-      j.set("recall", c.recall);
-      j.set("f1", c.f1);
-      j.set("position_rmse_m", c.position_rmse);
+      j["class"] = name;
+      j["class_id"] = c.class_id;
+      j["estimated"] = c.num_est;
+      j["ground_truth"] = c.num_gt;
+      j["matched"] = c.true_positives;
+      j["precision"] = c.precision;
+      j["recall"] = c.recall;
+      j["f1"] = c.f1;
+      j["position_rmse_m"] = c.position_rmse;
       return j;
     };
     for (const ClassScore& c : s.per_class) {
       const ClassInfo* info = classes.find(c.class_id);
       const std::string name = info ? info->name : std::to_string(c.class_id);
       row(name, c);
-      per_class.push(classJson(name, c));
+      per_class.push_back(classJson(name, c));
     }
     row("all", s.overall);
     Json listing;
@@ -80,12 +80,12 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
       };
       auto objectJson = [&](const Object& o, std::size_t index) {
         Json j;
-        j.set("index", index);
-        j.set("id", static_cast<long long>(o.id));
-        j.set("class", name(o.class_id));
-        j.set("x", o.position().x());
-        j.set("y", o.position().y());
-        j.set("z", o.position().z());
+        j["index"] = index;
+        j["id"] = static_cast<long long>(o.id);
+        j["class"] = name(o.class_id);
+        j["x"] = o.position().x();
+        j["y"] = o.position().y();
+        j["z"] = o.position().z();
         return j;
       };
       std::vector<bool> est_matched(est.size(), false), gt_matched(gt.size(), false);
@@ -96,39 +96,39 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
         std::printf("  match  %-10s est #%zu (%.2f, %.2f, %.2f) - gt #%zu (%.2f, %.2f, %.2f): %.3f m\n",
                     name(est[m.est].class_id).c_str(), m.est, p.x(), p.y(), p.z(), m.gt, q.x(), q.y(), q.z(), m.distance);
         Json j;
-        j.set("estimate", objectJson(est[m.est], m.est));
-        j.set("ground_truth", objectJson(gt[m.gt], m.gt));
-        j.set("distance_m", m.distance);
-        matches.push(j);
+        j["estimate"] = objectJson(est[m.est], m.est);
+        j["ground_truth"] = objectJson(gt[m.gt], m.gt);
+        j["distance_m"] = m.distance;
+        matches.push_back(j);
       }
       for (std::size_t i = 0; i < est.size(); ++i)
         if (!est_matched[i]) {
           const Eigen::Vector3d p = est[i].position();
           std::printf("  false positive %-10s est #%zu (%.2f, %.2f, %.2f)\n", name(est[i].class_id).c_str(), i, p.x(),
                       p.y(), p.z());
-          fps.push(objectJson(est[i], i));
+          fps.push_back(objectJson(est[i], i));
         }
       for (std::size_t i = 0; i < gt.size(); ++i)
         if (!gt_matched[i]) {
           const Eigen::Vector3d p = gt[i].position();
           std::printf("  missed %-10s gt #%zu (%.2f, %.2f, %.2f)\n", name(gt[i].class_id).c_str(), i, p.x(), p.y(), p.z());
-          fns.push(objectJson(gt[i], i));
+          fns.push_back(objectJson(gt[i], i));
         }
-      listing.set("matches", matches);
-      listing.set("false_positives", fps);
-      listing.set("missed", fns);
+      listing["matches"] = matches;
+      listing["false_positives"] = fps;
+      listing["missed"] = fns;
     }
     Json j;
-    j.set("metric", "objects");
-    j.set("estimate", est_file.path);
-    j.set("ground_truth", gt_file.path);
-    j.set("threshold_m", a->threshold);
-    j.set("planar", a->planar);
-    j.set("match_classes", !a->any_class);
-    j.set("matching", "one-to-one, greedy by distance");
-    j.set("overall", classJson("all", s.overall));
-    j.set("per_class", per_class);
-    if (a->list) j.set("listing", listing);
+    j["metric"] = "objects";
+    j["estimate"] = est_file.path;
+    j["ground_truth"] = gt_file.path;
+    j["threshold_m"] = a->threshold;
+    j["planar"] = a->planar;
+    j["match_classes"] = !a->any_class;
+    j["matching"] = "one-to-one, greedy by distance";
+    j["overall"] = classJson("all", s.overall);
+    j["per_class"] = per_class;
+    if (a->list) j["listing"] = listing;
     return j;
   };
 }

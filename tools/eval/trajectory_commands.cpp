@@ -64,14 +64,14 @@ AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_r
 Json poseJson(const Pose& T) {
   const Eigen::Quaterniond q(T.linear());
   Json j;
-  j.set("x", T.translation().x());
-  j.set("y", T.translation().y());
-  j.set("z", T.translation().z());
-  j.set("qx", q.x());
-  j.set("qy", q.y());
-  j.set("qz", q.z());
-  j.set("qw", q.w());
-  j.set("yaw_deg", yawOf(T.linear()) * 180 / M_PI);
+  j["x"] = T.translation().x();
+  j["y"] = T.translation().y();
+  j["z"] = T.translation().z();
+  j["qx"] = q.x();
+  j["qy"] = q.y();
+  j["qz"] = q.z();
+  j["qw"] = q.w();
+  j["yaw_deg"] = yawOf(T.linear()) * 180 / M_PI;
   return j;
 }
 
@@ -79,13 +79,13 @@ Json poseJson(const Pose& T) {
 
 Json statsJson(const ErrorStats& s) {
   Json j;
-  j.set("rmse", s.rmse);
-  j.set("mean", s.mean);
-  j.set("median", s.median);
-  j.set("std", s.std);
-  j.set("min", s.min);
-  j.set("max", s.max);
-  j.set("count", s.count);
+  j["rmse"] = s.rmse;
+  j["mean"] = s.mean;
+  j["median"] = s.median;
+  j["std"] = s.std;
+  j["min"] = s.min;
+  j["max"] = s.max;
+  j["count"] = s.count;
   return j;
 }
 
@@ -137,16 +137,16 @@ EvalCommand addAteCommand(CLI::App* cmd) {
       spdlog::info("wrote {}", *save_errors);
     }
     Json j;
-    j.set("metric", "ate");
-    j.set("estimate", a->est);
-    j.set("reference", a->ref);
-    j.set("alignment", *align);
-    j.set("pairs", p.t.size());
-    j.set("estimate_poses", n_est);
-    j.set("reference_poses", n_ref);
-    j.set("translation_m", statsJson(s));
-    j.set("scale", r.alignment.scale);
-    j.set("transform", poseJson(r.alignment.T));
+    j["metric"] = "ate";
+    j["estimate"] = a->est;
+    j["reference"] = a->ref;
+    j["alignment"] = *align;
+    j["pairs"] = p.t.size();
+    j["estimate_poses"] = n_est;
+    j["reference_poses"] = n_ref;
+    j["translation_m"] = statsJson(s);
+    j["scale"] = r.alignment.scale;
+    j["transform"] = poseJson(r.alignment.T);
     return j;
   };
 }
@@ -180,15 +180,15 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
     std::printf("  translation: %s\n", statsLine(r.translation, "m").c_str());
     std::printf("  rotation:    %s\n", statsLine(r.rotation_deg, "deg").c_str());
     Json j;
-    j.set("metric", "rpe");
-    j.set("estimate", a->est);
-    j.set("reference", a->ref);
-    j.set("delta", *delta);
-    j.set("delta_unit", *unit);
-    j.set("scale", o.scale);
-    j.set("pairs", r.trans_errors.size());
-    j.set("translation_m", statsJson(r.translation));
-    j.set("rotation_deg", statsJson(r.rotation_deg));
+    j["metric"] = "rpe";
+    j["estimate"] = a->est;
+    j["reference"] = a->ref;
+    j["delta"] = *delta;
+    j["delta_unit"] = *unit;
+    j["scale"] = o.scale;
+    j["pairs"] = r.trans_errors.size();
+    j["translation_m"] = statsJson(r.translation);
+    j["rotation_deg"] = statsJson(r.rotation_deg);
     return j;
   };
 }

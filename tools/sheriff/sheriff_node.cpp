@@ -10,6 +10,7 @@
 
 #include "msg/procman_convert.h"
 #include "procman_lcm/discovery_t.hpp"
+#include "procman/output_lines.h"
 #include "procman/status_table.h"
 
 namespace slide {
@@ -39,13 +40,8 @@ void SheriffNode::onInfo(const lcm::ReceiveBuffer*, const std::string&, const pr
 
 void SheriffNode::onOutput(const lcm::ReceiveBuffer*, const std::string&, const procman_lcm::output_t* m) {
   for (int i = 0; i < m->num_commands; ++i) {
-    const std::string& text = m->text[i];
-    for (std::size_t b = 0; b < text.size();) {
-      std::size_t e = text.find('\n', b);
-      if (e == std::string::npos) e = text.size();
-      std::printf("[%s/%s] %s\n", m->deputy_id.c_str(), m->command_ids[i].c_str(), text.substr(b, e - b).c_str());
-      b = e + 1;
-    }
+    for (const std::string& line : procman::outputLines(m->text[i]))
+      std::printf("[%s/%s] %s\n", m->deputy_id.c_str(), m->command_ids[i].c_str(), line.c_str());
   }
   std::fflush(stdout);
 }
