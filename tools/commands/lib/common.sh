@@ -15,7 +15,7 @@ SLIDE_PACKAGES=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java default-jdk-headless libglib2.0-dev
   libeigen3-dev libceres-dev libopencv-dev
-  libspdlog-dev libcli11-dev libyaml-cpp-dev libgtest-dev libssl-dev nlohmann-json3-dev
+  libspdlog-dev libcli11-dev libyaml-cpp-dev libgtest-dev libssl-dev nlohmann-json3-dev libnanoflann-dev
   iproute2 procps
 )
 
