@@ -104,14 +104,14 @@ int main(int argc, char** argv) {
   int robot = -1;
   app.add_option("--config", config_path, "Loop-closer configuration")->capture_default_str();
   app.add_option("--robot", robot, "Own robot id (overrides the config)");
-  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config)");
+  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config; default udpm://239.255.76.67:<7667+robot>?ttl=0)");
   app.add_option("--method", method, "slidegraph or slidematch (overrides the config)")
       ->check(CLI::IsMember({"slidegraph", "slidematch"}));
   return slide::runApp(app, common, argc, argv, [&]() {
     slide::LoopCloserParams params = slide::loadLoopCloserParams(config_path);
     const slide::ConfigNode cfg = slide::ConfigNode::load(config_path);
     Channels ch;
-    std::string cfg_url = "udpm://239.255.76.67:7667?ttl=0";
+    std::string cfg_url;
     if (cfg.has("lcm")) {
       const slide::ConfigNode l = cfg.child("lcm");
       cfg_url = l.get<std::string>("url", cfg_url);
@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
     if (robot >= 0) params.robot = robot;
     if (!method.empty()) params.method = slide::parsePlaceMethod(method);
     if (url.empty()) url = cfg_url;
+    if (url.empty()) url = slide::robotBusUrl(params.robot);
 
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");

@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
   app.add_option("--status-channel", ch.status)->capture_default_str();
   addCommonOptions(app, common);
   return runApp(app, common, argc, argv, [&]() {
-    if (url.empty()) url = "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0";
+    if (url.empty()) url = slide::robotBusUrl(robot);
     const BackendConfig cfg = loadBackendConfig(config_path);
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);

@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "Peer-sync configuration (YAML; or a shared file with a peer_sync section)")
       ->capture_default_str();
   app.add_option("--robot", robot, "This robot's id (must be in the config's team list)")->required();
-  app.add_option("--state-dir", state_dir, "Folder for journal and counters (default: config state_dir/robot<id>)");
+  app.add_option("--state-dir", state_dir, "Folder for journal and counters (default: config state_dir/robot<id>; without one /var/lib/slide/peer-sync/robot<id> as root, else $XDG_STATE_HOME/slide/... or ~/.local/state/slide/...)");
   app.add_option("--robot-url,--lcm-url", robot_url, "LCM URL of the robot bus (default: config robot_url)");
   app.add_option("--team-url", team_url, "LCM URL of the team bus (default: config team_url)");
   app.add_option("--team-key", team_key, "Team HMAC key (default: config team_key)");
@@ -151,9 +151,13 @@ int main(int argc, char** argv) {
     ch.team.heartbeat = chn.get<std::string>("heartbeat");
     ch.team.chunk = chn.get<std::string>("chunk");
     ch.team.ack = chn.get<std::string>("ack");
-    if (robot_url.empty()) robot_url = cfg.get<std::string>("robot_url");
+    if (robot_url.empty()) robot_url = cfg.get<std::string>("robot_url", robotBusUrl(robot));
     if (team_url.empty()) team_url = cfg.get<std::string>("team_url");
-    if (state_dir.empty()) state_dir = cfg.get<std::string>("state_dir") + "/robot" + std::to_string(robot);
+    if (state_dir.empty()) {
+      std::string base = cfg.get<std::string>("state_dir", "");
+      if (base.empty()) base = persistentStateDir() + "/peer-sync";
+      state_dir = base + "/robot" + std::to_string(robot);
+    }
     const double tick_s = cfg.get<double>("tick_period_s", 0.05);
     const double stats_s = cfg.get<double>("stats_period_s", 10.0);
     const int max_deliveries = cfg.get<int>("max_deliveries_per_tick", 4);
@@ -170,6 +174,7 @@ int main(int argc, char** argv) {
                  rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
                                                  rec.damaged_copy)
                                    : std::string());
+    spdlog::info("robot {}: robot bus {}, team bus {}", robot, robot_url, team_url);
     PeerSyncDaemon daemon(node, robot_bus, team_bus, ch, max_deliveries);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);

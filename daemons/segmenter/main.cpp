@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
   app.add_option("--instances-channel", out_ch, "Instances out")->capture_default_str();
   app.add_option("--max-pending", max_pending, "Frames kept waiting for odometry")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
-    if (url.empty()) url = "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0";
+    if (url.empty()) url = slide::robotBusUrl(robot);
     const ClassTable classes = ClassTable::load(classes_file);
     FrontendConfig cfg = loadFrontendConfig(config_file);
     if (!mode.empty()) cfg.lidar_mode = mode;

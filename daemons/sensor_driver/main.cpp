@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     const slide::RobotDataset d = slide::openRobotDataset(dataset);
     std::unique_ptr<lcm::LCM> bus;
     if (!no_publish) {
-      if (lcm_url.empty()) lcm_url = "udpm://239.255.76.67:" + std::to_string(7667 + opt.robot) + "?ttl=0";
+      if (lcm_url.empty()) lcm_url = slide::robotBusUrl(opt.robot);
       bus = std::make_unique<lcm::LCM>(lcm_url);
       if (!bus->good()) throw std::runtime_error("cannot open LCM bus " + lcm_url);
       spdlog::info("publishing on {}", lcm_url);

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   app.add_option("--instances-channel", in_ch, "Instances in")->capture_default_str();
   app.add_option("--bundle-channel", out_ch, "Key-pose bundles out")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
-    if (url.empty()) url = "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0";
+    if (url.empty()) url = slide::robotBusUrl(robot);
     const ClassTable classes = ClassTable::load(classes_file);
     const FrontendConfig cfg = loadFrontendConfig(config_file);
     lcm::LCM lcm(url);

@@ -1,5 +1,10 @@
 #include "app/app.h"
 
+#include <unistd.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -31,6 +36,16 @@ int runApp(CLI::App& app, CommonOptions& opts, int argc, char** argv, const std:
     spdlog::error("{}", e.what());
     return 1;
   }
+}
+
+std::string robotBusUrl(int robot) { return "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0"; }
+
+std::string persistentStateDir() {
+  if (geteuid() == 0) return "/var/lib/slide";
+  if (const char* x = std::getenv("XDG_STATE_HOME"); x && x[0] == '/') return std::string(x) + "/slide";
+  const char* home = std::getenv("HOME");
+  if (!home || home[0] != '/') throw std::runtime_error("no state folder: set HOME or XDG_STATE_HOME, or give one explicitly");
+  return std::string(home) + "/.local/state/slide";
 }
 
 }  // namespace slide

@@ -17,6 +17,15 @@ void addCommonOptions(CLI::App& app, CommonOptions& opts);
 // Applies the logging options: pattern "[time] [name] [level] message" on stderr.
 void setupLogging(const std::string& program, const CommonOptions& opts);
 
+// The robot bus of robot N when none is configured: udpm://239.255.76.67:<7667+N>?ttl=0 (one
+// port per robot, so robots on one host do not see each other's raw data; ttl=0 keeps it on
+// the host).
+std::string robotBusUrl(int robot);
+
+// Where a daemon keeps state that must survive a reboot (journals, counters): /var/lib/slide
+// for root, else $XDG_STATE_HOME/slide, else $HOME/.local/state/slide. Never under /tmp.
+std::string persistentStateDir();
+
 // Parses argv into `app`, sets up logging, then runs `body`; returns the process exit code.
 // CLI errors print usage; exceptions from body are logged as errors and give exit code 1.
 int runApp(CLI::App& app, CommonOptions& opts, int argc, char** argv, const std::function<int()>& body);
