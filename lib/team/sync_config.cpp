@@ -29,6 +29,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
   c.reassembly_bytes = n.get<unsigned>("reassembly_bytes", static_cast<unsigned>(c.reassembly_bytes));
   c.reassembly_timeout_s = n.get<double>("reassembly_timeout_s", c.reassembly_timeout_s);
+  c.max_counter_ahead_s = n.get<double>("max_counter_ahead_s", c.max_counter_ahead_s);
   c.thin_observations = n.get<bool>("thin_observations", c.thin_observations);
   c.thin_travel_m = n.get<double>("thin_travel_m", c.thin_travel_m);
   c.thin_turn_deg = n.get<double>("thin_turn_deg", c.thin_turn_deg);
@@ -53,6 +54,8 @@ void SyncConfig::validate() const {
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");
+  if (!(max_counter_ahead_s >= 1 && max_counter_ahead_s <= 86400))
+    throw std::invalid_argument("max_counter_ahead_s must be within 1..86400");
   if (!(heartbeat_idle_factor >= 1 && heartbeat_idle_factor <= 100))
     throw std::invalid_argument("heartbeat_idle_factor must be within 1..100");
   if (peer_timeout_s <= heartbeat_period_s * heartbeat_idle_factor)

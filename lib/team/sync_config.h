@@ -33,6 +33,9 @@ struct SyncConfig {
   std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused
   std::size_t reassembly_bytes = 4 << 20;   // space for partly received payloads
   double reassembly_timeout_s = 30.0;
+  // A sender's message counter (µs of its clock, counters.h) may lead this robot's clock by this
+  // much; beyond it the message is dropped as future_counter. Team clocks must agree this well.
+  double max_counter_ahead_s = 300.0;
   // Own observations shared on the team bus (observation_thinning.h): a track again only after
   // this much travel or turn, or a class, shape or size change.
   bool thin_observations = true;

@@ -340,18 +340,20 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   run.expectExactlyOnceInOrder();
 }
 
-TEST(PeerSyncSim, OwnInputGoingBackwardsOrJumpingIsRefused) {
+TEST(PeerSyncSim, OwnInputGoingBackwardsOrJumpingFarIsRefused) {
   SyncConfig cfg = teamConfig(3, kTeam);
+  cfg.max_seq_jump = 1000;
   PeerSyncNode node(cfg, "", 0);
   std::mt19937 rng(3);
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 10), 0));
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 11), 0));
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 11), 0), Drop::Duplicate);
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 5), 0), Drop::SeqBackwards);
-  EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 50), 0), Drop::SeqJump);
+  EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 1013), 0), Drop::SeqJump);  // 1001 missing: over the limit
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 7, 12), 0), Drop::WrongOrigin);
   EXPECT_EQ(node.db().size(), 2u);
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 12), 0));
+  EXPECT_EQ(node.dropped(Drop::Lost), 0u);
 }
 
 TEST(PeerSyncSim, MapsAreSharedAndNewestWins) {
