@@ -23,7 +23,7 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
                            WallClock wall_clock)
     : cfg_((cfg.validate(), std::move(cfg))),
       channels_(std::move(channels)),
-      auth_(cfg_.team_key),
+      auth_(cfg_.robot, cfg_.team, cfg_.pair_keys),
       counters_(joinPath(state_dir, "counters.txt"), std::move(wall_clock), secs(cfg_.max_counter_ahead_s)),
       db_(joinPath(state_dir, "journal.bin")),
       thinning_(cfg_.thinning()),
@@ -439,6 +439,7 @@ PeerSyncNode::SendResult PeerSyncNode::sendPayload(ChunkKind kind, std::int32_t 
     c.chunk_index = static_cast<std::int16_t>(i);
     c.num_chunks = static_cast<std::int16_t>(parts.size());
     c.data = parts[i];
+    c.mac.assign(MessageAuth::tagBytes(cfg_.team.size()), 0);  // (signed below, once the rate limit allows)
     bytes += wireBytes(c);
     chunks.push_back(std::move(c));
   }

@@ -10,7 +10,10 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   SyncConfig c;
   c.robot = robot ? *robot : n.get<std::int32_t>("robot");
   c.team = n.getList<std::int32_t>("team");
-  c.team_key = n.get<std::string>("team_key");
+  if (n.has("team_key"))
+    n.fail("team_key", "a key shared by the team lets any member speak for any other; use team_key_file (per-pair "
+                       "keys, slide-team-keys makes them)");
+  c.team_key_file = n.get<std::string>("team_key_file", "");
   c.heartbeat_period_s = n.get<double>("heartbeat_period_s", c.heartbeat_period_s);
   c.heartbeat_idle_factor = n.get<double>("heartbeat_idle_factor", c.heartbeat_idle_factor);
   c.ack_delay_s = n.get<double>("ack_delay_s", c.ack_delay_s);
@@ -73,12 +76,24 @@ void SyncConfig::validate() const {
   if (!(thin_travel_m >= 0) || !(thin_turn_deg >= 0) || !(thin_size_change_m >= 0) || !std::isfinite(thin_travel_m) ||
       !std::isfinite(thin_turn_deg) || !std::isfinite(thin_size_change_m))
     throw std::invalid_argument("thin_travel_m, thin_turn_deg and thin_size_change_m must be finite and >= 0");
-  if (team_key.empty()) throw std::invalid_argument("team_key must not be empty");
+  if (team.size() > 16) throw std::invalid_argument("at most 16 robots in a team (one message tag per member)");
   for (std::int32_t id : team)
     if (id < 0 || id > 32767)
       throw std::invalid_argument("team id " + std::to_string(id) + " outside 0..32767 (int16 on the team bus)");
   if (std::find(team.begin(), team.end(), robot) == team.end())
     throw std::invalid_argument("robot " + std::to_string(robot) + " is not in the team list");
+}
+
+void SyncConfig::loadKeys(std::string path) {
+  if (path.empty()) path = team_key_file;
+  if (path.empty()) throw std::runtime_error("no team key file (config team_key_file or --team-key-file)");
+  for (auto at = path.find("{robot}"); at != std::string::npos; at = path.find("{robot}"))
+    path.replace(at, 7, std::to_string(robot));
+  pair_keys = loadTeamKeys(path, robot);
+  for (std::int32_t id : team)
+    if (id != robot && !pair_keys.count(id))
+      throw std::invalid_argument("team key file " + path + ": no key for peer " + std::to_string(id) +
+                                  " of the team list");
 }
 
 }  // namespace slide::team
