@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
   addCommonOptions(app, common);
   std::string config_path = std::string(SLIDE_SOURCE_DIR) + "/config/peer_sync.yaml";
   std::int32_t robot = 0;
-  std::string state_dir, robot_url, team_url, team_key;
+  std::string state_dir, robot_url, team_url, team_key_file;
   double run_for_s = 0;
   app.add_option("--config", config_path, "Peer-sync configuration (YAML; or a shared file with a peer_sync section)")
       ->capture_default_str();
@@ -133,7 +133,9 @@ int main(int argc, char** argv) {
   app.add_option("--state-dir", state_dir, "Folder for journal and counters (default: config state_dir/robot<id>; without one /var/lib/slide/peer-sync/robot<id> as root, else $XDG_STATE_HOME/slide/... or ~/.local/state/slide/...)");
   app.add_option("--robot-url,--lcm-url", robot_url, "LCM URL of the robot bus (default: config robot_url)");
   app.add_option("--team-url", team_url, "LCM URL of the team bus (default: config team_url)");
-  app.add_option("--team-key", team_key, "Team HMAC key (default: config team_key)");
+  app.add_option("--team-key-file", team_key_file,
+                 "This robot's team key file: the keys it shares with each peer, mode 0600, made by slide-team-keys "
+                 "(default: config team_key_file; {robot} stands for the id)");
   app.add_option("--run-for", run_for_s, "Exit after this many seconds (0: until SIGINT/SIGTERM)");
 
   return runApp(app, common, argc, argv, [&]() {
@@ -141,7 +143,7 @@ int main(int argc, char** argv) {
     const ConfigNode root = ConfigNode::load(config_path);
     const ConfigNode cfg = root.has("peer_sync") ? root.child("peer_sync") : root;
     SyncConfig sync = SyncConfig::fromConfig(cfg, robot);
-    if (!team_key.empty()) sync.team_key = team_key;
+    sync.loadKeys(team_key_file);
     const ConfigNode chn = cfg.child("channels");
     Channels ch;
     ch.own_bundle = chn.get<std::string>("own_bundle");

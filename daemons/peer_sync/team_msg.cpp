@@ -43,7 +43,13 @@ bool fromLcm(const std::vector<origin_ranges_t>& in, OriginRanges* out, std::str
 
 template <typename M>
 void copyMac(const M& from, Mac& to) {
-  std::copy(std::begin(from.mac), std::end(from.mac), to.begin());
+  to.assign(from.mac.begin(), from.mac.end());
+}
+
+template <typename M>
+void setMac(M& to, const Mac& from) {
+  to.mac.assign(from.begin(), from.end());
+  to.mac_size = static_cast<int8_t>(to.mac.size());
 }
 
 bool finitePose(const pose3_t& p) {
@@ -65,7 +71,7 @@ sync_heartbeat_t toLcm(const Heartbeat& m) {
   o.counter = m.counter;
   o.held = toLcm(m.held);
   o.num_origins = static_cast<int16_t>(o.held.size());
-  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  setMac(o, m.mac);
   return o;
 }
 
@@ -81,7 +87,7 @@ sync_chunk_t toLcm(const Chunk& m) {
   o.num_chunks = m.num_chunks;
   o.data = m.data;
   o.size = static_cast<int16_t>(o.data.size());
-  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  setMac(o, m.mac);
   return o;
 }
 
@@ -92,7 +98,7 @@ sync_ack_t toLcm(const Ack& m) {
   o.counter = m.counter;
   o.acked = toLcm(m.acked);
   o.num_origins = static_cast<int16_t>(o.acked.size());
-  std::copy(m.mac.begin(), m.mac.end(), o.mac);
+  setMac(o, m.mac);
   return o;
 }
 

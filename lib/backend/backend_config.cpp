@@ -42,6 +42,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("cylinder_radius_sigma", c.cylinder_radius_sigma);
     n.read("ellipsoid_size_ema", c.ellipsoid_size_ema);
     n.read("robust_loss_scale", c.robust_loss_scale);
+    n.read("max_object_range_m", c.max_object_range_m);
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
     if (c.ellipsoid_size_ema > 1) n.fail("ellipsoid_size_ema", "must be in (0, 1]");
   }
@@ -54,6 +55,13 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("outlier_sigmas", c.outlier_sigmas);
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
+  }
+  if (root.has("peers")) {
+    const ConfigNode n = root.child("peers");
+    n.read("max_peers", c.max_peers);
+    n.read("max_held_bundles", c.max_held_bundles);
+    if (c.max_peers < 0) n.fail("max_peers", "must not be negative");
+    if (c.max_held_bundles < 1) n.fail("max_held_bundles", "must be at least 1");
   }
   if (root.has("incremental")) {
     const ConfigNode n = root.child("incremental");

@@ -40,6 +40,14 @@ struct BackendConfig {
   double cylinder_radius_sigma = 0.05;
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
   double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)
+  // Objects farther than this from their key pose (body frame) are dropped: no sensor of the
+  // team sees that far, and such values would make association scan huge areas.
+  double max_object_range_m = 200.0;
+
+  // Peers' bundles held until their transform arrives: at most max_peers robots besides this
+  // one, and max_held_bundles per peer; more is rejected and counted (status rejected_inputs).
+  int max_peers = 16;
+  int max_held_bundles = 20000;
 
   // Association and confirmation. The class table's distance threshold is widened by
   // association_sigmas times the detection's own position sigma (range-bearing model).

@@ -54,10 +54,20 @@ Vector6d Optimizer::odometrySigma(const KeyPoseBundle& b, const Pose& relative, 
 UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
   const auto t0 = Clock::now();
   UpdateResult r;
-  Robot& robot = robots_[b.robot];
-  const std::string problem = checkBundle(b, robot);
+  // Bounded: peers (any id a message claims) and what is held of each.
+  if (!robots_.count(b.robot) && static_cast<int>(robots_.size()) - 1 >= cfg_.max_peers)
+    return reject(r, "too many peers: robot " + std::to_string(b.robot) + " would be peer " +
+                         std::to_string(robots_.size()) + " (max_peers " + std::to_string(cfg_.max_peers) + ")");
+  static const Robot kNewRobot;
+  auto known = robots_.find(b.robot);
+  const std::string problem = checkBundle(b, known == robots_.end() ? kNewRobot : known->second);
   if (!problem.empty()) return reject(r, problem);
+  Robot& robot = robots_[b.robot];
   if (!robot.merged) {
+    if (static_cast<int>(robot.held.size()) >= cfg_.max_held_bundles)
+      return reject(r, "peer store full: robot " + std::to_string(b.robot) + " has " +
+                           std::to_string(robot.held.size()) + " bundles held (max_held_bundles)");
+    (void)usableObjects(b, r);  // its objects' problems are reported now, when they arrive
     robot.held[b.seq] = b;
     r.accepted = r.held = true;
     r.update_ms = msSince(t0);

@@ -13,6 +13,10 @@ struct Bundle {
   std::int32_t origin = 0;  // robot that observed it
   std::int32_t seq = 0;     // its key-pose sequence number at that robot
   bool first = false;       // no earlier bundle of this origin exists
+  // Seqs seq-gap..seq-1 of this origin never reached its peer sync (lost on the robot bus) and
+  // never will: receivers hold them as absent, so delivery goes on (the back-end bridges the
+  // gap with the odometry poses). Team layer only, not on keypose_bundle_t.
+  std::int32_t gap = 0;
   std::int64_t utime = 0;
   Pose odom_pose = Pose::Identity();
   Pose relative_odom = Pose::Identity();  // motion since key pose seq-1, in that pose's frame

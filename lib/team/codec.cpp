@@ -18,7 +18,8 @@ constexpr std::uint8_t kChained = 4;        // utime, odometry pose and sigma re
 constexpr std::uint8_t kRelativeFloat = 8;  // relative odometry as float32 (too large to quantise)
 constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
 constexpr std::uint8_t kTeam = 32;          // objects as the team bus carries them (ObjectListKind::TeamBundle)
-constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat | kTeam;
+constexpr std::uint8_t kGap = 64;           // a varint follows the flags: Bundle::gap (>= 1)
+constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat | kTeam | kGap;
 
 constexpr double kMetre = 1e-3, kRadian = 1e-4;
 constexpr std::int64_t kTranslationLimit = 1000000000;  // 1000 km
@@ -162,7 +163,7 @@ BundleContext BundleContext::of(const Bundle& b, const BundleContext* chained_to
 Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail detail) {
   const bool team = detail == BundleDetail::Team;
   std::optional<Quantised> chained_step;
-  if (!b.first && previous) {
+  if (!b.first && b.gap == 0 && previous) {
     const Pose step = previous->odom_pose.inverse() * b.odom_pose;
     if ((step.translation() - b.relative_odom.translation()).norm() <= kChainTranslationTol &&
         (step.linear() - b.relative_odom.linear()).norm() <= kChainRotationTol)
@@ -177,7 +178,8 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail 
   w.u8(kBundleFormat);
   w.u8(static_cast<std::uint8_t>((b.first ? kFirst : 0) | (sigma ? kHasSigma : 0) | (chained_step ? kChained : 0) |
                                  (relative ? 0 : kRelativeFloat) | (sigma && !sigma_codes ? kSigmaFloat : 0) |
-                                 (team ? kTeam : 0)));
+                                 (team ? kTeam : 0) | (b.gap > 0 ? kGap : 0)));
+  if (b.gap > 0) w.svarint(b.gap);
   if (chained_step) {
     w.svarint(wrappingSub(wrappingSub(b.utime, previous->utime), previous->dt));
   } else {
@@ -206,6 +208,13 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   if (r.ok() && (flags & ~kAllFlags)) r.fail("unknown bundle flags " + std::to_string(flags));
   if (r.ok() && (flags & kFirst) && (flags & kChained)) r.fail("first bundle cannot refer to a previous one");
   if (r.ok() && (flags & kChained) && (flags & kRelativeFloat)) r.fail("chained bundle with a float32 step");
+  if (r.ok() && (flags & kGap) && (flags & (kFirst | kChained)))
+    r.fail("a bundle after a gap is neither first nor chained");
+  if (flags & kGap) {
+    const std::int64_t gap = r.svarint();
+    if (r.ok() && (gap < 1 || gap > std::int64_t{seq} - INT32_MIN)) r.fail("gap length out of range");
+    b.gap = static_cast<std::int32_t>(std::min<std::int64_t>(gap, INT32_MAX));
+  }
   const bool chained = flags & kChained;
   b.first = flags & kFirst;
   const std::int64_t utime = r.svarint();

@@ -43,6 +43,7 @@ struct BundleContext {
   static BundleContext of(const Bundle& b, const BundleContext* chained_to);
 };
 
+// A bundle after a gap (Bundle::gap > 0) is self-contained and writes the gap's length.
 // `previous`: the decoded context of the origin's bundle seq-1, when known. If the bundle's
 // relative odometry agrees with previous->odom_pose^-1 * odom_pose (as a tracker computes it)
 // to within 2 mm and 2e-4 rad, the bundle is chained: the odometry pose derived from the

@@ -1,5 +1,7 @@
 #include "team/counters.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -7,7 +9,15 @@
 
 namespace slide::team {
 
-CounterStore::CounterStore(std::string path) : path_(std::move(path)) {
+WallClock systemWallClock() {
+  return [] {
+    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  };
+}
+
+CounterStore::CounterStore(std::string path, WallClock clock, std::int64_t max_ahead)
+    : path_(std::move(path)), clock_(std::move(clock)), max_ahead_(max_ahead) {
   if (path_.empty()) return;
   std::ifstream in(path_);
   if (!in) return;
@@ -32,10 +42,14 @@ CounterStore::CounterStore(std::string path) : path_(std::move(path)) {
     }
     if (!ss) throw std::runtime_error(path_ + ":" + std::to_string(lineno) + ": malformed counter line '" + line + "'");
   }
+  // Reserved beyond what any receiver accepts (a clock that ran ahead, a damaged file): going on
+  // from there would silence this robot, so start again from the clock.
+  const std::int64_t now = clock_();
+  if (reserved_ > now && reserved_ - now > max_ahead_) own_ = reserved_ = now;
 }
 
 std::int64_t CounterStore::nextOwn() {
-  ++own_;
+  own_ = std::max(own_ + 1, clock_());
   if (own_ > reserved_) {
     reserved_ = own_ + kBlock;
     write();  // before the counter is used, so a restart never reuses it
@@ -43,28 +57,35 @@ std::int64_t CounterStore::nextOwn() {
   return own_;
 }
 
-bool CounterStore::accept(std::int32_t sender, std::int64_t counter) {
+CounterStore::Verdict CounterStore::check(std::int32_t sender, std::int64_t counter) {
+  const std::int64_t now = clock_();
+  const std::int64_t limit = now > INT64_MAX - max_ahead_ ? INT64_MAX : now + max_ahead_;
+  if (counter > limit) return Verdict::Future;
   auto it = accepted_.find(sender);
+  if (it != accepted_.end() && it->second.highest > limit) {  // persisted from a clock or sender gone wrong
+    accepted_.erase(it);
+    it = accepted_.end();
+  }
   if (it == accepted_.end()) {
     accepted_[sender] = Seen{counter};
   } else {
     Seen& s = it->second;
     if (counter > s.highest) {
-      const std::int64_t shift = counter - s.highest;
+      const std::uint64_t shift = static_cast<std::uint64_t>(counter) - static_cast<std::uint64_t>(s.highest);
       // The old highest becomes bit shift-1; older ones move up (and out of the window).
-      if (shift < kWindow) s.below = (s.below << shift) | (std::uint64_t{1} << (shift - 1));
-      else s.below = shift == kWindow ? std::uint64_t{1} << 63 : 0;
+      if (shift < static_cast<std::uint64_t>(kWindow)) s.below = (s.below << shift) | (std::uint64_t{1} << (shift - 1));
+      else s.below = shift == static_cast<std::uint64_t>(kWindow) ? std::uint64_t{1} << 63 : 0;
       s.highest = counter;
     } else {
-      const std::int64_t back = s.highest - counter;  // >= 0
-      if (back == 0 || back > kWindow) return false;
+      const std::uint64_t back = static_cast<std::uint64_t>(s.highest) - static_cast<std::uint64_t>(counter);
+      if (back == 0 || back > static_cast<std::uint64_t>(kWindow)) return Verdict::Replay;
       const std::uint64_t bit = std::uint64_t{1} << (back - 1);
-      if (s.below & bit) return false;
+      if (s.below & bit) return Verdict::Replay;
       s.below |= bit;
     }
   }
   dirty_ = true;
-  return true;
+  return Verdict::New;
 }
 
 std::int64_t CounterStore::lastAccepted(std::int32_t sender) const {

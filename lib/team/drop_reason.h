@@ -17,13 +17,17 @@ enum class Drop : int {
   Duplicate,       // already held (normal under loss and relay; counted, harmless)
   Stale,           // map older than the one held
   Overflow,        // reassembly space exhausted
+  Lost,            // own bundles that never reached peer sync (counted per bundle; the gap is bridged)
+  FutureCounter,   // counter beyond the local clock plus max_counter_ahead_s (not accepted, locks nobody out)
+  Undeliverable,   // a held bundle that does not decode with its predecessor: skipped at delivery
   kCount
 };
 
 inline const char* dropName(Drop d) {
   static constexpr std::array<const char*, static_cast<int>(Drop::kCount)> names = {
       "unknown_sender", "bad_mac",  "replay",    "malformed", "unknown_origin", "wrong_origin",
-      "seq_backwards",  "seq_jump", "duplicate", "stale",     "overflow"};
+      "seq_backwards",  "seq_jump", "duplicate", "stale",     "overflow",       "lost",
+      "future_counter", "undeliverable"};
   return names[static_cast<int>(d)];
 }
 

@@ -21,6 +21,8 @@ struct JournalRecovery {
   std::size_t good_bytes = 0;     // file length kept
   std::size_t dropped_bytes = 0;  // damaged tail cut off (0 when the file was clean)
   std::string damaged_copy;       // where the damaged tail was saved, if any
+  std::size_t skipped = 0;        // intact records the reader could not use (and skipped)
+  std::string first_skipped;      // why the first of them was skipped
 };
 
 class Journal {

@@ -3,6 +3,7 @@
 #include <openssl/evp.h>
 #include <openssl/hmac.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace slide::team {
@@ -23,8 +24,17 @@ void writeRanges(ByteWriter& w, const OriginRanges& r) {
 
 }  // namespace
 
-MessageAuth::MessageAuth(std::string key) : key_(std::move(key)) {
-  if (key_.empty()) throw std::invalid_argument("team key is empty");
+MessageAuth::MessageAuth(std::int32_t robot, std::vector<std::int32_t> team, PairKeys keys)
+    : robot_(robot), team_(std::move(team)), keys_(std::move(keys)) {
+  std::sort(team_.begin(), team_.end());
+  team_.erase(std::unique(team_.begin(), team_.end()), team_.end());
+  if (team_.size() > kMaxTeam)
+    throw std::invalid_argument("team of " + std::to_string(team_.size()) + " robots: at most " +
+                                std::to_string(kMaxTeam) + " (one tag per member in each message)");
+  for (std::int32_t id : team_)
+    if (id != robot_ && (!keys_.count(id) || keys_.at(id).empty()))
+      throw std::invalid_argument("no team key for the pair of robots " + std::to_string(robot_) + " and " +
+                                  std::to_string(id) + " (team key file)");
 }
 
 Bytes MessageAuth::canonical(const Heartbeat& m) {
@@ -62,20 +72,43 @@ Bytes MessageAuth::canonical(const Ack& m) {
   return w.take();
 }
 
-Mac MessageAuth::macOf(const Bytes& data) const {
+Mac MessageAuth::tag(const std::string& key, const Bytes& data) const {
   unsigned char full[EVP_MAX_MD_SIZE];
   unsigned int len = 0;
-  if (!HMAC(EVP_sha256(), key_.data(), static_cast<int>(key_.size()), data.data(), data.size(), full, &len) ||
-      len < 16)
+  if (!HMAC(EVP_sha256(), key.data(), static_cast<int>(key.size()), data.data(), data.size(), full, &len) ||
+      len < kTagBytes)
     throw std::runtime_error("HMAC-SHA256 failed");
-  Mac mac;
-  std::copy(full, full + 16, mac.begin());
-  return mac;
+  return Mac(full, full + kTagBytes);
 }
 
-bool MessageAuth::equal(const Mac& a, const Mac& b) {
+Mac MessageAuth::tags(const Bytes& data) const {
+  Mac out;
+  out.reserve(tagBytes(team_.size()));
+  for (std::int32_t id : team_) {
+    if (id == robot_) continue;
+    const Mac t = tag(keys_.at(id), data);
+    out.insert(out.end(), t.begin(), t.end());
+  }
+  return out;
+}
+
+bool MessageAuth::check(std::int32_t sender, const Bytes& data, const Mac& mac) const {
+  if (sender == robot_ || !keys_.count(sender) || mac.size() != tagBytes(team_.size())) return false;
+  // This robot's slot: its rank among the members other than the sender.
+  std::size_t slot = 0;
+  bool sender_in_team = false;
+  for (std::int32_t id : team_) {
+    if (id == sender) sender_in_team = true;
+    else if (id < robot_) ++slot;
+  }
+  if (!sender_in_team) return false;
+  const Mac t = tag(keys_.at(sender), data);
+  return equal(mac.data() + slot * kTagBytes, t.data(), kTagBytes);
+}
+
+bool MessageAuth::equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t n) {
   std::uint8_t diff = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) diff |= a[i] ^ b[i];
+  for (std::size_t i = 0; i < n; ++i) diff |= a[i] ^ b[i];
   return diff == 0;
 }
 

@@ -1,32 +1,51 @@
 #pragma once
-// Authentication of team messages: HMAC-SHA256 with the team key over a canonical byte form
-// of every field but the MAC, truncated to 16 bytes.
+// Authentication of team messages with per-pair keys (team_keys.h): the sender writes one tag
+// per other team member, in ascending id order, each the first kTagBytes of HMAC-SHA256 with
+// the key of the pair {sender, member} over a canonical byte form of every field but the tags.
+// A receiver checks its own tag only, so a team member can forge nothing another robot would
+// accept as coming from a third (it lacks their pair's key). 64-bit tags: a forgery succeeds
+// with probability 2^-64 per try.
 #include <string>
+#include <vector>
 
 #include "team/messages.h"
+#include "team/team_keys.h"
 
 namespace slide::team {
 
 class MessageAuth {
  public:
-  // `key`: the team key (any bytes); throws std::invalid_argument when empty.
-  explicit MessageAuth(std::string key);
+  static constexpr std::size_t kTagBytes = 8;
+  static constexpr std::size_t kMaxTeam = 16;  // tags fit the int8 length on the wire
 
-  void sign(Heartbeat& m) const { m.mac = macOf(canonical(m)); }
-  void sign(Chunk& m) const { m.mac = macOf(canonical(m)); }
-  void sign(Ack& m) const { m.mac = macOf(canonical(m)); }
-  bool verify(const Heartbeat& m) const { return equal(m.mac, macOf(canonical(m))); }
-  bool verify(const Chunk& m) const { return equal(m.mac, macOf(canonical(m))); }
-  bool verify(const Ack& m) const { return equal(m.mac, macOf(canonical(m))); }
+  // `keys`: the keys `robot` shares with every other member of `team`; throws
+  // std::invalid_argument naming a member without a key (or an empty key), or a team too large.
+  MessageAuth(std::int32_t robot, std::vector<std::int32_t> team, PairKeys keys);
+
+  // Sign messages sent by this robot (m.sender must be it).
+  void sign(Heartbeat& m) const { m.mac = tags(canonical(m)); }
+  void sign(Chunk& m) const { m.mac = tags(canonical(m)); }
+  void sign(Ack& m) const { m.mac = tags(canonical(m)); }
+  // Check this robot's tag in a message from another member.
+  bool verify(const Heartbeat& m) const { return check(m.sender, canonical(m), m.mac); }
+  bool verify(const Chunk& m) const { return check(m.sender, canonical(m), m.mac); }
+  bool verify(const Ack& m) const { return check(m.sender, canonical(m), m.mac); }
 
   static Bytes canonical(const Heartbeat& m);
   static Bytes canonical(const Chunk& m);
   static Bytes canonical(const Ack& m);
+  // Tag bytes a message of a team of `n` robots carries.
+  static std::size_t tagBytes(std::size_t n) { return n > 0 ? kTagBytes * (n - 1) : 0; }
+
+  Mac tags(const Bytes& data) const;
+  bool check(std::int32_t sender, const Bytes& data, const Mac& mac) const;
 
  private:
-  Mac macOf(const Bytes& data) const;
-  static bool equal(const Mac& a, const Mac& b);  // constant time
-  std::string key_;
+  Mac tag(const std::string& key, const Bytes& data) const;
+  static bool equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t n);  // constant time
+  std::int32_t robot_;
+  std::vector<std::int32_t> team_;  // sorted
+  PairKeys keys_;
 };
 
 }  // namespace slide::team

@@ -10,7 +10,7 @@
 
 namespace slide::team {
 
-using Mac = std::array<std::uint8_t, 16>;
+using Mac = Bytes;  // the per-member tags (message_auth.h)
 
 struct Heartbeat {
   std::int32_t sender = 0;

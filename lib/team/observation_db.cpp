@@ -1,5 +1,6 @@
 #include "team/observation_db.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace slide::team {
@@ -8,32 +9,79 @@ ObservationDb::ObservationDb(const std::string& journal_path) {
   if (journal_path.empty()) return;
   std::vector<JournalRecord> records;
   journal_ = std::make_unique<Journal>(journal_path, &records, &recovery_);
-  for (const auto& r : records) apply(r);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const std::string why = apply(records[i]);
+    if (why.empty()) continue;
+    if (recovery_.skipped++ == 0) recovery_.first_skipped = "record " + std::to_string(i + 1) + ": " + why;
+  }
 }
 
-void ObservationDb::apply(const JournalRecord& r) {
+std::string ObservationDb::apply(const JournalRecord& r) {
   ByteReader in(r.payload);
-  const auto origin = static_cast<std::int32_t>(in.svarint());
-  const auto seq = static_cast<std::int32_t>(in.svarint());
+  const std::int64_t origin = in.svarint(), seq = in.svarint();
+  if (in.ok() && (origin < INT32_MIN || origin > INT32_MAX || seq < INT32_MIN || seq > INT32_MAX))
+    in.fail("origin or seq out of range");
+  const auto o = static_cast<std::int32_t>(origin), q = static_cast<std::int32_t>(seq);
   if (r.type == kBundle) {
     Entry e;
     e.first = in.u8() != 0;
     e.step_m = in.f32();
-    if (!in.ok()) throw std::runtime_error("journal " + journal_->path() + ": bad bundle record: " + in.error());
+    if (in.ok() && !(std::isfinite(e.step_m) && e.step_m >= 0)) in.fail("step length not finite and >= 0");
+    if (!in.ok()) return "bad bundle record: " + in.error();
+    if (absent(o, q)) return "bundle " + std::to_string(o) + "/" + std::to_string(q) + " was declared absent";
     e.data.assign(r.payload.begin() + static_cast<std::ptrdiff_t>(in.position()), r.payload.end());
-    if (!has(origin, seq)) insert(origin, seq, std::move(e));
+    if (!has(o, q)) insert(o, q, std::move(e));
   } else if (r.type == kDelivered) {
-    if (!in.ok()) throw std::runtime_error("journal " + journal_->path() + ": bad delivery record: " + in.error());
-    delivered_[origin].insert(seq);
+    if (!in.ok()) return "bad delivery record: " + in.error();
+    delivered_[o].insert(q);
+  } else if (r.type == kAbsent) {
+    const std::int64_t last = in.svarint();
+    if (in.ok() && (last < seq || last > INT32_MAX)) in.fail("range end out of range");
+    if (!in.ok()) return "bad absence record: " + in.error();
+    const SeqRange range{q, static_cast<std::int32_t>(last)};
+    auto held = stored_.find(o);
+    if (held != stored_.end() && held->second.intersects(range))
+      return "absence of " + std::to_string(o) + "/" + std::to_string(q) + ".." + std::to_string(last) +
+             " contradicts a held bundle";
+    absent_[o].insert(range);
+    held_[o].insert(range);
   }
   // Unknown record types are skipped: a newer version may add some.
+  return {};
 }
 
 void ObservationDb::insert(std::int32_t origin, std::int32_t seq, Entry entry) {
   if (entry.first && !first_.count(origin)) first_[origin] = seq;
   metres_[origin] += entry.step_m;
   held_[origin].insert(seq);
+  stored_[origin].insert(seq);
   entries_.emplace(std::make_pair(origin, seq), std::move(entry));
+}
+
+bool ObservationDb::addAbsent(std::int32_t origin, std::int32_t first, std::int32_t last) {
+  if (first > last) return false;
+  auto held = held_.find(origin);
+  if (held != held_.end() && held->second.intersects({first, last})) return false;
+  if (journal_) {
+    ByteWriter w;
+    w.svarint(origin);
+    w.svarint(first);
+    w.svarint(last);
+    journal_->append(kAbsent, w.data());
+  }
+  absent_[origin].insert(SeqRange{first, last});
+  held_[origin].insert(SeqRange{first, last});
+  return true;
+}
+
+bool ObservationDb::absentAll(std::int32_t origin, SeqRange r) const {
+  auto it = absent_.find(origin);
+  return it != absent_.end() && RangeSet::fromRanges({r}).minus(it->second, 1).empty();
+}
+
+bool ObservationDb::absent(std::int32_t origin, std::int32_t seq) const {
+  auto it = absent_.find(origin);
+  return it != absent_.end() && it->second.contains(seq);
 }
 
 bool ObservationDb::has(std::int32_t origin, std::int32_t seq) const { return entries_.count({origin, seq}) > 0; }
@@ -75,8 +123,17 @@ std::optional<std::pair<std::int32_t, std::int32_t>> ObservationDb::nextToDelive
   for (const auto& [origin, first] : first_) {
     if (origin == skip) continue;
     auto d = delivered_.find(origin);
-    const std::int32_t next = (d == delivered_.end() || d->second.empty()) ? first : d->second.max() + 1;
-    if (has(origin, next)) return std::make_pair(origin, next);
+    std::int64_t next = (d == delivered_.end() || d->second.empty()) ? first : std::int64_t{d->second.max()} + 1;
+    // Absent seqs are stepped over (a range at a time).
+    auto a = absent_.find(origin);
+    while (a != absent_.end() && next <= INT32_MAX && a->second.contains(static_cast<std::int32_t>(next))) {
+      std::int64_t end = next;
+      for (const SeqRange& r : a->second.ranges())
+        if (r.first <= next && next <= r.last) end = r.last;
+      next = end + 1;
+    }
+    if (next <= INT32_MAX && has(origin, static_cast<std::int32_t>(next)))
+      return std::make_pair(origin, static_cast<std::int32_t>(next));
   }
   return std::nullopt;
 }

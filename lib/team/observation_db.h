@@ -2,7 +2,9 @@
 // The observation database: encoded bundles by (origin, seq), own and received, journalled
 // before they count as held, plus the per-origin delivery cursor (journalled on each
 // delivery) so that a restarted daemon neither repeats nor skips a delivery. Nothing stored is
-// ever replaced.
+// ever replaced. Sequence numbers an origin declared absent (own bundles lost before they
+// reached peer sync) count as held, carry no data and are skipped by delivery. Journal records
+// that cannot be used are skipped and counted (recovery().skipped), never fatal.
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,7 +30,14 @@ class ObservationDb {
   const Entry* get(std::int32_t origin, std::int32_t seq) const;
   // Stores and journals a new bundle; false (and nothing changes) when it is already held.
   bool add(std::int32_t origin, std::int32_t seq, Entry entry);
+  // Journals that seqs first..last of `origin` do not exist (none of them held); false (and
+  // nothing changes) when one of them is held or the range is empty.
+  bool addAbsent(std::int32_t origin, std::int32_t first, std::int32_t last);
+  bool absent(std::int32_t origin, std::int32_t seq) const;
+  bool absentAll(std::int32_t origin, SeqRange r) const;  // every seq of r is absent
+  // Bundles and absent seqs; bundles only.
   const OriginRanges& held() const { return held_; }
+  const OriginRanges& stored() const { return stored_; }
   std::optional<std::int32_t> firstSeq(std::int32_t origin) const;
   double metres(std::int32_t origin) const;
   std::size_t size() const;
@@ -40,12 +49,15 @@ class ObservationDb {
   const JournalRecovery& recovery() const { return recovery_; }
 
  private:
-  enum RecordType : std::uint8_t { kBundle = 1, kDelivered = 2 };
-  void apply(const JournalRecord& r);
+  enum RecordType : std::uint8_t { kBundle = 1, kDelivered = 2, kAbsent = 3 };
+  // Empty when the record was used, else why it was skipped.
+  std::string apply(const JournalRecord& r);
   void insert(std::int32_t origin, std::int32_t seq, Entry entry);
 
   std::map<std::pair<std::int32_t, std::int32_t>, Entry> entries_;
   OriginRanges held_;
+  OriginRanges absent_;
+  OriginRanges stored_;
   OriginRanges delivered_;
   std::map<std::int32_t, std::int32_t> first_;
   std::map<std::int32_t, double> metres_;

@@ -19,11 +19,12 @@ std::string joinPath(const std::string& dir, const char* name) {
 
 }  // namespace
 
-PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels)
+PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels,
+                           WallClock wall_clock)
     : cfg_((cfg.validate(), std::move(cfg))),
       channels_(std::move(channels)),
-      auth_(cfg_.team_key),
-      counters_(joinPath(state_dir, "counters.txt")),
+      auth_(cfg_.robot, cfg_.team, cfg_.pair_keys),
+      counters_(joinPath(state_dir, "counters.txt"), std::move(wall_clock), secs(cfg_.max_counter_ahead_s)),
       db_(joinPath(state_dir, "journal.bin")),
       thinning_(cfg_.thinning()),
       reassembler_(cfg_.reassembly_bytes, secs(cfg_.reassembly_timeout_s)),
@@ -31,12 +32,17 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       traffic_(now),
       next_heartbeat_(now) {
   // What was shared of the journalled own bundles: the same stream through the same policy.
-  auto own = db_.held().find(cfg_.robot);
-  if (own == db_.held().end()) return;
+  // One that does not decode (a journal of another encoding version) is not shared, and counted.
+  auto own = db_.stored().find(cfg_.robot);
+  if (own == db_.stored().end()) return;
   for (const SeqRange& r : own->second.ranges())
     for (std::int64_t seq = r.first; seq <= r.last; ++seq) {
       const auto s = static_cast<std::int32_t>(seq);
-      own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
+      try {
+        own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
+      } catch (const std::runtime_error&) {
+        drop(Drop::Undeliverable);
+      }
     }
 }
 
@@ -47,8 +53,7 @@ Bytes PeerSyncNode::sharedEncoding(std::int32_t seq, const Bytes& full) {
   std::string error;
   const auto b = decodeBundle(full, cfg_.robot, seq, &error, previous ? &*previous : nullptr);
   if (!b)
-    throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error +
-                             " (a journal from another encoding version? remove the state directory)");
+    throw std::runtime_error("own bundle " + std::to_string(seq) + " does not decode: " + error);
   return encodeBundle(thinning_.thin(*b), previous ? &*previous : nullptr,
                       cfg_.thin_observations ? BundleDetail::Team : BundleDetail::Full);
 }
@@ -116,10 +121,19 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   if (have_any) {
     const RangeSet& own = it->second;
     Drop d = Drop::kCount;
+    const std::int64_t missing = std::int64_t{b.seq} - own.max() - 1;
     if (own.contains(b.seq)) d = Drop::Duplicate;
     else if (b.seq <= own.max()) d = Drop::SeqBackwards;
-    else if (static_cast<std::int64_t>(b.seq) > static_cast<std::int64_t>(own.max()) + 1) d = Drop::SeqJump;
+    else if (missing > cfg_.max_seq_jump) d = Drop::SeqJump;
     if (d != Drop::kCount) return drop(d), d;
+    // Bundles lost on the robot bus: peers learn that they do not exist, delivery goes on.
+    b.gap = static_cast<std::int32_t>(missing);
+    if (missing > 0) {
+      db_.addAbsent(cfg_.robot, own.max() + 1, b.seq - 1);
+      drops_[static_cast<int>(Drop::Lost)] += static_cast<std::uint64_t>(missing);
+    }
+  } else {
+    b.gap = 0;
   }
   b.first = !have_any;
   const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
@@ -135,8 +149,12 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
 
 void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
   m.robot = cfg_.robot;
-  // Versions come from the persisted message counter, so they grow across restarts.
-  own_map_version_ = static_cast<std::int32_t>(counters_.nextOwn() & 0x7fffffff);
+  // Versions are the message counter's seconds since 2024 (counters.h), so they grow across
+  // restarts, counters.txt lost or not, until 2092.
+  constexpr std::int64_t k2024 = 1704067200LL * 1000000;
+  const std::int64_t secs_since = (counters_.nextOwn() - k2024) / 1000000;
+  own_map_version_ = static_cast<std::int32_t>(
+      std::clamp<std::int64_t>(std::max<std::int64_t>(secs_since, std::int64_t{own_map_version_} + 1), 1, INT32_MAX));
   m.version = own_map_version_;
   own_map_data_ = encodeMap(m);
   own_map_ = std::move(m);
@@ -148,7 +166,11 @@ bool PeerSyncNode::admit(std::int32_t sender, std::int64_t counter, bool mac_ok,
   if (sender == cfg_.robot) return false;  // our own multicast echo
   if (!inTeam(sender)) return drop(Drop::UnknownSender), false;
   if (!mac_ok) return drop(Drop::BadMac), false;
-  if (!counters_.accept(sender, counter)) return drop(Drop::Replay), false;
+  switch (counters_.check(sender, counter)) {
+    case CounterStore::Verdict::Replay: return drop(Drop::Replay), false;
+    case CounterStore::Verdict::Future: return drop(Drop::FutureCounter), false;
+    case CounterStore::Verdict::New: break;
+  }
   traffic_.received(sender, bytes);
   return true;
 }
@@ -241,7 +263,7 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   for (auto& [id, p] : peers_)
     if (id != m.sender && (m.receiver == -1 || m.receiver == id)) p.sent[key] = now;
   const bool for_me = m.receiver == -1 || m.receiver == cfg_.robot;
-  if (db_.has(m.origin, seq)) {
+  if (db_.has(m.origin, seq) || db_.absent(m.origin, seq)) {
     if (for_me) scheduleAck(m.sender, m.origin, now);
     return drop(Drop::Duplicate);
   }
@@ -258,6 +280,15 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   if (bundle->first && ((first && *first != seq) || (held != db_.held().end() && !held->second.empty() &&
                                                        held->second.min() < seq)))
     return drop(Drop::Malformed);
+  // A bundle after a gap: the gap's seqs do not exist, so none may be held or precede the first.
+  if (bundle->gap > 0) {
+    const SeqRange gap{static_cast<std::int32_t>(std::int64_t{seq} - bundle->gap), seq - 1};
+    auto stored = db_.stored().find(m.origin);
+    if ((first && gap.first < *first) || (stored != db_.stored().end() && stored->second.intersects(gap)))
+      return drop(Drop::Malformed);
+    // (Already absent when an earlier copy was cut short between the two journal records.)
+    if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last)) return drop(Drop::Malformed);
+  }
   ObservationDb::Entry e;
   e.data = std::move(data);
   e.first = bundle->first;
@@ -408,6 +439,7 @@ PeerSyncNode::SendResult PeerSyncNode::sendPayload(ChunkKind kind, std::int32_t 
     c.chunk_index = static_cast<std::int16_t>(i);
     c.num_chunks = static_cast<std::int16_t>(parts.size());
     c.data = parts[i];
+    c.mac.assign(MessageAuth::tagBytes(cfg_.team.size()), 0);  // (signed below, once the rate limit allows)
     bytes += wireBytes(c);
     chunks.push_back(std::move(c));
   }
@@ -442,7 +474,7 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
   std::map<std::int32_t, std::map<std::int32_t, std::vector<std::int32_t>>> due;
   for (std::int32_t id : reach) {
     Peer& p = peers_[id];
-    for (const auto& [origin, set] : db_.held()) {
+    for (const auto& [origin, set] : db_.stored()) {  // (absent seqs travel as the gap of the bundle after them)
       static const RangeSet kNone;
       auto k = p.known.find(origin);
       const auto missing = set.minus(k == p.known.end() ? kNone : k->second, cfg_.max_sends_per_tick);
@@ -482,6 +514,7 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
     std::vector<Pack> list;
     for (const auto& [seq, to] : seqs) {
       const Bytes* data = wirePayload(origin, seq);
+      if (!data) continue;
       const std::size_t add = packedSize(data->size());
       Pack* last = list.empty() ? nullptr : &list.back();
       if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
@@ -554,20 +587,22 @@ std::optional<BundleContext> PeerSyncNode::contextOf(std::int32_t origin, std::i
   return context;
 }
 
-std::optional<Bundle> PeerSyncNode::nextDelivery() const {
-  const auto next = db_.nextToDeliver(cfg_.robot);
-  if (!next) return std::nullopt;
-  std::string error;
-  // In per-origin order the previous bundle is always held (delivered just before).
-  const std::optional<BundleContext> previous = contextOf(next->first, next->second - 1);
-  bool needs_previous = false;
-  auto b = decodeBundle(db_.get(next->first, next->second)->data, next->first, next->second, &error,
-                        previous ? &*previous : nullptr, &needs_previous);
-  if (b && needs_previous) error = "previous bundle missing", b.reset();
-  if (!b)
-    throw std::logic_error("stored bundle " + std::to_string(next->first) + "/" + std::to_string(next->second) +
-                           " does not decode: " + error);
-  return b;
+std::optional<Bundle> PeerSyncNode::nextDelivery() {
+  while (const auto next = db_.nextToDeliver(cfg_.robot)) {
+    const auto [origin, seq] = *next;
+    std::string error;
+    // In per-origin order the previous bundle is held (delivered just before) unless absent.
+    const std::optional<BundleContext> previous = contextOf(origin, seq - 1);
+    bool needs_previous = false;
+    auto b = decodeBundle(db_.get(origin, seq)->data, origin, seq, &error, previous ? &*previous : nullptr,
+                          &needs_previous);
+    if (b && !needs_previous) return b;
+    // Held on the looser check (its predecessor was missing when it came) and unusable now:
+    // stepped over for good (the cursor record is journalled), counted, never fatal.
+    db_.markDelivered(origin, seq);
+    drop(Drop::Undeliverable);
+  }
+  return std::nullopt;
 }
 
 void PeerSyncNode::confirmDelivered(std::int32_t origin, std::int32_t seq) { db_.markDelivered(origin, seq); }

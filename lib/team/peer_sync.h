@@ -40,7 +40,10 @@ struct TickOutput {
 class PeerSyncNode {
  public:
   // `state_dir` holds journal.bin and counters.txt (empty: memory only, nothing survives).
-  PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels = {});
+  // `wall_clock` stamps message counters and map versions (counters.h); `now` and every other
+  // time argument may be any monotonic clock.
+  PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros now, TeamChannels channels = {},
+               WallClock wall_clock = systemWallClock());
   ~PeerSyncNode();
 
   // The robot's own key-pose bundle; returns the reason when refused.
@@ -58,8 +61,10 @@ class PeerSyncNode {
   TickOutput tick(Micros now);
 
   // The next peer bundle to hand to the robot's own stack, in per-origin order; the same one
-  // until confirmDelivered() records it in the journal.
-  std::optional<Bundle> nextDelivery() const;
+  // until confirmDelivered() records it in the journal. A held bundle that does not decode
+  // with its predecessor's context is stepped over (journalled as passed) and counted as
+  // Drop::Undeliverable; absent seqs are stepped over too.
+  std::optional<Bundle> nextDelivery();
   void confirmDelivered(std::int32_t origin, std::int32_t seq);
   // Peers' maps received since the last call (newest version per robot).
   std::vector<SharedMap> takeMaps();

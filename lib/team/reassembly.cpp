@@ -21,7 +21,10 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
   const Key key{static_cast<int>(c.kind), c.origin, c.seq, c.num_chunks};
   auto it = partial_.find(key);
   if (it == partial_.end()) {
-    if (bytes_ + c.data.size() > max_bytes_) {
+    // What a partial payload costs is its slots as much as its bytes: a chunk claiming 32,767
+    // parts allocates 32,767 slots.
+    const std::size_t slots = static_cast<std::size_t>(c.num_chunks) * kSlotBytes;
+    if (bytes_ + slots + c.data.size() > max_bytes_) {
       *drop = Drop::Overflow;
       return std::nullopt;
     }
@@ -29,6 +32,8 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
     p.parts.resize(static_cast<std::size_t>(c.num_chunks));
     p.have.assign(static_cast<std::size_t>(c.num_chunks), false);
     p.started = now;
+    p.bytes = slots;
+    bytes_ += slots;
     it = partial_.emplace(key, std::move(p)).first;
   }
   Partial& p = it->second;

@@ -1,6 +1,7 @@
 #pragma once
 // Splitting payloads into chunks and putting them back together. Partial payloads are keyed
-// by (kind, origin, seq, num_chunks); they expire, and their total size is bounded.
+// by (kind, origin, seq, num_chunks); they expire, and their total size is bounded: payload
+// bytes plus kSlotBytes per part slot allocated.
 #include <map>
 #include <optional>
 #include <tuple>
@@ -23,6 +24,7 @@ class Reassembler {
   std::optional<Bytes> add(const Chunk& c, Micros now, std::optional<Drop>* drop);
   void expire(Micros now);
   std::size_t bytes() const { return bytes_; }
+  static constexpr std::size_t kSlotBytes = sizeof(Bytes) + 1;
 
  private:
   using Key = std::tuple<int, std::int32_t, std::int32_t, int>;

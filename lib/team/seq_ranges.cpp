@@ -44,6 +44,12 @@ bool RangeSet::contains(std::int32_t seq) const {
   return seq <= it->second;
 }
 
+bool RangeSet::intersects(SeqRange r) const {
+  auto it = ranges_.upper_bound(r.last);  // first range starting after r
+  if (it == ranges_.begin()) return false;
+  return std::prev(it)->second >= r.first;
+}
+
 std::int64_t RangeSet::count() const {
   std::int64_t n = 0;
   for (const auto& [f, l] : ranges_) n += static_cast<std::int64_t>(l) - f + 1;

@@ -23,6 +23,7 @@ class RangeSet {
   void insert(SeqRange r);
   void insert(const RangeSet& other);
   bool contains(std::int32_t seq) const;
+  bool intersects(SeqRange r) const;  // some seq of r (first <= last) is in the set
   bool empty() const { return ranges_.empty(); }
   std::int64_t count() const;
   std::int32_t max() const { return ranges_.rbegin()->second; }  // requires !empty()

@@ -7,6 +7,7 @@ namespace slide::team {
 SimNetwork::SimNetwork(std::vector<SyncConfig> configs, std::string state_root, SimLinkModel link, std::uint64_t seed)
     : configs_(std::move(configs)), state_root_(std::move(state_root)), link_(std::move(link)), rng_(seed) {
   nodes_.resize(configs_.size());
+  clock_offset_.assign(configs_.size(), 0);
   delivered_.resize(configs_.size());
   delivered_bundles_.resize(configs_.size());
   for (std::size_t i = 0; i < configs_.size(); ++i) makeNode(i);
@@ -19,7 +20,9 @@ void SimNetwork::makeNode(std::size_t i) {
     std::filesystem::create_directories(dir);
   }
   nodes_[i].reset();
-  nodes_[i] = std::make_unique<PeerSyncNode>(configs_[i], dir, now_, channels_);
+  // The simulated time is every node's wall clock too (from 2026-01-01): runs are deterministic.
+  nodes_[i] = std::make_unique<PeerSyncNode>(configs_[i], dir, now_, channels_,
+                                             [this, i] { return kSimEpoch + now_ + clock_offset_[i]; });
 }
 
 void SimNetwork::restart(std::size_t i) { makeNode(i); }

@@ -39,6 +39,9 @@ class SimNetwork {
   void run(Micros dt, Micros tick = 50000);
   // Destroys node i and builds it again from its state directory (a kill -9 between ticks).
   void restart(std::size_t i);
+  // Sets node i's wall clock this far from the simulated time (a clock set wrong).
+  void setClockOffset(std::size_t i, Micros offset) { clock_offset_[i] = offset; }
+  static constexpr Micros kSimEpoch = 1767225600LL * 1000000;  // 2026-01-01, µs
   // Puts a message on the medium as if robot `from_index` had sent it (for attack tests).
   void inject(std::size_t from_index, const TeamMessage& m);
 
@@ -70,6 +73,7 @@ class SimNetwork {
   Micros now_ = 0;
   std::uint64_t order_ = 0;
   std::vector<std::unique_ptr<PeerSyncNode>> nodes_;
+  std::vector<Micros> clock_offset_;
   std::priority_queue<InFlight, std::vector<InFlight>, std::greater<InFlight>> medium_;
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> delivered_;
   std::vector<std::vector<Bundle>> delivered_bundles_;

@@ -10,7 +10,10 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   SyncConfig c;
   c.robot = robot ? *robot : n.get<std::int32_t>("robot");
   c.team = n.getList<std::int32_t>("team");
-  c.team_key = n.get<std::string>("team_key");
+  if (n.has("team_key"))
+    n.fail("team_key", "a key shared by the team lets any member speak for any other; use team_key_file (per-pair "
+                       "keys, slide-team-keys makes them)");
+  c.team_key_file = n.get<std::string>("team_key_file", "");
   c.heartbeat_period_s = n.get<double>("heartbeat_period_s", c.heartbeat_period_s);
   c.heartbeat_idle_factor = n.get<double>("heartbeat_idle_factor", c.heartbeat_idle_factor);
   c.ack_delay_s = n.get<double>("ack_delay_s", c.ack_delay_s);
@@ -29,6 +32,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.max_seq_jump = n.get<std::int32_t>("max_seq_jump", c.max_seq_jump);
   c.reassembly_bytes = n.get<unsigned>("reassembly_bytes", static_cast<unsigned>(c.reassembly_bytes));
   c.reassembly_timeout_s = n.get<double>("reassembly_timeout_s", c.reassembly_timeout_s);
+  c.max_counter_ahead_s = n.get<double>("max_counter_ahead_s", c.max_counter_ahead_s);
   c.thin_observations = n.get<bool>("thin_observations", c.thin_observations);
   c.thin_travel_m = n.get<double>("thin_travel_m", c.thin_travel_m);
   c.thin_turn_deg = n.get<double>("thin_turn_deg", c.thin_turn_deg);
@@ -53,6 +57,8 @@ void SyncConfig::validate() const {
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");
+  if (!(max_counter_ahead_s >= 1 && max_counter_ahead_s <= 86400))
+    throw std::invalid_argument("max_counter_ahead_s must be within 1..86400");
   if (!(heartbeat_idle_factor >= 1 && heartbeat_idle_factor <= 100))
     throw std::invalid_argument("heartbeat_idle_factor must be within 1..100");
   if (peer_timeout_s <= heartbeat_period_s * heartbeat_idle_factor)
@@ -70,12 +76,24 @@ void SyncConfig::validate() const {
   if (!(thin_travel_m >= 0) || !(thin_turn_deg >= 0) || !(thin_size_change_m >= 0) || !std::isfinite(thin_travel_m) ||
       !std::isfinite(thin_turn_deg) || !std::isfinite(thin_size_change_m))
     throw std::invalid_argument("thin_travel_m, thin_turn_deg and thin_size_change_m must be finite and >= 0");
-  if (team_key.empty()) throw std::invalid_argument("team_key must not be empty");
+  if (team.size() > 16) throw std::invalid_argument("at most 16 robots in a team (one message tag per member)");
   for (std::int32_t id : team)
     if (id < 0 || id > 32767)
       throw std::invalid_argument("team id " + std::to_string(id) + " outside 0..32767 (int16 on the team bus)");
   if (std::find(team.begin(), team.end(), robot) == team.end())
     throw std::invalid_argument("robot " + std::to_string(robot) + " is not in the team list");
+}
+
+void SyncConfig::loadKeys(std::string path) {
+  if (path.empty()) path = team_key_file;
+  if (path.empty()) throw std::runtime_error("no team key file (config team_key_file or --team-key-file)");
+  for (auto at = path.find("{robot}"); at != std::string::npos; at = path.find("{robot}"))
+    path.replace(at, 7, std::to_string(robot));
+  pair_keys = loadTeamKeys(path, robot);
+  for (std::int32_t id : team)
+    if (id != robot && !pair_keys.count(id))
+      throw std::invalid_argument("team key file " + path + ": no key for peer " + std::to_string(id) +
+                                  " of the team list");
 }
 
 }  // namespace slide::team

@@ -7,13 +7,16 @@
 
 #include "config/config.h"
 #include "team/observation_thinning.h"
+#include "team/team_keys.h"
 
 namespace slide::team {
 
 struct SyncConfig {
   std::int32_t robot = 0;
   std::vector<std::int32_t> team;  // every robot id allowed on the team bus (robot included)
-  std::string team_key;            // HMAC key shared by the team
+  // The keys this robot shares with each other member (team_keys.h), read from team_key_file.
+  PairKeys pair_keys;
+  std::string team_key_file;       // "{robot}" in it stands for the robot id
 
   double heartbeat_period_s = 8.0;
   double heartbeat_idle_factor = 3.0;  // without news the period doubles up to this many times it
@@ -33,6 +36,9 @@ struct SyncConfig {
   std::int32_t max_seq_jump = 100000;       // a received seq further ahead of all held is refused
   std::size_t reassembly_bytes = 4 << 20;   // space for partly received payloads
   double reassembly_timeout_s = 30.0;
+  // A sender's message counter (µs of its clock, counters.h) may lead this robot's clock by this
+  // much; beyond it the message is dropped as future_counter. Team clocks must agree this well.
+  double max_counter_ahead_s = 300.0;
   // Own observations shared on the team bus (observation_thinning.h): a track again only after
   // this much travel or turn, or a class, shape or size change.
   bool thin_observations = true;
@@ -43,10 +49,14 @@ struct SyncConfig {
   ThinningPolicy thinning() const { return {thin_observations, thin_travel_m, thin_turn_deg, thin_size_change_m}; }
 
   // Throws ConfigError naming the file and key on a missing or invalid value. `robot`, when
-  // given (the daemon's --robot), replaces the file's optional `robot` key.
+  // given (the daemon's --robot), replaces the file's optional `robot` key. Keys are not read
+  // here: see loadKeys().
   static SyncConfig fromConfig(const ConfigNode& node, std::optional<std::int32_t> robot = std::nullopt);
   // Throws std::invalid_argument explaining the first inconsistent value.
   void validate() const;
+  // Reads pair_keys from `path` (team_key_file when empty, "{robot}" replaced by the robot id);
+  // throws std::runtime_error naming the file, std::invalid_argument for a missing pair key.
+  void loadKeys(std::string path = {});
 };
 
 }  // namespace slide::team

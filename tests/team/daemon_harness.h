@@ -27,11 +27,15 @@ namespace slide::team::testing {
 
 inline std::string daemonBinary() { return std::string(SLIDE_BINARY_DIR) + "/bin/slide-peer-sync"; }
 
-// A config with quick timings for tests.
+// A config with quick timings for tests, and key files <dir>/keys/robot<id>.keys derived from
+// the master secret "test-team-key".
 inline std::string writeTestConfig(const std::string& dir, const std::string& team_url) {
   const std::string path = dir + "/peer_sync.yaml";
+  std::filesystem::create_directories(dir + "/keys");
+  for (std::int32_t id : {1, 2, 3})
+    writeTeamKeys(dir + "/keys/robot" + std::to_string(id) + ".keys", id, derivePairKeys("test-team-key", id, {1, 2, 3}));
   std::ofstream(path) << "team: [1, 2, 3]\n"
-                         "team_key: \"test-team-key\"\n"
+                         "team_key_file: \"" << dir << "/keys/robot{robot}.keys\"\n"
                          "robot_url: \"udpm://239.255.76.67:7667?ttl=0\"\n"
                          "team_url: \"" << team_url << "\"\n"
                          "state_dir: \"" << dir << "\"\n"

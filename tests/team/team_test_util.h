@@ -4,6 +4,8 @@
 
 #include "team/bundle.h"
 #include "team/codec.h"
+#include "team/message_auth.h"
+#include "team/team_keys.h"
 #include "team/sync_config.h"
 
 namespace slide::team::testing {
@@ -73,11 +75,17 @@ inline Bundle roundTrip(const Bundle& b) {
   return *decodeBundle(encodeBundle(b), b.origin, b.seq, &err);
 }
 
-inline SyncConfig teamConfig(std::int32_t robot, std::vector<std::int32_t> team, std::string key = "team-secret") {
+// Robot `robot`'s signer with the pair keys derived from `master` (team_keys.h).
+inline MessageAuth authOf(std::int32_t robot, const std::vector<std::int32_t>& team,
+                          const std::string& master = "team-secret") {
+  return MessageAuth(robot, team, derivePairKeys(master, robot, team));
+}
+
+inline SyncConfig teamConfig(std::int32_t robot, std::vector<std::int32_t> team, const std::string& master = "team-secret") {
   SyncConfig c;
   c.robot = robot;
   c.team = std::move(team);
-  c.team_key = std::move(key);
+  c.pair_keys = derivePairKeys(master, robot, c.team);
   c.heartbeat_period_s = 1.0;
   c.heartbeat_idle_factor = 2.0;
   c.resend_timeout_s = 1.5;

@@ -266,8 +266,19 @@ TEST(Codec, MalformedFieldsAreNamed) {
   x[0] = 1;
   rejects(x, "unknown bundle format");
   x = b;
-  x[1] = 0x40;
+  x[1] = 0x80;
   rejects(x, "unknown bundle flags");
+  x = b;
+  x[1] = 0x40 | 1;
+  rejects(x, "after a gap is neither first nor chained");
+  x = b;
+  x[1] = 0x40;
+  x.insert(x.begin() + 2, 0);  // gap 0
+  rejects(x, "gap length out of range");
+  x[2] = 4;  // gap 2 (zigzag varint)
+  std::optional<Bundle> after_gap = decodeBundle(x, 1, 1, &err);
+  ASSERT_TRUE(after_gap) << err;
+  EXPECT_EQ(after_gap->gap, 2);
   x = b;
   x[1] = 1 | 4;
   rejects(x, "first bundle cannot refer");

@@ -82,7 +82,7 @@ TEST(ObservationThinning, DeterministicAndOffMeansEverything) {
 
 TEST(ObservationThinning, ConfigKeysAreValidated) {
   auto load = [](const std::string& extra) {
-    return SyncConfig::fromConfig(ConfigNode::parse("team: [1]\nteam_key: k\n" + extra, "t.yaml"), 1);
+    return SyncConfig::fromConfig(ConfigNode::parse("team: [1]\n" + extra, "t.yaml"), 1);
   };
   const SyncConfig c = load("thin_observations: false\nthin_travel_m: 8\nthin_turn_deg: 30\nthin_size_change_m: 0.5\n");
   EXPECT_FALSE(c.thinning().enabled);

@@ -100,7 +100,7 @@ TEST(PeerSyncProcesses, ThreeDaemonsExactlyOnceAcrossKillAndRestart) {
     forged.origin = 2;
     forged.seq = n / 2;
     forged.data = encodeBundle(randomBundle(rng, 2, n / 2));
-    MessageAuth("wrong-key").sign(forged);
+    authOf(2, {1, 2, 3}, "wrong-key").sign(forged);
     const sync_chunk_t m = toLcm(forged);
     team.publish("TEAM_CHUNK", &m);
     std::vector<std::uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));

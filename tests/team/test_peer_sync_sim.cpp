@@ -48,7 +48,7 @@ class SimRun {
         SyncConfig d;
         d.robot = id;
         d.team = kTeam;
-        d.team_key = cfgs.back().team_key;
+        d.pair_keys = cfgs.back().pair_keys;
         d.thin_observations = false;
         cfgs.back() = d;
       }
@@ -267,7 +267,7 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   run.net().run(kSecond);
   EXPECT_GE(delta(Drop::Replay), captured.size());
 
-  const MessageAuth auth("team-secret"), wrong("not-the-key");
+  const MessageAuth auth = authOf(20, kTeam), wrong = authOf(20, kTeam, "not-the-key");
   Chunk c;
   c.sender = 20;
   c.receiver = -1;
@@ -291,8 +291,17 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   u.sender = 99;
   auth.sign(u);
   run.net().inject(2, u);
+  // Robot 11 speaking for robot 3: it holds the key of pair {3, 11}, not that of {3, 7}.
+  const PairKeys own = derivePairKeys("team-secret", kIds[2], kTeam);
+  const MessageAuth impostor(kIds[0], kTeam, {{kIds[1], own.at(kIds[1])}, {kIds[2], own.at(kIds[0])}, {20, own.at(20)}});
+  Chunk f = c;
+  f.sender = kIds[0];
+  f.counter = SimNetwork::kSimEpoch + 3600 * kSecond / 2;
+  impostor.sign(f);
+  EXPECT_TRUE(authOf(kIds[2], kTeam).verify(f));  // what it could fool is itself only
+  run.net().inject(2, f);
   run.net().run(kSecond);
-  EXPECT_EQ(delta(Drop::BadMac), 2u);
+  EXPECT_EQ(delta(Drop::BadMac), 3u);
   EXPECT_EQ(delta(Drop::UnknownSender), 1u);
 
   // A team member (valid key) sending bad content: unknown origin, garbage, jumps, and an
@@ -340,18 +349,20 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   run.expectExactlyOnceInOrder();
 }
 
-TEST(PeerSyncSim, OwnInputGoingBackwardsOrJumpingIsRefused) {
+TEST(PeerSyncSim, OwnInputGoingBackwardsOrJumpingFarIsRefused) {
   SyncConfig cfg = teamConfig(3, kTeam);
+  cfg.max_seq_jump = 1000;
   PeerSyncNode node(cfg, "", 0);
   std::mt19937 rng(3);
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 10), 0));
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 11), 0));
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 11), 0), Drop::Duplicate);
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 5), 0), Drop::SeqBackwards);
-  EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 50), 0), Drop::SeqJump);
+  EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 3, 1013), 0), Drop::SeqJump);  // 1001 missing: over the limit
   EXPECT_EQ(node.addOwnBundle(randomBundle(rng, 7, 12), 0), Drop::WrongOrigin);
   EXPECT_EQ(node.db().size(), 2u);
   EXPECT_FALSE(node.addOwnBundle(randomBundle(rng, 3, 12), 0));
+  EXPECT_EQ(node.dropped(Drop::Lost), 0u);
 }
 
 TEST(PeerSyncSim, MapsAreSharedAndNewestWins) {

@@ -67,17 +67,22 @@ TEST(SyncConfig, ShippedFileLoadsAndBadValuesNameTheKey) {
   EXPECT_LE(c.max_chunk_bytes, 1300u);  // one LCM datagram per chunk
   EXPECT_THROW(SyncConfig::fromConfig(node, 9), slide::ConfigError);  // not in the team
   try {
-    SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\nmax_chunk_bytes: lots\n", "t.yaml"), 1);
+    SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nmax_chunk_bytes: lots\n", "t.yaml"), 1);
     FAIL() << "expected a ConfigError";
   } catch (const slide::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("max_chunk_bytes"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: ''\n", "t.yaml"), 1),
-               slide::ConfigError);
+  // A key shared by the whole team is refused, with the reason.
+  try {
+    SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\n", "t.yaml"), 1);
+    FAIL() << "a shared team_key was accepted";
+  } catch (const slide::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("team_key_file"), std::string::npos) << e.what();
+  }
   for (const std::string bad : {"bundle_hold_s: -1\n", "bundle_hold_s: 100\n", "heartbeat_idle_factor: 0.5\n",
                                 "heartbeat_idle_factor: 6\n"}) {  // 6 * 8 s beyond the 40 s peer timeout
     try {
-      SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\nteam_key: k\n" + bad, "t.yaml"), 1);
+      SyncConfig::fromConfig(slide::ConfigNode::parse("team: [1]\n" + bad, "t.yaml"), 1);
       FAIL() << "accepted " << bad;
     } catch (const slide::ConfigError& e) {
       EXPECT_NE(std::string(e.what()).find(bad.substr(0, bad.find(':'))), std::string::npos) << e.what();

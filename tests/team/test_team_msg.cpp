@@ -10,20 +10,21 @@ using namespace slide::team;
 using namespace slide::team::testing;
 
 TEST(TeamMsg, RoundTripsKeepTheMacValidAndSizesMatchLcm) {
-  const MessageAuth auth("k");
+  const std::vector<std::int32_t> team = {1, 2, 3};
+  const MessageAuth two = authOf(2, team, "k"), three = authOf(3, team, "k"), one = authOf(1, team, "k");
   Heartbeat h;
   h.sender = 2;
   h.counter = 99;
   h.held[1].insert(SeqRange{0, 10});
   h.held[1].insert(SeqRange{20, 30});
   h.held[3].insert(5);
-  auth.sign(h);
+  two.sign(h);
   const sync_heartbeat_t lh = toLcm(h);
   EXPECT_EQ(static_cast<std::size_t>(lh.getEncodedSize()), encodedSize(h));
   std::string why;
   auto h2 = fromLcm(lh, &why);
   ASSERT_TRUE(h2) << why;
-  EXPECT_TRUE(auth.verify(*h2));
+  EXPECT_TRUE(one.verify(*h2));
 
   Chunk c;
   c.sender = 2;
@@ -32,24 +33,24 @@ TEST(TeamMsg, RoundTripsKeepTheMacValidAndSizesMatchLcm) {
   c.origin = 1;
   c.seq = 4;
   c.data = {1, 2, 3, 4, 5};
-  auth.sign(c);
+  two.sign(c);
   const sync_chunk_t lc = toLcm(c);
   EXPECT_EQ(static_cast<std::size_t>(lc.getEncodedSize()), encodedSize(c));
   auto c2 = fromLcm(lc, &why);
   ASSERT_TRUE(c2) << why;
-  EXPECT_TRUE(auth.verify(*c2));
+  EXPECT_TRUE(one.verify(*c2));
 
   Ack a;
   a.sender = 3;
   a.receiver = 2;
   a.counter = 5;
   a.acked[1].insert(SeqRange{0, 3});
-  auth.sign(a);
+  three.sign(a);
   const sync_ack_t la = toLcm(a);
   EXPECT_EQ(static_cast<std::size_t>(la.getEncodedSize()), encodedSize(a));
   auto a2 = fromLcm(la, &why);
   ASSERT_TRUE(a2) << why;
-  EXPECT_TRUE(auth.verify(*a2));
+  EXPECT_TRUE(one.verify(*a2));
 }
 
 TEST(TeamMsg, MalformedInputIsRefusedWithAReason) {

@@ -50,7 +50,7 @@ std::vector<SyncConfig> configsFor(const TeamScenario& sc) {
     SyncConfig c;  // the defaults of config/peer_sync.yaml
     c.robot = id;
     c.team = ids;
-    c.team_key = "bench-team-key";
+    c.pair_keys = derivePairKeys("bench-team-key", id, ids);
     out.push_back(c);
   }
   return out;

@@ -51,6 +51,13 @@ main() {
   [[ -f "$config" ]] || die "netlab: no config file $config"
   [[ -f "$schedule" ]] && schedule=$(grep -v '^\s*#' "$schedule" | tr '\n' ';')
   [[ -x "$SLIDE_BIN/slide-deputy" && -x "$SLIDE_BIN/slide-sheriff" ]] || ensure_built
+  # The shipped configs read team keys from /tmp/slide-team-keys (one file per robot): make them
+  # once when missing (every emulated host shares this machine's file system).
+  if grep -q -- "--team-key-file /tmp/slide-team-keys/" "$config" && [[ ! -f /tmp/slide-team-keys/robot0.keys ]]; then
+    [[ -x "$SLIDE_BIN/slide-team-keys" ]] || ensure_built
+    "$SLIDE_BIN/slide-team-keys" --team "$(seq -s, 0 $((hosts - 1)))" --out /tmp/slide-team-keys --log-level warn \
+      || die "netlab: cannot make team keys in /tmp/slide-team-keys"
+  fi
 
   NL_PREFIX="slnl$$" NL_HOSTS=$hosts NL_DEPUTIES=() NL_WAIT_TIMEOUT=$wait_timeout
   NL_LOGDIR="$SLIDE_BUILD/netlab/$(date +%Y%m%d-%H%M%S)-$$"

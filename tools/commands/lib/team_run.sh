@@ -6,6 +6,9 @@ team_run_write_config() {
   local run=$1 data=$2 robots=$3 rate=$4
   local cfg="$run/config" team_url="udpm://239.255.76.90:7690?ttl=1"
   mkdir -p "$cfg" "$run/logs" "$run/state" "$run/out"
+  # One key per pair of robots, each robot's in its own file (mode 0600), never on a command line.
+  "${SLIDE_BIN:-$SLIDE_ROOT/build/bin}/slide-team-keys" --team "$(seq -s, 0 $((robots - 1)))" --out "$run/keys" --log-level warn \
+    || { echo "cannot make team keys in $run/keys" >&2; return 1; }
   local team_list
   team_list=$(seq -s, 0 $((robots - 1)))
   sed -e "s|^team:.*|team: [$team_list]|" \
@@ -27,7 +30,7 @@ group "robot$r" {
   cmd "team-logger-$r" { exec = "lcm-logger -f --lcm-url=$team_url $run/logs/team$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "optimizer-$r" { exec = "slide-optimizer $common --config $SLIDE_ROOT/config/backend.yaml --journal $run/state/optimizer$r.lcmlog --out-dir $o"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 10; }
   cmd "loop-closer-$r" { exec = "slide-loop-closer $common --config $SLIDE_ROOT/config/loop_closer.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
-  cmd "peer-sync-$r" { exec = "slide-peer-sync --robot $r --robot-url $url --config $cfg/peer_sync.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
+  cmd "peer-sync-$r" { exec = "slide-peer-sync --robot $r --robot-url $url --config $cfg/peer_sync.yaml --team-key-file $run/keys/robot$r.keys"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
   cmd "segmenter-$r" { exec = "slide-segmenter $common --config $cfg/frontend.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "tracker-$r" { exec = "slide-tracker $common --config $cfg/frontend.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "driver-$r" { exec = "slide-sensor-driver $data/robot$r $common --rate $rate --no-progress"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
