@@ -45,8 +45,13 @@ class PeerSyncDaemon {
     auto m = decodeLcm<keypose_bundle_t>(rb->data, rb->data_size);
     std::optional<Bundle> b = m ? fromLcm(*m, &why) : std::nullopt;
     if (!b) return spdlog::warn("{}: dropped own bundle: {}", channel, why);
+    const std::uint64_t lost = node_.dropped(Drop::Lost);
     if (auto drop = node_.addOwnBundle(std::move(*b), nowMicros()))
       spdlog::warn("{}: dropped own bundle {}/{}: {}", channel, m->header.robot, m->header.seq, dropName(*drop));
+    else if (node_.dropped(Drop::Lost) > lost)
+      spdlog::warn("{}: own bundles {}..{} never arrived: peers learn the gap with bundle {}", channel,
+                   m->header.seq - static_cast<std::int64_t>(node_.dropped(Drop::Lost) - lost), m->header.seq - 1,
+                   m->header.seq);
   }
 
   void onOwnMap(const lcm::ReceiveBuffer* rb, const std::string& channel) {
@@ -168,6 +173,9 @@ int main(int argc, char** argv) {
     if (!team_bus.good()) throw std::runtime_error("cannot open team bus " + team_url);
     PeerSyncNode node(sync, state_dir, nowMicros(), ch.team);
     const auto& rec = node.db().recovery();
+    if (rec.skipped)
+      spdlog::warn("robot {}: journal {}: skipped {} records it cannot use (first: {})", robot, state_dir, rec.skipped,
+                   rec.first_skipped);
     spdlog::info("robot {}: journal {} holds {} bundles ({} records){}", robot, state_dir, node.db().size(), rec.records,
                  rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
                                                  rec.damaged_copy)
