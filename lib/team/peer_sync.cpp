@@ -286,7 +286,8 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   if (bundle->gap > 0) {
     const SeqRange gap{static_cast<std::int32_t>(std::int64_t{seq} - bundle->gap), seq - 1};
     auto stored = db_.stored().find(m.origin);
-    if ((first && gap.first < *first) || (stored != db_.stored().end() && stored->second.intersects(gap)))
+    if (gap.first < 0 || (first && gap.first < *first) ||
+        (stored != db_.stored().end() && stored->second.intersects(gap)))
       return drop(Drop::Malformed);
     // (Already absent when an earlier copy was cut short between the two journal records.)
     if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last)) return drop(Drop::Malformed);
