@@ -9,6 +9,7 @@
 
 #include "app/app.h"
 #include "team/peer_sync.h"
+#include "slide/peer_sync_status_t.hpp"
 #include "team_msg.h"
 
 using namespace slide;
@@ -25,7 +26,7 @@ Micros nowMicros() {
 }
 
 struct Channels {
-  std::string own_bundle, own_map, peer_bundle, peer_map;
+  std::string own_bundle, own_map, peer_bundle, peer_map, status;
   TeamChannels team;
 };
 
@@ -45,8 +46,13 @@ class PeerSyncDaemon {
     auto m = decodeLcm<keypose_bundle_t>(rb->data, rb->data_size);
     std::optional<Bundle> b = m ? fromLcm(*m, &why) : std::nullopt;
     if (!b) return spdlog::warn("{}: dropped own bundle: {}", channel, why);
+    const std::uint64_t lost = node_.dropped(Drop::Lost);
     if (auto drop = node_.addOwnBundle(std::move(*b), nowMicros()))
       spdlog::warn("{}: dropped own bundle {}/{}: {}", channel, m->header.robot, m->header.seq, dropName(*drop));
+    else if (node_.dropped(Drop::Lost) > lost)
+      spdlog::warn("{}: own bundles {}..{} never arrived: peers learn the gap with bundle {}", channel,
+                   m->header.seq - static_cast<std::int64_t>(node_.dropped(Drop::Lost) - lost), m->header.seq - 1,
+                   m->header.seq);
   }
 
   void onOwnMap(const lcm::ReceiveBuffer* rb, const std::string& channel) {
@@ -102,6 +108,20 @@ class PeerSyncDaemon {
     spdlog::info("held {} bundles, sent {:.0f} B, received {:.0f} B; drops:{}", node_.db().size(),
                  node_.traffic().totalSent(), node_.traffic().totalReceived(), drops.empty() ? " none" : drops);
     for (const auto& line : node_.trafficSummary(now)) spdlog::info("{}", line);
+    // The same counts for whoever watches the robot bus.
+    peer_sync_status_t st;
+    st.utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                   std::chrono::system_clock::now().time_since_epoch()).count();
+    st.robot = node_.config().robot;
+    st.held_bundles = static_cast<int32_t>(node_.db().size());
+    st.bytes_sent = node_.traffic().totalSent();
+    st.bytes_received = node_.traffic().totalReceived();
+    for (int d = 0; d < static_cast<int>(Drop::kCount); ++d) {
+      st.drop_reasons.push_back(dropName(static_cast<Drop>(d)));
+      st.drop_counts.push_back(static_cast<int64_t>(node_.drops()[d]));
+    }
+    st.num_drops = static_cast<int16_t>(st.drop_reasons.size());
+    if (robot_.publish(ch_.status, &st) != 0) spdlog::warn("{}: publish failed", ch_.status);
   }
 
  private:
@@ -150,6 +170,7 @@ int main(int argc, char** argv) {
     ch.own_map = chn.get<std::string>("own_map");
     ch.peer_bundle = chn.get<std::string>("peer_bundle");
     ch.peer_map = chn.get<std::string>("peer_map");
+    ch.status = chn.get<std::string>("status", "PEER_SYNC_STATUS");
     ch.team.heartbeat = chn.get<std::string>("heartbeat");
     ch.team.chunk = chn.get<std::string>("chunk");
     ch.team.ack = chn.get<std::string>("ack");
@@ -172,6 +193,9 @@ int main(int argc, char** argv) {
     if (!team_bus.good()) throw std::runtime_error("cannot open team bus " + team_url);
     PeerSyncNode node(sync, state_dir, nowMicros(), ch.team);
     const auto& rec = node.db().recovery();
+    if (rec.skipped)
+      spdlog::warn("robot {}: journal {}: skipped {} records it cannot use (first: {})", robot, state_dir, rec.skipped,
+                   rec.first_skipped);
     spdlog::info("robot {}: journal {} holds {} bundles ({} records){}", robot, state_dir, node.db().size(), rec.records,
                  rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
                                                  rec.damaged_copy)

@@ -124,14 +124,10 @@ std::optional<std::pair<std::int32_t, std::int32_t>> ObservationDb::nextToDelive
     if (origin == skip) continue;
     auto d = delivered_.find(origin);
     std::int64_t next = (d == delivered_.end() || d->second.empty()) ? first : std::int64_t{d->second.max()} + 1;
-    // Absent seqs are stepped over (a range at a time).
+    // Absent seqs are stepped over (ranges are merged, so one step suffices).
     auto a = absent_.find(origin);
-    while (a != absent_.end() && next <= INT32_MAX && a->second.contains(static_cast<std::int32_t>(next))) {
-      std::int64_t end = next;
-      for (const SeqRange& r : a->second.ranges())
-        if (r.first <= next && next <= r.last) end = r.last;
-      next = end + 1;
-    }
+    if (a != absent_.end() && next <= INT32_MAX)
+      if (const auto r = a->second.rangeOf(static_cast<std::int32_t>(next))) next = std::int64_t{r->last} + 1;
     if (next <= INT32_MAX && has(origin, static_cast<std::int32_t>(next)))
       return std::make_pair(origin, static_cast<std::int32_t>(next));
   }

@@ -239,7 +239,8 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
   if (!inTeam(m.origin)) return drop(Drop::UnknownOrigin);
   // The pack starts at m.seq: refuse it early when that is already implausible.
   const auto first = db_.firstSeq(m.origin);
-  if (first && m.seq < *first) return drop(Drop::SeqBackwards);
+  // (Own bundles from before the first held come back from peers after a lost journal.)
+  if (first && m.seq < *first && m.origin != cfg_.robot) return drop(Drop::SeqBackwards);
   auto held = db_.held().find(m.origin);
   std::int64_t base = held != db_.held().end() && !held->second.empty() ? held->second.max() : -1;
   if (first) base = std::max<std::int64_t>(base, *first);
@@ -276,22 +277,24 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   bool needs_previous = false;
   const auto bundle = decodeBundle(data, m.origin, seq, &error, previous ? &*previous : nullptr, &needs_previous);
   if (!bundle) return drop(Drop::Malformed);
-  // A bundle claiming to start its origin's stream must not contradict what is held.
-  if (bundle->first && ((first && *first != seq) || (held != db_.held().end() && !held->second.empty() &&
-                                                       held->second.min() < seq)))
-    return drop(Drop::Malformed);
+  // A bundle claiming to start its origin's stream while earlier ones are held: its origin lost
+  // its journal (and so its memory of them). It is a later bundle, not the start: taken as such,
+  // so that the origin is not silenced.
+  const bool starts = bundle->first && !(first && *first != seq) &&
+                      !(held != db_.held().end() && !held->second.empty() && held->second.min() < seq);
   // A bundle after a gap: the gap's seqs do not exist, so none may be held or precede the first.
   if (bundle->gap > 0) {
     const SeqRange gap{static_cast<std::int32_t>(std::int64_t{seq} - bundle->gap), seq - 1};
     auto stored = db_.stored().find(m.origin);
-    if ((first && gap.first < *first) || (stored != db_.stored().end() && stored->second.intersects(gap)))
+    if (gap.first < 0 || (first && gap.first < *first) ||
+        (stored != db_.stored().end() && stored->second.intersects(gap)))
       return drop(Drop::Malformed);
     // (Already absent when an earlier copy was cut short between the two journal records.)
     if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last)) return drop(Drop::Malformed);
   }
   ObservationDb::Entry e;
   e.data = std::move(data);
-  e.first = bundle->first;
+  e.first = starts;
   e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
   db_.add(m.origin, seq, std::move(e));
   // In order, the next heartbeat acknowledges it whenever it goes; a gap means a loss that only

@@ -50,6 +50,14 @@ bool RangeSet::intersects(SeqRange r) const {
   return std::prev(it)->second >= r.first;
 }
 
+std::optional<SeqRange> RangeSet::rangeOf(std::int32_t seq) const {
+  auto it = ranges_.upper_bound(seq);
+  if (it == ranges_.begin()) return std::nullopt;
+  --it;
+  if (seq > it->second) return std::nullopt;
+  return SeqRange{it->first, it->second};
+}
+
 std::int64_t RangeSet::count() const {
   std::int64_t n = 0;
   for (const auto& [f, l] : ranges_) n += static_cast<std::int64_t>(l) - f + 1;

@@ -3,6 +3,7 @@
 // and the per-origin map of such sets that heartbeats and acknowledgements carry.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace slide::team {
@@ -24,6 +25,8 @@ class RangeSet {
   void insert(const RangeSet& other);
   bool contains(std::int32_t seq) const;
   bool intersects(SeqRange r) const;  // some seq of r (first <= last) is in the set
+  // The range holding seq, if any.
+  std::optional<SeqRange> rangeOf(std::int32_t seq) const;
   bool empty() const { return ranges_.empty(); }
   std::int64_t count() const;
   std::int32_t max() const { return ranges_.rbegin()->second; }  // requires !empty()

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "slide/keypose_bundle_t.hpp"
+#include "slide/peer_sync_status_t.hpp"
 #include "slide/sync_heartbeat_t.hpp"
 #include "team_test_util.h"
 #include "../../daemons/peer_sync/team_msg.h"
@@ -74,7 +75,10 @@ class RobotBus {
  public:
   explicit RobotBus(const std::string& url) : lcm_(url) {
     lcm_.subscribe("PEER_BUNDLE", &RobotBus::onBundle, this);
+    lcm_.subscribe("PEER_SYNC_STATUS", &RobotBus::onStatus, this);
   }
+  // Drop counts by reason in the latest status message (empty before the first).
+  const std::map<std::string, std::int64_t>& drops() const { return drops_; }
   bool good() { return lcm_.good(); }
   void publish(const Bundle& b) {
     const keypose_bundle_t m = toLcm(b);
@@ -90,8 +94,13 @@ class RobotBus {
   void onBundle(const lcm::ReceiveBuffer*, const std::string&, const keypose_bundle_t* m) {
     got_.emplace_back(m->header.robot, m->header.seq);
   }
+  void onStatus(const lcm::ReceiveBuffer*, const std::string&, const peer_sync_status_t* m) {
+    drops_.clear();
+    for (int i = 0; i < m->num_drops; ++i) drops_[m->drop_reasons[static_cast<std::size_t>(i)]] = m->drop_counts[static_cast<std::size_t>(i)];
+  }
   lcm::LCM lcm_;
   std::vector<std::pair<int, int>> got_;
+  std::map<std::string, std::int64_t> drops_;
 };
 
 // Every origin other than `self` delivered seqs 0..n-1 exactly once, in order.

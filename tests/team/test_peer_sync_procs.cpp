@@ -108,6 +108,11 @@ TEST(PeerSyncProcesses, ThreeDaemonsExactlyOnceAcrossKillAndRestart) {
     team.publish("TEAM_CHUNK", buf.data(), static_cast<unsigned>(buf.size() / 2));
   }
   EXPECT_TRUE(waitFor(buses, [&] { return count(0) == n && count(1) == n && count(2) == n; }, 20));
+  // Robot 1's status message on its robot bus counts the forgery and the garbage.
+  EXPECT_TRUE(waitFor(buses, [&] {
+    const auto& d = buses[0]->drops();
+    return d.count("bad_mac") && d.at("bad_mac") >= 1 && d.at("malformed") >= 1;
+  }, 10)) << "no status message with the drops";
 
   // kill -9 robot 2's daemon; the others go on; then it comes back from its journal.
   stop(pids[2], SIGKILL);

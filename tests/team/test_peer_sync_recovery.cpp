@@ -96,6 +96,28 @@ TEST(PeerSyncRecovery, LostCounterFileIsNotTakenForAReplay) {
   EXPECT_EQ(t.net->node(1).dropped(Drop::Replay), 0u);
 }
 
+TEST(PeerSyncRecovery, RobotThatLostItsStateIsHeardAgainAndGetsItsBundlesBack) {
+  Team t("wiped");
+  for (int s = 0; s < 5; ++s) t.add(0, s);
+  t.net->run(30 * kSecond);
+  ASSERT_EQ(t.deliveredFrom(1, kIds[0]).size(), 5u);
+  const double before_idle = t.net->bytesSent();
+  t.net->run(60 * kSecond);
+  const double idle = t.net->bytesSent() - before_idle;  // heartbeats only
+  fs::remove_all(fs::path(t.dir) / "robot3");  // journal and counters lost
+  fs::create_directories(fs::path(t.dir) / "robot3");
+  t.net->restart(0);
+  for (int s = 5; s < 10; ++s) t.add(0, s);  // the first it holds now claims to start the stream
+  t.net->run(40 * kSecond);
+  EXPECT_EQ(t.deliveredFrom(1, kIds[0]), seqs({{0, 9}}));
+  EXPECT_EQ(t.deliveredFrom(2, kIds[0]), seqs({{0, 9}}));
+  EXPECT_EQ(t.net->node(0).db().stored().at(kIds[0]).count(), 10);  // its old bundles came back
+  // and, once held, are no longer sent to it again and again
+  const double sent = t.net->bytesSent();
+  t.net->run(60 * kSecond);
+  EXPECT_LT(t.net->bytesSent() - sent, 1.2 * idle);
+}
+
 TEST(PeerSyncRecovery, CounterFromTheFutureLocksNobodyOut) {
   Team t("future");
   for (int s = 0; s < 3; ++s) t.add(0, s);

@@ -55,3 +55,15 @@ TEST(RangeSet, ExtremesAndEmptyRanges) {
   EXPECT_EQ(rs.max(), INT32_MAX);
   EXPECT_EQ(rs.min(), INT32_MIN);
 }
+
+TEST(RangeSet, IntersectsAndRangeOf) {
+  const RangeSet s = RangeSet::fromRanges({{0, 4}, {10, 12}});
+  EXPECT_TRUE(s.intersects({4, 8}));
+  EXPECT_TRUE(s.intersects({-5, 0}));
+  EXPECT_TRUE(s.intersects({11, 11}));
+  EXPECT_FALSE(s.intersects({5, 9}));
+  EXPECT_FALSE(s.intersects({13, 100}));
+  EXPECT_EQ(s.rangeOf(11), (SeqRange{10, 12}));
+  EXPECT_FALSE(s.rangeOf(7));
+  EXPECT_FALSE(s.rangeOf(-1));
+}
