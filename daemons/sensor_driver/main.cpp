@@ -26,12 +26,16 @@ int main(int argc, char** argv) {
   app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
   app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
   app.add_option("--config", config_path,
-                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, channels: scan, rgbd, odom, "
+                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, channels: scan, rgbd, odom, "
                  "status); command-line options win");
   auto* rate_opt = app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
       ->capture_default_str();
   auto* start_frame_opt = app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
   auto* start_time_opt = app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
+  slide::DatasetOptions data_opt;
+  auto* gap_opt = app.add_option("--max-odom-gap", data_opt.max_odometry_gap_s,
+                                 "Frames between odometry samples further apart than this (seconds) are dropped")
+                      ->capture_default_str();
   app.add_option("--frames", opt.max_frames, "Send at most N frames (0 = all)")->capture_default_str();
   app.add_option("--log", log_path, "Also write the messages to this LCM log file");
   app.add_flag("--no-publish", no_publish, "Do not publish on the bus (with --log: write the log only)");
@@ -51,6 +55,7 @@ int main(int argc, char** argv) {
         if (!rate_opt->count()) opt.rate = c.get<double>("rate", opt.rate);
         if (!start_frame_opt->count()) opt.start_frame = c.get<int>("start_frame", opt.start_frame);
         if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
+        if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
         if (c.has("channels")) {
           const slide::ConfigNode ch = c.child("channels");
           if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);
@@ -60,7 +65,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const slide::RobotDataset d = slide::openRobotDataset(dataset);
+    const slide::RobotDataset d = slide::openRobotDataset(dataset, data_opt);
     std::unique_ptr<lcm::LCM> bus;
     if (!no_publish) {
       if (lcm_url.empty()) lcm_url = "udpm://239.255.76.67:" + std::to_string(7667 + opt.robot) + "?ttl=0";
