@@ -75,7 +75,12 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
   };
   status(stream_status_t::RUNNING, 0);
-  int sent = 0;
+  int sent = 0, unreadable = 0;
+  auto sendOdometry = [&](int i, int64_t utime, int seq) {
+    const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
+    const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
+    sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
+  };
   for (int i = first; i < last; ++i) {
     if (stop && stop()) {
       if (bar) std::fprintf(stderr, "\n");
@@ -90,15 +95,22 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     }
     const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
     const int seq = i - first;
-    const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
-    const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
-    sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
-    if (d.sensor == RobotDataset::Sensor::Lidar) {
-      sink.send(o.scan_channel, toScanMessage(d.scan(i), utime, o.robot, seq), utime);
-    } else {
-      const RgbdImages f = d.rgbd(i);
-      sink.send(o.rgbd_channel, toRgbdMessage(f.color, f.depth, f.mask ? &*f.mask : nullptr, d.camera, utime, o.robot, seq),
-                utime);
+    try {  // a frame that cannot be read is dropped and counted; the replay goes on
+      if (d.sensor == RobotDataset::Sensor::Lidar) {
+        const lidar_scan_t scan = toScanMessage(d.scan(i), utime, o.robot, seq);
+        sendOdometry(i, utime, seq);
+        sink.send(o.scan_channel, scan, utime);
+      } else {
+        const RgbdImages f = d.rgbd(i);
+        const rgbd_frame_t frame = toRgbdMessage(f.color, f.depth, f.mask ? &*f.mask : nullptr, d.camera, utime, o.robot, seq);
+        sendOdometry(i, utime, seq);
+        sink.send(o.rgbd_channel, frame, utime);
+      }
+    } catch (const IoError& e) {
+      if (bar) std::fprintf(stderr, "\n");
+      spdlog::warn("frame {} dropped: {}", i, e.what());
+      ++unreadable;
+      continue;
     }
     ++sent;
     const auto now = std::chrono::steady_clock::now();
@@ -112,6 +124,8 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
   if (bar) std::fprintf(stderr, "\n");
   status(stream_status_t::FINISHED, sent);
   spdlog::info("end of data: {} frames sent", sent);
+  if (unreadable > 0) spdlog::warn("{} frames could not be read and were dropped", unreadable);
+  if (const std::string drops = d.reader->dropSummary(); !drops.empty()) spdlog::info("{}: {}", d.path, drops);
   return sent;
 }
 

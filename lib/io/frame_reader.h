@@ -3,6 +3,7 @@
 // PCD folders, ROS 1 bags each implement it (io/robot_dataset.h picks one).
 #include <cstddef>
 #include <optional>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -25,6 +26,8 @@ class FrameReader {
   virtual LabelledScan scan(std::size_t id) const = 0;
   // RGBD frame `id`. Throws IoError naming the file (and message) on bad data.
   virtual RgbdImages rgbd(std::size_t id) const = 0;
+  // What reading has dropped so far (e.g. "1200 NaN points"); empty when nothing.
+  virtual std::string dropSummary() const { return {}; }
 };
 
 }  // namespace slide

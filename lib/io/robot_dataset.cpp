@@ -6,6 +6,7 @@
 #include "io/calib_file.h"
 #include "io/io_error.h"
 #include "io/kitti_poses.h"
+#include "io/ros_bag.h"
 #include "io/tum_trajectory.h"
 
 namespace fs = std::filesystem;
@@ -108,7 +109,8 @@ void keepFramesWithOdometry(RobotDataset& d, const std::vector<double>& times, c
 }
 
 RobotDataset openRobotDataset(const std::string& path, const DatasetOptions& options) {
-  if (!fs::is_directory(path)) throw IoError(path, "missing dataset folder");
+  if (fs::is_regular_file(path) && fs::path(path).extension() == ".bag") return openBagDataset(path, options);
+  if (!fs::is_directory(path)) throw IoError(path, "missing dataset folder (or .bag file)");
   RobotDataset d;
   d.path = path;
   std::vector<double> times;

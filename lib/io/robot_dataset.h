@@ -8,6 +8,9 @@
 //                        odometry frame, at its own rate), groundtruth.txt (TUM, world frame,
 //                        optional, at its own times), robot.yaml (simulator metadata, optional).
 //                        poses.txt (KITTI ground truth) is never read as odometry.
+// PCD folder:            *.pcd scans (PCL's format; sorted by name), times.txt (or times as
+//                        file names), odom.txt (io/pcd_folder.h)
+// ROS 1 bag:             a .bag file with the topics of DatasetOptions::bag (io/ros_bag.h)
 //
 // Odometry is interpolated at each frame's time (geometry/stamped_pose.h); frames before or
 // after the odometry's span, or inside a gap longer than max_odometry_gap_s, are dropped and
@@ -19,11 +22,13 @@
 
 #include "geometry/stamped_pose.h"
 #include "io/frame_reader.h"
+#include "io/ros_bag_options.h"
 
 namespace slide {
 
 struct DatasetOptions {
   double max_odometry_gap_s = 0.5;  // odometry samples further apart than this give no pose between them
+  BagOptions bag;                   // topics and frames when the source is a bag
 };
 
 // Frames dropped for want of an odometry pose.
