@@ -6,6 +6,7 @@
 #include "io/calib_file.h"
 #include "io/io_error.h"
 #include "io/kitti_poses.h"
+#include "io/pcd_folder.h"
 #include "io/ros_bag.h"
 #include "io/tum_trajectory.h"
 
@@ -111,6 +112,7 @@ void keepFramesWithOdometry(RobotDataset& d, const std::vector<double>& times, c
 RobotDataset openRobotDataset(const std::string& path, const DatasetOptions& options) {
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".bag") return openBagDataset(path, options);
   if (!fs::is_directory(path)) throw IoError(path, "missing dataset folder (or .bag file)");
+  if (!fs::is_directory(fs::path(path) / "velodyne") && isPcdFolder(path)) return openPcdFolder(path, options);
   RobotDataset d;
   d.path = path;
   std::vector<double> times;
@@ -121,7 +123,7 @@ RobotDataset openRobotDataset(const std::string& path, const DatasetOptions& opt
     d.sensor = RobotDataset::Sensor::Rgbd;
     times = openTum(d);
   } else {
-    throw IoError(path, "neither a KITTI layout (velodyne/) nor a TUM RGB-D layout (associations.txt)");
+    throw IoError(path, "neither a KITTI layout (velodyne/) nor a TUM RGB-D layout (associations.txt) nor a PCD folder (*.pcd)");
   }
   const std::vector<StampedPose> odom = readOdometryFile(path);
   keepFramesWithOdometry(d, times, [&](double t, Pose& T) { return poseAtTime(odom, t, options.max_odometry_gap_s, T); });
