@@ -26,3 +26,32 @@ else()
 endif()
 set(SLIDE_DATA_DIR ${_data_default} CACHE PATH "Folder holding the shared real data sets")
 add_compile_definitions(SLIDE_DATA_DIR="${SLIDE_DATA_DIR}")
+
+# ROS 1 bags (librosbag-storage-dev, libsensor-msgs-dev, libnav-msgs-dev, libtf2-msgs-dev,
+# pluginlib-dev, librcpputils-dev, libament-index-cpp-dev). rosbag_storage.pc requires a
+# pluginlib.pc that Debian does not ship, so the include folders and libraries are named here.
+# Only lib/io/ros_bag.cpp includes these headers.
+find_path(ROSBAG_INCLUDE_DIR rosbag/bag.h REQUIRED)
+set(_rosbag_includes ${ROSBAG_INCLUDE_DIR})
+foreach(_sub pluginlib class_loader rcpputils rcutils ament_index_cpp)
+  if(EXISTS /usr/include/${_sub})
+    list(APPEND _rosbag_includes /usr/include/${_sub})
+  endif()
+endforeach()
+set(_rosbag_libs)
+foreach(_lib rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem class_loader)
+  find_library(_found_${_lib} ${_lib} REQUIRED)
+  list(APPEND _rosbag_libs ${_found_${_lib}})
+endforeach()
+add_library(slide_rosbag INTERFACE)
+target_include_directories(slide_rosbag SYSTEM INTERFACE ${_rosbag_includes})
+target_link_libraries(slide_rosbag INTERFACE ${_rosbag_libs})
+
+# PCL's PCD reader (libpcl-dev), for PCD folders; only lib/io/pcd_folder.cpp includes it. Named
+# by hand: PCLConfig.cmake and pcl_io.pc pull in VTK/OpenNI the reader does not need.
+find_path(PCL_INCLUDE_DIR pcl/io/pcd_io.h PATH_SUFFIXES pcl-1.13 pcl-1.12 pcl-1.14 REQUIRED)
+find_library(PCL_IO_LIBRARY pcl_io REQUIRED)
+find_library(PCL_COMMON_LIBRARY pcl_common REQUIRED)
+add_library(slide_pcl INTERFACE)
+target_include_directories(slide_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIR})
+target_link_libraries(slide_pcl INTERFACE ${PCL_IO_LIBRARY} ${PCL_COMMON_LIBRARY})

@@ -1,5 +1,5 @@
-// slide-sensor-driver: replays one robot's dataset folder (simulator output, KITTI-style
-// LiDAR or TUM-style RGBD) onto the robot bus as SCAN / RGBD, ODOM and SENSOR_STATUS, and/or
+// slide-sensor-driver: replays one robot's recording (simulator output, KITTI-style LiDAR or
+// TUM-style RGBD folder, ROS 1 bag) onto the robot bus as SCAN / RGBD, ODOM and SENSOR_STATUS, and/or
 // into an LCM log that lcm-logplayer replays.
 #include <spdlog/spdlog.h>
 
@@ -8,6 +8,7 @@
 
 #include "app/app.h"
 #include "config/config.h"
+#include "bag_options.h"
 #include "replay.h"
 
 namespace {
@@ -22,16 +23,23 @@ int main(int argc, char** argv) {
   slide::ReplayOptions opt;
   std::string dataset, lcm_url, log_path, config_path;
   bool no_publish = false, no_progress = false;
-  app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0)")->required();
+  app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0) or a ROS 1 .bag file")->required();
   app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
   app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
   app.add_option("--config", config_path,
-                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, channels: scan, rgbd, odom, "
-                 "status); command-line options win");
+                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, channels: scan, rgbd, odom, "
+                 "status; bag: cloud_topic, color_topic, depth_topic, camera_info_topic, odom_topic, odom_frame, body_frame, "
+                 "deskew, max_color_depth_dt, T_body_sensor: [x, y, z, qx, qy, qz, qw]); command-line options win");
   auto* rate_opt = app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
       ->capture_default_str();
   auto* start_frame_opt = app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
   auto* start_time_opt = app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
+  slide::DatasetOptions data_opt;
+  auto* gap_opt = app.add_option("--max-odom-gap", data_opt.max_odometry_gap_s,
+                                 "Frames between odometry samples further apart than this (seconds) are dropped")
+                      ->capture_default_str();
+  slide::BagCli bag_cli;
+  slide::addBagOptions(app, bag_cli);
   app.add_option("--frames", opt.max_frames, "Send at most N frames (0 = all)")->capture_default_str();
   app.add_option("--log", log_path, "Also write the messages to this LCM log file");
   app.add_flag("--no-publish", no_publish, "Do not publish on the bus (with --log: write the log only)");
@@ -42,6 +50,7 @@ int main(int argc, char** argv) {
   auto* status_opt = app.add_option("--status-channel", opt.status_channel, "Stream status channel")->capture_default_str();
 
   return slide::runApp(app, common, argc, argv, [&]() {
+    if (bag_cli.list) return slide::listBag(dataset);
     if (no_publish && log_path.empty()) throw std::runtime_error("--no-publish needs --log FILE (nothing to do otherwise)");
     opt.progress = !no_progress;
     if (!config_path.empty()) {
@@ -51,6 +60,8 @@ int main(int argc, char** argv) {
         if (!rate_opt->count()) opt.rate = c.get<double>("rate", opt.rate);
         if (!start_frame_opt->count()) opt.start_frame = c.get<int>("start_frame", opt.start_frame);
         if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
+        slide::readBagConfig(c, bag_cli);
+        if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
         if (c.has("channels")) {
           const slide::ConfigNode ch = c.child("channels");
           if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);
@@ -60,7 +71,8 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const slide::RobotDataset d = slide::openRobotDataset(dataset);
+    data_opt.bag = bag_cli.options;
+    const slide::RobotDataset d = slide::openRobotDataset(dataset, data_opt);
     std::unique_ptr<lcm::LCM> bus;
     if (!no_publish) {
       if (lcm_url.empty()) lcm_url = slide::robotBusUrl(opt.robot);

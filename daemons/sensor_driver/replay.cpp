@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <thread>
 
 #include "frame_messages.h"
@@ -56,9 +55,11 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
   while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
   int last = o.max_frames > 0 ? std::min(n, first + o.max_frames) : n;
   const int total = last - first;
-  spdlog::info("replaying {} frames [{}, {}) of {} ({}), rate {}", total, first, last, d.dir,
+  spdlog::info("replaying {} frames [{}, {}) of {} ({}), rate {}", total, first, last, d.path,
                d.sensor == RobotDataset::Sensor::Lidar ? "lidar" : "rgbd", o.rate > 0 ? std::to_string(o.rate) : "max");
-  if (d.odometry.empty()) spdlog::warn("{} has no odometry: no {} messages", d.dir, o.odom_channel);
+  if (d.dropped.total() > 0)
+    spdlog::warn("{}: {} frames dropped without an odometry pose ({} outside its time span, {} in gaps)", d.path,
+                 d.dropped.total(), d.dropped.outside_span, d.dropped.gap);
 
   const bool bar = o.progress && isatty(STDERR_FILENO);
   const auto wall0 = std::chrono::steady_clock::now();
@@ -70,11 +71,16 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     s.state = state;
     s.frames_sent = sent;
     s.frames_total = total;
-    s.source = d.dir;
+    s.source = d.path;
     sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
   };
   status(stream_status_t::RUNNING, 0);
-  int sent = 0;
+  int sent = 0, unreadable = 0;
+  auto sendOdometry = [&](int i, int64_t utime, int seq) {
+    const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
+    const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
+    sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
+  };
   for (int i = first; i < last; ++i) {
     if (stop && stop()) {
       if (bar) std::fprintf(stderr, "\n");
@@ -89,21 +95,22 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     }
     const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
     const int seq = i - first;
-    if (!d.odometry.empty()) {
-      const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
-      const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
-      sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
-    }
-    if (d.sensor == RobotDataset::Sensor::Lidar) {
-      sink.send(o.scan_channel, toScanMessage(readLabelledScan(d.scans[i]), utime, o.robot, seq), utime);
-    } else {
-      const std::filesystem::path dir(d.dir);
-      const cv::Mat color = readColorPng((dir / d.frames[i].rgb).string());
-      const cv::Mat depth = readDepthPng((dir / d.frames[i].depth).string());
-      const std::filesystem::path mask_png = dir / "instances" / std::filesystem::path(d.frames[i].rgb).filename();
-      std::unique_ptr<InstanceMask> mask;
-      if (std::filesystem::exists(mask_png)) mask = std::make_unique<InstanceMask>(readInstanceMask(mask_png.string()));
-      sink.send(o.rgbd_channel, toRgbdMessage(color, depth, mask.get(), d.camera, utime, o.robot, seq), utime);
+    try {  // a frame that cannot be read is dropped and counted; the replay goes on
+      if (d.sensor == RobotDataset::Sensor::Lidar) {
+        const lidar_scan_t scan = toScanMessage(d.scan(i), utime, o.robot, seq);
+        sendOdometry(i, utime, seq);
+        sink.send(o.scan_channel, scan, utime);
+      } else {
+        const RgbdImages f = d.rgbd(i);
+        const rgbd_frame_t frame = toRgbdMessage(f.color, f.depth, f.mask ? &*f.mask : nullptr, d.camera, utime, o.robot, seq);
+        sendOdometry(i, utime, seq);
+        sink.send(o.rgbd_channel, frame, utime);
+      }
+    } catch (const IoError& e) {
+      if (bar) std::fprintf(stderr, "\n");
+      spdlog::warn("frame {} dropped: {}", i, e.what());
+      ++unreadable;
+      continue;
     }
     ++sent;
     const auto now = std::chrono::steady_clock::now();
@@ -117,6 +124,8 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
   if (bar) std::fprintf(stderr, "\n");
   status(stream_status_t::FINISHED, sent);
   spdlog::info("end of data: {} frames sent", sent);
+  if (unreadable > 0) spdlog::warn("{} frames could not be read and were dropped", unreadable);
+  if (const std::string drops = d.reader->dropSummary(); !drops.empty()) spdlog::info("{}: {}", d.path, drops);
   return sent;
 }
 

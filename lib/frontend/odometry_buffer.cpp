@@ -4,14 +4,6 @@
 
 namespace slide {
 
-Pose interpolatePose(const Pose& a, const Pose& b, double s) {
-  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
-  Pose T = Pose::Identity();
-  T.linear() = qa.slerp(s, qb).normalized().toRotationMatrix();
-  T.translation() = (1.0 - s) * a.translation() + s * b.translation();
-  return T;
-}
-
 void OdometryBuffer::add(std::int64_t utime, const Pose& T) {
   if (!T.matrix().allFinite()) return;
   poses_[utime] = T;

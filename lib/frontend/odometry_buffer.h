@@ -29,7 +29,4 @@ class OdometryBuffer {
   std::map<std::int64_t, Pose> poses_;
 };
 
-// Pose between a (s = 0) and b (s = 1): linear in translation, slerp in rotation.
-Pose interpolatePose(const Pose& a, const Pose& b, double s);
-
 }  // namespace slide

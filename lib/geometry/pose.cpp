@@ -91,4 +91,12 @@ Pose poseFromPositionQuaternion(const Eigen::Vector3d& p, const Eigen::Quaternio
   return T;
 }
 
+Pose interpolatePose(const Pose& a, const Pose& b, double s) {
+  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
+  Pose T = Pose::Identity();
+  T.linear() = qa.slerp(s, qb).normalized().toRotationMatrix();
+  T.translation() = (1.0 - s) * a.translation() + s * b.translation();
+  return T;
+}
+
 }  // namespace slide

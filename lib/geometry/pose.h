@@ -37,4 +37,7 @@ Vector6d logSE3(const Pose& T);
 // Pose from position and quaternion (w, x, y, z); the quaternion is normalized.
 Pose poseFromPositionQuaternion(const Eigen::Vector3d& p, const Eigen::Quaterniond& q);
 
+// Pose between a (s = 0) and b (s = 1): linear in translation, slerp in rotation.
+Pose interpolatePose(const Pose& a, const Pose& b, double s);
+
 }  // namespace slide

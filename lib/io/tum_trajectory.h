@@ -3,14 +3,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/pose.h"
+#include "geometry/stamped_pose.h"
 
 namespace slide {
-
-struct StampedPose {
-  double t = 0;
-  Pose pose = Pose::Identity();
-};
 
 std::vector<StampedPose> readTum(const std::string& path);
 void writeTum(const std::string& path, const std::vector<StampedPose>& trajectory);

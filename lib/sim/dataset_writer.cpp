@@ -86,7 +86,7 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
     writeKittiPoses((root / "poses.txt").string(), gt.poses);
     {
       std::ofstream t(root / "times.txt");
-      t.setf(std::ios::scientific);
+      t.setf(std::ios::fixed);  // microseconds, as odom.txt: frame and odometry times match exactly
       t.precision(6);
       for (double v : gt.times) t << v << '\n';
       if (!t) throw IoError((root / "times.txt").string(), "write failed");

@@ -11,6 +11,7 @@
 #include "io/kitti_scan.h"
 #include "io/rgbd_files.h"
 #include "io/robot_dataset.h"
+#include "io/tum_trajectory.h"
 
 using namespace slide;
 namespace fs = std::filesystem;
@@ -119,7 +120,7 @@ TEST(RobotDataset, LidarFolderChecks) {
   const RobotDataset d = openRobotDataset(dir.string());
   EXPECT_EQ(d.size(), 2u);
   EXPECT_EQ(d.odometry.size(), 2u);
-  EXPECT_EQ(readLabelledScan(d.scans[1]).instance[0], 1);
+  EXPECT_EQ(d.scan(1).instance[0], 1);
   // Count mismatches and unparsable lines name the file.
   writeText(dir / "times.txt", "0.0\n");
   expectIoError([&] { openRobotDataset(dir.string()); }, {"times.txt", "1 entries for 2 frames"});
@@ -129,11 +130,58 @@ TEST(RobotDataset, LidarFolderChecks) {
   writeText(dir / "odom.txt", "0.0 0 0 0 0 0 0 1\n0.1 1 0 0 0 0 0 1\n");
   // A truncated scan and a label file for the wrong number of points.
   { std::ofstream(dir / "velodyne" / "000001.bin", std::ios::binary | std::ios::app) << "xyz"; }
-  expectIoError([&] { readLabelledScan(d.scans[1]); }, {"000001.bin", "truncated"});
+  expectIoError([&] { d.scan(1); }, {"000001.bin", "truncated"});
   LabelledScan one = scan;
   one.xyz.resize(1), one.intensity.resize(1);
   writeVelodyneBin((dir / "velodyne" / "000001.bin").string(), one);
-  expectIoError([&] { readLabelledScan(d.scans[1]); }, {"000001.label", "does not match"});
+  expectIoError([&] { d.scan(1); }, {"000001.label", "does not match"});
+  fs::remove_all(dir);
+}
+
+TEST(RobotDataset, OdometryAtItsOwnRateIsInterpolatedAtFrameTimesAndMissesAreDropped) {
+  const fs::path dir = scratch("async");
+  fs::create_directories(dir / "velodyne");
+  LabelledScan scan;
+  scan.xyz = {{1, 2, 3}};
+  scan.intensity = {0.5f};
+  std::string times;
+  for (int i = 0; i <= 10; ++i) {  // frames at 0.0, 0.1, ..., 1.0 s
+    writeVelodyneBin((dir / "velodyne" / (std::to_string(100 + i) + ".bin")).string(), scan);
+    times += std::to_string(0.1 * i) + "\n";
+  }
+  writeText(dir / "times.txt", times);
+  expectIoError([&] { openRobotDataset(dir.string()); }, {"odom.txt", "missing"});
+  // Analytic motion: x = 2 t, z = 0.1 t, yaw = 0.5 t (constant rates, so slerp is exact).
+  auto truth = [](double t) { return poseFromXyzYaw(2 * t, 0, 0.1 * t, 0.5 * t); };
+  std::vector<StampedPose> odom;
+  for (int k = 3; k <= 97; ++k) {  // 100 Hz from 0.03 to 0.97 s, with a gap (0.41, 0.69)
+    const double t = 0.01 * k;
+    if (t > 0.415 && t < 0.685) continue;
+    odom.push_back({t + 0.002, truth(t + 0.002)});  // odometry clock offset from the frames'
+  }
+  writeTum((dir / "odom.txt").string(), odom);
+  DatasetOptions opt;
+  opt.max_odometry_gap_s = 0.2;
+  const RobotDataset d = openRobotDataset(dir.string(), opt);
+  // 0.0 and 1.0 lie outside the odometry's span, 0.5 and 0.6 inside its 0.28 s gap.
+  EXPECT_EQ(d.dropped.outside_span, 2u);
+  EXPECT_EQ(d.dropped.gap, 2u);
+  ASSERT_EQ(d.size(), 7u);
+  const std::vector<std::size_t> ids{1, 2, 3, 4, 7, 8, 9};
+  EXPECT_EQ(d.frame_ids, ids);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    EXPECT_NEAR(d.times[i], 0.1 * ids[i], 1e-9);
+    EXPECT_TRUE(d.odometry[i].pose.isApprox(truth(d.times[i]), 1e-9)) << "frame " << ids[i];
+  }
+  EXPECT_EQ(d.scan(0).size(), 1u);
+  // A larger limit bridges the gap; nothing is extrapolated past the span.
+  opt.max_odometry_gap_s = 0.5;
+  const RobotDataset wide = openRobotDataset(dir.string(), opt);
+  EXPECT_EQ(wide.dropped.gap, 0u);
+  EXPECT_EQ(wide.dropped.outside_span, 2u);
+  // Odometry entirely after the frames: nothing to replay, said so.
+  writeText(dir / "odom.txt", "5.0 0 0 0 0 0 0 1\n6.0 0 0 0 0 0 0 1\n");
+  expectIoError([&] { openRobotDataset(dir.string()); }, {"none of the 11 frames", "11 outside"});
   fs::remove_all(dir);
 }
 
@@ -149,6 +197,8 @@ TEST(RobotDataset, RgbdFolderChecks) {
   CameraCalib c;
   c.width = 6, c.height = 4, c.fx = c.fy = 5, c.cx = 3, c.cy = 2;
   writeCameraCalib((dir / "calib.txt").string(), c);
+  expectIoError([&] { openRobotDataset(dir.string()); }, {"odom.txt", "missing"});
+  writeText(dir / "odom.txt", "0.0 0 0 0 0 0 0 1\n");
   const RobotDataset d = openRobotDataset(dir.string());
   EXPECT_EQ(d.sensor, RobotDataset::Sensor::Rgbd);
   EXPECT_EQ(d.camera.width, 6);
@@ -166,12 +216,13 @@ TEST(RobotDataset, RgbdFolderChecks) {
   fs::remove_all(dir);
 }
 
-TEST(RobotDataset, RealSemanticKittiFolder) {
+TEST(RobotDataset, RealSemanticKittiFolderWithoutOdometryIsAnError) {
+  // The shared SemanticKITTI pair has scans and labels but no times or odometry: the folder is
+  // refused (naming what is missing) rather than replayed with guessed poses.
   const std::string dir = std::string(SLIDE_DATA_DIR) + "/semantickitti/sequences/08";
   if (!fs::exists(dir + "/velodyne/000720.bin")) GTEST_SKIP();
-  const RobotDataset d = openRobotDataset(dir);
-  ASSERT_EQ(d.size(), 2u);
-  const LabelledScan a = readLabelledScan(d.scans[0]);
+  expectIoError([&] { openRobotDataset(dir); }, {"times.txt", "missing"});
+  const LabelledScan a = readLabelledScan(dir + "/velodyne/000720.bin");
   EXPECT_EQ(a.size(), 126661u);
   EXPECT_TRUE(a.hasLabels());
 }

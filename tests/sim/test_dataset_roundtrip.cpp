@@ -50,7 +50,7 @@ TEST(Dataset, LidarScenarioReadsBack) {
     ASSERT_EQ(d.ground_truth.size(), 4u);
     EXPECT_TRUE(d.ground_truth[3].pose.isApprox(sc.robots[r].ground_truth.poses[3], 1e-6));
     EXPECT_TRUE(d.odometry[3].pose.isApprox(sc.robots[r].odometry[3], 1e-6));
-    const LabelledScan scan = readLabelledScan(d.scans[2]);
+    const LabelledScan scan = d.scan(2);
     ASSERT_TRUE(scan.hasLabels());
     EXPECT_GT(scan.size(), 5000u);
     // Every instance id names an object of the CSV whose class matches the point label.
@@ -99,8 +99,9 @@ TEST(Dataset, RgbdScenarioReadsBack) {
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d.camera.width, 640);
   EXPECT_NEAR(d.camera.depth_scale, 0.001, 1e-12);
-  const cv::Mat depth = readDepthPng((out / "robot0" / d.frames[1].depth).string());
-  const cv::Mat color = readColorPng((out / "robot0" / d.frames[1].rgb).string());
+  const RgbdImages f = d.rgbd(1);
+  const cv::Mat &depth = f.depth, &color = f.color;
+  ASSERT_TRUE(f.mask.has_value());
   EXPECT_EQ(depth.rows, 480);
   EXPECT_EQ(color.type(), CV_8UC3);
   EXPECT_GT(cv::countNonZero(depth), 640 * 480 / 2);
@@ -130,7 +131,7 @@ TEST(Dataset, EveryWorldForOneToThreeRobots) {
     for (int r = 0; r < robots; ++r) {
       const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
       ASSERT_EQ(d.size(), 2u);
-      EXPECT_GT(readLabelledScan(d.scans[1]).size(), 1000u);
+      EXPECT_GT(d.scan(1).size(), 1000u);
     }
     fs::remove_all(out);
     robots = robots % 3 + 1;

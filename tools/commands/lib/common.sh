@@ -17,6 +17,9 @@ SLIDE_PACKAGES=(
   libeigen3-dev libceres-dev libopencv-dev
   libspdlog-dev libcli11-dev libyaml-cpp-dev libgtest-dev libssl-dev nlohmann-json3-dev libnanoflann-dev
   iproute2 procps
+  librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
+  pluginlib-dev librcpputils-dev libament-index-cpp-dev libpcl-dev
+  python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs python3-geometry-msgs
 )
 
 missing_packages() {

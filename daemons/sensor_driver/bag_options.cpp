@@ -1,0 +1,57 @@
+#include "bag_options.h"
+
+#include <cstdio>
+
+#include "io/ros_bag.h"
+
+namespace slide {
+
+namespace {
+struct Field {
+  const char* flag;
+  const char* key;
+  std::string BagOptions::*member;
+  const char* help;
+};
+const Field kFields[] = {
+    {"--cloud-topic", "cloud_topic", &BagOptions::cloud_topic, "Bag: sensor_msgs/PointCloud2 topic (LiDAR)"},
+    {"--color-topic", "color_topic", &BagOptions::color_topic, "Bag: colour sensor_msgs/Image topic, bgr8/rgb8 (RGBD)"},
+    {"--depth-topic", "depth_topic", &BagOptions::depth_topic, "Bag: depth sensor_msgs/Image topic, 16UC1 mm or 32FC1 m (RGBD)"},
+    {"--camera-info-topic", "camera_info_topic", &BagOptions::camera_info_topic, "Bag: sensor_msgs/CameraInfo topic (RGBD)"},
+    {"--odom-topic", "odom_topic", &BagOptions::odom_topic, "Bag: nav_msgs/Odometry topic (empty: the /tf chain odom frame -> body frame)"},
+    {"--odom-frame", "odom_frame", &BagOptions::odom_frame, "Bag: odometry frame of the /tf chain"},
+    {"--body-frame", "body_frame", &BagOptions::body_frame, "Bag: body frame (default: the Odometry child_frame_id, or base_link)"},
+};
+}  // namespace
+
+void addBagOptions(CLI::App& app, BagCli& cli) {
+  for (const Field& f : kFields) cli.set.push_back(app.add_option(f.flag, cli.options.*f.member, f.help));
+  cli.set.push_back(app.add_flag("--deskew", cli.options.deskew, "Bag: motion-compensate sweeps from per-point times"));
+  app.add_flag("--list", cli.list, "Print the bag's topics, types, message counts and rates, then exit");
+}
+
+void readBagConfig(const ConfigNode& sd, BagCli& cli) {
+  if (!sd.has("bag")) return;
+  const ConfigNode b = sd.child("bag");
+  std::size_t i = 0;
+  for (const Field& f : kFields) {
+    if (!cli.set[i++]->count()) cli.options.*f.member = b.get<std::string>(f.key, cli.options.*f.member);
+  }
+  if (!cli.set[i]->count()) cli.options.deskew = b.get<bool>("deskew", cli.options.deskew);
+  cli.options.max_color_depth_dt = b.get<double>("max_color_depth_dt", cli.options.max_color_depth_dt);
+  if (b.has("T_body_sensor")) {
+    const std::vector<double> v = b.getList<double>("T_body_sensor", 7);
+    cli.options.T_body_sensor =
+        poseFromPositionQuaternion({v[0], v[1], v[2]}, Eigen::Quaterniond(v[6], v[3], v[4], v[5]));
+  }
+}
+
+int listBag(const std::string& bag) {
+  const std::vector<BagTopicInfo> topics = listBagTopics(bag);
+  std::printf("%-40s %-32s %10s %10s\n", "topic", "type", "messages", "rate_hz");
+  for (const BagTopicInfo& t : topics)
+    std::printf("%-40s %-32s %10zu %10.2f\n", t.topic.c_str(), t.type.c_str(), t.messages, t.rateHz());
+  return 0;
+}
+
+}  // namespace slide
