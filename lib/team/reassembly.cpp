@@ -13,6 +13,8 @@ std::vector<Bytes> splitPayload(const Bytes& data, std::size_t max_chunk) {
 
 void Reassembler::erase(std::map<Key, Partial>::iterator it) {
   bytes_ -= it->second.bytes;
+  auto s = by_sender_.find(it->second.sender);
+  if ((s->second -= it->second.bytes) == 0) by_sender_.erase(s);
   partial_.erase(it);
 }
 
@@ -24,7 +26,8 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
     // What a partial payload costs is its slots as much as its bytes: a chunk claiming 32,767
     // parts allocates 32,767 slots.
     const std::size_t slots = static_cast<std::size_t>(c.num_chunks) * kSlotBytes;
-    if (bytes_ + slots + c.data.size() > max_bytes_) {
+    // No sender takes more than half the space: one cannot starve the others' maps.
+    if (bytes_ + slots + c.data.size() > max_bytes_ || by_sender_[c.sender] + slots + c.data.size() > max_bytes_ / 2) {
       *drop = Drop::Overflow;
       return std::nullopt;
     }
@@ -33,7 +36,9 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
     p.have.assign(static_cast<std::size_t>(c.num_chunks), false);
     p.started = now;
     p.bytes = slots;
+    p.sender = c.sender;
     bytes_ += slots;
+    by_sender_[c.sender] += slots;
     it = partial_.emplace(key, std::move(p)).first;
   }
   Partial& p = it->second;
@@ -43,7 +48,7 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
     else *drop = Drop::Duplicate;
     return std::nullopt;
   }
-  if (bytes_ + c.data.size() > max_bytes_) {
+  if (bytes_ + c.data.size() > max_bytes_ || by_sender_[p.sender] + c.data.size() > max_bytes_ / 2) {
     *drop = Drop::Overflow;
     return std::nullopt;
   }
@@ -51,6 +56,7 @@ std::optional<Bytes> Reassembler::add(const Chunk& c, Micros now, std::optional<
   p.have[i] = true;
   p.bytes += c.data.size();
   bytes_ += c.data.size();
+  by_sender_[p.sender] += c.data.size();
   if (++p.count < c.num_chunks) return std::nullopt;
   Bytes whole;
   for (const auto& part : p.parts) whole.insert(whole.end(), part.begin(), part.end());

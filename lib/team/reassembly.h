@@ -1,7 +1,7 @@
 #pragma once
 // Splitting payloads into chunks and putting them back together. Partial payloads are keyed
 // by (kind, origin, seq, num_chunks); they expire, and their total size is bounded: payload
-// bytes plus kSlotBytes per part slot allocated.
+// bytes plus kSlotBytes per part slot allocated, and no sender holds more than half of it.
 #include <map>
 #include <optional>
 #include <tuple>
@@ -34,12 +34,14 @@ class Reassembler {
     int count = 0;
     std::size_t bytes = 0;
     Micros started = 0;
+    std::int32_t sender = 0;  // who started it (its space is charged to it)
   };
   void erase(std::map<Key, Partial>::iterator it);
   std::size_t max_bytes_;
   Micros timeout_;
   std::size_t bytes_ = 0;
   std::map<Key, Partial> partial_;
+  std::map<std::int32_t, std::size_t> by_sender_;
 };
 
 }  // namespace slide::team

@@ -1,12 +1,12 @@
 // Bounded resources on the team bus (issue 16, finding 8): the reassembly space counts the part
-// slots a chunk header makes it allocate, not only payload bytes.
+// slots a chunk header makes it allocate, not only payload bytes, and no sender takes it all.
 #include <gtest/gtest.h>
 
 #include "team/reassembly.h"
 
 using namespace slide::team;
 
-TEST(Reassembly, SpaceCountsAllocatedPartsNotOnlyPayload) {
+TEST(Reassembly, SpaceCountsAllocatedPartsAndIsShared) {
   const std::size_t cap = 4 << 20;
   Reassembler r(cap, 30000000);
   std::size_t refused = 0;
@@ -24,9 +24,20 @@ TEST(Reassembly, SpaceCountsAllocatedPartsNotOnlyPayload) {
     EXPECT_LE(r.bytes(), cap);
   }
   EXPECT_GE(refused, 860u);
+  // Sender 0 holds at most half the space: another sender's map still fits.
+  EXPECT_LE(r.bytes(), cap / 2);
+  Chunk other;
+  other.sender = 5;
+  other.kind = ChunkKind::Map;
+  other.origin = 5;
+  other.num_chunks = 2;
+  other.data.assign(500, 1);
+  std::optional<Drop> other_drop;
+  r.add(other, 0, &other_drop);
+  EXPECT_FALSE(other_drop);
   // Expired partials give their space back; a real multi-chunk payload goes through.
   r.expire(60000000);
-  EXPECT_EQ(r.bytes(), 0u);
+  EXPECT_EQ(r.bytes(), 0u);  // (the other sender's partial too)
   Bytes whole;
   for (int i = 0; i < 3; ++i) {
     Chunk c;
