@@ -8,6 +8,7 @@
 
 #include "bundle_messages.h"
 #include "io/tum_trajectory.h"
+#include "mapio/object_map_text.h"
 #include "slide/optimizer_status_t.hpp"
 
 namespace slide {
@@ -35,6 +36,7 @@ void logResult(const UpdateResult& r, const std::string& what) {
 OptimizerNode::OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot,
                              OptimizerChannels channels, Publisher publish, int publish_every)
     : optimizer_(config, classes, robot),
+      classes_(classes),
       channels_(std::move(channels)),
       publish_(std::move(publish)),
       publish_every_(std::max(1, publish_every)) {}
@@ -175,6 +177,10 @@ void OptimizerNode::writeTrajectories(const std::string& dir) {
     writeTum(path, poses);
     spdlog::info("wrote {} poses of robot {} to {}", poses.size(), r, path);
   }
+  const std::string map = dir + "/map_robot" + std::to_string(optimizer_.hostRobot()) + ".txt";
+  const ObjectMap objects(optimizer_.landmarks());
+  writeObjectMapText(map, objects, classes_);
+  spdlog::info("wrote {} objects to {}", objects.size(), map);
 }
 
 }  // namespace slide

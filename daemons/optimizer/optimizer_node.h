@@ -42,7 +42,8 @@ class OptimizerNode {
   void handle(const std::string& channel, const void* data, int size);
 
   void publishAll();
-  // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot.
+  // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot
+  // and the (merged) object map <dir>/map_robot<host>.txt (mapio text).
   void writeTrajectories(const std::string& dir);
   const Optimizer& optimizer() const { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
@@ -55,6 +56,7 @@ class OptimizerNode {
   std::int64_t now() const;
 
   Optimizer optimizer_;
+  ClassTable classes_;
   OptimizerChannels channels_;
   Publisher publish_;
   int publish_every_;

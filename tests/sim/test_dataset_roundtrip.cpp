@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 
@@ -136,4 +137,39 @@ TEST(Dataset, EveryWorldForOneToThreeRobots) {
     fs::remove_all(out);
     robots = robots % 3 + 1;
   }
+}
+
+TEST(Dataset, SimulatedMissionAsABagGivesTheDriverTheSameFramesAndPoses) {
+  // The folder written as a bag (tools/convert/folder_to_bag.py, python3-rosbag) must reach the
+  // daemons unchanged: same frames, points and odometry, so the same map comes out of either.
+  ScenarioSpec spec;
+  spec.world = "forest";
+  spec.robots = 1;
+  spec.frames = 5;
+  const Scenario sc = buildScenario(spec);
+  const fs::path out = scratch("asbag");
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  writeScenarioDataset(sc, sensors, out.string());
+  const std::string bag = (out / "robot0.bag").string();
+  const std::string cmd = "/usr/bin/python3 " + std::string(SLIDE_SOURCE_DIR) + "/tools/convert/folder_to_bag.py " +
+                          (out / "robot0").string() + " " + bag + " --t0 1700000000 > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const RobotDataset folder = openRobotDataset((out / "robot0").string());
+  DatasetOptions o;
+  o.bag.cloud_topic = "/points";
+  o.bag.odom_topic = "/odom";
+  const RobotDataset fromBag = openRobotDataset(bag, o);
+  ASSERT_EQ(fromBag.size(), folder.size());
+  for (std::size_t i = 0; i < folder.size(); ++i) {
+    EXPECT_NEAR(fromBag.times[i] - 1700000000.0, folder.times[i], 1e-6);
+    EXPECT_TRUE(fromBag.odometry[i].pose.isApprox(folder.odometry[i].pose, 1e-6));
+    const LabelledScan a = folder.scan(i), b = fromBag.scan(i);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      ASSERT_EQ(a.xyz[k], b.xyz[k]);
+      ASSERT_EQ(a.intensity[k], b.intensity[k]);
+    }
+  }
+  fs::remove_all(out);
 }
