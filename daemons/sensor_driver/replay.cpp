@@ -50,7 +50,8 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
   }
 }
 
-int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& sink, const std::function<bool()>& stop) {
+int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerception& perception, MessageSink& sink,
+                  const std::function<bool()>& stop) {
   const int n = static_cast<int>(d.size());
   int first = std::clamp(o.start_frame, 0, n);
   while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
@@ -71,6 +72,7 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     s.frames_sent = sent;
     s.frames_total = total;
     s.source = d.dir;
+    s.detections = toString(perception.source());
     sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
   };
   status(stream_status_t::RUNNING, 0);
@@ -95,15 +97,16 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
       sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
     }
     if (d.sensor == RobotDataset::Sensor::Lidar) {
-      sink.send(o.scan_channel, toScanMessage(readLabelledScan(d.scans[i]), utime, o.robot, seq), utime);
+      sink.send(o.scan_channel, toScanMessage(perception.scan(d.scans[i], i), utime, o.robot, seq), utime);
     } else {
       const std::filesystem::path dir(d.dir);
       const cv::Mat color = readColorPng((dir / d.frames[i].rgb).string());
       const cv::Mat depth = readDepthPng((dir / d.frames[i].depth).string());
-      const std::filesystem::path mask_png = dir / "instances" / std::filesystem::path(d.frames[i].rgb).filename();
-      std::unique_ptr<InstanceMask> mask;
-      if (std::filesystem::exists(mask_png)) mask = std::make_unique<InstanceMask>(readInstanceMask(mask_png.string()));
-      sink.send(o.rgbd_channel, toRgbdMessage(color, depth, mask.get(), d.camera, utime, o.robot, seq), utime);
+      const auto masks = perception.masks(dir, d.frames[i].rgb, depth, d.camera.depth_scale, i);
+      sink.send(o.rgbd_channel,
+                toRgbdMessage(color, depth, masks ? &masks->masks : nullptr, masks ? &masks->confidence : nullptr, d.camera,
+                              utime, o.robot, seq),
+                utime);
     }
     ++sent;
     const auto now = std::chrono::steady_clock::now();

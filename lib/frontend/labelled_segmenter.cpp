@@ -9,13 +9,15 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     issues.count("empty scan");
     return {};
   }
-  if (!scan.hasLabels() || scan.semantic.size() != scan.size() || scan.instance.size() != scan.size()) {
+  if (!scan.hasLabels() || scan.semantic.size() != scan.size()) {
     issues.count("scan without labels");
     return {};
   }
   const double r2 = params_.max_range * params_.max_range;
-  std::map<std::pair<int, int>, std::vector<int>> groups;  // (class, instance id) -> point indices
-  std::map<int, int> class_of_label;                       // cache of the class-table lookup
+  // Clustering group of each class: the class itself, or -1 for every cylinder class.
+  std::map<int, std::vector<int>> groups;   // group -> point indices
+  std::vector<int> class_of(scan.size(), -1);
+  std::map<int, int> class_of_label;        // cache of the class-table lookup
   long bad = 0;
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const auto& p = scan.xyz[i];
@@ -28,27 +30,28 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     auto it = class_of_label.find(label);
     if (it == class_of_label.end()) it = class_of_label.emplace(label, classes_.fromSemanticKitti(label).value_or(-1)).first;
     if (it->second < 0) continue;
-    groups[{it->second, scan.instance[i]}].push_back(static_cast<int>(i));
+    class_of[i] = it->second;
+    const bool cylinder = classes_.at(it->second).shape == Shape::Cylinder;
+    groups[params_.merge_cylinders && cylinder ? -1 : it->second].push_back(static_cast<int>(i));
   }
   issues.count("non-finite point", bad);
 
   std::vector<Instance> out;
-  auto emit = [&](int class_id, const std::vector<int>& idx) {
-    if (static_cast<int>(idx.size()) < params_.min_points) return;
-    Instance inst;
-    inst.id = static_cast<int>(out.size()) + 1;
-    inst.class_id = class_id;
-    inst.points.reserve(idx.size());
-    for (int i : idx) inst.points.push_back(scan.xyz[i]);
-    out.push_back(std::move(inst));
-  };
-  for (const auto& [key, idx] : groups) {
-    if (key.second != 0) {
-      emit(key.first, idx);
-      continue;
+  for (const auto& [group, idx] : groups)
+    for (const auto& cluster : clusterGrid(scan.xyz, idx, params_.cluster)) {
+      if (static_cast<int>(cluster.size()) < params_.min_points) continue;
+      std::map<int, int> votes;
+      for (int i : cluster) ++votes[class_of[i]];
+      int best = group, most = -1;
+      for (const auto& [c, n] : votes)
+        if (n > most) best = c, most = n;
+      Instance inst;
+      inst.id = static_cast<int>(out.size()) + 1;
+      inst.class_id = best;
+      inst.points.reserve(cluster.size());
+      for (int i : cluster) inst.points.push_back(scan.xyz[i]);
+      out.push_back(std::move(inst));
     }
-    for (const auto& cluster : clusterGrid(scan.xyz, idx, params_.cluster)) emit(key.first, cluster);
-  }
   return out;
 }
 

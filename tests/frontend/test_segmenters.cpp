@@ -57,11 +57,11 @@ TEST(GroundRemoval, CarRoofIsNotGround) {
   }
 }
 
-TEST(LabelledSegmenter, InstancesFromIdsAndBadInput) {
+TEST(LabelledSegmenter, InstancesFromClassesAloneAndBadInput) {
   const ClassTable classes = ClassTable::loadDefault();
   const LabelledSegmenter seg(classes, {});
   auto scan = synth::syntheticScan({{71, {6, 2, 0}}, {10, {9, -3, 0}, 0, 0, 0.3}}, poseFromXyzYaw(0, 0, 1.5, 0));
-  for (auto& id : scan.instance) id = id == 1 ? 0 : id;  // the trunk without instance id: clustered
+  scan.instance.clear();  // a detector gives classes only
   scan.xyz[0] = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
   InputIssues issues;
   const auto inst = seg.segment(scan, issues);
@@ -87,7 +87,7 @@ TEST(LabelledSegmenter, RealScanCarBecomesCarSizedCuboid) {
   const auto inst = LabelledSegmenter(classes, cfg.labelled).segment(scan, issues);
   const Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.0);
   ASSERT_TRUE(car);
-  EXPECT_GT(car->points.size(), 600u);
+  EXPECT_GT(car->points.size(), 500u);  // labelled instance: 600+ points; clustering of the class drops a few strays
   const auto o = fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero());
   ASSERT_TRUE(o);
   EXPECT_TRUE(classes.sizePlausible(*o));

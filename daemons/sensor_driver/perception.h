@@ -1,0 +1,46 @@
+#pragma once
+// What the sensor driver puts on the robot bus besides raw data: nothing (the default: a real
+// robot has no labels), the detection emulator's output made from the dataset's ground truth
+// (simulation standing in for a learned detector), or the ground truth itself (an oracle,
+// asked for explicitly, for upper-bound runs only). Ground truth never leaves this process
+// except in oracle mode.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "io/robot_dataset.h"
+#include "sim/detection_emulator.h"
+
+namespace slide {
+
+enum class DetectionSource { None, Emulated, Oracle };
+// "none", "emulated", "oracle"; parseDetectionSource throws std::invalid_argument otherwise.
+std::string toString(DetectionSource s);
+DetectionSource parseDetectionSource(const std::string& name);
+
+class FramePerception {
+ public:
+  FramePerception(DetectionSource source, DetectionEmulatorConfig config, int robot)
+      : source_(source), config_(std::move(config)), robot_(robot) {}
+  DetectionSource source() const { return source_; }
+
+  // The scan of velodyne file `bin` (dataset frame `frame`) as published: no labels, emulated
+  // labels without instance ids, or the ground-truth labels.
+  LabelledScan scan(const std::string& bin, int frame) const;
+
+  struct Masks {
+    InstanceMask masks;
+    std::vector<float> confidence;
+  };
+  // Instance masks of RGBD frame `frame` (its colour image at `rgb`, relative to the dataset
+  // folder `dir`) as published; nullopt when none are published or the dataset has none.
+  std::optional<Masks> masks(const std::filesystem::path& dir, const std::string& rgb, const cv::Mat& depth,
+                             double depth_scale, int frame) const;
+
+ private:
+  DetectionSource source_;
+  DetectionEmulatorConfig config_;
+  int robot_;
+};
+
+}  // namespace slide
