@@ -37,8 +37,12 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
   issues.count("non-finite point", bad);
 
   std::vector<Instance> out;
-  for (const auto& [group, idx] : groups)
-    for (const auto& cluster : clusterGrid(scan.xyz, idx, params_.cluster)) {
+  for (const auto& [group, idx] : groups) {
+    GridClusterParams cp = params_.cluster;
+    // Columns are vertical: cluster their points on x, y so a trunk split by occlusion or
+    // bled labels in the middle stays one object.
+    cp.planar = group == -1 || (group >= 0 && classes_.at(group).shape == Shape::Cylinder);
+    for (const auto& cluster : clusterGrid(scan.xyz, idx, cp)) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;
       for (int i : cluster) ++votes[class_of[i]];
@@ -52,6 +56,7 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
       for (int i : cluster) inst.points.push_back(scan.xyz[i]);
       out.push_back(std::move(inst));
     }
+  }
   return out;
 }
 

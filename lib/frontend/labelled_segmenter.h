@@ -7,7 +7,8 @@
 //
 // Robust to a real network's errors: with merge_cylinders, trunk and pole points (the classes
 // a network confuses most) are clustered together and each cluster takes the class most of
-// its points carry, so a half-confused pole stays one object; boundary points bled into the
+// its points carry, so a half-confused pole stays one object; cylinder classes are clustered
+// on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
 // background and shadows behind objects form small separate clusters that min_points drops.
 #include "frontend/grid_clustering.h"
 #include "frontend/segmenter.h"
