@@ -10,6 +10,7 @@
 
 #include "io/robot_dataset.h"
 #include "sim/detection_emulator.h"
+#include "sim/rgbd_emulator.h"
 
 namespace slide {
 

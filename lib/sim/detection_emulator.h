@@ -24,10 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "io/kitti_scan.h"
-#include "io/rgbd_files.h"
 
 namespace slide {
 
@@ -107,14 +104,6 @@ uint64_t detectionSeed(uint64_t seed, int robot, int frame);
 // A scan without labels comes back without labels.
 LabelledScan emulateLidarLabels(const LabelledScan& truth, const LidarEmulatorParams& params, uint64_t seed);
 
-struct EmulatedMasks {
-  InstanceMask masks;              // CV_16UC1 ids 1..K, class per id, object ids 0
-  std::vector<float> confidence;   // per id
-};
-
-// Emulated detections of a frame from its ground-truth instance mask and its depth image
-// (CV_16UC1, depth_scale metres per unit). Throws std::invalid_argument when sizes differ.
-EmulatedMasks emulateRgbdDetections(const InstanceMask& truth, const cv::Mat& depth, double depth_scale,
-                                    const RgbdEmulatorParams& params, uint64_t seed);
+// The RGBD function, emulateRgbdDetections, is in sim/rgbd_emulator.h.
 
 }  // namespace slide

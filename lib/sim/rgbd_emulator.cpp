@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "sim/detection_emulator.h"
+#include "sim/rgbd_emulator.h"
 #include "sim/fast_rng.h"
 
 namespace slide {

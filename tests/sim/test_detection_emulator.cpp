@@ -10,6 +10,7 @@
 #include <map>
 
 #include "sim/detection_emulator.h"
+#include "sim/rgbd_emulator.h"
 
 using namespace slide;
 
