@@ -131,6 +131,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "min_points", cfg.labelled.min_points, 1);
       opt(c, "max_range", cfg.labelled.max_range, 1.0);
       opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
+      opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);

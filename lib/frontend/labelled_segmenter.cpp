@@ -1,5 +1,6 @@
 #include "frontend/labelled_segmenter.h"
 
+#include <algorithm>
 #include <map>
 
 namespace slide {
@@ -49,6 +50,11 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
       int best = group, most = -1;
       for (const auto& [c, n] : votes)
         if (n > most) best = c, most = n;
+      // A flat patch (ground or a roof labelled as an object) is no object: the cluster must
+      // stand at least min_height_fraction of its class's smallest height.
+      float z_lo = 1e9f, z_hi = -1e9f;
+      for (int i : cluster) z_lo = std::min(z_lo, scan.xyz[i].z()), z_hi = std::max(z_hi, scan.xyz[i].z());
+      if (z_hi - z_lo < params_.min_height_fraction * classes_.at(best).size_min.z()) continue;
       Instance inst;
       inst.id = static_cast<int>(out.size()) + 1;
       inst.class_id = best;

@@ -9,7 +9,8 @@
 // a network confuses most) are clustered together and each cluster takes the class most of
 // its points carry, so a half-confused pole stays one object; cylinder classes are clustered
 // on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
-// background and shadows behind objects form small separate clusters that min_points drops.
+// background and shadows behind objects form small separate clusters that min_points drops,
+// and flat patches (ground labelled as an object) fall below the class's height.
 #include "frontend/grid_clustering.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -21,6 +22,7 @@ struct LabelledSegmenterParams {
   int min_points = 15;          // instances with fewer points are dropped
   double max_range = 80.0;      // metres, horizontal
   bool merge_cylinders = true;  // cluster all cylinder classes together, majority class per cluster
+  double min_height_fraction = 0.5;  // clusters lower than this times their class's size_min z are dropped
 };
 
 class LabelledSegmenter : public LidarSegmenter {
