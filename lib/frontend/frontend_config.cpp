@@ -146,6 +146,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "max_depth", p.max_depth, p.min_depth);
       opt(c, "median_radius", p.median_radius, 0);
       opt(c, "stride", p.stride, 1);
+      opt(c, "erode_px", p.erode_px, 0);
       opt(c, "min_points", p.min_points, 1);
     }
   }
