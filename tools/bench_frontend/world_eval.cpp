@@ -301,7 +301,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     }
     if (r.mode == "emulated")
       for (const auto& [c, n] : iou_counts)
-        if (const ClassInfo* info = classes.find(c); info && n[0] + n[1] + n[2] > 0)
+        if (const ClassInfo* info = classes.find(c); info && n[0] + n[2] > 0)  // classes the world holds
           m.iou[info->name] = double(n[0]) / double(n[0] + n[1] + n[2]);
     m.precision = m.estimated ? double(m.matched) / m.estimated : 0.0;
     m.recall = m.ground_truth ? double(m.matched) / m.ground_truth : 0.0;
