@@ -37,13 +37,15 @@ lidar_scan_t toScanMessage(const LabelledScan& scan, int64_t utime, int robot, i
   m.num_labels = m.has_labels ? m.num_points : 0;
   if (m.has_labels) {
     m.semantic.assign(scan.semantic.begin(), scan.semantic.end());
-    m.instance.assign(scan.instance.begin(), scan.instance.end());
+    if (scan.instance.size() == scan.size()) m.instance.assign(scan.instance.begin(), scan.instance.end());
+    else m.instance.assign(scan.size(), 0);
   }
   return m;
 }
 
 rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const InstanceMask* mask,
-                           const CameraCalib& calib, int64_t utime, int robot, int seq) {
+                           const std::vector<float>* confidence, const CameraCalib& calib, int64_t utime, int robot,
+                           int seq) {
   if (color.size() != depth.size()) throw std::invalid_argument("colour and depth images differ in size");
   rgbd_frame_t m;
   m.header = header(utime, robot, seq);
@@ -61,7 +63,10 @@ rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const Ins
   if (mask) {
     m.instance_mask = bytesOf(mask->mask);
     m.instance_class.assign(mask->class_id.begin(), mask->class_id.end());
-    m.instance_confidence.assign(mask->class_id.size(), 1.0f);
+    if (confidence && confidence->size() != mask->class_id.size())
+      throw std::invalid_argument("one confidence per instance expected");
+    if (confidence) m.instance_confidence = *confidence;
+    else m.instance_confidence.assign(mask->class_id.size(), 1.0f);
   }
   m.mask_size = static_cast<int32_t>(m.instance_mask.size());
   m.num_instances = static_cast<int32_t>(m.instance_class.size());

@@ -13,11 +13,14 @@
 
 namespace slide {
 
+// Labels when the scan has them; instance ids 0 when it has classes only.
 lidar_scan_t toScanMessage(const LabelledScan& scan, int64_t utime, int robot, int seq);
 
-// mask may be null (no instances). color is 8-bit BGR, depth 16-bit.
+// mask may be null (no instances); confidence (one per instance) null means 1.0 each.
+// color is 8-bit BGR, depth 16-bit.
 rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const InstanceMask* mask,
-                           const CameraCalib& calib, int64_t utime, int robot, int seq);
+                           const std::vector<float>* confidence, const CameraCalib& calib, int64_t utime, int robot,
+                           int seq);
 
 // Body pose in the odometry frame; velocities (body frame) from the previous pose over dt
 // seconds (zero when prev is null or dt <= 0).

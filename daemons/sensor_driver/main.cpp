@@ -1,6 +1,8 @@
 // slide-sensor-driver: replays one robot's recording (simulator output, KITTI-style LiDAR or
-// TUM-style RGBD folder, ROS 1 bag) onto the robot bus as SCAN / RGBD, ODOM and SENSOR_STATUS, and/or
-// into an LCM log that lcm-logplayer replays.
+// TUM-style RGBD folder, PCD folder, ROS 1 bag) onto the robot bus as SCAN / RGBD, ODOM and
+// SENSOR_STATUS, and/or into an LCM log that lcm-logplayer replays. Ground-truth labels and masks
+// stay on disk unless asked for (--detections oracle / --oracle-labels); --detections emulated
+// publishes the detection emulator's output (config/detections.yaml) instead.
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -9,6 +11,7 @@
 #include "app/app.h"
 #include "config/config.h"
 #include "bag_options.h"
+#include "perception.h"
 #include "replay.h"
 
 namespace {
@@ -22,14 +25,16 @@ int main(int argc, char** argv) {
   slide::addCommonOptions(app, common);
   slide::ReplayOptions opt;
   std::string dataset, lcm_url, log_path, config_path;
-  bool no_publish = false, no_progress = false;
+  bool no_publish = false, no_progress = false, oracle_labels = false;
+  std::string detections = "none", detection_config = std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml";
   app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0) or a ROS 1 .bag file")->required();
   app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
   app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
   app.add_option("--config", config_path,
-                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, channels: scan, rgbd, odom, "
-                 "status; bag: cloud_topic, color_topic, depth_topic, camera_info_topic, odom_topic, odom_frame, body_frame, "
-                 "deskew, max_color_depth_dt, T_body_sensor: [x, y, z, qx, qy, qz, qw]); command-line options win");
+                 "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, detections, "
+                 "detection_config, channels: scan, rgbd, odom, status; bag: cloud_topic, color_topic, depth_topic, "
+                 "camera_info_topic, odom_topic, odom_frame, body_frame, deskew, max_color_depth_dt, "
+                 "T_body_sensor: [x, y, z, qx, qy, qz, qw]); command-line options win");
   auto* rate_opt = app.add_option("--rate", opt.rate, "Real-time factor (1 = real time, 5 = 5x; 0 = as fast as possible)")
       ->capture_default_str();
   auto* start_frame_opt = app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
@@ -44,6 +49,17 @@ int main(int argc, char** argv) {
   app.add_option("--log", log_path, "Also write the messages to this LCM log file");
   app.add_flag("--no-publish", no_publish, "Do not publish on the bus (with --log: write the log only)");
   app.add_flag("--no-progress", no_progress, "No progress bar");
+  auto* detections_opt =
+      app.add_option("--detections", detections,
+                     "Labels / masks published with the raw data: none (a real robot's input), emulated (the "
+                     "detection emulator's output, made from the dataset's ground truth) or oracle (the ground truth "
+                     "itself: upper-bound runs only)")
+          ->check(CLI::IsMember({"none", "emulated", "oracle"}))
+          ->capture_default_str();
+  app.add_flag("--oracle-labels", oracle_labels,
+               "Publish the dataset's ground-truth labels / masks (same as --detections oracle)");
+  auto* detection_config_opt =
+      app.add_option("--detection-config", detection_config, "Detection emulator parameters (YAML)")->capture_default_str();
   auto* scan_opt = app.add_option("--scan-channel", opt.scan_channel, "LiDAR scan channel")->capture_default_str();
   auto* rgbd_opt = app.add_option("--rgbd-channel", opt.rgbd_channel, "RGBD frame channel")->capture_default_str();
   auto* odom_opt = app.add_option("--odom-channel", opt.odom_channel, "Odometry channel")->capture_default_str();
@@ -62,6 +78,8 @@ int main(int argc, char** argv) {
         if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
         slide::readBagConfig(c, bag_cli);
         if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
+        if (!detections_opt->count() && !oracle_labels) detections = c.get<std::string>("detections", detections);
+        if (!detection_config_opt->count()) detection_config = c.get<std::string>("detection_config", detection_config);
         if (c.has("channels")) {
           const slide::ConfigNode ch = c.child("channels");
           if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);
@@ -71,6 +89,21 @@ int main(int argc, char** argv) {
         }
       }
     }
+    if (oracle_labels && detections_opt->count() && detections != "oracle")
+      throw std::runtime_error("--oracle-labels contradicts --detections " + detections);
+    if (oracle_labels) detections = "oracle";
+    const slide::DetectionSource source = slide::parseDetectionSource(detections);
+    slide::DetectionEmulatorConfig emulator;
+    if (source == slide::DetectionSource::Emulated) emulator = slide::loadDetectionEmulatorConfig(detection_config);
+    const slide::FramePerception perception(source, emulator, opt.robot);
+    if (source == slide::DetectionSource::Oracle)
+      spdlog::warn("ORACLE: publishing the dataset's GROUND-TRUTH labels / masks (--detections oracle); a real robot "
+                   "has none, so every figure from this run is an upper bound");
+    else if (source == slide::DetectionSource::Emulated)
+      spdlog::info("detections: emulated from ground truth inside the driver ({}, seed {}); no ground truth is published",
+                   detection_config, emulator.seed);
+    else
+      spdlog::info("detections: none (raw data only; ground-truth labels / masks stay on disk)");
     data_opt.bag = bag_cli.options;
     const slide::RobotDataset d = slide::openRobotDataset(dataset, data_opt);
     std::unique_ptr<lcm::LCM> bus;
@@ -83,7 +116,8 @@ int main(int argc, char** argv) {
     slide::MessageSink sink(bus.get(), log_path);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
-    slide::replayDataset(d, opt, sink, [] { return g_stop.load(); });
+    slide::replayDataset(d, opt, perception, sink, [] { return g_stop.load(); });
+    if (source == slide::DetectionSource::Oracle) spdlog::warn("ORACLE run: ground-truth labels / masks were published");
     return g_stop ? 130 : 0;
   });
 }

@@ -49,7 +49,8 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
   }
 }
 
-int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& sink, const std::function<bool()>& stop) {
+int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerception& perception, MessageSink& sink,
+                  const std::function<bool()>& stop) {
   const int n = static_cast<int>(d.size());
   int first = std::clamp(o.start_frame, 0, n);
   while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
@@ -72,6 +73,7 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     s.frames_sent = sent;
     s.frames_total = total;
     s.source = d.path;
+    s.detections = toString(perception.source());
     sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
   };
   status(stream_status_t::RUNNING, 0);
@@ -97,12 +99,14 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
     const int seq = i - first;
     try {  // a frame that cannot be read is dropped and counted; the replay goes on
       if (d.sensor == RobotDataset::Sensor::Lidar) {
-        const lidar_scan_t scan = toScanMessage(d.scan(i), utime, o.robot, seq);
+        const lidar_scan_t scan = toScanMessage(perception.scan(d.scan(i), i), utime, o.robot, seq);
         sendOdometry(i, utime, seq);
         sink.send(o.scan_channel, scan, utime);
       } else {
-        const RgbdImages f = d.rgbd(i);
-        const rgbd_frame_t frame = toRgbdMessage(f.color, f.depth, f.mask ? &*f.mask : nullptr, d.camera, utime, o.robot, seq);
+        RgbdImages f = d.rgbd(i);
+        const auto masks = perception.masks(std::move(f.mask), f.depth, d.camera.depth_scale, i);
+        const rgbd_frame_t frame = toRgbdMessage(f.color, f.depth, masks ? &masks->masks : nullptr,
+                                                 masks ? &masks->confidence : nullptr, d.camera, utime, o.robot, seq);
         sendOdometry(i, utime, seq);
         sink.send(o.rgbd_channel, frame, utime);
       }

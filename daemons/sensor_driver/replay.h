@@ -7,6 +7,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "io/robot_dataset.h"
+#include "perception.h"
 
 namespace slide {
 
@@ -41,10 +42,11 @@ class MessageSink {
   int64_t event_num_ = 0;
 };
 
-// Replays frames [start, end) of `dataset` into `sink`; returns frames sent. Publishes a
-// RUNNING status about once a second and FINISHED at the end of data. `stop` is polled
-// between frames (interrupts end the replay early, without FINISHED).
-int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, MessageSink& sink,
-                  const std::function<bool()>& stop);
+// Replays frames [start, end) of `dataset` into `sink`, with the labels or masks `perception`
+// gives; returns frames sent. Publishes a RUNNING status (naming the detection source) about
+// once a second and FINISHED at the end of data. `stop` is polled between frames (interrupts
+// end the replay early, without FINISHED).
+int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, const FramePerception& perception,
+                  MessageSink& sink, const std::function<bool()>& stop);
 
 }  // namespace slide

@@ -130,6 +130,8 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       const ConfigNode c = s.child("labelled");
       opt(c, "min_points", cfg.labelled.min_points, 1);
       opt(c, "max_range", cfg.labelled.max_range, 1.0);
+      opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
+      opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);
@@ -144,6 +146,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "max_depth", p.max_depth, p.min_depth);
       opt(c, "median_radius", p.median_radius, 0);
       opt(c, "stride", p.stride, 1);
+      opt(c, "erode_px", p.erode_px, 0);
       opt(c, "min_points", p.min_points, 1);
     }
   }

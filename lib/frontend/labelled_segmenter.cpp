@@ -1,5 +1,6 @@
 #include "frontend/labelled_segmenter.h"
 
+#include <algorithm>
 #include <map>
 
 namespace slide {
@@ -9,13 +10,15 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     issues.count("empty scan");
     return {};
   }
-  if (!scan.hasLabels() || scan.semantic.size() != scan.size() || scan.instance.size() != scan.size()) {
+  if (!scan.hasLabels() || scan.semantic.size() != scan.size()) {
     issues.count("scan without labels");
     return {};
   }
   const double r2 = params_.max_range * params_.max_range;
-  std::map<std::pair<int, int>, std::vector<int>> groups;  // (class, instance id) -> point indices
-  std::map<int, int> class_of_label;                       // cache of the class-table lookup
+  // Clustering group of each class: the class itself, or -1 for every cylinder class.
+  std::map<int, std::vector<int>> groups;   // group -> point indices
+  std::vector<int> class_of(scan.size(), -1);
+  std::map<int, int> class_of_label;        // cache of the class-table lookup
   long bad = 0;
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const auto& p = scan.xyz[i];
@@ -28,26 +31,37 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     auto it = class_of_label.find(label);
     if (it == class_of_label.end()) it = class_of_label.emplace(label, classes_.fromSemanticKitti(label).value_or(-1)).first;
     if (it->second < 0) continue;
-    groups[{it->second, scan.instance[i]}].push_back(static_cast<int>(i));
+    class_of[i] = it->second;
+    const bool cylinder = classes_.at(it->second).shape == Shape::Cylinder;
+    groups[params_.merge_cylinders && cylinder ? -1 : it->second].push_back(static_cast<int>(i));
   }
   issues.count("non-finite point", bad);
 
   std::vector<Instance> out;
-  auto emit = [&](int class_id, const std::vector<int>& idx) {
-    if (static_cast<int>(idx.size()) < params_.min_points) return;
-    Instance inst;
-    inst.id = static_cast<int>(out.size()) + 1;
-    inst.class_id = class_id;
-    inst.points.reserve(idx.size());
-    for (int i : idx) inst.points.push_back(scan.xyz[i]);
-    out.push_back(std::move(inst));
-  };
-  for (const auto& [key, idx] : groups) {
-    if (key.second != 0) {
-      emit(key.first, idx);
-      continue;
+  for (const auto& [group, idx] : groups) {
+    GridClusterParams cp = params_.cluster;
+    // Columns are vertical: cluster their points on x, y so a trunk split by occlusion or
+    // bled labels in the middle stays one object.
+    cp.planar = group == -1 || (group >= 0 && classes_.at(group).shape == Shape::Cylinder);
+    for (const auto& cluster : clusterGrid(scan.xyz, idx, cp)) {
+      if (static_cast<int>(cluster.size()) < params_.min_points) continue;
+      std::map<int, int> votes;
+      for (int i : cluster) ++votes[class_of[i]];
+      int best = group, most = -1;
+      for (const auto& [c, n] : votes)
+        if (n > most) best = c, most = n;
+      // A flat patch (ground or a roof labelled as an object) is no object: the cluster must
+      // stand at least min_height_fraction of its class's smallest height.
+      float z_lo = 1e9f, z_hi = -1e9f;
+      for (int i : cluster) z_lo = std::min(z_lo, scan.xyz[i].z()), z_hi = std::max(z_hi, scan.xyz[i].z());
+      if (z_hi - z_lo < params_.min_height_fraction * classes_.at(best).size_min.z()) continue;
+      Instance inst;
+      inst.id = static_cast<int>(out.size()) + 1;
+      inst.class_id = best;
+      inst.points.reserve(cluster.size());
+      for (int i : cluster) inst.points.push_back(scan.xyz[i]);
+      out.push_back(std::move(inst));
     }
-    for (const auto& cluster : clusterGrid(scan.xyz, idx, params_.cluster)) emit(key.first, cluster);
   }
   return out;
 }

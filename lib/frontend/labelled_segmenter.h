@@ -1,8 +1,16 @@
 #pragma once
-// Segmentation of scans that carry per-point classes (SemanticKITTI labels from a dataset,
-// the simulator or a learned model): one instance per (class, instance id) where instance ids
-// are given, grid clustering of each class's remaining points otherwise. Points of classes
-// outside the ClassTable (road, building, vegetation...) are not objects and are dropped.
+// Segmentation of scans that carry per-point classes only (a range-image network such as
+// RangeNet++, the detection emulator, or the simulator's labels in an oracle run): grid
+// clustering of each class's points. Instance ids, when a scan has them, are ignored: a
+// detector gives none. Points of classes outside the ClassTable (road, building,
+// vegetation...) are not objects and are dropped.
+//
+// Robust to a real network's errors: with merge_cylinders, trunk and pole points (the classes
+// a network confuses most) are clustered together and each cluster takes the class most of
+// its points carry, so a half-confused pole stays one object; cylinder classes are clustered
+// on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
+// background and shadows behind objects form small separate clusters that min_points drops,
+// and flat patches (ground labelled as an object) fall below the class's height.
 #include "frontend/grid_clustering.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -11,8 +19,10 @@ namespace slide {
 
 struct LabelledSegmenterParams {
   GridClusterParams cluster{0.3, false, 15};
-  int min_points = 15;      // instances with fewer points are dropped
-  double max_range = 80.0;  // metres, horizontal
+  int min_points = 15;          // instances with fewer points are dropped
+  double max_range = 80.0;      // metres, horizontal
+  bool merge_cylinders = true;  // cluster all cylinder classes together, majority class per cluster
+  double min_height_fraction = 0.5;  // clusters lower than this times their class's size_min z are dropped
 };
 
 class LabelledSegmenter : public LidarSegmenter {

@@ -7,6 +7,18 @@
 
 namespace slide {
 
+namespace {
+// Is a pixel of another id (or the image border) within `r` pixels (square window) of (u, v)?
+bool onMaskEdge(const std::vector<std::uint16_t>& mask, int w, int h, int u, int v, int r) {
+  const std::uint16_t id = mask[static_cast<std::size_t>(v) * w + u];
+  if (u < r || v < r || u + r >= w || v + r >= h) return true;
+  for (int dv = -r; dv <= r; ++dv)
+    for (int du = -r; du <= r; du += (dv == -r || dv == r) ? 1 : 2 * r)  // the window's border ring
+      if (mask[static_cast<std::size_t>(v + dv) * w + u + du] != id) return true;
+  return false;
+}
+}  // namespace
+
 std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes, const RgbdSegmenterParams& p,
                                   InputIssues& issues) {
   const CameraIntrinsics& K = f.intrinsics;
@@ -37,6 +49,7 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
         ++stray_ids;
         continue;
       }
+      if (p.erode_px > 0 && onMaskEdge(f.mask, K.width, K.height, u, v, p.erode_px)) continue;
       if (depth[i] == 0) {
         ++missing_depth;
         continue;

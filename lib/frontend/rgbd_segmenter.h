@@ -45,6 +45,8 @@ struct RgbdSegmenterParams {
   double min_depth = 0.2, max_depth = 12.0;  // metres
   int median_radius = 2;       // depth median window (pixels) within each mask, 0 = off
   int stride = 1;              // pixel step (1 = every pixel)
+  int erode_px = 0;            // drop mask pixels this close to another id: a detector's masks spill
+                               // a few pixels over the object's edge onto the background
   int min_points = 30;
 };
 

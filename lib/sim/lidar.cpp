@@ -4,35 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/fast_rng.h"
+
 namespace slide {
 
 namespace {
-// SplitMix64 with Box-Muller normals: fast, deterministic per seed.
-struct FastRng {
-  explicit FastRng(uint64_t seed) : state(seed) {}
-  uint64_t next() {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-  double normal() {
-    if (has_spare) {
-      has_spare = false;
-      return spare;
-    }
-    const double u1 = std::max(uniform(), 1e-300), u2 = uniform();
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    spare = r * std::sin(2 * M_PI * u2);
-    has_spare = true;
-    return r * std::cos(2 * M_PI * u2);
-  }
-  uint64_t state;
-  double spare = 0;
-  bool has_spare = false;
-};
-
 std::vector<double> uniformBeams(int n, double top, double bottom) {
   std::vector<double> e(n);
   for (int i = 0; i < n; ++i) e[i] = top + (bottom - top) * i / (n - 1);

@@ -7,6 +7,7 @@
 #include "backend/optimizer.h"
 #include "frontend/labelled_segmenter.h"
 #include "sim/dataset_writer.h"
+#include "sim/rgbd_emulator.h"
 #include "sim/lidar.h"
 #include "sim/ray_caster.h"
 #include "simmap/bundle_convert.h"
@@ -44,9 +45,22 @@ RobotMapping mapRobot(const Scenario& sc, int robot, const SensorRig& rig, const
     RgbdFrame frame;
     if (lidar) {
       scan = simulateLidarScan(*caster, T_world_sensor, lidar_model, rng);
+      if (setup.emulator)
+        scan = emulateLidarLabels(scan, setup.emulator->lidar, detectionSeed(setup.emulator->seed ^ setup.seed, run.id, static_cast<int>(k)));
       out.raw_points += static_cast<long>(scan.size());
     } else {
-      frame = rgbdFrameOf(renderRgbd(*caster, T_world_sensor, camera, rng), camera);
+      const RgbdImage img = renderRgbd(*caster, T_world_sensor, camera, rng);
+      frame = rgbdFrameOf(img, camera);
+      if (setup.emulator) {
+        InstanceMask truth;
+        truth.mask = img.instance;
+        truth.class_id = img.instance_class;
+        const EmulatedMasks e = emulateRgbdDetections(truth, img.depth, 0.001, setup.emulator->rgbd,
+                                                      detectionSeed(setup.emulator->seed ^ setup.seed, run.id, static_cast<int>(k)));
+        frame.mask.assign(e.masks.mask.begin<std::uint16_t>(), e.masks.mask.end<std::uint16_t>());
+        frame.instance_class = e.masks.class_id;
+        frame.instance_confidence = e.confidence;
+      }
       for (auto d : frame.depth) out.raw_points += d > 0;
     }
     const double c1 = cpuS();

@@ -3,10 +3,12 @@
 // its route is rendered by its sensor (lib/sim), segmented (labelled LiDAR segmentation or
 // RGBD masks), tracked into key-pose bundles (lib/frontend) and optimised (lib/backend, the
 // robot alone). The result is its object map in its own odometry frame (its first pose).
+#include <optional>
 #include <vector>
 
 #include "backend/backend_config.h"
 #include "frontend/frontend_config.h"
+#include "sim/detection_emulator.h"
 #include "objects/class_table.h"
 #include "sim/scenario.h"
 #include "simmap/sensor_rig.h"
@@ -26,6 +28,9 @@ struct MappingSetup {
   FrontendConfig frontend;
   BackendConfig backend;
   std::uint64_t seed = 1;            // sensor noise (frameRng(seed, robot, frame))
+  // Detections the front-end sees: the emulator's (a learned detector's errors; the default
+  // of the benchmarks) when set, else the simulator's ground-truth labels / masks (an oracle).
+  std::optional<DetectionEmulatorConfig> emulator;
 };
 
 // Maps robot `robot` (index into sc.robots) carrying `rig`. Throws std::out_of_range for a

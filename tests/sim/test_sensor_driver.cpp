@@ -2,6 +2,8 @@
 // only), lcm-logger records what the driver publishes; the driver's own --log replays with
 // lcm-logplayer and is recorded again. Every log holds the odometry, scans/frames and a
 // FINISHED status. Needs root (unshare -n) and the LCM tools; skipped otherwise.
+// Without a namespace (--no-publish --log): what the driver publishes in each detection mode --
+// by default no ground-truth labels or masks at all.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +14,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "io/kitti_scan.h"
+#include "io/rgbd_files.h"
 #include "sim/dataset_writer.h"
 #include "slide/lidar_scan_t.hpp"
 #include "slide/odometry_t.hpp"
@@ -108,7 +112,7 @@ TEST(SensorDriver, LidarDatasetReachesLoggerAndLogReplays) {
     EXPECT_EQ(s.last_state, stream_status_t::FINISHED);
     EXPECT_EQ(s.last_sent, 10);
     EXPECT_GT(s.scan_points, 5000);
-    EXPECT_TRUE(s.scan_labelled);
+    EXPECT_FALSE(s.scan_labelled);  // by default the driver publishes no labels
     EXPECT_NE(s.last_odom_x, 0.0);
   }
   fs::remove_all(work);
@@ -134,5 +138,132 @@ TEST(SensorDriver, RgbdDatasetFrames) {
     EXPECT_EQ(s.rgbd_width, 640);
     EXPECT_EQ(s.last_state, stream_status_t::FINISHED);
   }
+  fs::remove_all(work);
+}
+
+namespace {
+struct Published {
+  std::vector<lidar_scan_t> scans;
+  std::vector<rgbd_frame_t> frames;
+  std::vector<std::string> status_detections;
+};
+
+Published runLogOnly(const fs::path& work, const fs::path& robot_dir, const std::string& args) {
+  const std::string driver = std::string(SLIDE_BINARY_DIR) + "/bin/slide-sensor-driver";
+  const fs::path log = work / "only.lcm";
+  fs::remove(log);
+  const std::string cmd = driver + " " + robot_dir.string() + " --rate 0 --no-progress --no-publish --log " + log.string() +
+                          " " + args + " > " + (work / "driver.log").string() + " 2>&1";
+  Published p;
+  if (std::system(cmd.c_str()) != 0) return p;
+  lcm::LogFile f(log.string(), "r");
+  while (const lcm::LogEvent* ev = f.readNextEvent()) {
+    if (ev->channel == "SCAN") {
+      lidar_scan_t m;
+      if (m.decode(ev->data, 0, ev->datalen) > 0) p.scans.push_back(m);
+    } else if (ev->channel == "RGBD") {
+      rgbd_frame_t m;
+      if (m.decode(ev->data, 0, ev->datalen) > 0) p.frames.push_back(m);
+    } else if (ev->channel == "SENSOR_STATUS") {
+      stream_status_t m;
+      if (m.decode(ev->data, 0, ev->datalen) > 0) p.status_detections.push_back(m.detections);
+    }
+  }
+  return p;
+}
+
+std::string driverLog(const fs::path& work) {
+  std::ifstream in(work / "driver.log");
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+}  // namespace
+
+TEST(SensorDriver, PublishesNoGroundTruthUnlessAskedForOracle) {
+  const fs::path work = fs::temp_directory_path() / ("slide_test_driver_modes_" + std::to_string(::getpid()));
+  fs::remove_all(work);
+  ScenarioSpec spec;
+  spec.world = "forest";
+  spec.robots = 1;
+  spec.frames = 4;
+  spec.forest.num_trees = 200;
+  spec.forest.side = 80;
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  const fs::path robot = work / "data" / "robot0";
+  std::vector<LabelledScan> truth;
+  for (int k = 0; k < 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "velodyne/%06d.bin", k);
+    truth.push_back(readLabelledScan((robot / name).string()));
+    ASSERT_TRUE(truth.back().hasLabels());
+  }
+
+  // Default: raw points only.
+  Published none = runLogOnly(work, robot, "");
+  ASSERT_EQ(none.scans.size(), 4u) << driverLog(work);
+  for (const auto& m : none.scans) {
+    EXPECT_FALSE(m.has_labels);
+    EXPECT_EQ(m.num_labels, 0);
+    EXPECT_TRUE(m.semantic.empty() && m.instance.empty());
+  }
+  for (const auto& d : none.status_detections) EXPECT_EQ(d, "none");
+
+  // Emulated: classes but no instance ids, and not the ground truth.
+  Published emu = runLogOnly(work, robot, "--detections emulated");
+  ASSERT_EQ(emu.scans.size(), 4u) << driverLog(work);
+  long differ = 0, total = 0;
+  for (std::size_t k = 0; k < emu.scans.size(); ++k) {
+    const auto& m = emu.scans[k];
+    ASSERT_TRUE(m.has_labels);
+    ASSERT_EQ(m.semantic.size(), truth[k].size());
+    for (auto id : m.instance) ASSERT_EQ(id, 0);
+    for (std::size_t i = 0; i < truth[k].size(); ++i) differ += m.semantic[i] != truth[k].semantic[i], ++total;
+  }
+  EXPECT_GT(differ, total / 200) << "emulated labels equal the ground truth";
+  for (const auto& d : emu.status_detections) EXPECT_EQ(d, "emulated");
+
+  // Oracle, asked for by name: the ground truth, and the log says so loudly.
+  Published oracle = runLogOnly(work, robot, "--oracle-labels");
+  ASSERT_EQ(oracle.scans.size(), 4u) << driverLog(work);
+  EXPECT_NE(driverLog(work).find("ORACLE"), std::string::npos);
+  for (std::size_t k = 0; k < oracle.scans.size(); ++k) {
+    ASSERT_TRUE(oracle.scans[k].has_labels);
+    EXPECT_EQ(std::vector<uint16_t>(oracle.scans[k].instance.begin(), oracle.scans[k].instance.end()), truth[k].instance);
+  }
+  for (const auto& d : oracle.status_detections) EXPECT_EQ(d, "oracle");
+  EXPECT_TRUE(runLogOnly(work, robot, "--oracle-labels --detections emulated").scans.empty());  // contradiction: an error
+  fs::remove_all(work);
+}
+
+TEST(SensorDriver, RgbdMasksOnlyEmulatedOrOracle) {
+  const fs::path work = fs::temp_directory_path() / ("slide_test_driver_masks_" + std::to_string(::getpid()));
+  fs::remove_all(work);
+  ScenarioSpec spec;
+  spec.world = "indoor";
+  spec.robots = 1;
+  spec.frames = 3;
+  SensorOptions sensors;
+  sensors.sensor = "rgbd";
+  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  const fs::path robot = work / "data" / "robot0";
+  Published none = runLogOnly(work, robot, "");
+  ASSERT_EQ(none.frames.size(), 3u) << driverLog(work);
+  for (const auto& f : none.frames) {
+    EXPECT_EQ(f.num_instances, 0);
+    EXPECT_EQ(f.mask_size, 0);
+  }
+  Published emu = runLogOnly(work, robot, "--detections emulated");
+  ASSERT_EQ(emu.frames.size(), 3u) << driverLog(work);
+  int with_masks = 0;
+  for (const auto& f : emu.frames) {
+    with_masks += f.num_instances > 0;
+    for (float c : f.instance_confidence) EXPECT_LT(c, 1.0f);  // a detector's score, not the oracle's 1.0
+  }
+  EXPECT_GT(with_masks, 0);
+  Published oracle = runLogOnly(work, robot, "--detections oracle");
+  ASSERT_EQ(oracle.frames.size(), 3u);
+  for (const auto& f : oracle.frames)
+    for (float c : f.instance_confidence) EXPECT_EQ(c, 1.0f);
   fs::remove_all(work);
 }

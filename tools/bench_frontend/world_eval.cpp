@@ -9,6 +9,7 @@
 
 #include "frontend/geometric_segmenter.h"
 #include "assignment/hungarian.h"
+#include "backend/data_association.h"
 #include "frontend/keypose.h"
 #include "frontend/labelled_segmenter.h"
 #include "frontend/rgbd_segmenter.h"
@@ -16,7 +17,9 @@
 #include "sim/ray_caster.h"
 #include "sim/rgbd_camera.h"
 #include "sim/dataset_writer.h"
+#include "sim/rgbd_emulator.h"
 #include "sim/scenario.h"
+#include "sim/semantic_labels.h"
 #include "simmap/sensor_rig.h"
 
 namespace slide {
@@ -24,7 +27,7 @@ namespace slide {
 namespace {
 // Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
 bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
-  if (mode == "labelled") return !c.semantickitti.empty();
+  if (mode == "emulated" || mode == "oracle") return !c.semantickitti.empty();
   if (mode == "geometric")
     return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class;
   return c.id != 0;  // rgbd: every detector class but the catch-all
@@ -37,17 +40,58 @@ int groupOf(const std::string& mode, int class_id, const FrontendConfig& cfg) {
   return class_id;
 }
 
-bool insideFootprint(const Object& box, const Eigen::Vector3d& p) {
-  const Cuboid& c = std::get<Cuboid>(box.model);
-  const Eigen::Vector3d q = c.pose.inverse() * p;
-  return std::abs(q.x()) <= c.dims.x() / 2 && std::abs(q.y()) <= c.dims.y() / 2;
+bool isRgbd(const std::string& mode) { return mode.rfind("rgbd", 0) == 0; }
+
+// Point IoU accumulators of the emulated labels per class (tp, fp, fn).
+using IouCounts = std::map<int, std::array<long, 3>>;
+void countIou(const LabelledScan& truth, const LabelledScan& emulated, IouCounts& counts) {
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const int t = label::classIdOfLabel(truth.semantic[i]), e = label::classIdOfLabel(emulated.semantic[i]);
+    if (t == e && t != 0) ++counts[t][0];
+    if (t != e) {
+      if (e != 0) ++counts[e][1];
+      if (t != 0) ++counts[t][2];
+    }
+  }
+}
+
+RgbdFrame emulatedFrame(const RgbdImage& img, const CameraModel& camera, const RgbdEmulatorParams& p, uint64_t seed) {
+  InstanceMask truth;
+  truth.mask = img.instance;
+  truth.class_id = img.instance_class;
+  truth.object_id = img.instance_object;
+  const EmulatedMasks e = emulateRgbdDetections(truth, img.depth, 0.001, p, seed);
+  RgbdFrame f = rgbdFrameOf(img, camera);
+  f.mask.assign(e.masks.mask.begin<std::uint16_t>(), e.masks.mask.end<std::uint16_t>());
+  f.instance_class = e.masks.class_id;
+  f.instance_confidence = e.confidence;
+  return f;
+}
+
+// The map a robot builds from its key-pose bundles: each bundle's objects, placed with the
+// ground-truth key pose, are associated with the landmarks by the back-end's own rule
+// (backend/data_association.h: class, centre distance and model difference within the class
+// table's thresholds, one detection per landmark); an associated landmark takes the newer
+// estimate, an unassociated object becomes a new landmark. No evaluator-side merging.
+void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map) {
+  std::vector<Detection> detections;
+  for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
+  std::vector<LandmarkCandidate> candidates;
+  for (std::size_t i = 0; i < map.size(); ++i)
+    if ((map[i].position() - T_world_body.translation()).head<2>().norm() < 100.0)
+      candidates.push_back({static_cast<int>(i), &map[i]});
+  const std::vector<int> assoc = associateDetections(detections, candidates, classes);
+  for (std::size_t k = 0; k < detections.size(); ++k) {
+    if (assoc[k] >= 0) map[assoc[k]] = detections[k].object;
+    else map.push_back(detections[k].object);
+  }
 }
 
 struct Runner {
   std::string mode;
   std::unique_ptr<LidarSegmenter> lidar;
   std::unique_ptr<KeyposeBundler> bundler;
-  std::map<std::int64_t, Object> latest;  // world frame, by track id
+  std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
   ModeResult result;
 };
 }  // namespace
@@ -69,16 +113,18 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   for (const auto& mode : spec.modes) {
     Runner r;
     r.mode = r.result.mode = mode;
-    if (mode == "labelled") r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
+    if (mode == "emulated" || mode == "oracle") r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
     else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
-    else if (mode != "rgbd") throw std::invalid_argument("unknown mode '" + mode + "'");
+    else if (mode != "rgbd" && mode != "rgbd.oracle") throw std::invalid_argument("unknown mode '" + mode + "'");
     r.bundler = std::make_unique<KeyposeBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
     runners.push_back(std::move(r));
   }
   bool any_moving = false;
   for (const auto& o : sc.world.objects) any_moving |= o.moving();
-  bool need_lidar = false, need_rgbd = false;
-  for (const auto& r : runners) (r.mode == "rgbd" ? need_rgbd : need_lidar) = true;
+  bool need_lidar = false, need_rgbd = false, need_emulated = false;
+  for (const auto& r : runners) (isRgbd(r.mode) ? need_rgbd : need_lidar) = true, need_emulated |= r.mode == "emulated";
+  const uint64_t emulator_seed = spec.emulator.seed ^ (spec.seed * 0x9e3779b97f4a7c15ULL);
+  IouCounts iou_counts;
 
   std::map<int, int> seen_lidar, seen_rgbd;
   std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
@@ -89,23 +135,29 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     if (!caster || any_moving) caster = std::make_unique<RayCaster>(sc.world, t);
     const Pose& T_world_body = robot.ground_truth.poses[k];
     std::mt19937_64 rng = frameRng(spec.seed, 0, static_cast<int>(k));
-    LabelledScan scan, unlabelled;
-    RgbdFrame frame;
+    LabelledScan scan, unlabelled, emulated;
+    RgbdFrame frame, emulated_frame;
     std::map<int, int> count;
     if (need_lidar) {
       scan = simulateLidarScan(*caster, T_world_body, lidar, rng);
       unlabelled.xyz = scan.xyz;
       unlabelled.intensity = scan.intensity;
       count.clear();
-      for (auto id : scan.instance) ++count[id];
+      for (std::size_t i = 0; i < scan.size(); ++i)
+        if (scan.xyz[i].head<2>().norm() <= spec.max_range) ++count[scan.instance[i]];
       for (const auto& [id, c] : count) {
         if (id != 0 && c >= spec.min_points) ++seen_lidar[id];
         max_points[id] = std::max(max_points[id], c);
+      }
+      if (need_emulated) {
+        emulated = emulateLidarLabels(scan, spec.emulator.lidar, detectionSeed(emulator_seed, 0, static_cast<int>(k)));
+        countIou(scan, emulated, iou_counts);
       }
     }
     if (need_rgbd) {
       const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
       frame = rgbdFrameOf(img, camera);
+      emulated_frame = emulatedFrame(img, camera, spec.emulator.rgbd, detectionSeed(emulator_seed, 0, static_cast<int>(k)));
       std::vector<int> pix(img.instance_object.size() + 1, 0);
       for (auto id : frame.mask)
         if (id > 0 && id < pix.size()) ++pix[id];
@@ -118,13 +170,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       FrameInstances fi;
       fi.utime = static_cast<std::int64_t>(t * 1e6);
       fi.odom_pose = robot.odometry[k];
-      if (r.mode == "rgbd") fi.instances = segmentRgbd(frame, classes, cfg.rgbd, issues);
-      else fi.instances = r.lidar->segment(r.mode == "labelled" ? scan : unlabelled, issues);
+      if (r.mode == "rgbd") fi.instances = segmentRgbd(emulated_frame, classes, cfg.rgbd, issues);
+      else if (r.mode == "rgbd.oracle") fi.instances = segmentRgbd(frame, classes, cfg.rgbd, issues);
+      else fi.instances = r.lidar->segment(r.mode == "oracle" ? scan : r.mode == "emulated" ? emulated : unlabelled, issues);
       const auto bundle = r.bundler->process(fi, issues);
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
       if (bundle)
-        for (const auto& o : bundle->objects) r.latest[o.id] = transformObject(T_world_body, o);
+        addToMap(*bundle, T_world_body, classes, r.landmarks);
     }
   }
 
@@ -132,36 +185,36 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   out.world = spec.world;
   out.frames = static_cast<int>(n);
   for (auto& r : runners) {
-    const auto& seen = r.mode == "rgbd" ? seen_rgbd : seen_lidar;
-    std::map<int, std::vector<const Object*>> gt, est;  // by evaluation group
+    const auto& seen = isRgbd(r.mode) ? seen_rgbd : seen_lidar;
+    std::map<int, std::vector<const Object*>> gt, est, unscored;  // by evaluation group
     for (const auto& g : sc.world.objects) {
       const ClassInfo* c = classes.find(g.object.class_id);
       if (!c || g.moving() || !producible(r.mode, *c, cfg)) continue;
       const auto it = seen.find(static_cast<int>(g.object.id));
-      if (it == seen.end() || it->second < spec.min_frames) continue;
-      gt[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
+      const bool visible = it != seen.end() && it->second >= spec.min_frames;
+      (visible ? gt : unscored)[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
     }
-    // The map: estimates of one group that are the same landmark (what the back-end's data
-    // association does with re-created tracks) are kept once: cuboids whose centre lies in
-    // the other's footprint, other shapes closer than half the class's association distance.
-    // Best-observed estimates first: they survive as the landmark.
-    std::vector<Object> ordered;
-    for (const auto& [id, o] : r.latest) ordered.push_back(o);
-    std::stable_sort(ordered.begin(), ordered.end(),
-                     [](const Object& a, const Object& b) { return a.num_observations > b.num_observations; });
-    std::vector<Object> merged;
-    for (const auto& o : ordered) {
+    // The map: every landmark, none merged here. A landmark nearer to a real object below the
+    // visibility criterion (too far, too few returns) than to any scored one, and within the
+    // class's association distance of it, is neither credited nor penalised (counted as ignored).
+    std::vector<Object> estimates;
+    for (const Object& o : r.landmarks) {
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
-      bool dup = false;
-      for (const auto& m : merged)
-        dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
-               ((m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance ||
-                (o.shape() == Shape::Cuboid && m.shape() == Shape::Cuboid &&
-                 (insideFootprint(m, o.position()) || insideFootprint(o, m.position()))));
-      if (!dup) merged.push_back(o);
+      const int grp = groupOf(r.mode, o.class_id, cfg);
+      auto nearest = [&](const std::vector<const Object*>& v) {
+        double d = 1e18;
+        for (const Object* g : v) d = std::min(d, (g->position() - o.position()).head<2>().norm());
+        return d;
+      };
+      const double d_out = nearest(unscored[grp]);
+      if (d_out <= classes.at(grp).association_distance && d_out < nearest(gt[grp])) {
+        ++r.result.ignored;
+        continue;
+      }
+      estimates.push_back(o);
     }
-    for (const auto& o : merged) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
+    for (const auto& o : estimates) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
     ModeResult& m = r.result;
     std::set<int> groups;
     for (const auto& [g, v] : gt) groups.insert(g);
@@ -180,6 +233,12 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
           if (a >= 0) ++matched, hit[a] = 1;
+        for (std::size_t i = 0; i < E.size(); ++i) {
+          if (assign[i] >= 0) continue;
+          bool dup = false;
+          for (std::size_t j = 0; j < G.size(); ++j) dup |= hit[j] && cost(i, j) <= info.association_distance;
+          ++(dup ? m.duplicates : m.false_objects);
+        }
         if (spec.verbose)
           for (std::size_t i = 0; i < E.size(); ++i) {
             if (assign[i] >= 0) continue;
@@ -219,7 +278,10 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
                         r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
                         G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
           }
-      } else if (spec.verbose) {
+      } else {
+        m.false_objects += static_cast<int>(E.size());
+      }
+      if (spec.verbose && (G.empty() || E.empty())) {
         for (const auto* g : G)
           std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
         for (const auto* e : E) {
@@ -237,6 +299,10 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       m.ground_truth += static_cast<int>(G.size());
       m.matched += matched;
     }
+    if (r.mode == "emulated")
+      for (const auto& [c, n] : iou_counts)
+        if (const ClassInfo* info = classes.find(c); info && n[0] + n[2] > 0)  // classes the world holds
+          m.iou[info->name] = double(n[0]) / double(n[0] + n[1] + n[2]);
     m.precision = m.estimated ? double(m.matched) / m.estimated : 0.0;
     m.recall = m.ground_truth ? double(m.matched) / m.ground_truth : 0.0;
     m.f1 = m.precision + m.recall > 0 ? 2 * m.precision * m.recall / (m.precision + m.recall) : 0.0;

@@ -3,13 +3,21 @@
 // world (lib/sim, in memory), every frame is segmented and tracked, the latest fitted model
 // of every track (placed in the world with the ground-truth key pose) forms the map, which is
 // matched per class (Hungarian, class association distance) against the ground-truth objects
-// the robot saw well enough (at least min_points points in at least min_frames frames).
+// the robot saw well enough: at least min_points LiDAR returns (RGBD: mask pixels) within
+// max_range metres in at least min_frames frames -- a criterion of the sensor's view, fixed
+// here, not the segmenter's own thresholds. Every track counts: estimates of one object by
+// several tracks are not merged (the unmatched ones are reported as duplicates).
+//
+// Modes: geometric (no labels), emulated (the detection emulator's labels, no instance ids,
+// into the labelled segmenter), oracle (the simulator's ground-truth labels: an upper bound),
+// rgbd (emulated instance masks), rgbd.oracle (ground-truth masks: an upper bound).
 #include <map>
 #include <string>
 #include <vector>
 
 #include "frontend/frontend_config.h"
 #include "objects/class_table.h"
+#include "sim/detection_emulator.h"
 
 namespace slide {
 
@@ -19,8 +27,10 @@ struct WorldEvalSpec {
   double rate = 3.0;         // frames per second
   std::uint64_t seed = 1;
   std::string data_dir;
-  std::vector<std::string> modes{"labelled", "geometric"};  // labelled | geometric | rgbd
-  int min_points = 15;       // a ground-truth object counts as seen ...
+  std::vector<std::string> modes{"emulated", "oracle", "geometric"};  // see above
+  DetectionEmulatorConfig emulator;  // for the emulated modes (seed mixed with `seed`)
+  int min_points = 30;       // a ground-truth object counts as seen with this many returns ...
+  double max_range = 40.0;   // ... within this horizontal range (metres) ...
   int min_frames = 3;        // ... in this many frames
   bool verbose = false;      // print every missed ground-truth object
 };
@@ -28,6 +38,10 @@ struct WorldEvalSpec {
 struct ModeResult {
   std::string mode;
   int estimated = 0, ground_truth = 0, matched = 0;
+  int duplicates = 0;        // unmatched estimates within the association distance of a matched object
+  int false_objects = 0;     // other unmatched estimates
+  int ignored = 0;           // estimates of real objects below the visibility criterion (not scored)
+  std::map<std::string, double> iou;  // emulated modes: per-class point IoU of the emulated labels
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
   std::vector<double> frame_ms;                         // segmentation + tracking per frame

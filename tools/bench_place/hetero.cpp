@@ -153,7 +153,9 @@ HeteroFigures runHetero(const HeteroSpec& spec, const PlaceConfig& config, int r
   if (spec.retrace_b) retrace(sc, 1, spec.climb_b);
 
   MappingSetup setup{ClassTable::loadDefault(), loadDefaultFrontendConfig(),
-                     loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), spec.seed};
+                     loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), spec.seed, std::nullopt};
+  // What a robot has: the detection emulator's labels / masks, not the simulator's ground truth.
+  setup.emulator = loadDetectionEmulatorConfig(std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml");
   SensorRig rig_a = parseSensorRig(spec.sensor_a), rig_b = parseSensorRig(spec.sensor_b);
   rig_a.T_body_sensor = pitchedMount(spec.pitch_a_deg);
   rig_b.T_body_sensor = pitchedMount(spec.pitch_b_deg);

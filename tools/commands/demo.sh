@@ -5,6 +5,7 @@ demo_usage() {
   cat <<USAGE
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
                     [--overlap F] [--rate R] [--settle SEC] [--out DIR]
+                    [--perception label-free|emulated|oracle]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -13,14 +14,18 @@ intermittently. Robot and team buses are recorded with lcm-logger; slide-demo-re
 writes report.md with the merged map of each robot as pictures, inter-robot transform errors,
 ATE, object precision/recall and bandwidth. Needs root (network namespaces).
 --overlap is the fraction of each robot's path shared with the others (slide-sim).
+--perception: label-free (default: the drivers publish raw data only, LiDAR robots segment
+geometrically), emulated (the drivers publish the detection emulator's RangeNet++-class labels /
+YOLOv8-seg-class masks, made from ground truth inside the driver) or oracle (the simulator's
+ground-truth labels reach the robots: an upper bound, and the report says so).
 Defaults: --world forest --robots 3 --seed 1 --distance 150 --overlap 0.6 --rate 1 --settle 25
-          --out runs/demo-<time>
+          --out runs/demo-<time> --perception label-free
 USAGE
 }
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out=""
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
@@ -31,10 +36,12 @@ main() {
       --rate) rate=$2; shift 2 ;;
       --settle) settle=$2; shift 2 ;;
       --out) out=$2; shift 2 ;;
+      --perception) perception=$2; shift 2 ;;
       *) die "demo: unknown option '$1' (see ./slide demo --help)" ;;
     esac
   done
   [[ "$robots" =~ ^[1-9]$ ]] || die "demo: --robots must be 1..9 (got '$robots')"
+  team_run_perception "$perception" > /dev/null || die "demo: --perception must be label-free, emulated or oracle (got '$perception')"
   [[ $(id -u) -eq 0 ]] || die "demo needs root: it runs each robot in its own network namespace"
   [[ -n "${SLIDE_NO_BUILD:-}" ]] || ensure_built
   out=${out:-$SLIDE_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}
@@ -52,7 +59,8 @@ main() {
   mission=$(awk -v f="$frames" -v r="$rate" -v d="$(head -2 "$data/robot0/times.txt" | awk 'NR==1{a=$1} NR==2{print $1-a}')" \
     'BEGIN { printf "%d", (f * d) / (r > 0 ? r : 1) + 1 }')
   local duration=$((mission + settle))
-  team_run_write_config "$out" "$data" "$robots" "$rate"
+  team_run_write_config "$out" "$data" "$robots" "$rate" "$perception"
+  [[ "$perception" != oracle ]] || log "ORACLE run: ground-truth labels reach the robots; its figures are an upper bound"
   log "2/3 running the team: $frames frames per robot, ~${mission}s of data at ${rate}x, then ${settle}s to settle"
   "$SLIDE_ROOT/slide" netlab --hosts "$robots" --config "$out/team.pmd" \
     --schedule "$(team_run_schedule "$robots" "$mission")" --duration "$duration" --wait-timeout 60 \
@@ -61,7 +69,7 @@ main() {
   log "3/3 evaluating against ground truth"
   local ids
   ids=$(seq -s, 0 $((robots - 1)))
-  slide-demo-report --run "$out" --data "$data" --robots "$ids" --wall-s $((SECONDS - t0)) ||
+  slide-demo-report --run "$out" --data "$data" --robots "$ids" --wall-s $((SECONDS - t0)) --perception "$perception" ||
     die "demo: evaluation failed"
   log "report: $out/report/report.md (pictures beside it)"
 }

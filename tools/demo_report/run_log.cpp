@@ -8,6 +8,7 @@
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
 #include "slide/optimizer_status_t.hpp"
+#include "slide/stream_status_t.hpp"
 #include "slide/sync_ack_t.hpp"
 #include "slide/sync_chunk_t.hpp"
 #include "slide/sync_heartbeat_t.hpp"
@@ -54,6 +55,10 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
       optimizer_status_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       out.update_ms.push_back(m.update_ms);
+    } else if (ch == "SENSOR_STATUS") {
+      stream_status_t m;
+      if (!decode(ev, m)) { ++bad; continue; }
+      if (m.robot == robot) out.detections = m.detections;
     } else if (ch == "KEYPOSE_BUNDLE") {
       ++out.keypose_bundles;
     } else if (ch == "PEER_BUNDLE") {

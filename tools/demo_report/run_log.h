@@ -31,6 +31,7 @@ struct RobotRunLog {
   std::vector<double> update_ms;               // OPTIMIZER_STATUS
   int keypose_bundles = 0;                     // KEYPOSE_BUNDLE messages seen
   int peer_bundles = 0;                        // PEER_BUNDLE messages seen
+  std::string detections;                      // SENSOR_STATUS: what the driver published (none / emulated / oracle)
 };
 
 // Reads one robot bus log; messages that fail to decode are counted in `bad` and skipped.

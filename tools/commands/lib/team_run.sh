@@ -1,9 +1,24 @@
 # A simulated team run through the whole stack (sourced by demo.sh and the system benchmark):
 # per-run configs and a sheriff config for netlab hosts h1..hN, robot r on host h(r+1).
 
-# team_run_write_config RUN DATA ROBOTS RATE: writes RUN/config/*.yaml and RUN/team.pmd.
+# team_run_perception PERCEPTION: "DRIVER_ARGS|SEGMENTER_ARGS" of a perception mode:
+#   label-free  the drivers publish no labels or masks, LiDAR runs the geometric segmenter
+#   emulated    the drivers publish the detection emulator's labels / masks (config/detections.yaml)
+#   oracle      the drivers publish the simulator's ground truth (an upper bound, labelled so)
+team_run_perception() {
+  case "$1" in
+    label-free) echo "--detections none|--mode geometric" ;;
+    emulated) echo "--detections emulated|--mode labelled" ;;
+    oracle) echo "--detections oracle|--mode labelled" ;;
+    *) return 1 ;;
+  esac
+}
+
+# team_run_write_config RUN DATA ROBOTS RATE [PERCEPTION]: writes RUN/config/*.yaml and RUN/team.pmd.
 team_run_write_config() {
-  local run=$1 data=$2 robots=$3 rate=$4
+  local run=$1 data=$2 robots=$3 rate=$4 perception=${5:-label-free} pargs
+  pargs=$(team_run_perception "$perception") || { echo "unknown perception mode '$perception'" >&2; return 1; }
+  local driver_args=${pargs%%|*} segmenter_args=${pargs#*|}
   local cfg="$run/config" team_url="udpm://239.255.76.90:7690?ttl=1"
   mkdir -p "$cfg" "$run/logs" "$run/state" "$run/out"
   # One key per pair of robots, each robot's in its own file (mode 0600), never on a command line.
@@ -31,9 +46,9 @@ group "robot$r" {
   cmd "optimizer-$r" { exec = "slide-optimizer $common --config $SLIDE_ROOT/config/backend.yaml --journal $run/state/optimizer$r.lcmlog --out-dir $o"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 10; }
   cmd "loop-closer-$r" { exec = "slide-loop-closer $common --config $SLIDE_ROOT/config/loop_closer.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
   cmd "peer-sync-$r" { exec = "slide-peer-sync --robot $r --robot-url $url --config $cfg/peer_sync.yaml --team-key-file $run/keys/robot$r.keys"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
-  cmd "segmenter-$r" { exec = "slide-segmenter $common --config $cfg/frontend.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
+  cmd "segmenter-$r" { exec = "slide-segmenter $common --config $cfg/frontend.yaml $segmenter_args"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "tracker-$r" { exec = "slide-tracker $common --config $cfg/frontend.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
-  cmd "driver-$r" { exec = "slide-sensor-driver $data/robot$r $common --rate $rate --no-progress"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
+  cmd "driver-$r" { exec = "slide-sensor-driver $data/robot$r $common --rate $rate --no-progress $driver_args"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
 }
 PMD
     done

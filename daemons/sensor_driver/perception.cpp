@@ -1,0 +1,43 @@
+#include "perception.h"
+
+#include <stdexcept>
+
+namespace slide {
+
+std::string toString(DetectionSource s) {
+  switch (s) {
+    case DetectionSource::Emulated: return "emulated";
+    case DetectionSource::Oracle: return "oracle";
+    default: return "none";
+  }
+}
+
+DetectionSource parseDetectionSource(const std::string& name) {
+  if (name == "none") return DetectionSource::None;
+  if (name == "emulated") return DetectionSource::Emulated;
+  if (name == "oracle") return DetectionSource::Oracle;
+  throw std::invalid_argument("unknown detection source '" + name + "' (expected none, emulated or oracle)");
+}
+
+LabelledScan FramePerception::scan(LabelledScan read, int frame) const {
+  if (source_ == DetectionSource::Oracle) return read;
+  if (source_ == DetectionSource::Emulated && read.hasLabels())
+    return emulateLidarLabels(read, config_.lidar, detectionSeed(config_.seed, robot_, frame));
+  read.semantic.clear();  // none (or nothing to emulate from): ground truth is never published
+  read.instance.clear();
+  return read;
+}
+
+std::optional<FramePerception::Masks> FramePerception::masks(std::optional<InstanceMask> truth, const cv::Mat& depth,
+                                                             double depth_scale, int frame) const {
+  if (source_ == DetectionSource::None || !truth) return std::nullopt;
+  if (source_ == DetectionSource::Oracle) {
+    Masks m{std::move(*truth), {}};
+    m.confidence.assign(m.masks.class_id.size(), 1.0f);
+    return m;
+  }
+  EmulatedMasks e = emulateRgbdDetections(*truth, depth, depth_scale, config_.rgbd, detectionSeed(config_.seed, robot_, frame));
+  return Masks{std::move(e.masks), std::move(e.confidence)};
+}
+
+}  // namespace slide
