@@ -42,12 +42,16 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   if (n.has("column")) {
     const ConfigNode c = n.child("column");
     auto& p = g.column;
-    opt(c, "band_low", p.band_low, 0.0);
-    opt(c, "band_high", p.band_high, p.band_low + 0.1);
+    opt(c, "slice_low", p.slice_low, 0.0);
+    opt(c, "slice_high", p.slice_high, p.slice_low + 0.1);
+    opt(c, "slice_height", p.slice_height, 0.05);
     opt(c, "cell", p.cell, 0.02);
+    opt(c, "min_blob_points", p.min_blob_points, 1);
     opt(c, "max_diameter", p.max_diameter, 0.05);
-    opt(c, "coverage_bin", p.coverage_bin, 0.05);
-    opt(c, "min_coverage", p.min_coverage, 0.0);
+    opt(c, "stack_distance", p.stack_distance, 0.01);
+    opt(c, "min_slices", p.min_slices, 1);
+    opt(c, "min_span", p.min_span, 0.0);
+    opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
     opt(c, "min_top", p.min_top, 0.0);
     opt(c, "ceiling_margin", p.ceiling_margin, 0.0);
     opt(c, "max_height", p.max_height, 0.5);

@@ -60,6 +60,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   ss.distance = spec.distance;
   ss.rate = spec.rate;
   ss.data_dir = spec.data_dir;
+  ss.forest = spec.forest;
   const Scenario sc = buildScenario(ss);
   const RobotRun& robot = sc.robots.at(0);
   const LidarModel lidar = lidarModel("os1-64");
@@ -149,11 +150,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     for (const auto& [id, o] : r.latest) ordered.push_back(o);
     std::stable_sort(ordered.begin(), ordered.end(),
                      [](const Object& a, const Object& b) { return a.num_observations > b.num_observations; });
+    // The label-free mode is scored on its raw estimates: every re-created track counts.
+    const bool merge = r.mode != "geometric";
     std::vector<Object> merged;
     for (const auto& o : ordered) {
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
       bool dup = false;
+      if (merge)
       for (const auto& m : merged)
         dup |= groupOf(r.mode, m.class_id, cfg) == groupOf(r.mode, o.class_id, cfg) &&
                ((m.position() - o.position()).head<2>().norm() < 0.5 * c->association_distance ||
@@ -180,6 +184,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
           if (a >= 0) ++matched, hit[a] = 1;
+        // Unmatched estimates within the association distance of a ground-truth object are
+        // duplicates (a second track of a mapped object, or a track off its object).
+        for (std::size_t i = 0; i < E.size(); ++i) {
+          if (assign[i] >= 0) continue;
+          bool near = false;
+          for (const auto* g : G) near |= (E[i]->position() - g->position()).head<2>().norm() < info.association_distance;
+          ++(near ? m.duplicates : m.false_objects);
+        }
         if (spec.verbose)
           for (std::size_t i = 0; i < E.size(); ++i) {
             if (assign[i] >= 0) continue;
@@ -219,7 +231,10 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
                         r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
                         G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
           }
-      } else if (spec.verbose) {
+      } else {
+        m.false_objects += static_cast<int>(E.size());
+      }
+      if ((G.empty() || E.empty()) && spec.verbose) {
         for (const auto* g : G)
           std::printf("  missed %s %s id %ld: no estimate of the class\n", r.mode.c_str(), info.name.c_str(), static_cast<long>(g->id));
         for (const auto* e : E) {

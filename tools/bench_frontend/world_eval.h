@@ -4,12 +4,16 @@
 // of every track (placed in the world with the ground-truth key pose) forms the map, which is
 // matched per class (Hungarian, class association distance) against the ground-truth objects
 // the robot saw well enough (at least min_points points in at least min_frames frames).
+// Labelled and RGBD modes first keep one estimate per landmark (estimates of a group that
+// are the same object); the geometric (label-free) mode is scored on every estimate, and
+// its unmatched estimates are counted as duplicates (near a ground-truth object) or false.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "frontend/frontend_config.h"
 #include "objects/class_table.h"
+#include "sim/forest_world.h"
 
 namespace slide {
 
@@ -19,6 +23,7 @@ struct WorldEvalSpec {
   double rate = 3.0;         // frames per second
   std::uint64_t seed = 1;
   std::string data_dir;
+  ForestParams forest;       // forest world parameters (terrain, undergrowth)
   std::vector<std::string> modes{"labelled", "geometric"};  // labelled | geometric | rgbd
   int min_points = 15;       // a ground-truth object counts as seen ...
   int min_frames = 3;        // ... in this many frames
@@ -28,6 +33,8 @@ struct WorldEvalSpec {
 struct ModeResult {
   std::string mode;
   int estimated = 0, ground_truth = 0, matched = 0;
+  int duplicates = 0;     // unmatched estimates near a ground-truth object of their group
+  int false_objects = 0;  // unmatched estimates near none
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
   std::vector<double> frame_ms;                         // segmentation + tracking per frame
