@@ -11,6 +11,19 @@ find_package(GTest REQUIRED)
 find_package(Threads REQUIRED)
 find_package(Java COMPONENTS Development QUIET)
 find_program(LCM_GEN lcm-gen REQUIRED)
+# PCL (libpcl-dev): PCD files and the reference clustering / RANSAC steps of the geometric
+# front-end. Found by hand: PCL's own config searches VTK (with MPI) for pcl_io, which this
+# project neither needs nor can configure without MPI's CMake package. Its headers are
+# included by few .cpp files (build time).
+find_path(PCL_INCLUDE_DIR pcl/point_types.h PATH_SUFFIXES pcl-1.13 pcl-1.12 pcl-1.11 pcl-1.10 REQUIRED)
+set(_pcl_libs)
+foreach(_c common io search kdtree segmentation sample_consensus)
+  find_library(PCL_${_c}_LIBRARY pcl_${_c} REQUIRED)
+  list(APPEND _pcl_libs ${PCL_${_c}_LIBRARY})
+endforeach()
+add_library(slide_pcl INTERFACE)
+target_include_directories(slide_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIR})
+target_link_libraries(slide_pcl INTERFACE ${_pcl_libs})
 
 
 # Real data (KITTI, SemanticKITTI, robot maps, forest inventories, TLS) read in place by tests

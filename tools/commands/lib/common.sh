@@ -14,7 +14,7 @@ wants_help() {
 SLIDE_PACKAGES=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java default-jdk-headless libglib2.0-dev
-  libeigen3-dev libceres-dev libopencv-dev
+  libeigen3-dev libceres-dev libopencv-dev libpcl-dev
   libspdlog-dev libcli11-dev libyaml-cpp-dev libgtest-dev libssl-dev
   iproute2 procps
 )
