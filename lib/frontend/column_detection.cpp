@@ -19,18 +19,19 @@ class PlanarBuckets {
  public:
   PlanarBuckets(const Cloud& cloud, double cell) : cloud_(&cloud), inv_(1.0 / cell) {}
   void add(int i) { buckets_[key((*cloud_)[i].x(), (*cloud_)[i].y())].push_back(i); }
-  // Calls f(i, horizontal distance) for every point within `radius` of c.
+  // Calls f(i, squared horizontal distance) for every point within `radius` of c.
   template <typename F>
   void forNear(const Eigen::Vector2d& c, double radius, F&& f) const {
     const long x0 = std::lround(std::floor((c.x() - radius) * inv_)), x1 = std::lround(std::floor((c.x() + radius) * inv_));
     const long y0 = std::lround(std::floor((c.y() - radius) * inv_)), y1 = std::lround(std::floor((c.y() + radius) * inv_));
+    const double r2 = radius * radius;
     for (long x = x0; x <= x1; ++x)
       for (long y = y0; y <= y1; ++y) {
         const auto it = buckets_.find(pack(x, y));
         if (it == buckets_.end()) continue;
         for (int i : it->second) {
-          const double d = std::hypot((*cloud_)[i].x() - c.x(), (*cloud_)[i].y() - c.y());
-          if (d <= radius) f(i, d);
+          const double dx = (*cloud_)[i].x() - c.x(), dy = (*cloud_)[i].y() - c.y(), d2 = dx * dx + dy * dy;
+          if (d2 <= r2) f(i, d2);
         }
       }
   }
@@ -77,39 +78,44 @@ std::vector<std::vector<int>> stackBlobs(const std::vector<Blob>& blobs, const s
   auto cellOf = [&](const Eigen::Vector2d& c) {
     return std::make_pair(std::lround(std::floor(c.x() * inv)), std::lround(std::floor(c.y() * inv)));
   };
-  for (int b : subset) {
-    const auto [x, y] = cellOf(blobs[b].centre);
-    grid[pack(x, y)].push_back(b);
+  // Union-find over positions k in `subset`; the grid holds positions.
+  grid.reserve(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const auto [x, y] = cellOf(blobs[subset[k]].centre);
+    grid[pack(x, y)].push_back(static_cast<int>(k));
   }
-  std::unordered_map<int, int> parent;
-  for (int b : subset) parent[b] = b;
+  std::vector<int> parent(subset.size());
+  std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (int b : subset) {
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const int b = subset[k];
     const auto [x, y] = cellOf(blobs[b].centre);
     for (long dx = -1; dx <= 1; ++dx)
       for (long dy = -1; dy <= 1; ++dy) {
         const auto it = grid.find(pack(x + dx, y + dy));
         if (it == grid.end()) continue;
-        for (int o : it->second) {
-          if (o <= b || blobs[o].slice == blobs[b].slice || (blobs[o].centre - blobs[b].centre).norm() > dist) continue;
-          const int ra = root(b), rb = root(o);
+        for (int ko : it->second) {
+          const int o = subset[ko];
+          if (ko <= static_cast<int>(k) || blobs[o].slice == blobs[b].slice ||
+              (blobs[o].centre - blobs[b].centre).squaredNorm() > dist * dist)
+            continue;
+          const int ra = root(static_cast<int>(k)), rb = root(ko);
           if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
         }
       }
   }
-  std::unordered_map<int, int> label;
+  std::vector<int> label(subset.size(), -1);
   std::vector<std::vector<int>> stacks;
-  for (int b : subset) {
-    const int r = root(b);
-    auto it = label.find(r);
-    if (it == label.end()) {
-      it = label.emplace(r, static_cast<int>(stacks.size())).first;
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const int r = root(static_cast<int>(k));
+    if (label[r] < 0) {
+      label[r] = static_cast<int>(stacks.size());
       stacks.emplace_back();
     }
-    stacks[it->second].push_back(b);
+    stacks[label[r]].push_back(subset[k]);
   }
   return stacks;
 }
@@ -158,7 +164,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
       const Blob& bl = blobs[b];
       const double inner = 0.5 * bl.extent + p.isolation_gap, outer = inner + p.isolation_ring;
       int ring = 0;
-      slice_buckets[bl.slice].forNear(bl.centre, outer, [&](int, double d) { ring += d > inner; });
+      slice_buckets[bl.slice].forNear(bl.centre, outer, [&](int, double d2) { ring += d2 > inner * inner; });
       if (ring <= p.max_ring_fraction * bl.points) isolated.push_back(b);
     }
     bool any = false;
@@ -202,7 +208,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     all.forNear(mid, reach + col.slope.norm() * p.max_height + 0.01, [&](int i, double) {
       if (taken[i] || h[i] > p.max_height) return;
       const Eigen::Vector2d c = col.base + col.slope * h[i];
-      if (std::hypot(cloud[i].x() - c.x(), cloud[i].y() - c.y()) > reach) return;
+      if ((Eigen::Vector2d(cloud[i].x(), cloud[i].y()) - c).squaredNorm() > reach * reach) return;
       col.points.push_back(i);
       if (h[i] > top) top = h[i], ground_z = cloud[i].z() - h[i];
     });
@@ -217,10 +223,10 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     }
     // Canopy: points above min_top spreading well beyond the axis.
     int canopy = 0, high = 0;
-    all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d) {
+    all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d2) {
       if (h[i] < p.min_top) return;
       ++high;
-      canopy += d > p.canopy_radius;
+      canopy += d2 > p.canopy_radius * p.canopy_radius;
     });
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));

@@ -20,7 +20,7 @@ struct ColumnParams {
   double slice_high = 3.3;
   double slice_height = 0.3;
   double cell = 0.1;             // planar clustering of each slice
-  int min_blob_points = 2;
+  int min_blob_points = 1;
   double max_diameter = 1.2;     // largest extent of a cross-section
   double isolation_gap = 0.2;    // slice points between extent/2 + gap and extent/2 + gap + ring ...
   double isolation_ring = 0.5;
