@@ -6,6 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "frontend/circle_fit.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/point_stats.h"
 
@@ -48,6 +49,7 @@ struct Blob {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   double extent = 0;  // largest bounding-box side
   int points = 0;
+  std::vector<int> idx;
 };
 
 // Small cross-sections of every slice.
@@ -65,7 +67,7 @@ std::vector<Blob> sliceBlobs(const Cloud& cloud, const std::vector<std::vector<i
       }
       const double extent = std::max(x1 - x0, y1 - y0);
       if (extent > p.max_diameter) continue;
-      blobs.push_back({static_cast<int>(s), c / static_cast<double>(cl.size()), extent, static_cast<int>(cl.size())});
+      blobs.push_back({static_cast<int>(s), c / static_cast<double>(cl.size()), extent, static_cast<int>(cl.size()), cl});
     }
   }
   return blobs;
@@ -118,6 +120,28 @@ std::vector<std::vector<int>> stackBlobs(const std::vector<Blob>& blobs, const s
     stacks[label[r]].push_back(subset[k]);
   }
   return stacks;
+}
+
+// Whether the cross-sections are arcs: of those wide and dense enough to tell, at least
+// min_arc_fraction hold a circle (RANSAC) through most of their points whose radius fits
+// their extent. A flat face (wall, pillar) needs a far larger circle; scattered foliage has
+// no circle through most of its points.
+bool arcShaped(const Cloud& cloud, const std::vector<Blob>& blobs, const std::vector<int>& stack, const ColumnParams& p) {
+  int tested = 0, arcs = 0;
+  CircleRansacParams rp;
+  rp.inlier_distance = p.arc_inlier_distance;
+  rp.max_radius = p.max_diameter;
+  std::vector<Eigen::Vector2d> xy;
+  for (int b : stack) {
+    const Blob& bl = blobs[b];
+    if (bl.extent < p.arc_min_extent || bl.points < p.arc_min_points) continue;
+    xy.clear();
+    for (int i : bl.idx) xy.emplace_back(cloud[i].x(), cloud[i].y());
+    ++tested;
+    const auto c = fitCircleRansac(xy, rp);
+    arcs += c && c->inliers >= p.arc_min_inliers * bl.points && c->radius <= p.arc_max_radius_ratio * bl.extent;
+  }
+  return tested == 0 || arcs >= p.min_arc_fraction * tested;
 }
 
 int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack, int* lo = nullptr, int* hi = nullptr) {
@@ -190,6 +214,10 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
       const double w = bl.points, z = p.slice_low + (bl.slice + 0.5) * p.slice_height;
       sw += w, sz += w * z, szz += w * z * z, sp += w * bl.centre, spz += w * z * bl.centre;
       extents.push_back(bl.extent);
+    }
+    if (p.min_arc_fraction > 0 && !arcShaped(cloud, blobs, stack, p)) {
+      reject(blobs[stack.front()].centre, "cross-sections are not arcs");
+      continue;
     }
     Column col;
     const double det = sw * szz - sz * sz;

@@ -3,7 +3,7 @@
 // into horizontal slices; in each slice, small compact blobs with an empty ring around them
 // (in that slice: a hedge or a car beside a pole only spoils the slices it reaches) are column
 // cross-sections. Cross-sections whose centres stack up (within stack_distance of each other)
-// over enough slices, on a near-vertical axis, are one column; its points are those near the
+// over enough slices, on a near-vertical axis, with arc-shaped cross-sections, are one column; its points are those near the
 // axis up to max_height. Walls never give an isolated cross-section, pedestrians and cars do
 // not reach min_top, bushes are too wide in every slice.
 #include <string>
@@ -29,6 +29,16 @@ struct ColumnParams {
   int min_slices = 4;            // isolated cross-sections a column needs ...
   double min_span = 1.0;         // ... spanning this height (lowest to highest slice)
   double max_lean_deg = 20.0;    // axis through the cross-section centres
+  // Arcs: cross-sections at least arc_min_extent wide with arc_min_points points are tested
+  // for a circle (RANSAC, inliers within arc_inlier_distance) through arc_min_inliers of
+  // their points with radius <= arc_max_radius_ratio * extent; at least min_arc_fraction of
+  // the tested ones must pass (0 disables the test). Rejects wall pieces and foliage.
+  double arc_min_extent = 0.2;
+  int arc_min_points = 8;
+  double arc_inlier_distance = 0.03;
+  double arc_min_inliers = 0.6;
+  double arc_max_radius_ratio = 0.8;
+  double min_arc_fraction = 0.5;
   double min_top = 2.5;          // the column must reach this high (pedestrians do not), or
   double ceiling_margin = 0.3;   // ... to within this of the highest visible point at its range
   double max_height = 8.0;       // column points kept up to this height above ground

@@ -52,6 +52,12 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_slices", p.min_slices, 1);
     opt(c, "min_span", p.min_span, 0.0);
     opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
+    opt(c, "arc_min_extent", p.arc_min_extent, 0.0);
+    opt(c, "arc_min_points", p.arc_min_points, 3);
+    opt(c, "arc_inlier_distance", p.arc_inlier_distance, 1e-3);
+    opt(c, "arc_min_inliers", p.arc_min_inliers, 0.0);
+    opt(c, "arc_max_radius_ratio", p.arc_max_radius_ratio, 0.1);
+    opt(c, "min_arc_fraction", p.min_arc_fraction, 0.0);
     opt(c, "min_top", p.min_top, 0.0);
     opt(c, "ceiling_margin", p.ceiling_margin, 0.0);
     opt(c, "max_height", p.max_height, 0.5);

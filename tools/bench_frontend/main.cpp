@@ -12,6 +12,7 @@
 #include "bench/stats.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/labelled_segmenter.h"
+#include "pcl_reference.h"
 #include "real_data.h"
 #include "world_eval.h"
 
@@ -221,6 +222,33 @@ int main(int argc, char** argv) {
         report.add(prefix + ".duplicate_cuboids", sc.cars.duplicates, "", true).note =
             "further cuboids within 2 m of a labelled car (second estimates or not car-sized)";
       }
+    }
+    {
+      const PclComparison pc = comparePcl(data_dir + "/semantickitti/sequences/08/velodyne/000720.bin",
+                                          data_dir + "/tls/dbh_slice.xyz", cfg, runs);
+      std::printf("PCL reference, SemanticKITTI 000720: ground (labelled ground kept / labelled car+trunk+pole points lost, ms): "
+                  "ours %.3f / %.3f, %.1f ms; PCL RANSAC plane %.3f / %.3f, %.1f ms\n",
+                  pc.ours_ground_kept, pc.ours_object_lost, pc.ours_ground_ms, pc.pcl_ground_kept, pc.pcl_object_lost,
+                  pc.pcl_ground_ms);
+      std::printf("PCL reference: clustering above-ground points: ours %d clusters %.1f ms; PCL Euclidean (0.5 m) %d clusters %.1f ms\n",
+                  pc.ours_clusters, pc.ours_cluster_ms, pc.pcl_clusters, pc.pcl_cluster_ms);
+      std::printf("PCL reference: TLS slice circle: ours r=%.4f m %.2f ms; PCL CIRCLE2D r=%.4f m %.2f ms\n", pc.ours_radius,
+                  pc.ours_circle_ms, pc.pcl_radius, pc.pcl_circle_ms);
+      const std::string lab = "scored with the scan's labels (evaluation only)";
+      report.add("semantickitti.000720.ground.ours.ground_kept", pc.ours_ground_kept, "", false).note = "grid estimate; " + lab;
+      report.add("semantickitti.000720.ground.pcl_plane.ground_kept", pc.pcl_ground_kept, "", false).note = "PCL RANSAC plane; " + lab;
+      report.add("semantickitti.000720.ground.ours.object_points_lost", pc.ours_object_lost, "", true).note = lab;
+      report.add("semantickitti.000720.ground.pcl_plane.object_points_lost", pc.pcl_object_lost, "", true).note = lab;
+      report.add("semantickitti.000720.ground.ours.ms", pc.ours_ground_ms, "ms", true).note = "thread CPU, median of " + std::to_string(runs);
+      report.add("semantickitti.000720.ground.pcl_plane.ms", pc.pcl_ground_ms, "ms", true).note = "thread CPU, median of " + std::to_string(runs);
+      report.add("semantickitti.000720.cluster.ours.ms", pc.ours_cluster_ms, "ms", true).note =
+          "voxel grid 0.3 m, " + std::to_string(pc.ours_clusters) + " clusters >= 30 pts";
+      report.add("semantickitti.000720.cluster.pcl_euclidean.ms", pc.pcl_cluster_ms, "ms", true).note =
+          "k-d tree, tolerance 0.5 m, " + std::to_string(pc.pcl_clusters) + " clusters >= 30 pts";
+      report.add("tls.circle.ours.radius_m", pc.ours_radius, "m").note = "RANSAC + algebraic refit";
+      report.add("tls.circle.pcl.radius_m", pc.pcl_radius, "m").note = "PCL SACMODEL_CIRCLE2D, optimized coefficients";
+      report.add("tls.circle.ours.ms", pc.ours_circle_ms, "ms", true);
+      report.add("tls.circle.pcl.ms", pc.pcl_circle_ms, "ms", true);
     }
     report.add("semantickitti.geometric.trunks_poles_found", cols_found_total, "", false, 14).note =
         "both scans, of " + std::to_string(cols_total) + " labelled trunk/pole/sign groups; label-free";
