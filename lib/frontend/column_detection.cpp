@@ -186,7 +186,10 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     std::vector<int> isolated;
     for (int b : stack) {
       const Blob& bl = blobs[b];
-      const double inner = 0.5 * bl.extent + p.isolation_gap, outer = inner + p.isolation_ring;
+      // A lone point (a far trunk's one return per beam) could be a sparse face seen at a
+      // grazing angle: its ring must be wider, past the face's neighbouring returns.
+      const double inner = 0.5 * bl.extent + p.isolation_gap;
+      const double outer = inner + (bl.points == 1 ? p.single_point_ring : p.isolation_ring);
       int ring = 0;
       slice_buckets[bl.slice].forNear(bl.centre, outer, [&](int, double d2) { ring += d2 > inner * inner; });
       if (ring <= p.max_ring_fraction * bl.points) isolated.push_back(b);

@@ -25,6 +25,7 @@ struct ColumnParams {
   double isolation_gap = 0.2;    // slice points between extent/2 + gap and extent/2 + gap + ring ...
   double isolation_ring = 0.5;
   double max_ring_fraction = 0.25;  // ... at most this fraction of the cross-section's points
+  double single_point_ring = 1.5;   // ring width for one-point cross-sections (grazing walls)
   double stack_distance = 0.3;   // cross-section centres of one column lie this close
   int min_slices = 4;            // isolated cross-sections a column needs ...
   double min_span = 1.0;         // ... spanning this height (lowest to highest slice)
@@ -33,9 +34,9 @@ struct ColumnParams {
   // for a circle (RANSAC, inliers within arc_inlier_distance) through arc_min_inliers of
   // their points with radius <= arc_max_radius_ratio * extent; at least min_arc_fraction of
   // the tested ones must pass (0 disables the test). Rejects wall pieces and foliage.
-  double arc_min_extent = 0.2;
+  double arc_min_extent = 0.35;
   int arc_min_points = 8;
-  double arc_inlier_distance = 0.03;
+  double arc_inlier_distance = 0.05;
   double arc_min_inliers = 0.6;
   double arc_max_radius_ratio = 0.8;
   double min_arc_fraction = 0.5;

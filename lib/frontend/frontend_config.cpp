@@ -38,6 +38,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "window", g.ground.window, 0);
     opt(c, "threshold", g.ground.threshold, 0.0);
     opt(c, "min_cell_points", g.ground.min_cell_points, 1);
+    opt(c, "max_step", g.ground.max_step, 0.0);
+    opt(c, "max_rise", g.ground.max_rise, 0.0);
   }
   if (n.has("column")) {
     const ConfigNode c = n.child("column");
@@ -67,6 +69,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "isolation_gap", p.isolation_gap, 0.0);
     opt(c, "isolation_ring", p.isolation_ring, p.isolation_gap);
     opt(c, "max_ring_fraction", p.max_ring_fraction, 0.0);
+    opt(c, "single_point_ring", p.single_point_ring, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
   }
