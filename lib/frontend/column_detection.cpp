@@ -196,8 +196,10 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     }
     bool any = false;
     for (const auto& s : stackBlobs(blobs, isolated, p.stack_distance)) {
-      int lo = 0, hi = 0;
+      int lo = 0, hi = 0, multi = 0;
       if (distinctSlices(blobs, s, &lo, &hi) < p.min_slices || (hi - lo + 1) * p.slice_height < p.min_span) continue;
+      for (int b : s) multi += blobs[b].points > 1;
+      if (multi < p.min_multi_point_slices) continue;
       candidates.push_back(s);
       any = true;
     }

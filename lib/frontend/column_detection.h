@@ -28,7 +28,9 @@ struct ColumnParams {
   double single_point_ring = 1.5;   // ring width for one-point cross-sections (grazing walls)
   double stack_distance = 0.3;   // cross-section centres of one column lie this close
   int min_slices = 4;            // isolated cross-sections a column needs ...
-  double min_span = 1.0;         // ... spanning this height (lowest to highest slice)
+  double min_span = 1.0;         // ... spanning this height (lowest to highest slice), and
+  int min_multi_point_slices = 0;  // ... this many with more than one point (a face seen at a
+                                   // grazing angle gives one point per beam, stacked too)
   double max_lean_deg = 20.0;    // axis through the cross-section centres
   // Arcs: cross-sections at least arc_min_extent wide with arc_min_points points are tested
   // for a circle (RANSAC, inliers within arc_inlier_distance) through arc_min_inliers of

@@ -53,6 +53,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "stack_distance", p.stack_distance, 0.01);
     opt(c, "min_slices", p.min_slices, 1);
     opt(c, "min_span", p.min_span, 0.0);
+    opt(c, "min_multi_point_slices", p.min_multi_point_slices, 0);
     opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
     opt(c, "arc_min_extent", p.arc_min_extent, 0.0);
     opt(c, "arc_min_points", p.arc_min_points, 3);
