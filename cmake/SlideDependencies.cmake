@@ -13,6 +13,19 @@ find_package(GTest REQUIRED)
 find_package(Threads REQUIRED)
 find_package(Java COMPONENTS Development QUIET)
 find_program(LCM_GEN lcm-gen REQUIRED)
+# PCL (libpcl-dev): PCD files and the reference clustering / RANSAC steps of the geometric
+# front-end. Found by hand: PCL's own config searches VTK (with MPI) for pcl_io, which this
+# project neither needs nor can configure without MPI's CMake package. Its headers are
+# included by few .cpp files (build time).
+find_path(PCL_INCLUDE_DIR pcl/point_types.h PATH_SUFFIXES pcl-1.13 pcl-1.12 pcl-1.11 pcl-1.10 REQUIRED)
+set(_pcl_libs)
+foreach(_c common io search kdtree segmentation sample_consensus)
+  find_library(PCL_${_c}_LIBRARY pcl_${_c} REQUIRED)
+  list(APPEND _pcl_libs ${PCL_${_c}_LIBRARY})
+endforeach()
+add_library(slide_pcl INTERFACE)
+target_include_directories(slide_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIR})
+target_link_libraries(slide_pcl INTERFACE ${_pcl_libs})
 
 
 # Real data (KITTI, SemanticKITTI, robot maps, forest inventories, TLS) read in place by tests
@@ -47,11 +60,3 @@ add_library(slide_rosbag INTERFACE)
 target_include_directories(slide_rosbag SYSTEM INTERFACE ${_rosbag_includes})
 target_link_libraries(slide_rosbag INTERFACE ${_rosbag_libs})
 
-# PCL's PCD reader (libpcl-dev), for PCD folders; only lib/io/pcd_folder.cpp includes it. Named
-# by hand: PCLConfig.cmake and pcl_io.pc pull in VTK/OpenNI the reader does not need.
-find_path(PCL_INCLUDE_DIR pcl/io/pcd_io.h PATH_SUFFIXES pcl-1.13 pcl-1.12 pcl-1.14 REQUIRED)
-find_library(PCL_IO_LIBRARY pcl_io REQUIRED)
-find_library(PCL_COMMON_LIBRARY pcl_common REQUIRED)
-add_library(slide_pcl INTERFACE)
-target_include_directories(slide_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIR})
-target_link_libraries(slide_pcl INTERFACE ${PCL_IO_LIBRARY} ${PCL_COMMON_LIBRARY})

@@ -38,16 +38,29 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "window", g.ground.window, 0);
     opt(c, "threshold", g.ground.threshold, 0.0);
     opt(c, "min_cell_points", g.ground.min_cell_points, 1);
+    opt(c, "max_step", g.ground.max_step, 0.0);
+    opt(c, "max_rise", g.ground.max_rise, 0.0);
   }
   if (n.has("column")) {
     const ConfigNode c = n.child("column");
     auto& p = g.column;
-    opt(c, "band_low", p.band_low, 0.0);
-    opt(c, "band_high", p.band_high, p.band_low + 0.1);
+    opt(c, "slice_low", p.slice_low, 0.0);
+    opt(c, "slice_high", p.slice_high, p.slice_low + 0.1);
+    opt(c, "slice_height", p.slice_height, 0.05);
     opt(c, "cell", p.cell, 0.02);
+    opt(c, "min_blob_points", p.min_blob_points, 1);
     opt(c, "max_diameter", p.max_diameter, 0.05);
-    opt(c, "coverage_bin", p.coverage_bin, 0.05);
-    opt(c, "min_coverage", p.min_coverage, 0.0);
+    opt(c, "stack_distance", p.stack_distance, 0.01);
+    opt(c, "min_slices", p.min_slices, 1);
+    opt(c, "min_span", p.min_span, 0.0);
+    opt(c, "min_multi_point_slices", p.min_multi_point_slices, 0);
+    opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
+    opt(c, "arc_min_extent", p.arc_min_extent, 0.0);
+    opt(c, "arc_min_points", p.arc_min_points, 3);
+    opt(c, "arc_inlier_distance", p.arc_inlier_distance, 1e-3);
+    opt(c, "arc_min_inliers", p.arc_min_inliers, 0.0);
+    opt(c, "arc_max_radius_ratio", p.arc_max_radius_ratio, 0.1);
+    opt(c, "min_arc_fraction", p.min_arc_fraction, 0.0);
     opt(c, "min_top", p.min_top, 0.0);
     opt(c, "ceiling_margin", p.ceiling_margin, 0.0);
     opt(c, "max_height", p.max_height, 0.5);
@@ -57,6 +70,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "isolation_gap", p.isolation_gap, 0.0);
     opt(c, "isolation_ring", p.isolation_ring, p.isolation_gap);
     opt(c, "max_ring_fraction", p.max_ring_fraction, 0.0);
+    opt(c, "single_point_ring", p.single_point_ring, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
   }

@@ -1,36 +1,18 @@
 #pragma once
 // Segmentation without a trained model: ground removal, then
-//  1. columns: narrow, vertically continuous point groups in a height band above ground
-//     (trunks and poles; a trunk when a canopy spreads above it or it is thick),
+//  1. columns: stacks of small isolated cross-sections in height slices above ground
+//     (trunks and poles; a trunk when a canopy spreads above it or it is thick; see
+//     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car,
 //  3. other: clusters of what is left whose extents fit the "other" class.
+#include "frontend/column_detection.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
 namespace slide {
-
-struct ColumnParams {
-  double band_low = 0.5;         // metres above ground
-  double band_high = 2.2;
-  double cell = 0.15;            // planar clustering of band points
-  double max_diameter = 1.2;     // footprint of a column in the band
-  double coverage_bin = 0.25;    // vertical bins of the band ...
-  double min_coverage = 0.5;     // ... this fraction of which must hold points
-  double min_top = 2.5;          // the column must reach this high (pedestrians do not), or
-  double ceiling_margin = 0.3;   // ... to within this of the highest visible point at its range
-  double max_height = 8.0;       // column points kept up to this height
-  double margin = 0.12;          // metres added to the band radius when collecting points
-  int min_points = 8;            // band points
-  double isolation_gap = 0.25;   // band points between radius + gap and radius + ring ...
-  double isolation_ring = 1.0;
-  double max_ring_fraction = 0.5;  // ... may number at most this fraction of the column's
-  double trunk_min_radius = 0.12;      // thicker columns are trunks
-  double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
-  double canopy_min_fraction = 0.2;    // ... in this fraction of the cluster make it a trunk
-};
 
 struct CarParams {
   double height_cap = 2.6;       // points above this height are left out of car clusters
@@ -62,6 +44,8 @@ class GeometricSegmenter : public LidarSegmenter {
   GeometricSegmenter(ClassTable classes, GeometricSegmenterParams params);
   std::string name() const override { return "geometric"; }
   std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override;
+  // The same, also listing the column candidates that were turned down and why.
+  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues, std::vector<ColumnRejection>* rejected) const;
 
  private:
   ClassTable classes_;

@@ -61,13 +61,16 @@ std::vector<std::vector<int>> clusterGrid(const Cloud& cloud, const std::vector<
         const std::int64_t off = (static_cast<std::int64_t>(dx) << 42) + (static_cast<std::int64_t>(dy) << 21) + dz;
         if (off > 0) offsets.push_back(off);
       }
+  // Neighbour keys cells[c] + off grow with c, so one forward-moving cursor per offset finds
+  // them all in linear time (no search per cell).
+  std::vector<std::size_t> cursor(offsets.size(), 0);
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    for (std::int64_t off : offsets) {
-      const std::int64_t key = cells[c] + off;
-      // Neighbours lie ahead in sorted order; search only the remaining range.
-      const auto it = std::lower_bound(cells.begin() + static_cast<long>(c) + 1, cells.end(), key);
-      if (it != cells.end() && *it == key) {
-        const int a = findRoot(parent, static_cast<int>(c)), b = findRoot(parent, static_cast<int>(it - cells.begin()));
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+      const std::int64_t key = cells[c] + offsets[k];
+      std::size_t& p = cursor[k];
+      while (p < cells.size() && cells[p] < key) ++p;
+      if (p < cells.size() && cells[p] == key) {
+        const int a = findRoot(parent, static_cast<int>(c)), b = findRoot(parent, static_cast<int>(p));
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
     }

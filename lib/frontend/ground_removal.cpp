@@ -24,6 +24,52 @@ std::vector<float> minFilter(const std::vector<float>& g, int nx, int ny, int w)
     }
   return out;
 }
+
+// Ground that follows slopes: cells whose candidate is the lower envelope (the minimum over
+// their window) seed it; it grows to 8-neighbours whose candidate lies within max_step of the
+// ground cell beside them (slopes up to max_step per cell, curbs) and at most max_rise above
+// the envelope (a car's curved side would otherwise let it climb the body); object cells (roofs, car
+// bodies, walls) differ by more and take the ground of the nearest ground cell instead.
+std::vector<float> growGround(const std::vector<float>& cand, const std::vector<float>& envelope, int nx, int ny,
+                              double max_step, double max_rise) {
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> ground(cand.size(), inf);
+  std::vector<int> queue;
+  queue.reserve(cand.size());
+  for (std::size_t c = 0; c < cand.size(); ++c)
+    if (std::isfinite(cand[c]) && cand[c] <= envelope[c] + 0.02f) ground[c] = cand[c], queue.push_back(static_cast<int>(c));
+  auto neighbours = [&](int c, auto&& f) {
+    const int x = c % nx, y = c / nx;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = x + dx, v = y + dy;
+        if ((dx || dy) && u >= 0 && v >= 0 && u < nx && v < ny) f(v * nx + u);
+      }
+  };
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    const int c = queue[k];
+    neighbours(c, [&](int n) {
+      if (std::isfinite(ground[n]) || !std::isfinite(cand[n]) || std::abs(cand[n] - ground[c]) > max_step ||
+          cand[n] > envelope[n] + max_rise)
+        return;
+      ground[n] = cand[n];
+      queue.push_back(n);
+    });
+  }
+  // Every other cell: the ground of the nearest ground cell (breadth first over the grid).
+  std::vector<float> out = ground;
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    const int c = queue[k];
+    neighbours(c, [&](int n) {
+      if (std::isfinite(out[n])) return;
+      out[n] = out[c];
+      queue.push_back(n);
+    });
+  }
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (!std::isfinite(out[c])) out[c] = envelope[c];
+  return out;
+}
 }  // namespace
 
 std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params) {
@@ -67,7 +113,8 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
   std::vector<float> cand(lowest.size(), inf);
   for (std::size_t c = 0; c < cand.size(); ++c)
     if (count[c] >= std::max(2, params.min_cell_points)) cand[c] = second[c];
-  const std::vector<float> ground = minFilter(cand, nx, ny, params.window);
+  const std::vector<float> envelope = minFilter(cand, nx, ny, params.window);
+  const std::vector<float> ground = params.max_step > 0 ? growGround(cand, envelope, nx, ny, params.max_step, params.max_rise) : envelope;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (cell_of[i] < 0) continue;
     float g = ground[cell_of[i]];

@@ -1,7 +1,9 @@
 #pragma once
-// Ground estimate on a 2-D grid: the lowest point of each cell, then the minimum over a
-// window of cells (so that car roofs and walls, whose cells hold no ground, take the ground
-// height of their surroundings). Points within `threshold` of that estimate are ground.
+// Ground estimate on a 2-D grid: the second-lowest point of each cell, the minimum of those
+// over a window of cells (a lower envelope under car roofs and walls), then ground grown from
+// the cells on that envelope to neighbours within max_step (so that it follows slopes, which
+// the envelope alone cuts into); cells it does not reach (objects) take the ground of the
+// nearest ground cell. Points within `threshold` of the estimate are ground.
 #include <vector>
 
 #include "frontend/instance.h"
@@ -14,6 +16,8 @@ struct GroundParams {
   double threshold = 0.25;   // metres above the estimate still counted as ground
   double max_range = 100.0;  // points farther (horizontally) are left out (height NaN)
   int min_cell_points = 2;   // cells with fewer points do not define ground (stray returns)
+  double max_step = 0.0;     // metres between neighbouring ground cells (0: envelope only) ...
+  double max_rise = 0.45;    // ... and at most this above the envelope (its error on a 25 % slope: 0.375)
 };
 
 // Height of every point above the local ground estimate; NaN for non-finite or out-of-range

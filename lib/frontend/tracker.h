@@ -18,7 +18,7 @@ namespace slide {
 struct TrackerParams {
   double gate_scale = 0.5;           // gate = class association_distance * gate_scale
   int min_age = 3;                   // observations before a track yields objects
-  int max_missed = 5;                // consecutive missed frames before deletion
+  int max_missed = 30;               // consecutive missed frames before deletion (a column lost behind another for a while keeps its track)
   int report_max_missed = 1;         // tracks missed longer ago are not reported
   int max_observations = 10;         // sliding window of observations per track
   int max_points_per_observation = 1500;

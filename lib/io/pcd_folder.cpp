@@ -1,15 +1,12 @@
 #include "io/pcd_folder.h"
 
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/io/pcd_io.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "io/io_error.h"
 #include "io/kitti_poses.h"
-#include "io/point_cloud2.h"
+#include "io/pcd_file.h"
 #include "io/tum_trajectory.h"
 
 namespace fs = std::filesystem;
@@ -28,30 +25,7 @@ std::vector<std::string> pcdFiles(const std::string& dir) {
 class PcdReader : public FrameReader {
  public:
   explicit PcdReader(std::vector<std::string> files) : files_(std::move(files)) {}
-  LabelledScan scan(std::size_t id) const override {
-    const std::string& path = files_.at(id);
-    pcl::PCLPointCloud2 cloud;
-    try {
-      if (pcl::io::loadPCDFile(path, cloud) < 0) throw IoError(path, "PCL cannot read this PCD file");
-    } catch (const IoError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw IoError(path, std::string("PCL cannot read this PCD file: ") + e.what());
-    }
-    CloudLayout l;
-    l.height = cloud.height, l.width = cloud.width, l.point_step = cloud.point_step, l.row_step = cloud.row_step;
-    l.is_bigendian = cloud.is_bigendian;
-    for (const pcl::PCLPointField& f : cloud.fields) l.fields.push_back({f.name, f.offset, f.datatype, f.count});
-    try {
-      DecodedCloud d = decodeCloud(l, cloud.data.data(), cloud.data.size(), 0.0);
-      LabelledScan s;
-      s.xyz = std::move(d.xyz);
-      s.intensity = std::move(d.intensity);
-      return s;
-    } catch (const std::exception& e) {
-      throw IoError(path, e.what());
-    }
-  }
+  LabelledScan scan(std::size_t id) const override { return readPcdFile(files_.at(id)); }
   RgbdImages rgbd(std::size_t) const override { throw std::logic_error("a PCD folder has no RGBD frames"); }
 
  private:

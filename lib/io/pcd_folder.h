@@ -5,7 +5,7 @@
 //   times.txt    one time in seconds per scan; without it each file's name is its time
 //                (seconds, or nanoseconds when above 1e15: 1700000000.100000.pcd, 1700000000100000000.pcd)
 //   odom.txt     odometry, TUM trajectory at its own rate (required)
-// Only io/pcd_folder.cpp includes PCL.
+// Scans are read by io/pcd_file.h.
 #include <string>
 
 #include "io/robot_dataset.h"

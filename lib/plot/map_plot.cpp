@@ -145,6 +145,16 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
       box3.extend(p);
     }
   }
+  double point_z0 = 0, point_z1 = 1;
+  if (!opts.points.empty()) {
+    std::vector<double> zs;
+    for (const auto& p : opts.points) {
+      frame.extend(view.project(p));
+      zs.push_back(p.z());
+    }
+    std::sort(zs.begin(), zs.end());
+    point_z0 = zs[zs.size() / 50], point_z1 = std::max(point_z0 + 0.1, zs[zs.size() * 49 / 50]);
+  }
   std::optional<Grid> grid;
   if (!view.isTop() && !box3.isEmpty()) {
     grid = groundGrid(box3);
@@ -176,6 +186,23 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
           px.push_back(vp.toPixel(view.project({p.x(), p.y(), grid->z})));
         c.polygon(px, shadow);
       }
+  }
+
+  if (!opts.points.empty()) {
+    std::vector<char> used(static_cast<std::size_t>(opts.width) * opts.height, 0);
+    Style dot;
+    dot.stroke_width = 0;
+    dot.filled = true;
+    for (const auto& p : opts.points) {
+      const Eigen::Vector2d px = vp.toPixel(view.project(p));
+      const int x = static_cast<int>(px.x()), y = static_cast<int>(px.y());
+      if (x < 0 || y < 0 || x >= opts.width || y >= opts.height || used[static_cast<std::size_t>(y) * opts.width + x]) continue;
+      used[static_cast<std::size_t>(y) * opts.width + x] = 1;
+      const double t = std::clamp((p.z() - point_z0) / (point_z1 - point_z0), 0.0, 1.0);
+      const int g = static_cast<int>(200 - 160 * t);
+      dot.fill = {g, g, g};
+      c.circle(px, 0.7, dot);
+    }
   }
 
   // Objects, far first; estimated maps filled, ground truth outlined on top.

@@ -45,6 +45,9 @@ struct MapPlotOptions {
   bool label_ids = false;  // write object ids next to objects
   std::string values_label = "error [m]";  // colour bar label for PlotTrajectory::values
   MatchOverlay overlay;
+  // A point cloud under the objects (e.g. the scan they came from): dots shaded by height,
+  // at most one per pixel.
+  std::vector<Eigen::Vector3d> points;
 };
 
 Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajectory>& trajectories,

@@ -12,6 +12,7 @@
 #include "frontend/grid_clustering.h"
 #include "frontend/xyz_cloud.h"
 #include "io/kitti_scan.h"
+#include "eval/labelled_scan_score.h"
 
 namespace slide {
 
@@ -65,31 +66,6 @@ double threadCpuMs() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-std::vector<KittiTarget> kittiTargets(const LabelledScan& scan, const ClassTable& classes) {
-  std::vector<KittiTarget> out;
-  std::map<int, std::vector<int>> cars;                // instance -> points
-  std::map<int, std::vector<int>> columns;             // class -> points (no instance ids)
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    const auto cls = classes.fromSemanticKitti(scan.semantic[i]);
-    if (!cls || !scan.xyz[i].allFinite()) continue;
-    if (classes.at(*cls).shape == Shape::Cuboid) cars[scan.instance[i]].push_back(static_cast<int>(i));
-    else if (classes.at(*cls).shape == Shape::Cylinder) columns[*cls].push_back(static_cast<int>(i));
-  }
-  auto add = [&](int class_id, int instance, const std::vector<int>& idx) {
-    KittiTarget t;
-    t.class_id = class_id;
-    t.instance = instance;
-    t.points = static_cast<int>(idx.size());
-    for (int i : idx) t.centroid += scan.xyz[i].cast<double>();
-    t.centroid /= idx.size();
-    out.push_back(t);
-  };
-  for (const auto& [inst, idx] : cars)
-    if (idx.size() >= 200) add(10, inst, idx);
-  for (const auto& [cls, idx] : columns)
-    for (const auto& cl : clusterGrid(scan.xyz, idx, {0.3, false, 30})) add(cls, 0, cl);
-  return out;
-}
 }  // namespace
 
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
@@ -98,7 +74,6 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
   KittiScanResult r;
   r.scan = bin_path.substr(bin_path.find_last_of('/') + 1);
   r.mode = segmenter.name();
-  r.targets = kittiTargets(scan, classes);
   std::vector<Object> objects;
   for (int run = 0; run < runs; ++run) {
     InputIssues issues;
@@ -112,32 +87,34 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
     r.segment_fit_ms.push_back(threadCpuMs() - c0);
     objects = std::move(fitted);
   }
-  std::vector<char> used(objects.size(), 0);
-  for (auto& t : r.targets) {
-    const Shape want = classes.at(t.class_id).shape;
-    double best = want == Shape::Cuboid ? 2.0 : 1.0;
-    int best_k = -1;
-    for (std::size_t k = 0; k < objects.size(); ++k) {
-      if (used[k] || objects[k].shape() != want) continue;
-      const double d = (objects[k].position() - t.centroid).head<2>().norm();
-      if (d < best) best = d, best_k = static_cast<int>(k);
+  r.score = scoreScanAgainstLabels(scan, objects, classes);
+  for (const auto& t : r.score.targets) {
+    KittiTarget k;
+    k.class_id = t.class_id;
+    k.instance = t.instance;
+    k.points = t.points;
+    k.centroid = t.centroid;
+    k.found = t.estimate >= 0;
+    if (k.found) {
+      const Eigen::Vector3d e = objects[t.estimate].extent();
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "%s %.2fx%.2fx%.2f at %.1f m", shapeName(objects[t.estimate].shape()), e.x(), e.y(),
+                    e.z(), t.distance);
+      k.fitted = buf;
     }
-    if (best_k < 0) continue;
-    t.found = true;
-    used[best_k] = 1;
-    const Eigen::Vector3d e = objects[best_k].extent();
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "%s %.2fx%.2fx%.2f at %.1f m", shapeName(objects[best_k].shape()), e.x(), e.y(), e.z(), best);
-    t.fitted = buf;
+    r.targets.push_back(k);
   }
   for (std::size_t k = 0; k < objects.size(); ++k) {
     const Shape s = objects[k].shape();
     r.cuboids += s == Shape::Cuboid;
     r.cylinders += s == Shape::Cylinder;
     r.ellipsoids += s == Shape::Ellipsoid;
-    if (!used[k]) {
-      r.unmatched_cuboids += s == Shape::Cuboid;
-      r.unmatched_cylinders += s == Shape::Cylinder;
+    if (s != Shape::Ellipsoid && r.score.verdicts[k] != EstimateVerdict::Matched) {
+      const Eigen::Vector3d p = objects[k].position(), e = objects[k].extent();
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%s %s at (%.1f %.1f %.1f) %.2fx%.2fx%.2f", verdictName(r.score.verdicts[k]),
+                    shapeName(s), p.x(), p.y(), p.z(), e.x(), e.y(), e.z());
+      r.unmatched.push_back(buf);
     }
   }
   return r;

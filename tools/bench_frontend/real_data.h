@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frontend/frontend_config.h"
+#include "eval/labelled_scan_score.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
@@ -35,7 +36,8 @@ struct KittiScanResult {
   std::string scan, mode;
   std::vector<KittiTarget> targets;
   int cuboids = 0, cylinders = 0, ellipsoids = 0;   // fitted objects of the mode
-  int unmatched_cuboids = 0, unmatched_cylinders = 0;
+  ScanScore score;                                  // targets, duplicates, false objects
+  std::vector<std::string> unmatched;               // one line per unmatched cuboid / cylinder
   std::vector<double> segment_fit_ms;               // thread CPU time, one per run
   std::vector<double> segment_fit_wall_ms;          // wall-clock time, one per run
 };

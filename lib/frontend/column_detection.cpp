@@ -1,0 +1,272 @@
+#include "frontend/column_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <unordered_map>
+
+#include "frontend/circle_fit.h"
+#include "frontend/grid_clustering.h"
+#include "frontend/point_stats.h"
+
+namespace slide {
+
+namespace {
+std::int64_t pack(long x, long y) { return (static_cast<std::int64_t>(x) << 32) ^ (y & 0xffffffffLL); }
+
+// Points bucketed on a 2-D grid for neighbourhood look-ups.
+class PlanarBuckets {
+ public:
+  PlanarBuckets(const Cloud& cloud, double cell) : cloud_(&cloud), inv_(1.0 / cell) {}
+  void add(int i) { buckets_[key((*cloud_)[i].x(), (*cloud_)[i].y())].push_back(i); }
+  // Calls f(i, squared horizontal distance) for every point within `radius` of c.
+  template <typename F>
+  void forNear(const Eigen::Vector2d& c, double radius, F&& f) const {
+    const long x0 = std::lround(std::floor((c.x() - radius) * inv_)), x1 = std::lround(std::floor((c.x() + radius) * inv_));
+    const long y0 = std::lround(std::floor((c.y() - radius) * inv_)), y1 = std::lround(std::floor((c.y() + radius) * inv_));
+    const double r2 = radius * radius;
+    for (long x = x0; x <= x1; ++x)
+      for (long y = y0; y <= y1; ++y) {
+        const auto it = buckets_.find(pack(x, y));
+        if (it == buckets_.end()) continue;
+        for (int i : it->second) {
+          const double dx = (*cloud_)[i].x() - c.x(), dy = (*cloud_)[i].y() - c.y(), d2 = dx * dx + dy * dy;
+          if (d2 <= r2) f(i, d2);
+        }
+      }
+  }
+
+ private:
+  std::int64_t key(float x, float y) const { return pack(std::lround(std::floor(x * inv_)), std::lround(std::floor(y * inv_))); }
+  const Cloud* cloud_;
+  double inv_;
+  std::unordered_map<std::int64_t, std::vector<int>> buckets_;
+};
+
+struct Blob {
+  int slice = 0;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double extent = 0;  // largest bounding-box side
+  int points = 0;
+  std::vector<int> idx;
+};
+
+// Small cross-sections of every slice.
+std::vector<Blob> sliceBlobs(const Cloud& cloud, const std::vector<std::vector<int>>& slices, const ColumnParams& p) {
+  std::vector<Blob> blobs;
+  for (std::size_t s = 0; s < slices.size(); ++s) {
+    if (slices[s].empty()) continue;
+    for (const auto& cl : clusterGrid(cloud, slices[s], {p.cell, true, p.min_blob_points})) {
+      float x0 = 1e30f, x1 = -1e30f, y0 = 1e30f, y1 = -1e30f;
+      Eigen::Vector2d c = Eigen::Vector2d::Zero();
+      for (int i : cl) {
+        x0 = std::min(x0, cloud[i].x()), x1 = std::max(x1, cloud[i].x());
+        y0 = std::min(y0, cloud[i].y()), y1 = std::max(y1, cloud[i].y());
+        c += Eigen::Vector2d(cloud[i].x(), cloud[i].y());
+      }
+      const double extent = std::max(x1 - x0, y1 - y0);
+      if (extent > p.max_diameter) continue;
+      blobs.push_back({static_cast<int>(s), c / static_cast<double>(cl.size()), extent, static_cast<int>(cl.size()), cl});
+    }
+  }
+  return blobs;
+}
+
+// Groups of blobs in different slices whose centres chain within stack_distance.
+std::vector<std::vector<int>> stackBlobs(const std::vector<Blob>& blobs, const std::vector<int>& subset, double dist) {
+  std::unordered_map<std::int64_t, std::vector<int>> grid;
+  const double inv = 1.0 / dist;
+  auto cellOf = [&](const Eigen::Vector2d& c) {
+    return std::make_pair(std::lround(std::floor(c.x() * inv)), std::lround(std::floor(c.y() * inv)));
+  };
+  // Union-find over positions k in `subset`; the grid holds positions.
+  grid.reserve(subset.size());
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const auto [x, y] = cellOf(blobs[subset[k]].centre);
+    grid[pack(x, y)].push_back(static_cast<int>(k));
+  }
+  std::vector<int> parent(subset.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const int b = subset[k];
+    const auto [x, y] = cellOf(blobs[b].centre);
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy) {
+        const auto it = grid.find(pack(x + dx, y + dy));
+        if (it == grid.end()) continue;
+        for (int ko : it->second) {
+          const int o = subset[ko];
+          if (ko <= static_cast<int>(k) || blobs[o].slice == blobs[b].slice ||
+              (blobs[o].centre - blobs[b].centre).squaredNorm() > dist * dist)
+            continue;
+          const int ra = root(static_cast<int>(k)), rb = root(ko);
+          if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+        }
+      }
+  }
+  std::vector<int> label(subset.size(), -1);
+  std::vector<std::vector<int>> stacks;
+  for (std::size_t k = 0; k < subset.size(); ++k) {
+    const int r = root(static_cast<int>(k));
+    if (label[r] < 0) {
+      label[r] = static_cast<int>(stacks.size());
+      stacks.emplace_back();
+    }
+    stacks[label[r]].push_back(subset[k]);
+  }
+  return stacks;
+}
+
+// Whether the cross-sections are arcs: of those wide and dense enough to tell, at least
+// min_arc_fraction hold a circle (RANSAC) through most of their points whose radius fits
+// their extent. A flat face (wall, pillar) needs a far larger circle; scattered foliage has
+// no circle through most of its points.
+bool arcShaped(const Cloud& cloud, const std::vector<Blob>& blobs, const std::vector<int>& stack, const ColumnParams& p) {
+  int tested = 0, arcs = 0;
+  CircleRansacParams rp;
+  rp.inlier_distance = p.arc_inlier_distance;
+  rp.max_radius = p.max_diameter;
+  std::vector<Eigen::Vector2d> xy;
+  for (int b : stack) {
+    const Blob& bl = blobs[b];
+    if (bl.extent < p.arc_min_extent || bl.points < p.arc_min_points) continue;
+    xy.clear();
+    for (int i : bl.idx) xy.emplace_back(cloud[i].x(), cloud[i].y());
+    ++tested;
+    const auto c = fitCircleRansac(xy, rp);
+    arcs += c && c->inliers >= p.arc_min_inliers * bl.points && c->radius <= p.arc_max_radius_ratio * bl.extent;
+  }
+  return tested == 0 || arcs >= p.min_arc_fraction * tested;
+}
+
+int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack, int* lo = nullptr, int* hi = nullptr) {
+  std::vector<int> s;
+  for (int b : stack) s.push_back(blobs[b].slice);
+  std::sort(s.begin(), s.end());
+  if (lo) *lo = s.empty() ? 0 : s.front();
+  if (hi) *hi = s.empty() ? 0 : s.back();
+  return static_cast<int>(std::unique(s.begin(), s.end()) - s.begin());
+}
+}  // namespace
+
+std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
+                                  const ColumnParams& p, std::vector<char>& taken, std::vector<ColumnRejection>* rejected) {
+  std::vector<Column> out;
+  const int num_slices = std::max(1, static_cast<int>(std::floor((p.slice_high - p.slice_low) / p.slice_height)));
+  std::vector<std::vector<int>> slices(num_slices);
+  PlanarBuckets all(cloud, 0.5);
+  std::vector<PlanarBuckets> slice_buckets(num_slices, PlanarBuckets(cloud, 0.5));
+  // Highest elevation angle seen (beyond 3 m): columns need not reach above what is visible.
+  double tan_elev = -1e9;
+  for (int i : above) {
+    all.add(i);
+    const double r = std::hypot(cloud[i].x(), cloud[i].y());
+    if (r > 3.0) tan_elev = std::max(tan_elev, cloud[i].z() / r);
+    const int s = static_cast<int>(std::floor((h[i] - p.slice_low) / p.slice_height));
+    if (s < 0 || s >= num_slices) continue;
+    slices[s].push_back(i);
+    slice_buckets[s].add(i);
+  }
+  const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
+  std::vector<int> every(blobs.size());
+  std::iota(every.begin(), every.end(), 0);
+  auto reject = [&](const Eigen::Vector2d& c, const std::string& why) {
+    if (rejected) rejected->push_back({c, why});
+  };
+
+  // Candidate stacks of any small cross-sections; then only the isolated ones count.
+  std::vector<std::vector<int>> candidates;
+  for (const auto& stack : stackBlobs(blobs, every, p.stack_distance)) {
+    if (distinctSlices(blobs, stack) < p.min_slices) continue;
+    std::vector<int> isolated;
+    for (int b : stack) {
+      const Blob& bl = blobs[b];
+      // A lone point (a far trunk's one return per beam) could be a sparse face seen at a
+      // grazing angle: its ring must be wider, past the face's neighbouring returns.
+      const double inner = 0.5 * bl.extent + p.isolation_gap;
+      const double outer = inner + (bl.points == 1 ? p.single_point_ring : p.isolation_ring);
+      int ring = 0;
+      slice_buckets[bl.slice].forNear(bl.centre, outer, [&](int, double d2) { ring += d2 > inner * inner; });
+      if (ring <= p.max_ring_fraction * bl.points) isolated.push_back(b);
+    }
+    bool any = false;
+    for (const auto& s : stackBlobs(blobs, isolated, p.stack_distance)) {
+      int lo = 0, hi = 0, multi = 0;
+      if (distinctSlices(blobs, s, &lo, &hi) < p.min_slices || (hi - lo + 1) * p.slice_height < p.min_span) continue;
+      for (int b : s) multi += blobs[b].points > 1;
+      if (multi < p.min_multi_point_slices) continue;
+      candidates.push_back(s);
+      any = true;
+    }
+    if (!any) reject(blobs[stack.front()].centre, "too few isolated cross-sections (" + std::to_string(isolated.size()) +
+                                                       " of " + std::to_string(stack.size()) + ")");
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const std::vector<int>& a, const std::vector<int>& b) { return a.size() > b.size(); });
+
+  for (const auto& stack : candidates) {
+    // Axis: weighted least squares of the centres against slice height.
+    double sw = 0, sz = 0, szz = 0;
+    Eigen::Vector2d sp = Eigen::Vector2d::Zero(), spz = Eigen::Vector2d::Zero();
+    std::vector<double> extents;
+    for (int b : stack) {
+      const Blob& bl = blobs[b];
+      const double w = bl.points, z = p.slice_low + (bl.slice + 0.5) * p.slice_height;
+      sw += w, sz += w * z, szz += w * z * z, sp += w * bl.centre, spz += w * z * bl.centre;
+      extents.push_back(bl.extent);
+    }
+    if (p.min_arc_fraction > 0 && !arcShaped(cloud, blobs, stack, p)) {
+      reject(blobs[stack.front()].centre, "cross-sections are not arcs");
+      continue;
+    }
+    Column col;
+    const double det = sw * szz - sz * sz;
+    col.slope = det > 1e-9 * sw * sw ? Eigen::Vector2d((sw * spz - sz * sp) / det) : Eigen::Vector2d::Zero();
+    col.base = (sp - col.slope * sz) / sw;
+    const double z_mid = sz / sw;
+    const Eigen::Vector2d mid = col.base + col.slope * z_mid;
+    if (std::atan(col.slope.norm()) * 180.0 / M_PI > p.max_lean_deg) {
+      reject(mid, "leaning");
+      continue;
+    }
+    col.radius = 0.5 * quantileInPlace(extents, 0.5);
+    col.slices = static_cast<int>(stack.size());
+    const double reach = col.radius + p.margin;
+    double top = 0, ground_z = 0;
+    all.forNear(mid, reach + col.slope.norm() * p.max_height + 0.01, [&](int i, double) {
+      if (taken[i] || h[i] > p.max_height) return;
+      const Eigen::Vector2d c = col.base + col.slope * h[i];
+      if ((Eigen::Vector2d(cloud[i].x(), cloud[i].y()) - c).squaredNorm() > reach * reach) return;
+      col.points.push_back(i);
+      if (h[i] > top) top = h[i], ground_z = cloud[i].z() - h[i];
+    });
+    if (static_cast<int>(col.points.size()) < p.min_points) {
+      reject(mid, "too few points");
+      continue;
+    }
+    const double ceiling = mid.norm() * tan_elev - ground_z - p.ceiling_margin;
+    if (top < std::min(p.min_top, ceiling)) {
+      reject(mid, "too short (" + std::to_string(top) + " m)");
+      continue;
+    }
+    // Canopy: points above min_top spreading well beyond the axis.
+    int canopy = 0, high = 0;
+    all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d2) {
+      if (h[i] < p.min_top) return;
+      ++high;
+      canopy += d2 > p.canopy_radius * p.canopy_radius;
+    });
+    col.trunk = col.radius >= p.trunk_min_radius ||
+                (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
+    for (int i : col.points) taken[i] = 1;
+    out.push_back(std::move(col));
+  }
+  return out;
+}
+
+}  // namespace slide
