@@ -9,6 +9,7 @@
 #include "app/app.h"
 #include "config/config.h"
 #include "msg/convert.h"
+#include "msg/inbox.h"
 #include "place/loop_closer_config.h"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
@@ -38,11 +39,12 @@ slide::ObjectMap mapFromMsg(const slide::object_map_t& m) {
 class Node {
  public:
   Node(lcm::LCM& lcm, slide::LoopCloser& closer, int robot, Channels ch)
-      : lcm_(lcm), closer_(closer), robot_(robot), ch_(std::move(ch)) {
-    lcm_.subscribe(ch_.own_map, &Node::onMap, this);
-    if (ch_.peer_maps != ch_.own_map) lcm_.subscribe(ch_.peer_maps, &Node::onMap, this);
-    lcm_.subscribe(ch_.trajectory, &Node::onTrajectory, this);
+      : lcm_(lcm), inbox_(lcm), closer_(closer), robot_(robot), ch_(std::move(ch)) {
+    inbox_.subscribe(ch_.own_map, &Node::onMap, this);
+    if (ch_.peer_maps != ch_.own_map) inbox_.subscribe(ch_.peer_maps, &Node::onMap, this);
+    inbox_.subscribe(ch_.trajectory, &Node::onTrajectory, this);
   }
+  const slide::msg::Inbox& inbox() const { return inbox_; }
 
   void onMap(const lcm::ReceiveBuffer*, const std::string& channel, const slide::object_map_t* m) {
     if (m->frame_robot != m->robot) {
@@ -87,6 +89,7 @@ class Node {
 
  private:
   lcm::LCM& lcm_;
+  slide::msg::Inbox inbox_;
   slide::LoopCloser& closer_;
   int robot_;
   Channels ch_;
@@ -151,7 +154,7 @@ int main(int argc, char** argv) {
         if (!last_reason.empty()) spdlog::debug("no closure: {}", last_reason);
       }
     }
-    spdlog::info("stopping");
+    spdlog::info("stopping; dropped messages: {}", node.inbox().dropped() ? node.inbox().summary() : "none");
     return 0;
   });
 }

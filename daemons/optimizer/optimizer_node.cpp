@@ -154,6 +154,8 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
   s.update_ms = r.update_ms;
   s.final_cost = r.solve.final_cost;
   s.rejected_inputs = optimizer_.rejected();
+  const std::uint64_t dropped = static_cast<std::uint64_t>(decode_errors_) + (bus_drops_ ? bus_drops_() : 0);
+  s.dropped_messages = static_cast<std::int32_t>(std::min<std::uint64_t>(dropped, INT32_MAX));
   publish_(channels_.status, encode(s));
 }
 

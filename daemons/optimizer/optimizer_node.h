@@ -44,6 +44,9 @@ class OptimizerNode {
   void publishAll();
   // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot.
   void writeTrajectories(const std::string& dir);
+  // Messages the bus layer dropped before they reached handle() (size cap, handler
+  // exceptions): added to the status message's dropped_messages.
+  void setBusDrops(std::function<std::uint64_t()> count) { bus_drops_ = std::move(count); }
   const Optimizer& optimizer() const { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
 
@@ -60,6 +63,7 @@ class OptimizerNode {
   int publish_every_;
   int updates_ = 0;
   int decode_errors_ = 0;
+  std::function<std::uint64_t()> bus_drops_;
   bool replaying_ = false;
   std::unique_ptr<lcm::LogFile> journal_;
 };
