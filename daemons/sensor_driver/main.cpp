@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
         if (!rate_opt->count()) opt.rate = c.get<double>("rate", opt.rate);
         if (!start_frame_opt->count()) opt.start_frame = c.get<int>("start_frame", opt.start_frame);
         if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
+        opt.max_gap_s = c.get<double>("max_gap_s", opt.max_gap_s);
+        if (!(opt.max_gap_s > 0 && opt.max_gap_s <= 3600)) c.fail("max_gap_s", "must be in (0, 3600] seconds");
         if (c.has("channels")) {
           const slide::ConfigNode ch = c.child("channels");
           if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);

@@ -50,6 +50,30 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
   }
 }
 
+namespace {
+// Odometry, then the scan or RGBD frame of frame i.
+void sendFrame(const RobotDataset& d, const ReplayOptions& o, MessageSink& sink, int i, int first) {
+  const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
+  const int seq = i - first;
+  if (!d.odometry.empty()) {
+    const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
+    const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
+    sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
+  }
+  if (d.sensor == RobotDataset::Sensor::Lidar) {
+    sink.send(o.scan_channel, toScanMessage(readLabelledScan(d.scans[i]), utime, o.robot, seq), utime);
+  } else {
+    const std::filesystem::path dir(d.dir);
+    const cv::Mat color = readColorPng((dir / d.frames[i].rgb).string());
+    const cv::Mat depth = readDepthPng((dir / d.frames[i].depth).string());
+    const std::filesystem::path mask_png = dir / "instances" / std::filesystem::path(d.frames[i].rgb).filename();
+    std::unique_ptr<InstanceMask> mask;
+    if (std::filesystem::exists(mask_png)) mask = std::make_unique<InstanceMask>(readInstanceMask(mask_png.string()));
+    sink.send(o.rgbd_channel, toRgbdMessage(color, depth, mask.get(), d.camera, utime, o.robot, seq), utime);
+  }
+}
+}  // namespace
+
 int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& sink, const std::function<bool()>& stop) {
   const int n = static_cast<int>(d.size());
   int first = std::clamp(o.start_frame, 0, n);
@@ -75,35 +99,34 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, MessageSink& si
   };
   status(stream_status_t::RUNNING, 0);
   int sent = 0;
+  double skipped_s = 0;  // data time not waited for: pauses longer than max_gap_s
+  const auto interrupted = [&] {
+    if (!stop || !stop()) return false;
+    if (bar) std::fprintf(stderr, "\n");
+    spdlog::warn("interrupted after {} of {} frames", sent, total);
+    return true;
+  };
   for (int i = first; i < last; ++i) {
-    if (stop && stop()) {
-      if (bar) std::fprintf(stderr, "\n");
-      spdlog::warn("interrupted after {} of {} frames", sent, total);
-      return sent;
+    if (interrupted()) return sent;
+    if (i > first && d.times[i] - d.times[i - 1] > o.max_gap_s) {
+      spdlog::warn("{}: frame times jump {:.1f} s between frames {} and {}; replayed as a {:.1f} s pause", d.dir,
+                   d.times[i] - d.times[i - 1], i - 1, i, o.max_gap_s);
+      skipped_s += d.times[i] - d.times[i - 1] - o.max_gap_s;
     }
     const double rel = d.times[i] - d.times[first];
     if (o.rate > 0) {
       const auto due = wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(rel / o.rate));
-      std::this_thread::sleep_until(due);
+                                   std::chrono::duration<double>((rel - skipped_s) / o.rate));
+      while (std::chrono::steady_clock::now() < due) {  // in slices, so a stop request is seen
+        std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(100)));
+        if (interrupted()) return sent;
+      }
     }
-    const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
-    const int seq = i - first;
-    if (!d.odometry.empty()) {
-      const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
-      const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
-      sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
-    }
-    if (d.sensor == RobotDataset::Sensor::Lidar) {
-      sink.send(o.scan_channel, toScanMessage(readLabelledScan(d.scans[i]), utime, o.robot, seq), utime);
-    } else {
-      const std::filesystem::path dir(d.dir);
-      const cv::Mat color = readColorPng((dir / d.frames[i].rgb).string());
-      const cv::Mat depth = readDepthPng((dir / d.frames[i].depth).string());
-      const std::filesystem::path mask_png = dir / "instances" / std::filesystem::path(d.frames[i].rgb).filename();
-      std::unique_ptr<InstanceMask> mask;
-      if (std::filesystem::exists(mask_png)) mask = std::make_unique<InstanceMask>(readInstanceMask(mask_png.string()));
-      sink.send(o.rgbd_channel, toRgbdMessage(color, depth, mask.get(), d.camera, utime, o.robot, seq), utime);
+    try {
+      sendFrame(d, o, sink, i, first);
+    } catch (const std::exception&) {
+      status(stream_status_t::FAILED, sent);
+      throw;
     }
     ++sent;
     const auto now = std::chrono::steady_clock::now();

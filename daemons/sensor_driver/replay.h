@@ -18,6 +18,7 @@ struct ReplayOptions {
   int max_frames = 0;         // > 0: stop after this many frames
   std::string scan_channel = "SCAN", rgbd_channel = "RGBD", odom_channel = "ODOM", status_channel = "SENSOR_STATUS";
   bool progress = true;       // progress bar on stderr
+  double max_gap_s = 10.0;    // a longer pause between two frames' times is replayed as this long
 };
 
 // Where encoded messages go: the bus and/or an LCM log.
@@ -43,7 +44,8 @@ class MessageSink {
 
 // Replays frames [start, end) of `dataset` into `sink`; returns frames sent. Publishes a
 // RUNNING status about once a second and FINISHED at the end of data. `stop` is polled
-// between frames (interrupts end the replay early, without FINISHED).
+// between frames and at least every 100 ms while waiting (interrupts end the replay early,
+// without FINISHED). A frame that cannot be read publishes FAILED, then the error is thrown.
 int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, MessageSink& sink,
                   const std::function<bool()>& stop);
 

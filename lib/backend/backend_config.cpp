@@ -42,6 +42,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("cylinder_radius_sigma", c.cylinder_radius_sigma);
     n.read("ellipsoid_size_ema", c.ellipsoid_size_ema);
     n.read("robust_loss_scale", c.robust_loss_scale);
+    n.read("max_range_m", c.max_object_range_m);
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
     if (c.ellipsoid_size_ema > 1) n.fail("ellipsoid_size_ema", "must be in (0, 1]");
   }

@@ -38,6 +38,9 @@ struct BackendConfig {
   double cylinder_along_axis_sigma = 2.0;
   double cylinder_axis_sigma = 0.1;
   double cylinder_radius_sigma = 0.05;
+  // Objects farther than this from their key pose are dropped: no sensor of the team sees
+  // that far, and association work grows with the range (bearing noise times range).
+  double max_object_range_m = 500.0;
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
   double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)
 

@@ -65,6 +65,10 @@ std::vector<Object> Optimizer::usableObjects(const KeyPoseBundle& b, UpdateResul
                            " is a " + shapeName(info->shape) + ", dropped");
     } else if (const auto* c = std::get_if<Cylinder>(&o.model); c && (c->axis.norm() < 1e-6 || c->radius < 0)) {
       r.warnings.push_back("degenerate model: " + who + " cylinder has no axis or a negative radius, dropped");
+    } else if (!(o.position().norm() <= cfg_.max_object_range_m)) {
+      r.warnings.push_back("out of range: " + who + " is " + std::to_string(o.position().norm()) +
+                           " m from its key pose (objects.max_range_m " + std::to_string(cfg_.max_object_range_m) +
+                           "), dropped");
     } else if (o.position().norm() < 1e-3) {
       r.warnings.push_back("degenerate model: " + who + " sits at the sensor origin, dropped");
     } else {
