@@ -28,6 +28,11 @@
 #ifndef SLIDE_FUZZ_ROUNDS
 #define SLIDE_FUZZ_ROUNDS 1
 #endif
+#if SLIDE_FUZZ_ROUNDS > 1
+#define SLIDE_FUZZ_SUITE FuzzDaemonsLong  // its own name, so ctest's labels keep the two apart
+#else
+#define SLIDE_FUZZ_SUITE FuzzDaemons
+#endif
 
 using namespace slide;
 using namespace slide::fuzz;
@@ -117,7 +122,7 @@ int sendHostile(lcm::LCM& bus, const std::string& channel, const Bytes& valid, M
 
 }  // namespace
 
-TEST(FuzzDaemons, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsServing) {
+TEST(SLIDE_FUZZ_SUITE, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsServing) {
   const std::string why = slide::test::enterPrivateNetns();
   if (!why.empty()) GTEST_SKIP() << "no private network namespace: " << why;
   const std::string dir = std::filesystem::temp_directory_path() / ("slide_fuzz_" + std::to_string(getpid()));
