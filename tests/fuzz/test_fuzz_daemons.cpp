@@ -6,7 +6,7 @@
 // still be running, serve good messages (optimizer: status after a good bundle; tracker: a
 // key-pose bundle from good frames), have counted what it dropped, and stop cleanly on
 // SIGTERM. SLIDE_FUZZ_ROUNDS (compile definition) scales the volume: the default run is
-// quick, the `fuzz` / `scenario` labelled build sends ten times as much.
+// quick, the `scenario` labelled build (FuzzDaemonsLong) sends ten times as much.
 #include <gtest/gtest.h>
 #include <sched.h>
 #include <signal.h>
