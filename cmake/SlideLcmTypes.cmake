@@ -1,4 +1,5 @@
-# Generates C++ headers (and, when javac exists, a jar for lcm-spy) from lcmtypes/ at build time.
+# Generates C++ headers from lcmtypes/ at build time, their decoders hardened against hostile length
+# fields (cmake/lcm_gen_checked.cmake), and, when javac exists, a jar for lcm-spy.
 file(GLOB_RECURSE SLIDE_LCM_FILES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
 set(SLIDE_LCM_CPP_DIR ${PROJECT_BINARY_DIR}/lcmtypes/cpp)
 set(SLIDE_LCM_JAVA_DIR ${PROJECT_BINARY_DIR}/lcmtypes/java)
@@ -8,9 +9,10 @@ add_custom_command(
   COMMAND ${CMAKE_COMMAND} -E rm -rf ${SLIDE_LCM_CPP_DIR}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${SLIDE_LCM_CPP_DIR}
   COMMAND ${LCM_GEN} --cpp --cpp-std c++11 --cpp-hpath ${SLIDE_LCM_CPP_DIR} ${SLIDE_LCM_FILES}
+  COMMAND ${CMAKE_COMMAND} -DDIR=${SLIDE_LCM_CPP_DIR} -P ${PROJECT_SOURCE_DIR}/cmake/lcm_gen_checked.cmake
   COMMAND ${CMAKE_COMMAND} -E touch ${SLIDE_LCM_STAMP}
-  DEPENDS ${SLIDE_LCM_FILES}
-  COMMENT "lcm-gen: C++ types from lcmtypes/")
+  DEPENDS ${SLIDE_LCM_FILES} ${PROJECT_SOURCE_DIR}/cmake/lcm_gen_checked.cmake
+  COMMENT "lcm-gen: C++ types from lcmtypes/, every length field bounded (cmake/lcm_gen_checked.cmake)")
 add_custom_target(slide_lcmtypes_gen DEPENDS ${SLIDE_LCM_STAMP})
 add_library(slide_lcmtypes INTERFACE)
 add_dependencies(slide_lcmtypes slide_lcmtypes_gen)

@@ -211,8 +211,8 @@ void DeputyNode::onInfo(const lcm::ReceiveBuffer*, const std::string&, const pro
 
 int DeputyNode::run() {
   start_us_ = nowUs();
-  lcm_.subscribe("PM_DISCOVER", &DeputyNode::onDiscover, this);
-  info_sub_ = lcm_.subscribe("PM_INFO", &DeputyNode::onInfo, this);
+  inbox_.subscribe("PM_DISCOVER", &DeputyNode::onDiscover, this);
+  inbox_.subscribe("PM_INFO", &DeputyNode::onInfo, this);
   spdlog::info("deputy '{}' on {}: discovery for {} ms", opts_.id, opts_.lcm_url, opts_.discovery_ms);
   int64_t next_discover = 0, next_info = 0;
   bool active = false;
@@ -228,8 +228,8 @@ int DeputyNode::run() {
       next_discover = now + 200000;
     } else if (!active && !discovering(now)) {
       active = true;
-      lcm_.unsubscribe(info_sub_);
-      lcm_.subscribe("PM_ORDERS", &DeputyNode::onOrders, this);
+      inbox_.unsubscribe("PM_INFO");
+      inbox_.subscribe("PM_ORDERS", &DeputyNode::onOrders, this);
       spdlog::info("deputy '{}' active", opts_.id);
       info_dirty_ = true;
     }

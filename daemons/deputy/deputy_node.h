@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "msg/inbox.h"
 #include "procman/output_batcher.h"
 #include "procman/proc_stats.h"
 #include "procman/process_table.h"
@@ -53,6 +54,7 @@ class DeputyNode {
 
   DeputyOptions opts_;
   lcm::LCM lcm_;
+  msg::Inbox inbox_{lcm_};  // every PM_* message checked before it is decoded
   int signal_fd_ = -1;
   int64_t start_us_ = 0;
   int64_t nonce_ = 0;
@@ -60,7 +62,6 @@ class DeputyNode {
   bool exiting_ = false;
   int64_t exit_deadline_us_ = 0;
   bool info_dirty_ = false;
-  lcm::Subscription* info_sub_ = nullptr;
   procman::ProcessTable table_;
   procman::OutputBatcher output_;
   std::map<int, std::string> output_fds_;  // pipe fd -> command id

@@ -9,6 +9,7 @@
 #include "app/app.h"
 #include "config/config.h"
 #include "msg/convert.h"
+#include "msg/inbox.h"
 #include "place/loop_closer_config.h"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
@@ -29,20 +30,30 @@ struct Channels {
   std::string own_map = "OBJECT_MAP", peer_maps = "PEER_MAP", trajectory = "TRAJECTORY", loop_closures = "LOOP_CLOSURE";
 };
 
-slide::ObjectMap mapFromMsg(const slide::object_map_t& m) {
+// Objects farther than this from the map's origin are no robot's (they would overflow the
+// place recognisers' float and int geometry): dropped, and counted in `dropped`.
+constexpr double kMaxObjectCoordinate = 1e6;
+
+slide::ObjectMap mapFromMsg(const slide::object_map_t& m, int& dropped) {
   slide::ObjectMap map;
-  for (const slide::object_t& o : m.objects) map.add(slide::fromMsg(o));
+  for (const slide::object_t& o : m.objects) {
+    const slide::Object obj = slide::fromMsg(o);
+    if (obj.isFinite() && obj.position().cwiseAbs().maxCoeff() <= kMaxObjectCoordinate) map.add(obj);
+    else ++dropped;
+  }
   return map;
 }
 
 class Node {
  public:
   Node(lcm::LCM& lcm, slide::LoopCloser& closer, int robot, Channels ch)
-      : lcm_(lcm), closer_(closer), robot_(robot), ch_(std::move(ch)) {
-    lcm_.subscribe(ch_.own_map, &Node::onMap, this);
-    if (ch_.peer_maps != ch_.own_map) lcm_.subscribe(ch_.peer_maps, &Node::onMap, this);
-    lcm_.subscribe(ch_.trajectory, &Node::onTrajectory, this);
+      : lcm_(lcm), inbox_(lcm), closer_(closer), robot_(robot), ch_(std::move(ch)) {
+    inbox_.subscribe(ch_.own_map, &Node::onMap, this);
+    if (ch_.peer_maps != ch_.own_map) inbox_.subscribe(ch_.peer_maps, &Node::onMap, this);
+    inbox_.subscribe(ch_.trajectory, &Node::onTrajectory, this);
   }
+  const slide::msg::Inbox& inbox() const { return inbox_; }
+  long droppedObjects() const { return dropped_objects_; }
 
   void onMap(const lcm::ReceiveBuffer*, const std::string& channel, const slide::object_map_t* m) {
     if (m->frame_robot != m->robot) {
@@ -50,8 +61,14 @@ class Node {
       return;
     }
     try {
-      if (m->robot == robot_) closer_.setOwnMap(mapFromMsg(*m), nowS());
-      else closer_.setPeerMap(m->robot, mapFromMsg(*m), nowS());
+      int dropped = 0;
+      const slide::ObjectMap map = mapFromMsg(*m, dropped);
+      if (dropped)
+        spdlog::warn("{}: map of robot {}: dropped {} objects with non-finite numbers or beyond {} m", channel, m->robot,
+                     dropped, kMaxObjectCoordinate);
+      dropped_objects_ += dropped;
+      if (m->robot == robot_) closer_.setOwnMap(map, nowS());
+      else closer_.setPeerMap(m->robot, map, nowS());
     } catch (const std::exception& e) {
       spdlog::warn("{}: map of robot {} rejected: {}", channel, m->robot, e.what());
     }
@@ -87,9 +104,11 @@ class Node {
 
  private:
   lcm::LCM& lcm_;
+  slide::msg::Inbox inbox_;
   slide::LoopCloser& closer_;
   int robot_;
   Channels ch_;
+  long dropped_objects_ = 0;
 };
 }  // namespace
 
@@ -139,7 +158,13 @@ int main(int argc, char** argv) {
         if (g_stop) break;  // select() interrupted by the stop signal
         throw std::runtime_error("LCM receive failed on '" + url + "'");
       }
-      for (const slide::LoopClosure& lc : closer.poll(nowS())) {
+      std::vector<slide::LoopClosure> found;
+      try {
+        found = closer.poll(nowS());
+      } catch (const std::exception& e) {  // one bad map must not end the daemon
+        spdlog::error("place recognition failed: {}", e.what());
+      }
+      for (const slide::LoopClosure& lc : found) {
         const Eigen::Vector4d v = slide::xyzYawOf(lc.T_a_b);
         spdlog::info("robot {} <- robot {}{}: {} ({} inliers, {:.1f} ms): x {:.3f} y {:.3f} z {:.3f} yaw {:.2f} deg",
                      lc.robot_a, lc.robot_b, lc.robot_a == lc.robot_b ? " (intra)" : "",
@@ -152,7 +177,8 @@ int main(int argc, char** argv) {
         if (!last_reason.empty()) spdlog::debug("no closure: {}", last_reason);
       }
     }
-    spdlog::info("stopping");
+    spdlog::info("stopping; dropped messages: {}; dropped map objects: {}",
+                 node.inbox().dropped() ? node.inbox().summary() : "none", node.droppedObjects());
     return 0;
   });
 }

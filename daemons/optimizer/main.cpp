@@ -7,6 +7,7 @@
 
 #include "app/app.h"
 #include "backend/backend_config.h"
+#include "msg/inbox.h"
 #include "optimizer_node.h"
 
 using namespace slide;
@@ -65,7 +66,9 @@ int main(int argc, char** argv) {
       node.publishAll();
     }
     Receiver rx{&node};
-    for (const std::string& c : {ch.bundle, ch.peer_bundle, ch.loop_closure}) lcm.subscribe(c, &Receiver::onMessage, &rx);
+    msg::Inbox inbox(lcm);
+    for (const std::string& c : {ch.bundle, ch.peer_bundle, ch.loop_closure}) inbox.subscribeRaw(c, &Receiver::onMessage, &rx);
+    node.setBusDrops([&inbox]() { return inbox.dropped(); });
     std::signal(SIGINT, [](int) { g_stop = 1; });
     std::signal(SIGTERM, [](int) { g_stop = 1; });
     std::signal(SIGUSR1, [](int) { g_write = 1; });
@@ -81,8 +84,9 @@ int main(int argc, char** argv) {
     if (!out_dir.empty()) node.writeTrajectories(out_dir);
     node.publishAll();
     const Optimizer& o = node.optimizer();
-    spdlog::info("stopping: {} key poses, {} landmarks, {} peers merged, {} inputs rejected", o.numKeyPoses(),
-                 o.numLandmarks(), o.numPeersMerged(), o.rejected());
+    spdlog::info("stopping: {} key poses, {} landmarks, {} peers merged, {} inputs rejected, {} undecodable, "
+                 "dropped on the bus: {}", o.numKeyPoses(), o.numLandmarks(), o.numPeersMerged(), o.rejected(),
+                 node.decodeErrors(), inbox.dropped() ? inbox.summary() : "none");
     return 0;
   });
 }

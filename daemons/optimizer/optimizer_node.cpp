@@ -2,7 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -51,6 +53,8 @@ std::int64_t OptimizerNode::now() const {
 int OptimizerNode::openJournal(const std::string& path) {
   int replayed = 0;
   if (std::filesystem::exists(path)) {
+    // A device or pipe would feed the log reader without end.
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("journal " + path + " is not a regular file");
     lcm::LogFile in(path, "r");
     if (!in.good()) throw std::runtime_error("cannot read journal " + path);
     replaying_ = true;
@@ -77,8 +81,20 @@ void OptimizerNode::journal(Input kind, const void* data, int size) {
   e.channel = journalChannel(static_cast<int>(kind));
   e.datalen = size;
   e.data = const_cast<void*>(data);
-  if (journal_->writeEvent(&e) != 0) throw std::runtime_error("journal write failed");
-  std::fflush(journal_->getFilePtr());
+  // A failed write (a full disk) is an alarm, not a reason to stop: the input is in the graph
+  // but would be lost at a restart. Counted, logged as an error, shown in every status.
+  errno = 0;
+  const bool ok = journal_->writeEvent(&e) == 0 && std::fflush(journal_->getFilePtr()) == 0;
+  if (ok) return;
+  ++unjournalled_;
+  const auto t = std::chrono::steady_clock::now();
+  if (unjournalled_ == 1 || t - last_alarm_ > std::chrono::seconds(10)) {
+    spdlog::error("JOURNAL WRITE FAILED ({}): {} accepted inputs so far are not in the journal and would be lost "
+                  "at a restart",
+                  errno ? std::strerror(errno) : "short write", unjournalled_);
+    last_alarm_ = t;
+  }
+  std::clearerr(journal_->getFilePtr());
 }
 
 void OptimizerNode::handle(const std::string& channel, const void* data, int size) {
@@ -156,6 +172,9 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
   s.update_ms = r.update_ms;
   s.final_cost = r.solve.final_cost;
   s.rejected_inputs = optimizer_.rejected();
+  const std::uint64_t dropped = static_cast<std::uint64_t>(decode_errors_) + (bus_drops_ ? bus_drops_() : 0);
+  s.dropped_messages = static_cast<std::int32_t>(std::min<std::uint64_t>(dropped, INT32_MAX));
+  s.unjournalled_inputs = unjournalled_;
   publish_(channels_.status, encode(s));
 }
 

@@ -4,6 +4,7 @@
 // daemon rebuilds the same state), and publishes map, trajectories and status.
 #include <lcm/lcm-cpp.hpp>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -45,8 +46,13 @@ class OptimizerNode {
   // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot
   // and the (merged) object map <dir>/map_robot<host>.txt (mapio text).
   void writeTrajectories(const std::string& dir);
+  // Messages the bus layer dropped before they reached handle() (size cap, handler
+  // exceptions): added to the status message's dropped_messages.
+  void setBusDrops(std::function<std::uint64_t()> count) { bus_drops_ = std::move(count); }
   const Optimizer& optimizer() const { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
+  // Accepted inputs the journal could not take (a full disk): an alarm in every status.
+  int unjournalled() const { return unjournalled_; }
 
  private:
   enum class Input { Bundle, PeerBundle, LoopClosure };
@@ -62,6 +68,9 @@ class OptimizerNode {
   int publish_every_;
   int updates_ = 0;
   int decode_errors_ = 0;
+  std::function<std::uint64_t()> bus_drops_;
+  int unjournalled_ = 0;
+  std::chrono::steady_clock::time_point last_alarm_{};
   bool replaying_ = false;
   std::unique_ptr<lcm::LogFile> journal_;
 };

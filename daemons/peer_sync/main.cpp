@@ -8,6 +8,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "app/app.h"
+#include "msg/inbox.h"
 #include "team/peer_sync.h"
 #include "slide/peer_sync_status_t.hpp"
 #include "team_msg.h"
@@ -25,6 +26,10 @@ Micros nowMicros() {
       .count();
 }
 
+// A team frame holds at most 32767 payload bytes (sync_chunk_t) or 32767 origins of a few
+// ranges each (heartbeat, ack); anything longer is not a frame of ours.
+constexpr std::size_t kMaxTeamFrameBytes = 1u << 20;
+
 struct Channels {
   std::string own_bundle, own_map, peer_bundle, peer_map, status;
   TeamChannels team;
@@ -33,19 +38,27 @@ struct Channels {
 class PeerSyncDaemon {
  public:
   PeerSyncDaemon(PeerSyncNode& node, lcm::LCM& robot_bus, lcm::LCM& team_bus, Channels ch, int max_deliveries)
-      : node_(node), robot_(robot_bus), team_(team_bus), ch_(std::move(ch)), max_deliveries_(max_deliveries) {
-    robot_.subscribe(ch_.own_bundle, &PeerSyncDaemon::onOwnBundle, this);
-    robot_.subscribe(ch_.own_map, &PeerSyncDaemon::onOwnMap, this);
-    team_.subscribe(ch_.team.heartbeat, &PeerSyncDaemon::onTeam<sync_heartbeat_t>, this);
-    team_.subscribe(ch_.team.chunk, &PeerSyncDaemon::onTeam<sync_chunk_t>, this);
-    team_.subscribe(ch_.team.ack, &PeerSyncDaemon::onTeam<sync_ack_t>, this);
+      : node_(node),
+        robot_(robot_bus),
+        team_(team_bus),
+        robot_inbox_(robot_bus),
+        team_inbox_(team_bus, kMaxTeamFrameBytes),
+        ch_(std::move(ch)),
+        max_deliveries_(max_deliveries) {
+    // Raw subscriptions: the hardened decoders (cmake/lcm_gen_checked.cmake) run on bytes
+    // already capped in size; a team frame's payload is decoded only after its MAC passed.
+    robot_inbox_.subscribeRaw(ch_.own_bundle, &PeerSyncDaemon::onOwnBundle, this);
+    robot_inbox_.subscribeRaw(ch_.own_map, &PeerSyncDaemon::onOwnMap, this);
+    team_inbox_.subscribeRaw(ch_.team.heartbeat, &PeerSyncDaemon::onTeam<sync_heartbeat_t>, this);
+    team_inbox_.subscribeRaw(ch_.team.chunk, &PeerSyncDaemon::onTeam<sync_chunk_t>, this);
+    team_inbox_.subscribeRaw(ch_.team.ack, &PeerSyncDaemon::onTeam<sync_ack_t>, this);
   }
 
   void onOwnBundle(const lcm::ReceiveBuffer* rb, const std::string& channel) {
     std::string why = "undecodable keypose_bundle_t";
     auto m = decodeLcm<keypose_bundle_t>(rb->data, rb->data_size);
     std::optional<Bundle> b = m ? fromLcm(*m, &why) : std::nullopt;
-    if (!b) return spdlog::warn("{}: dropped own bundle: {}", channel, why);
+    if (!b) return robot_inbox_.countUndecodable(channel, why);
     const std::uint64_t lost = node_.dropped(Drop::Lost);
     if (auto drop = node_.addOwnBundle(std::move(*b), nowMicros()))
       spdlog::warn("{}: dropped own bundle {}/{}: {}", channel, m->header.robot, m->header.seq, dropName(*drop));
@@ -59,7 +72,7 @@ class PeerSyncDaemon {
     std::string why = "undecodable object_map_t";
     auto m = decodeLcm<object_map_t>(rb->data, rb->data_size);
     std::optional<SharedMap> map = m ? fromLcm(*m, &why) : std::nullopt;
-    if (!map) return spdlog::warn("{}: dropped own map: {}", channel, why);
+    if (!map) return robot_inbox_.countUndecodable(channel, why);
     node_.setOwnMap(std::move(*map), nowMicros());
   }
 
@@ -107,6 +120,8 @@ class PeerSyncDaemon {
       if (node_.drops()[d]) drops += fmt::format(" {}={}", dropName(static_cast<Drop>(d)), node_.drops()[d]);
     spdlog::info("held {} bundles, sent {:.0f} B, received {:.0f} B; drops:{}", node_.db().size(),
                  node_.traffic().totalSent(), node_.traffic().totalReceived(), drops.empty() ? " none" : drops);
+    for (const msg::Inbox* inbox : {&robot_inbox_, &team_inbox_})
+      if (inbox->dropped()) spdlog::info("dropped before decoding: {}", inbox->summary());
     for (const auto& line : node_.trafficSummary(now)) spdlog::info("{}", line);
     // The same counts for whoever watches the robot bus.
     peer_sync_status_t st;
@@ -132,6 +147,7 @@ class PeerSyncDaemon {
   PeerSyncNode& node_;
   lcm::LCM& robot_;
   lcm::LCM& team_;
+  msg::Inbox robot_inbox_, team_inbox_;
   Channels ch_;
   int max_deliveries_;
 };

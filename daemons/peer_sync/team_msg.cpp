@@ -52,6 +52,22 @@ void setMac(M& to, const Mac& from) {
   to.mac_size = static_cast<int8_t>(to.mac.size());
 }
 
+// Physical bounds of what a robot reports: coordinates in its odometry frame (1000 km; the
+// team codec keeps them in floats), odometry sigmas, object sizes.
+constexpr double kMaxCoordinate = 1e6;
+constexpr float kMaxSigma = 1e3f;
+constexpr double kMaxObjectSize = 1e3;
+
+bool withinFrame(const double (&xyz)[3]) {
+  for (double v : xyz)
+    if (!(std::abs(v) <= kMaxCoordinate)) return false;
+  return true;
+}
+
+bool saneObject(const Object& o) {
+  return o.position().cwiseAbs().maxCoeff() <= kMaxCoordinate && o.extent().cwiseAbs().maxCoeff() <= kMaxObjectSize;
+}
+
 bool finitePose(const pose3_t& p) {
   double qn = 0;
   for (double v : p.position)
@@ -152,10 +168,16 @@ keypose_bundle_t toLcm(const Bundle& b) {
 }
 
 std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
-  if (!finitePose(m.odom_pose) || !finitePose(m.relative_odom))
-    return *why = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq) +
-                  ": invalid odom_pose or relative_odom",
+  const std::string who = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq);
+  if (!finitePose(m.odom_pose) || !finitePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
+      !withinFrame(m.relative_odom.position))
+    return *why = who + ": invalid odom_pose or relative_odom (non-finite, or beyond " +
+                  std::to_string(kMaxCoordinate) + " m)",
            std::nullopt;
+  for (float s : m.odom_sigma)
+    if (!(s >= 0 && s <= kMaxSigma))
+      return *why = who + ": odom_sigma " + std::to_string(s) + " is not in [0, " + std::to_string(kMaxSigma) + "]",
+             std::nullopt;
   Bundle b;
   b.origin = m.header.robot;
   b.seq = m.header.seq;
@@ -167,6 +189,8 @@ std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
     for (const auto& o : m.objects) {
       Object obj = slide::fromMsg(o);
       if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
+      if (!saneObject(obj)) throw std::invalid_argument("object " + std::to_string(o.id) + " is beyond " +
+                                                        std::to_string(kMaxCoordinate) + " m or absurdly large");
       b.objects.push_back(std::move(obj));
     }
   } catch (const std::invalid_argument& e) {
@@ -195,6 +219,8 @@ std::optional<SharedMap> fromLcm(const object_map_t& m, std::string* why) {
     for (const auto& o : m.objects) {
       Object obj = slide::fromMsg(o);
       if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
+      if (!saneObject(obj)) throw std::invalid_argument("object " + std::to_string(o.id) + " is beyond " +
+                                                        std::to_string(kMaxCoordinate) + " m or absurdly large");
       s.objects.push_back(std::move(obj));
     }
   } catch (const std::invalid_argument& e) {

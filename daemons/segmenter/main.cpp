@@ -16,6 +16,7 @@
 #include "frontend/odometry_buffer.h"
 #include "frontend_msg/frontend_convert.h"
 #include "msg/convert.h"
+#include "msg/inbox.h"
 #include "slide/odometry_t.hpp"
 
 using namespace slide;
@@ -150,9 +151,10 @@ int main(int argc, char** argv) {
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
     SegmenterNode node(lcm, robot, out_ch, classes, cfg, max_pending);
-    lcm.subscribe(scan_ch, &SegmenterNode::onScan, &node);
-    lcm.subscribe(rgbd_ch, &SegmenterNode::onRgbd, &node);
-    lcm.subscribe(odom_ch, &SegmenterNode::onOdom, &node);
+    msg::Inbox inbox(lcm);
+    inbox.subscribe(scan_ch, &SegmenterNode::onScan, &node);
+    inbox.subscribe(rgbd_ch, &SegmenterNode::onRgbd, &node);
+    inbox.subscribe(odom_ch, &SegmenterNode::onOdom, &node);
     std::signal(SIGINT, [](int) { g_stop = true; });
     std::signal(SIGTERM, [](int) { g_stop = true; });
     spdlog::info("robot {}: {} + {} + {} -> {} on {} (lidar mode {})", robot, scan_ch, rgbd_ch, odom_ch, out_ch, url,
@@ -161,8 +163,9 @@ int main(int argc, char** argv) {
       if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
     }
-    spdlog::info("stopping after {} frames; skipped bad input: {}", node.published(),
-                 node.issues().empty() ? "none" : node.issues().summary());
+    spdlog::info("stopping after {} frames; skipped bad input: {}; dropped messages: {}", node.published(),
+                 node.issues().empty() ? "none" : node.issues().summary(),
+                 inbox.dropped() ? inbox.summary() : "none");
     return 0;
   });
 }

@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
         if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
         if (!detections_opt->count() && !oracle_labels) detections = c.get<std::string>("detections", detections);
         if (!detection_config_opt->count()) detection_config = c.get<std::string>("detection_config", detection_config);
+        opt.max_gap_s = c.get<double>("max_gap_s", opt.max_gap_s);
+        if (!(opt.max_gap_s > 0 && opt.max_gap_s <= 3600)) c.fail("max_gap_s", "must be in (0, 3600] seconds");
         if (c.has("channels")) {
           const slide::ConfigNode ch = c.child("channels");
           if (!scan_opt->count()) opt.scan_channel = ch.get<std::string>("scan", opt.scan_channel);

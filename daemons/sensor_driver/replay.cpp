@@ -78,22 +78,33 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
   };
   status(stream_status_t::RUNNING, 0);
   int sent = 0, unreadable = 0;
+  double skipped_s = 0;  // data time not waited for: pauses longer than max_gap_s
+  const auto interrupted = [&] {
+    if (!stop || !stop()) return false;
+    if (bar) std::fprintf(stderr, "\n");
+    spdlog::warn("interrupted after {} of {} frames", sent, total);
+    return true;
+  };
   auto sendOdometry = [&](int i, int64_t utime, int seq) {
     const Pose* prev = i > 0 ? &d.odometry[i - 1].pose : nullptr;
     const double dt = i > 0 ? d.times[i] - d.times[i - 1] : 0.0;
     sink.send(o.odom_channel, toOdometryMessage(d.odometry[i].pose, prev, dt, utime, o.robot, seq), utime);
   };
   for (int i = first; i < last; ++i) {
-    if (stop && stop()) {
-      if (bar) std::fprintf(stderr, "\n");
-      spdlog::warn("interrupted after {} of {} frames", sent, total);
-      return sent;
+    if (interrupted()) return sent;
+    if (i > first && d.times[i] - d.times[i - 1] > o.max_gap_s) {
+      spdlog::warn("{}: frame times jump {:.1f} s between frames {} and {}; replayed as a {:.1f} s pause", d.path,
+                   d.times[i] - d.times[i - 1], i - 1, i, o.max_gap_s);
+      skipped_s += d.times[i] - d.times[i - 1] - o.max_gap_s;
     }
     const double rel = d.times[i] - d.times[first];
     if (o.rate > 0) {
       const auto due = wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(rel / o.rate));
-      std::this_thread::sleep_until(due);
+                                   std::chrono::duration<double>((rel - skipped_s) / o.rate));
+      while (std::chrono::steady_clock::now() < due) {  // in slices, so a stop request is seen
+        std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(100)));
+        if (interrupted()) return sent;
+      }
     }
     const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
     const int seq = i - first;

@@ -19,6 +19,7 @@ struct ReplayOptions {
   int max_frames = 0;         // > 0: stop after this many frames
   std::string scan_channel = "SCAN", rgbd_channel = "RGBD", odom_channel = "ODOM", status_channel = "SENSOR_STATUS";
   bool progress = true;       // progress bar on stderr
+  double max_gap_s = 10.0;    // a longer pause between two frames' times is replayed as this long
 };
 
 // Where encoded messages go: the bus and/or an LCM log.
@@ -44,8 +45,9 @@ class MessageSink {
 
 // Replays frames [start, end) of `dataset` into `sink`, with the labels or masks `perception`
 // gives; returns frames sent. Publishes a RUNNING status (naming the detection source) about
-// once a second and FINISHED at the end of data. `stop` is polled between frames (interrupts
-// end the replay early, without FINISHED).
+// once a second and FINISHED at the end of data. `stop` is polled between frames and at least
+// every 100 ms while waiting (interrupts end the replay early, without FINISHED). A frame that
+// cannot be read is dropped, logged and counted; the replay goes on.
 int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, const FramePerception& perception,
                   MessageSink& sink, const std::function<bool()>& stop);
 

@@ -11,6 +11,7 @@
 #include "app/app.h"
 #include "frontend/frontend_config.h"
 #include "frontend_msg/frontend_convert.h"
+#include "msg/inbox.h"
 
 using namespace slide;
 
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
     TrackerNode node(lcm, robot, out_ch, classes, cfg);
-    lcm.subscribe(in_ch, &TrackerNode::onInstances, &node);
+    msg::Inbox inbox(lcm);
+    inbox.subscribe(in_ch, &TrackerNode::onInstances, &node);
     std::signal(SIGINT, [](int) { g_stop = true; });
     std::signal(SIGTERM, [](int) { g_stop = true; });
     spdlog::info("robot {}: {} -> {} on {} (key pose every {} m)", robot, in_ch, out_ch, url, cfg.keypose.distance);
@@ -82,8 +84,9 @@ int main(int argc, char** argv) {
       if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
     }
-    spdlog::info("stopping after {} key poses; skipped bad input: {}", node.bundles(),
-                 node.issues().empty() ? "none" : node.issues().summary());
+    spdlog::info("stopping after {} key poses; skipped bad input: {}; dropped messages: {}", node.bundles(),
+                 node.issues().empty() ? "none" : node.issues().summary(),
+                 inbox.dropped() ? inbox.summary() : "none");
     return 0;
   });
 }

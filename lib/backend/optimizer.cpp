@@ -216,6 +216,10 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   UpdateResult r;
   if (peer == host_) return reject(r, "bad transform: robot " + std::to_string(peer) + " is this robot");
   if (!T_host_peer.matrix().allFinite()) return reject(r, "non-finite value: transform to robot " + std::to_string(peer));
+  if (!(T_host_peer.translation().norm() <= cfg_.max_robot_offset_m))
+    return reject(r, "absurd transform: robot " + std::to_string(peer) + "'s origin is " +
+                         std::to_string(T_host_peer.translation().norm()) + " m away (gates.max_robot_offset_m " +
+                         std::to_string(cfg_.max_robot_offset_m) + ")");
   Robot& robot = robots_[peer];
   robot.T_host_robot = T_host_peer;
   if (!robot.merged) {
@@ -258,6 +262,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   if (!a || !b || seq_a == seq_b)
     return reject(r, "unknown key pose: loop closure " + std::to_string(seq_a) + "-" + std::to_string(seq_b) +
                          " of robot " + std::to_string(robot) + " names a key pose not in the graph");
+  if (const std::string problem = checkLoopClosure(*a, *b, T_a_b); !problem.empty()) return reject(r, problem);
   const auto key = std::make_pair(robot, std::make_pair(seq_a, seq_b));
   const auto it = loop_factors_.find(key);
   if (it != loop_factors_.end()) graph_.removeFactor(it->second);

@@ -7,12 +7,15 @@
 namespace slide {
 
 namespace {
-// Reads key into `v` when present; checks v >= lo.
+// Reads key into `v` when present; checks lo <= v <= hi (the bounds keep every loop over
+// the value within the physical or algorithmic range it is meant for).
 template <typename T>
-void opt(const ConfigNode& n, const std::string& key, T& v, T lo = std::numeric_limits<T>::lowest()) {
+void opt(const ConfigNode& n, const std::string& key, T& v, T lo = std::numeric_limits<T>::lowest(),
+         T hi = std::numeric_limits<T>::max()) {
   if (!n.has(key)) return;
   v = n.get<T>(key);
-  if (v < lo) n.fail(key, "must be at least " + std::to_string(lo));
+  if (!(v >= lo)) n.fail(key, "must be at least " + std::to_string(lo));
+  if (!(v <= hi)) n.fail(key, "must be at most " + std::to_string(hi));
 }
 
 void sixVector(const ConfigNode& n, const std::string& key, std::array<double, 6>& v) {
@@ -30,7 +33,7 @@ void loadCluster(const ConfigNode& n, GridClusterParams& c) {
 }
 
 void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
-  opt(n, "max_range", g.max_range, 1.0);
+  opt(n, "max_range", g.max_range, 1.0, 1000.0);
   opt(n, "emit_other", g.emit_other);
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
@@ -103,7 +106,7 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "min_inlier_ratio", p.min_inlier_ratio, 0.0);
     opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
     opt(c, "min_points", p.min_points, 3);
-    opt(c, "ransac_iterations", p.ransac.iterations, 1);
+    opt(c, "ransac_iterations", p.ransac.iterations, 1, 100000);
     opt(c, "inlier_distance", p.ransac.inlier_distance, 1e-4);
     opt(c, "min_radius", p.ransac.min_radius, 1e-3);
     opt(c, "max_radius", p.ransac.max_radius, p.ransac.min_radius);
@@ -114,7 +117,8 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "low_percentile", p.low_percentile, 0.0);
     opt(c, "high_percentile", p.high_percentile, p.low_percentile);
     opt(c, "footprint_cell", p.footprint_cell, 1e-3);
-    opt(c, "yaw_step_deg", p.yaw_step_deg, 0.0);
+    opt(c, "yaw_step_deg", p.yaw_step_deg, 0.0, 45.0);
+    if (p.yaw_step_deg > 0 && p.yaw_step_deg < 0.1) c.fail("yaw_step_deg", "must be 0 (off) or at least 0.1");
     opt(c, "min_visible_fraction", p.min_visible_fraction, 0.0);
     opt(c, "size_tolerance", p.size_tolerance, 1.0);
     opt(c, "min_points", p.min_points, 3);

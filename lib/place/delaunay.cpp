@@ -57,6 +57,9 @@ std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts) {
     hi_y = std::max(hi_y, p.y());
   }
   if (unique.size() < 3) return out;
+  // Subdiv2D takes an int rectangle and float points: an extent beyond 1e7 m (float keeps
+  // metres there, int keeps the rectangle) is no map of ours; callers drop such objects first.
+  if (!(hi_x - lo_x < 1e7 && hi_y - lo_y < 1e7)) return out;
 
   const double margin = 1.0 + 0.01 * std::max(hi_x - lo_x, hi_y - lo_y);
   cv::Subdiv2D subdiv(cv::Rect(static_cast<int>(std::floor(lo_x - margin)), static_cast<int>(std::floor(lo_y - margin)),
