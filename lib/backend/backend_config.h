@@ -38,9 +38,6 @@ struct BackendConfig {
   double cylinder_along_axis_sigma = 2.0;
   double cylinder_axis_sigma = 0.1;
   double cylinder_radius_sigma = 0.05;
-  // Objects farther than this from their key pose are dropped: no sensor of the team sees
-  // that far, and association work grows with the range (bearing noise times range).
-  double max_object_range_m = 500.0;
 
   // Gates on loop closures and inter-robot transforms, applied before they are journalled or
   // touch the graph. A loop closure may differ from the current estimate of the same
