@@ -45,6 +45,7 @@ class OptimizerNode {
   // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot.
   void writeTrajectories(const std::string& dir);
   const Optimizer& optimizer() const { return optimizer_; }
+  Optimizer& optimizer() { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
 
  private:
