@@ -153,6 +153,19 @@ int main(int argc, char** argv) {
     }
     node.optimizer().fullSolve();
     printState(node.optimizer(), truth, odom_of, "final (full solve):");
+    // The host's raw odometry at the same key poses, in the same measure (no alignment).
+    double sq = 0;
+    int n = 0;
+    const Pose T_host_world = truth.robot(robot).T_world_odom.inverse();
+    for (const TrajectoryPose& p : node.optimizer().trajectory(robot)) {
+      const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
+      const auto o = odom_of.find({robot, p.seq});
+      if (!g || o == odom_of.end()) continue;
+      sq += (o->second.translation() - (T_host_world * g->pose).translation()).squaredNorm();
+      ++n;
+    }
+    if (n) std::printf("odometry: own %d poses rmse %.3f m\n", n, std::sqrt(sq / n));
+    std::printf("merges undone: %d, rebuilds: %d\n", node.optimizer().unmerged(), node.optimizer().rebuilds());
     return 0;
   });
 }
