@@ -50,6 +50,7 @@ class OptimizerNode {
   // exceptions): added to the status message's dropped_messages.
   void setBusDrops(std::function<std::uint64_t()> count) { bus_drops_ = std::move(count); }
   const Optimizer& optimizer() const { return optimizer_; }
+  Optimizer& optimizer() { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
   // Accepted inputs the journal could not take (a full disk): an alarm in every status.
   int unjournalled() const { return unjournalled_; }

@@ -92,6 +92,17 @@ BackendConfig loadBackendConfig(const std::string& path) {
     for (const auto& k : n.keys())
       if (k != "spread_loops" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
   }
+  if (root.has("soundness")) {
+    const ConfigNode n = root.child("soundness");
+    n.read("envelope_sigmas", c.envelope.gate_sigmas);
+    n.read("envelope_floor_m", c.envelope.floor_m);
+    n.read("envelope_floor_deg", c.envelope.floor_deg);
+    c.guard_estimate = n.get<bool>("guard_estimate", c.guard_estimate);
+    n.read("remerge_translation_m", c.remerge_translation_m);
+    n.read("remerge_yaw_deg", c.remerge_yaw_deg);
+    for (const auto& k : n.keys())
+      if (k != "guard_estimate" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
+  }
   return c;
 }
 

@@ -3,6 +3,7 @@
 // incremental solving and input gates.
 #include <string>
 
+#include "backend/odometry_envelope.h"
 #include "geometry/pose.h"
 
 namespace slide {
@@ -84,6 +85,15 @@ struct BackendConfig {
   // Initial Levenberg-Marquardt trust region of full solves (all start from the last solution).
   double full_trust_region_radius = 1e8;
   int num_threads = 2;  // Ceres threads of full solves (per-key-pose solves use one)
+
+  // Soundness: an intra-robot loop closure, or an estimate of any robot's trajectory after a
+  // merge or full solve, that leaves that robot's odometry envelope is refused or undone.
+  OdometryEnvelope envelope;
+  bool guard_estimate = true;       // check every robot's trajectory after full solves
+  // A transform to an already merged peer this far from the one it was merged through
+  // contradicts the merge: the peer is un-merged and merged again through it.
+  double remerge_translation_m = 2.0;
+  double remerge_yaw_deg = 5.0;
 };
 
 // Loads backend.yaml; every key is optional (defaults above); errors name file and key.

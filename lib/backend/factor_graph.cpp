@@ -58,6 +58,22 @@ FactorGraph::FactorGraph(double robust_loss_scale)
 
 FactorGraph::~FactorGraph() { global_.reset(); }
 
+FactorGraph::FactorGraph(FactorGraph&&) noexcept = default;
+
+FactorGraph& FactorGraph::operator=(FactorGraph&& o) noexcept {
+  if (this == &o) return *this;
+  global_.reset();  // before the blocks and cost functions it points to go
+  vars_ = std::move(o.vars_);
+  factors_ = std::move(o.factors_);
+  removed_ = o.removed_;
+  robust_scale_ = o.robust_scale_;
+  losses_ = std::move(o.losses_);
+  pose_manifold_ = std::move(o.pose_manifold_);
+  cylinder_manifold_ = std::move(o.cylinder_manifold_);
+  global_ = std::move(o.global_);
+  return *this;
+}
+
 ceres::Manifold* FactorGraph::manifoldFor(BlockKind kind) const {
   switch (kind) {
     case BlockKind::Pose: return pose_manifold_.get();

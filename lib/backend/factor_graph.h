@@ -40,6 +40,9 @@ class FactorGraph {
   ~FactorGraph();
   FactorGraph(const FactorGraph&) = delete;
   FactorGraph& operator=(const FactorGraph&) = delete;
+  // Moving keeps every block's address (the persistent problem points into them).
+  FactorGraph(FactorGraph&&) noexcept;
+  FactorGraph& operator=(FactorGraph&&) noexcept;
 
   // Schur solves eliminate group 0 (landmark blocks, which never share a factor) first, then
   // the rest (key poses, and landmark blocks that accompany a group-0 block such as cuboid

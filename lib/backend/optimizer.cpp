@@ -29,6 +29,8 @@ Optimizer::Optimizer(BackendConfig config, ClassTable classes, int host_robot)
 }
 
 Optimizer::~Optimizer() = default;
+Optimizer::Optimizer(Optimizer&&) noexcept = default;
+Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;
 
 Pose Optimizer::poseOf(int var, const FactorGraph::Values* values) const {
   return fromPoseBlock(values ? (*values)[var].data() : graph_.value(var));
@@ -63,6 +65,7 @@ UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
   const std::string problem = checkBundle(b, known == robots_.end() ? kNewRobot : known->second);
   if (!problem.empty()) return reject(r, problem);
   Robot& robot = robots_[b.robot];
+  inputs_.push_back({Input::Kind::Bundle, b});
   if (!robot.merged) {
     if (static_cast<int>(robot.held.size()) >= cfg_.max_held_bundles)
       return reject(r, "peer store full: robot " + std::to_string(b.robot) + " has " +
@@ -78,6 +81,7 @@ UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
   const int pose_var = insertBundle(b, r, touched, loop);
   r.solve = solveAfterInsert(b.robot, pose_var, touched, loop, r);
   r.accepted = true;
+  if (r.full_solve) guard(r);
   r.update_ms = msSince(t0);
   return r;
 }
@@ -103,14 +107,17 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     T_w_b = poseOf(prev_var) * relative;
   }
   const int var = graph_.addVariable(BlockKind::Pose, toPoseBlock(T_w_b).data(), false);
+  OdometryStep step;
   if (prev_var < 0) {
     const PoseSigma s = b.robot == host_ ? sigma6(cfg_.prior_translation_sigma, cfg_.prior_rotation_sigma)
                                          : sigma6(cfg_.peer_translation_sigma, cfg_.peer_rotation_sigma);
     robot.anchor_factor = graph_.addFactor(posePriorFactor(T_w_b, s), {var}, false);
   } else {
-    graph_.addFactor(relativePoseFactor(relative, odometrySigma(b, relative, bridged)), {prev_var, var}, false);
+    const Vector6d sigma = odometrySigma(b, relative, bridged);
+    graph_.addFactor(relativePoseFactor(relative, sigma), {prev_var, var}, false);
+    step = {relative.translation().norm(), sigma.head<3>().maxCoeff(), sigma[5]};
   }
-  keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose});
+  keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose, step});
   robot.keyposes.push_back(static_cast<int>(keyposes_.size()) - 1);
   ++step_;
 
@@ -189,6 +196,10 @@ SolveReport Optimizer::fullSolve() {
     if (changed == 0) break;
     s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
   }
+  UpdateResult r;
+  const int before = unmerged_;
+  guard(r);
+  if (unmerged_ != before) return fullSolve();
   return s;
 }
 
@@ -220,10 +231,35 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
     return reject(r, "absurd transform: robot " + std::to_string(peer) + "'s origin is " +
                          std::to_string(T_host_peer.translation().norm()) + " m away (gates.max_robot_offset_m " +
                          std::to_string(cfg_.max_robot_offset_m) + ")");
+  if (refused(peer, T_host_peer))
+    return reject(r, "refused transform: robot " + std::to_string(peer) +
+                         "'s transform is one whose merge was undone (the estimate left the odometry envelope)");
+  if (!replaying_ && robots_[peer].merged) {
+    // Against the transform it was merged through (refinements stay within the loop closer's
+    // consensus tolerance; a jump means the loop closer replaced it).
+    const std::optional<Pose> held = robots_[peer].T_host_robot;
+    if (held) {
+      const Eigen::Vector4d d = xyzYawOf(held->inverse() * T_host_peer);
+      const double dt = (T_host_peer.translation() - held->translation()).norm();
+      if (dt > cfg_.remerge_translation_m || std::abs(wrapAngle(d[3])) * 180.0 / M_PI > cfg_.remerge_yaw_deg) {
+        r.warnings.push_back("robot " + std::to_string(peer) + " un-merged and merged again: the new transform is " +
+                             std::to_string(dt) + " m from the one it was merged through");
+        rebuildWithout(peer, T_host_peer);
+        ++unmerged_;
+        r.full_solve = true;
+        guard(r);
+        r.accepted = true;
+        r.update_ms = msSince(t0);
+        return r;
+      }
+    }
+  }
+  inputs_.push_back({Input::Kind::Transform, {}, peer, 0, 0, T_host_peer});
   Robot& robot = robots_[peer];
   robot.T_host_robot = T_host_peer;
   if (!robot.merged) {
     robot.merged = true;
+    merge_order_.push_back(peer);
     for (const auto& [seq, b] : robot.held) {
       UpdateResult part;
       if (!robot.keyposes.empty() && b.utime < keyposes_[robot.keyposes.back()].utime) {
@@ -247,6 +283,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   if (!robot.keyposes.empty()) {
     r.full_solve = true;
     r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
+    guard(r);
   }
   r.accepted = true;
   r.update_ms = msSince(t0);
@@ -263,6 +300,22 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
     return reject(r, "unknown key pose: loop closure " + std::to_string(seq_a) + "-" + std::to_string(seq_b) +
                          " of robot " + std::to_string(robot) + " names a key pose not in the graph");
   if (const std::string problem = checkLoopClosure(*a, *b, T_a_b); !problem.empty()) return reject(r, problem);
+  {
+    const auto& list = robots_[robot].keyposes;
+    auto indexOf = [&](const KeyPose* k) {
+      return static_cast<std::size_t>(std::find_if(list.begin(), list.end(), [&](int i) { return &keyposes_[i] == k; }) -
+                                      list.begin());
+    };
+    const bool forward = a->seq < b->seq;
+    const EnvelopeCheck c = envelopeOf(robot, indexOf(forward ? a : b), indexOf(forward ? b : a),
+                                       forward ? T_a_b : Pose(T_a_b.inverse()));
+    if (!c.inside)
+      return reject(r, "implausible loop closure: robot " + std::to_string(robot) + " key poses " +
+                           std::to_string(seq_a) + "-" + std::to_string(seq_b) + " is " + std::to_string(c.translation_m) +
+                           " m / " + std::to_string(c.yaw_deg) + " deg from its odometry (envelope " +
+                           std::to_string(c.allowed_m) + " m / " + std::to_string(c.allowed_deg) + " deg)");
+  }
+  inputs_.push_back({Input::Kind::Loop, {}, robot, seq_a, seq_b, T_a_b});
   const auto key = std::make_pair(robot, std::make_pair(seq_a, seq_b));
   const auto it = loop_factors_.find(key);
   if (it != loop_factors_.end()) graph_.removeFactor(it->second);
@@ -271,6 +324,7 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   r.full_solve = true;
   if (cfg_.spread_loops && a->seq < b->seq) spreadLoop(*a, *b, T_a_b);
   r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
+  guard(r);
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ class Optimizer {
  public:
   Optimizer(BackendConfig config, ClassTable classes, int host_robot);
   ~Optimizer();
+  Optimizer(Optimizer&&) noexcept;
+  Optimizer& operator=(Optimizer&&) noexcept;
 
   int hostRobot() const { return host_; }
 
@@ -45,10 +48,15 @@ class Optimizer {
   // transform arrives, then added in the host frame).
   UpdateResult addBundle(const KeyPoseBundle& bundle);
   // T_host_peer maps the peer's frame into the host's. The first one merges the peer's held
-  // bundles; later ones replace it (the peer's anchor prior), never adding a second.
+  // bundles; later ones close to the transform it was merged through replace its anchor
+  // prior, never adding a second; one that contradicts it (remerge_* apart) un-merges the
+  // peer (its observations leave the graph, which is rebuilt from the recorded inputs) and
+  // merges it again through the new transform. A merge after which some robot's trajectory
+  // leaves its odometry envelope is undone and that transform refused from then on.
   UpdateResult addRobotTransform(int peer, const Pose& T_host_peer);
   // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
-  // A repeated (robot, seq_a, seq_b) replaces the earlier one.
+  // A repeated (robot, seq_a, seq_b) replaces the earlier one. Refused when it is further from
+  // the robot's odometry between the two key poses than the odometry envelope allows.
   UpdateResult addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b);
   // Full solve to convergence over the whole graph (at most final_iterations).
   SolveReport fullSolve();
@@ -66,6 +74,8 @@ class Optimizer {
   int rejected() const { return rejected_; }
   int merges() const { return merges_; }
   int detached() const { return detached_; }
+  int unmerged() const { return unmerged_; }   // merges undone (contradicted or unsound)
+  int rebuilds() const { return rebuilds_; }
   const std::map<std::string, int>& rejections() const { return rejections_; }
   double cost() const { return graph_.cost(); }
   const FactorGraph& graph() const { return graph_; }
@@ -85,6 +95,14 @@ class Optimizer {
     std::int64_t utime;
     int var;
     Pose odom_pose;
+    OdometryStep step;  // from the previous key pose of the robot (zero for its first)
+  };
+  // Every accepted input, in order, so that the graph can be rebuilt without a merge.
+  struct Input {
+    enum class Kind { Bundle, Transform, Loop } kind = Kind::Bundle;
+    KeyPoseBundle bundle;
+    int robot = 0, seq_a = 0, seq_b = 0;
+    Pose T = Pose::Identity();
   };
   struct Observation {
     int factor;
@@ -139,6 +157,19 @@ class Optimizer {
   // poses from a on (loop_spread.h) and moves each landmark with its least-moved observer.
   void spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b);
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
+  // Soundness (optimizer_guard.cpp). The odometry envelope check of a robot's key poses
+  // (indices into its list) i..j against T_i_j; the frame of a merged peer as the graph holds it.
+  EnvelopeCheck envelopeOf(int robot, std::size_t i, std::size_t j, const Pose& T_i_j) const;
+  // The first robot whose estimated trajectory (first key pose to each later one) leaves its
+  // odometry envelope, or -1.
+  int robotOutsideEnvelope(std::string* why = nullptr) const;
+  std::optional<Pose> mergedFrame(int peer) const;
+  // Rebuilds the graph from the recorded inputs, leaving out every transform to `peer` and
+  // then (if given) merging it through `T_host_peer`.
+  void rebuildWithout(int peer, const std::optional<Pose>& T_host_peer);
+  // After a full solve: while some robot left its envelope, undo the newest merge.
+  void guard(UpdateResult& r);
+  bool refused(int peer, const Pose& T) const;
 
   BackendConfig cfg_;
   ClassTable classes_;
@@ -157,6 +188,11 @@ class Optimizer {
   int merges_ = 0;
   int detached_ = 0;
   std::map<std::string, int> rejections_;
+  std::vector<Input> inputs_;
+  std::vector<int> merge_order_;                 // peers in the order they were merged
+  std::map<int, std::vector<Pose>> refused_;     // transforms whose merge was undone
+  bool replaying_ = false;
+  int unmerged_ = 0, rebuilds_ = 0;
 };
 
 }  // namespace slide

@@ -1,0 +1,36 @@
+#pragma once
+// How far a robot's own odometry can plausibly be wrong between two of its key poses: the
+// random walk of the per-step odometry sigmas (yaw accumulates as the root sum of squares,
+// and a heading error displaces every later step by its length), times a gate, with floors.
+// A loop closure or a merged estimate that moves the robot further than this from what its
+// odometry says contradicts the odometry and is refused or undone.
+#include <vector>
+
+#include "geometry/pose.h"
+
+namespace slide {
+
+struct OdometryEnvelope {
+  double gate_sigmas = 3.0;    // allowed deviation in sigmas of the accumulated drift
+  double floor_m = 1.0;        // never tighter than this translation...
+  double floor_deg = 3.0;      // ...and this yaw
+};
+
+struct OdometryStep {
+  double length_m = 0;          // translation of the step
+  double translation_sigma = 0; // per-step sigmas (the odometry factor's)
+  double yaw_sigma = 0;
+};
+
+struct EnvelopeCheck {
+  bool inside = true;
+  double translation_m = 0, yaw_deg = 0;            // deviation found
+  double allowed_m = 0, allowed_deg = 0;            // what the envelope allows
+};
+
+// steps: the odometry steps from key pose a to key pose b (in order); odom_a_b: the relative
+// pose odometry gives; T_a_b: the relative pose to check (a loop closure or an estimate).
+EnvelopeCheck checkAgainstOdometry(const std::vector<OdometryStep>& steps, const Pose& odom_a_b, const Pose& T_a_b,
+                                   const OdometryEnvelope& envelope);
+
+}  // namespace slide

@@ -1,0 +1,171 @@
+// slide-journal-replay: replays one optimizer's journal (every accepted input of a team run,
+// in the order the daemon took them) through the same node in-process, and prints against the
+// simulator's ground truth what each loop closure and inter-robot transform did to the
+// estimate: the input's own error, then the host's own trajectory (no alignment, in its
+// odometry frame) and each merged peer's frame. The evidence behind "which closure broke it".
+#include <lcm/lcm-cpp.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/app.h"
+#include "backend/backend_config.h"
+#include "eval/transform_error.h"
+#include "objects/class_table.h"
+#include "bundle_messages.h"
+#include "optimizer_node.h"
+#include "slide/keypose_bundle_t.hpp"
+#include "slide/loop_closure_t.hpp"
+#include "team_truth.h"
+
+using namespace slide;
+
+namespace {
+
+// Ground-truth pose of a robot (world frame) at the stamp nearest t; nullptr beyond 50 ms.
+const StampedPose* truthAt(const RobotTruth& r, double t) {
+  const auto& g = r.ground_truth;
+  auto it = std::lower_bound(g.begin(), g.end(), t, [](const StampedPose& p, double s) { return p.t < s; });
+  const StampedPose* best = nullptr;
+  if (it != g.end()) best = &*it;
+  if (it != g.begin() && (!best || std::abs(std::prev(it)->t - t) < std::abs(best->t - t))) best = &*std::prev(it);
+  return best && std::abs(best->t - t) <= 0.05 ? best : nullptr;
+}
+
+struct TrajectoryError {
+  double rmse = NAN, last = NAN;
+  int poses = 0;
+};
+
+// A robot's key poses as the host holds them, against truth expressed in the host's frame.
+TrajectoryError trajectoryError(const Optimizer& opt, int robot, const TeamTruth& truth) {
+  TrajectoryError e;
+  const Pose T_host_world = truth.robot(opt.hostRobot()).T_world_odom.inverse();
+  double sq = 0;
+  for (const TrajectoryPose& p : opt.trajectory(robot)) {
+    const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
+    if (!g) continue;
+    const double d = (p.pose.translation() - (T_host_world * g->pose).translation()).norm();
+    sq += d * d;
+    e.last = d;
+    ++e.poses;
+  }
+  if (e.poses) e.rmse = std::sqrt(sq / e.poses);
+  return e;
+}
+
+// The peer's odometry frame as the host's graph holds it (at the peer's first key pose).
+std::optional<TransformError> mergedFrameError(const Optimizer& opt, int peer, const TeamTruth& truth,
+                                               const std::map<std::pair<int, int>, Pose>& odom_of) {
+  const auto traj = opt.trajectory(peer);
+  if (traj.empty()) return std::nullopt;
+  const auto it = odom_of.find({peer, traj.front().seq});
+  if (it == odom_of.end()) return std::nullopt;
+  return transformError(traj.front().pose * it->second.inverse(), truth.T_a_b(opt.hostRobot(), peer));
+}
+
+void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std::pair<int, int>, Pose>& odom_of,
+                const char* prefix) {
+  const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth);
+  std::printf("%s own %d poses rmse %.3f m last %.3f m; landmarks %d", prefix, own.poses, own.rmse, own.last,
+              opt.numLandmarks());
+  for (int r : opt.robots()) {
+    if (r == opt.hostRobot()) continue;
+    const auto e = mergedFrameError(opt, r, truth, odom_of);
+    const TrajectoryError te = trajectoryError(opt, r, truth);
+    if (e) std::printf("; peer %d frame %.2f m / %.2f deg, poses rmse %.2f m", r, e->translation_m, e->yaw_deg, te.rmse);
+  }
+  std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Replay an optimizer journal (state/optimizer<N>.lcmlog of a team run) in-process and print, against "
+               "the simulator's ground truth, what each loop closure and inter-robot transform did to the estimate",
+               "slide-journal-replay"};
+  CommonOptions common;
+  addCommonOptions(app, common);
+  std::string journal, data, config = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml",
+                            classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
+  int robot = 0, every = 50;
+  std::vector<int> robots{0, 1, 2};
+  app.add_option("--journal", journal, "Optimizer journal (LCM log)")->required();
+  app.add_option("--data", data, "Simulator output folder of the run (robot<N>/, objects.csv)")->required();
+  app.add_option("--robot", robot, "The journal's host robot")->capture_default_str();
+  app.add_option("--robots", robots, "Robot ids of the team")->delimiter(',')->capture_default_str();
+  app.add_option("--config", config, "Back-end configuration")->capture_default_str();
+  app.add_option("--classes", classes_path, "Class table")->capture_default_str();
+  app.add_option("--every", every, "Also print the state every this many bundles")->capture_default_str();
+  return runApp(app, common, argc, argv, [&] {
+    const TeamTruth truth = readTeamTruth(data, robots);
+    OptimizerNode node(loadBackendConfig(config), ClassTable::load(classes_path), robot, {}, {});
+    lcm::LogFile in(journal, "r");
+    if (!in.good()) throw std::runtime_error(journal + ": cannot open LCM log");
+    std::map<std::pair<int, int>, Pose> odom_of;  // (robot, seq) -> odometry pose of the bundle
+    int bundles = 0, index = 0;
+    while (const lcm::LogEvent* e = in.readNextEvent()) {
+      ++index;
+      if (e->channel == "LOOP_CLOSURE") {
+        loop_closure_t m;
+        if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable loop closure");
+        const Pose T = poseFromXyzYaw(m.x, m.y, m.z, m.yaw);
+        std::printf("#%d after %d bundles: ", index, bundles);
+        if (m.robot_a == m.robot_b) {
+          std::string err = "truth n/a";
+          const Optimizer& opt = node.optimizer();
+          std::optional<TrajectoryPose> a, b;
+          for (const TrajectoryPose& p : opt.trajectory(m.robot_a)) {
+            if (p.seq == m.keypose_a) a = p;
+            if (p.seq == m.keypose_b) b = p;
+          }
+          const StampedPose* ga = a ? truthAt(truth.robot(m.robot_a), a->utime * 1e-6) : nullptr;
+          const StampedPose* gb = b ? truthAt(truth.robot(m.robot_a), b->utime * 1e-6) : nullptr;
+          if (ga && gb) {
+            const TransformError te = transformError(T, ga->pose.inverse() * gb->pose);
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "error %.2f m / %.2f deg", te.translation_m, te.yaw_deg);
+            err = buf;
+          }
+          std::printf("intra %d key poses %d-%d, %d inliers, %s\n", m.robot_a, m.keypose_a, m.keypose_b, m.num_inliers,
+                      err.c_str());
+        } else {
+          const TransformError te = transformError(T, truth.T_a_b(m.robot_a, m.robot_b));
+          std::printf("inter %d <- %d, %d inliers, error %.2f m / %.2f deg\n", m.robot_a, m.robot_b, m.num_inliers,
+                      te.translation_m, te.yaw_deg);
+        }
+        node.handle("LOOP_CLOSURE", e->data, e->datalen);
+        printState(node.optimizer(), truth, odom_of, "   ->");
+      } else if (e->channel == "KEYPOSE_BUNDLE" || e->channel == "PEER_BUNDLE") {
+        keypose_bundle_t m;
+        if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable bundle");
+        std::vector<std::string> warnings;
+        const KeyPoseBundle b = fromMsg(m, warnings);
+        odom_of[{b.robot, b.seq}] = b.odom_pose;
+        node.handle(e->channel, e->data, e->datalen);
+        if (++bundles % every == 0) {
+          char prefix[64];
+          std::snprintf(prefix, sizeof prefix, "#%d %d bundles:", index, bundles);
+          printState(node.optimizer(), truth, odom_of, prefix);
+        }
+      }
+    }
+    node.optimizer().fullSolve();
+    printState(node.optimizer(), truth, odom_of, "final (full solve):");
+    // The host's raw odometry at the same key poses, in the same measure (no alignment).
+    double sq = 0;
+    int n = 0;
+    const Pose T_host_world = truth.robot(robot).T_world_odom.inverse();
+    for (const TrajectoryPose& p : node.optimizer().trajectory(robot)) {
+      const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
+      const auto o = odom_of.find({robot, p.seq});
+      if (!g || o == odom_of.end()) continue;
+      sq += (o->second.translation() - (T_host_world * g->pose).translation()).squaredNorm();
+      ++n;
+    }
+    if (n) std::printf("odometry: own %d poses rmse %.3f m\n", n, std::sqrt(sq / n));
+    std::printf("merges undone: %d, rebuilds: %d\n", node.optimizer().unmerged(), node.optimizer().rebuilds());
+    return 0;
+  });
+}
