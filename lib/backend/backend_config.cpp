@@ -48,10 +48,6 @@ BackendConfig loadBackendConfig(const std::string& path) {
   }
   if (root.has("gates")) {
     const ConfigNode n = root.child("gates");
-    n.read("loop_m", c.loop_gate_m);
-    n.read("loop_per_m", c.loop_gate_per_m);
-    n.read("loop_rad", c.loop_gate_rad);
-    n.read("loop_rad_per_m", c.loop_gate_rad_per_m);
     n.read("max_robot_offset_m", c.max_robot_offset_m);
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
   }

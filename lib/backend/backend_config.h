@@ -40,15 +40,9 @@ struct BackendConfig {
   double cylinder_axis_sigma = 0.1;
   double cylinder_radius_sigma = 0.05;
 
-  // Gates on loop closures and inter-robot transforms, applied before they are journalled or
-  // touch the graph. A loop closure may differ from the current estimate of the same
-  // relative pose by odometry drift: at most gate_m + gate_per_m * path length (metres) and
-  // gate_rad + gate_rad_per_m * path length (radians) along the path between its two key
-  // poses. A transform between two robots' odometry origins must be within max_robot_offset_m.
-  double loop_gate_m = 5.0;
-  double loop_gate_per_m = 0.05;
-  double loop_gate_rad = 0.3;
-  double loop_gate_rad_per_m = 0.002;
+  // A transform between two robots' odometry origins must be within max_robot_offset_m before
+  // it is journalled or touches the graph. (Loop closures are checked against the odometry
+  // envelope: backend/odometry_envelope.h, the `soundness:` section.)
   double max_robot_offset_m = 1e5;
   double ellipsoid_size_ema = 0.2;  // weight of a new measurement in radius/height averages
   double robust_loss_scale = 1.5;   // Huber threshold: this * sqrt(residual count) (whitened)

@@ -299,7 +299,6 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   if (!a || !b || seq_a == seq_b)
     return reject(r, "unknown key pose: loop closure " + std::to_string(seq_a) + "-" + std::to_string(seq_b) +
                          " of robot " + std::to_string(robot) + " names a key pose not in the graph");
-  if (const std::string problem = checkLoopClosure(*a, *b, T_a_b); !problem.empty()) return reject(r, problem);
   {
     const auto& list = robots_[robot].keyposes;
     auto indexOf = [&](const KeyPose* k) {

@@ -130,8 +130,6 @@ class Optimizer {
 
   UpdateResult reject(UpdateResult r, const std::string& reason);
   std::string checkBundle(const KeyPoseBundle& b, const Robot& robot) const;
-  // Empty when T_a_b is within odometry drift of the current estimate of a -> b, else why not.
-  std::string checkLoopClosure(const KeyPose& a, const KeyPose& b, const Pose& T_a_b) const;
   std::vector<Object> usableObjects(const KeyPoseBundle& b, UpdateResult& r) const;
   // Adds the pose, odometry and objects of an already validated bundle; returns the new
   // pose's variable and fills `touched` with the landmarks it observed. Sets `loop` when one

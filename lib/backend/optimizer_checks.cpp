@@ -48,30 +48,6 @@ std::string Optimizer::checkBundle(const KeyPoseBundle& b, const Robot& robot) c
   return {};
 }
 
-std::string Optimizer::checkLoopClosure(const KeyPose& a, const KeyPose& b, const Pose& T_a_b) const {
-  const KeyPose& lo = a.seq < b.seq ? a : b;
-  const KeyPose& hi = a.seq < b.seq ? b : a;
-  double path = 0;  // odometry path length between the two key poses
-  const auto& list = robots_.at(a.robot).keyposes;
-  const KeyPose* prev = nullptr;
-  for (int kp : list) {
-    const KeyPose& k = keyposes_[kp];
-    if (k.seq < lo.seq || k.seq > hi.seq) continue;
-    if (prev) path += (k.odom_pose.translation() - prev->odom_pose.translation()).norm();
-    prev = &k;
-  }
-  const Pose estimate = poseOf(a.var).inverse() * poseOf(b.var);
-  const Pose diff = estimate.inverse() * T_a_b;
-  const double dt = diff.translation().norm(), dr = rotationAngle(diff);
-  const double max_t = cfg_.loop_gate_m + cfg_.loop_gate_per_m * path;
-  const double max_r = cfg_.loop_gate_rad + cfg_.loop_gate_rad_per_m * path;
-  if (dt <= max_t && dr <= max_r) return {};
-  return "absurd loop closure: robot " + std::to_string(a.robot) + " key poses " + std::to_string(a.seq) + "-" +
-         std::to_string(b.seq) + " differs from the estimate by " + std::to_string(dt) + " m / " + std::to_string(dr) +
-         " rad after " + std::to_string(path) + " m of path (gates allow " + std::to_string(max_t) + " m / " +
-         std::to_string(max_r) + " rad)";
-}
-
 std::vector<Object> Optimizer::usableObjects(const KeyPoseBundle& b, UpdateResult& r) const {
   std::vector<Object> out;
   r.landmark_ids.assign(b.objects.size(), -1);

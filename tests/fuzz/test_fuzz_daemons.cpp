@@ -8,6 +8,8 @@
 // SIGTERM. SLIDE_FUZZ_ROUNDS (compile definition) scales the volume: the default run is
 // quick, the `scenario` labelled build (FuzzDaemonsLong) sends ten times as much.
 #include <gtest/gtest.h>
+
+#include <cstdlib>
 #include <sched.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -139,9 +141,12 @@ TEST(SLIDE_FUZZ_SUITE, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsSer
   start(trk, "slide-tracker", robot, dir);
   start(opt, "slide-optimizer", with({"--journal", dir + "/optimizer.journal"}), dir);
   start(lc, "slide-loop-closer", robot, dir);
+  const std::string keys_cmd = std::string(SLIDE_BINARY_DIR) + "/bin/slide-team-keys --team 0,1,2 --out " + dir +
+                               "/keys --log-level warn";
+  ASSERT_EQ(std::system(keys_cmd.c_str()), 0) << keys_cmd;
   start(ps, "slide-peer-sync",
         {"--robot", "0", "--robot-url", kRobotUrl, "--team-url", kTeamUrl, "--state-dir", dir + "/peer_sync",
-         "--log-level", "info"},
+         "--team-key-file", dir + "/keys/robot0.keys", "--log-level", "info"},
         dir);
   start(dep, "slide-deputy", {"--id", "fuzz-deputy", "--lcm-url", kRobotUrl, "--discovery-ms", "200"}, dir);
   std::vector<Daemon*> all{&seg, &trk, &opt, &lc, &ps, &dep};

@@ -84,7 +84,27 @@ void jumpTimes(const fs::path& robot, double jump_s) {
   std::vector<double> t;
   for (double v; in >> v;) t.push_back(v);
   std::ofstream out(robot / "times.txt");
+  out.precision(6);
+  out << std::fixed;
   for (std::size_t i = 0; i < t.size(); ++i) out << (i >= 2 ? t[i] + jump_s : t[i]) << "\n";
+  // The odometry of the recording jumps with it (frames are only replayed with a pose).
+  std::ifstream odom_in(robot / "odom.txt");
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(odom_in, l);) lines.push_back(l);
+  std::ofstream odom(robot / "odom.txt");
+  odom.precision(6);
+  odom << std::fixed;
+  for (const std::string& l : lines) {
+    std::istringstream ls(l);
+    double time;
+    if (!(ls >> time)) {
+      odom << l << "\n";
+      continue;
+    }
+    std::string rest;
+    std::getline(ls, rest);
+    odom << (time > t[1] + 1e-4 ? time + jump_s : time) << rest << "\n";
+  }
 }
 }  // namespace
 
