@@ -19,18 +19,13 @@
 #include "sim/scenario.h"
 #include "slide/stream_status_t.hpp"
 
+#include "watchdog.h"
+
 using namespace slide;
 namespace fs = std::filesystem;
 
-namespace {
-struct Watchdog {
-  explicit Watchdog(unsigned seconds) { alarm(seconds); }
-  ~Watchdog() { alarm(0); }
-};
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
+using slide::test::secondsSince;
+using slide::test::Watchdog;
 
 namespace {
 // A 4-frame simulated LiDAR dataset; returns the robot folder.
