@@ -26,6 +26,18 @@ using namespace slide;
 namespace fs = std::filesystem;
 
 namespace {
+// One VLP-16 robot in a small forest, `frames` frames, written to work/data/robot0.
+void writeSmallForest(const fs::path& work, int frames) {
+  ScenarioSpec spec;
+  spec.world = "forest";
+  spec.robots = 1;
+  spec.frames = frames;
+  spec.forest.num_trees = 200;
+  spec.forest.side = 80;
+  SensorOptions sensors;
+  sensors.lidar = lidarModel("vlp-16");
+  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+}
 struct LogSummary {
   std::map<std::string, int> count;
   int8_t last_state = -1;
@@ -90,15 +102,7 @@ TEST(SensorDriver, LidarDatasetReachesLoggerAndLogReplays) {
   if (!canRun()) GTEST_SKIP() << "needs root, unshare, ip and the LCM tools";
   const fs::path work = fs::temp_directory_path() / ("slide_test_driver_" + std::to_string(::getpid()));
   fs::remove_all(work);
-  ScenarioSpec spec;
-  spec.world = "forest";
-  spec.robots = 1;
-  spec.frames = 12;
-  spec.forest.num_trees = 200;
-  spec.forest.side = 80;
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  writeSmallForest(work, 12);
 
   // Skip the first 2 frames (start offset) and send the rest.
   ASSERT_EQ(runInNamespace(work, work / "data" / "robot0", "--start-frame 2"), 0)
@@ -181,15 +185,7 @@ std::string driverLog(const fs::path& work) {
 TEST(SensorDriver, PublishesNoGroundTruthUnlessAskedForOracle) {
   const fs::path work = fs::temp_directory_path() / ("slide_test_driver_modes_" + std::to_string(::getpid()));
   fs::remove_all(work);
-  ScenarioSpec spec;
-  spec.world = "forest";
-  spec.robots = 1;
-  spec.frames = 4;
-  spec.forest.num_trees = 200;
-  spec.forest.side = 80;
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  writeSmallForest(work, 4);
   const fs::path robot = work / "data" / "robot0";
   std::vector<LabelledScan> truth;
   for (int k = 0; k < 4; ++k) {
