@@ -9,7 +9,7 @@
 namespace slide {
 
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack) {
-  if (detection.class_id != landmark.class_id) return -1;
+  if (!classes.sameKind(detection.class_id, landmark.class_id)) return -1;
   const ClassInfo* c = classes.find(detection.class_id);
   if (!c) return -1;
   const double d = associationDistance(detection, landmark) / (c->association_distance + slack);

@@ -1,5 +1,5 @@
 #pragma once
-// Detection-to-landmark association for one key pose: same class, centre distance and model
+// Detection-to-landmark association for one key pose: same class (or family, ClassInfo::family), centre distance and model
 // difference inside the class table's thresholds, and at most one detection per landmark,
 // chosen by a minimum-cost assignment (normalized distance + normalized model difference).
 #include <vector>

@@ -99,6 +99,13 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o,
   ++lm.observations;
   lm.last_step = step_;
   lm.seen.push_back({factor, pose_var, o});
+  voteClass(lm, o.class_id, o.confidence);
+}
+
+void Optimizer::voteClass(Landmark& lm, int class_id, double confidence) {
+  lm.class_votes[class_id] += std::isfinite(confidence) ? std::clamp(confidence, 1e-3, 1.0) : 1e-3;
+  for (const auto& [c, v] : lm.class_votes)
+    if (v > lm.class_votes[lm.class_id]) lm.class_id = c;
 }
 
 void Optimizer::moveObservations(Landmark& from, Landmark& to) {
@@ -128,6 +135,8 @@ int Optimizer::detachOutliers() {
     if (bad.empty() || keep.empty()) continue;
     landmarks_[i].seen = keep;
     landmarks_[i].observations = static_cast<int>(keep.size());
+    landmarks_[i].class_votes.clear();
+    for (const Observation& obs : keep) voteClass(landmarks_[i], obs.body.class_id, obs.body.confidence);
     for (const Observation& obs : bad) {
       graph_.removeFactor(obs.factor);
       const Pose T_w_b = fromPoseBlock(graph_.value(obs.pose_var));
@@ -151,7 +160,7 @@ int Optimizer::mergeDuplicates() {
     for (int j : near) {
       Landmark& a = landmarks_[i];
       Landmark& b = landmarks_[j];
-      if (j <= static_cast<int>(i) || !b.alive || b.class_id != a.class_id) continue;
+      if (j <= static_cast<int>(i) || !b.alive || !classes_.sameKind(b.class_id, a.class_id)) continue;
       if (associationCost(landmarkObject(b), oi, classes_) < 0) continue;
       bool shared = false;
       for (const Observation& x : a.seen)

@@ -113,7 +113,8 @@ class Optimizer {
     std::int64_t id;
     bool alive = true;  // false once merged into another landmark
     std::vector<Observation> seen;
-    int class_id;
+    int class_id;                      // the class with the most votes ...
+    std::map<int, double> class_votes; // ... summed observation confidences per class
     Shape shape;
     int var, dims_var = -1;
     int observations = 0;
@@ -145,6 +146,8 @@ class Optimizer {
   // the poses): same class, associable, never seen from the same key pose. Returns merges.
   int mergeDuplicates();
   void moveObservations(Landmark& from, Landmark& to);
+  // Adds an observation's vote (its confidence) to the landmark's class.
+  static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
   // landmark (a wrong association made while the poses had drifted): each becomes a new
   // landmark, which mergeDuplicates() may join to the right one. Returns how many.

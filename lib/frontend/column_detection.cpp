@@ -263,9 +263,17 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     });
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
+    if (!col.trunk && top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height))
+      col.confidence = p.unsure_confidence;
     for (int i : col.points) taken[i] = 1;
     out.push_back(std::move(col));
   }
+  // Unsure calls follow the sure ones of this scan.
+  int sure_trunks = 0, sure_poles = 0;
+  for (const Column& c : out)
+    if (c.confidence >= 1.0) ++(c.trunk ? sure_trunks : sure_poles);
+  for (Column& c : out)
+    if (c.confidence < 1.0) c.trunk = sure_trunks > sure_poles;
   return out;
 }
 

@@ -50,6 +50,13 @@ struct ColumnParams {
   double trunk_min_radius = 0.12;      // thicker columns are trunks
   double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
   double canopy_min_fraction = 0.2;    // ... in this fraction of the cluster make it a trunk
+  // A thin column without a canopy is a pole for sure only when its top is seen with open view
+  // above it: top + end_margin below both the highest visible point at its range and
+  // max_height. Otherwise a crown may be out of view: the call is unsure; it then takes the
+  // class most sure columns of the same scan have (a forest's trunks, a street's poles; a
+  // pole when there is none) with unsure_confidence (the tracker weighs class votes by it).
+  double end_margin = 0.5;
+  double unsure_confidence = 0.3;
 };
 
 struct Column {
@@ -59,6 +66,7 @@ struct Column {
   double radius = 0;             // half the median cross-section extent
   int slices = 0;
   bool trunk = false;            // thick, or a canopy spreads above it (else a pole)
+  double confidence = 1.0;       // of the trunk / pole call (unsure_confidence when unsure)
 };
 
 // A candidate that was turned down and why (for `slide segment --explain`).

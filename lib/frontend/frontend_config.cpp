@@ -35,6 +35,8 @@ void loadCluster(const ConfigNode& n, GridClusterParams& c) {
 void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "max_range", g.max_range, 1.0, 1000.0);
   opt(n, "emit_other", g.emit_other);
+  opt(n, "other_max_roughness", g.other_max_roughness, 0.0);
+  opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
     opt(c, "cell", g.ground.cell, 0.05);
@@ -76,6 +78,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "single_point_ring", p.single_point_ring, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
+    opt(c, "end_margin", p.end_margin, 0.0);
+    opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
   }
   if (n.has("car")) {
     const ConfigNode c = n.child("car");

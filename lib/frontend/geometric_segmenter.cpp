@@ -72,10 +72,11 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
     if (std::isfinite(h[i]) && h[i] > gp.threshold) above.push_back(static_cast<int>(i));
 
   std::vector<Instance> out;
-  auto emit = [&](int class_id, const std::vector<int>& idx) {
+  auto emit = [&](int class_id, const std::vector<int>& idx, double confidence = 1.0) {
     Instance inst;
     inst.id = static_cast<int>(out.size()) + 1;
     inst.class_id = class_id;
+    inst.confidence = static_cast<float>(confidence);
     inst.points.reserve(idx.size());
     for (int i : idx) inst.points.push_back(cloud[i]);
     out.push_back(std::move(inst));
@@ -84,7 +85,7 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
 
   // 1. Columns (trunks, poles).
   for (const Column& c : detectColumns(cloud, h, above, params_.column, taken, rejected))
-    emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points);
+    emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
 
   // 2. Cars: clusters of the untaken points below the height cap.
   const CarParams& kp = params_.car;
@@ -113,11 +114,15 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
       if (!taken[i]) rest.push_back(i);
     const ClassInfo& other = classes_.at(params_.other_class);
     if (!rest.empty()) {
+      std::vector<int> mark(cloud.size(), -1);
+      int label = 0;
       for (const auto& cl : clusterGrid(cloud, rest, params_.other_cluster)) {
         const Footprint f = footprintOf(cloud, cl);
         const double height = quantileOf(h, cl, 0.98) - quantileOf(h, cl, 0.02);
         if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
         if (f.length < other.size_min.x() && height < other.size_min.z()) continue;
+        if (height < other.size_min.z() || quantileOf(h, cl, 0.02) > params_.other_max_bottom) continue;
+        if (params_.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > params_.other_max_roughness) continue;
         emit(params_.other_class, cl);
       }
     }

@@ -5,7 +5,8 @@
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car,
-//  3. other: clusters of what is left whose extents fit the "other" class.
+//  3. other: clusters of what is left whose extents fit the "other" class, that stand low and
+//     whose surfaces are solid (not foliage).
 #include "frontend/column_detection.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
@@ -34,7 +35,14 @@ struct GeometricSegmenterParams {
   ColumnParams column;
   CarParams car;
   GridClusterParams other_cluster{0.3, false, 30};
-  bool emit_other = true;        // emit "other" instances for remaining compact clusters
+  bool emit_other = true;        // emit "other" instances for remaining compact clusters ...
+  // ... whose range roughness (as CarParams::max_roughness) is at most this: solid things (bins,
+  // boxes, furniture), not foliage (bushes, low crowns; real SemanticKITTI vegetation: median
+  // 0.08 m, solid surfaces 0.02 m). 0 disables.
+  double other_max_roughness = 0.07;
+  // ... and that stand on the ground or on furniture (2nd percentile of height above ground
+  // at most this; a crown's lower edge floats metres up).
+  double other_max_bottom = 1.0;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };
 

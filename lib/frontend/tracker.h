@@ -33,7 +33,7 @@ struct Track {
   int missed = 0;
   bool moving = false;
   double confidence_sum = 0;
-  std::map<int, int> class_votes;    // observations per class; class_id is the majority
+  std::map<int, double> class_votes;  // observations per class weighed by confidence; class_id is the largest
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
   std::deque<Cloud> observations;                           // odometry frame
   std::deque<Eigen::Vector3d> viewpoints;  // odometry frame: the body position of each observation

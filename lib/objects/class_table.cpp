@@ -54,6 +54,7 @@ ClassTable ClassTable::load(const std::string& path) {
     }
     info.semantickitti = intList(c, "semantickitti");
     info.map_labels = intList(c, "map_labels");
+    info.family = c.get<std::string>("family", "");
     if (c.has("color")) {
       const auto rgb = c.getList<int>("color", 3);
       info.color = {rgb[0], rgb[1], rgb[2]};
@@ -79,7 +80,17 @@ ClassTable ClassTable::loadDefault() { return load(std::string(SLIDE_SOURCE_DIR)
 void ClassTable::add(const ClassInfo& info) {
   if (classes_.count(info.id)) throw std::invalid_argument("duplicate class id " + std::to_string(info.id));
   if (findByName(info.name)) throw std::invalid_argument("duplicate class name '" + info.name + "'");
+  for (const auto& [id, c] : classes_)
+    if (!info.family.empty() && c.family == info.family && c.shape != info.shape)
+      throw std::invalid_argument("class '" + info.name + "' is in family '" + info.family + "' with class '" + c.name +
+                                  "' of another shape");
   classes_[info.id] = info;
+}
+
+bool ClassTable::sameKind(int a, int b) const {
+  if (a == b) return true;
+  const ClassInfo *ca = find(a), *cb = find(b);
+  return ca && cb && !ca->family.empty() && ca->family == cb->family;
 }
 
 const ClassInfo* ClassTable::find(int id) const {

@@ -24,6 +24,10 @@ struct ClassInfo {
   std::vector<int> semantickitti;     // SemanticKITTI class ids of this class
   std::vector<int> map_labels;        // labels meaning this class in object-map text files
   Eigen::Vector3i color{128, 128, 128};  // RGB for plots
+  // Classes of one family (same shape) name the same kind of object seen in different ways
+  // (a thin trunk whose crown is out of view looks like a pole): one object may be observed
+  // under any of them, and a landmark takes the class most of its observations gave.
+  std::string family;
 };
 
 class ClassTable {
@@ -36,6 +40,8 @@ class ClassTable {
   void add(const ClassInfo& info);  // throws std::invalid_argument on a duplicate id or name
   const ClassInfo* find(int id) const;
   const ClassInfo& at(int id) const;  // throws std::out_of_range naming the unknown id
+  // The same class, or two classes of one family: detections of either may be one object.
+  bool sameKind(int a, int b) const;
   const ClassInfo* findByName(const std::string& name) const;
   std::optional<int> fromSemanticKitti(int semantic_label) const;
   std::optional<int> fromMapLabel(int label) const;

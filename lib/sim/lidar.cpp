@@ -87,7 +87,10 @@ LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sens
       if (!view.cast(R * dir_s, model.max_range, &hit)) continue;
       if (hit.range < model.min_range) continue;
       if (model.dropout > 0 && u(fast) < model.dropout) continue;
-      const double r = std::max(model.min_range, hit.range + noise(fast));
+      double range = hit.range;
+      if (hit.semantic == label::kVegetation && model.foliage_depth > 0)
+        range -= model.foliage_depth * std::log(std::max(u(fast), 1e-12));
+      const double r = std::max(model.min_range, range + noise(fast));
       scan.xyz.push_back((r * dir_s).cast<float>());
       const double i = reflectivity(hit.semantic) * (1.0 - 0.5 * hit.range / model.max_range) + 0.05 * u(fast);
       scan.intensity.push_back(static_cast<float>(std::min(1.0, i)));

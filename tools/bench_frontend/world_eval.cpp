@@ -28,16 +28,10 @@ namespace {
 // Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
 bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
   if (mode == "emulated" || mode == "oracle") return !c.semantickitti.empty();
-  if (mode == "geometric")
-    return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class;
+  if (mode == "geometric")  // trunks and poles are scored apart: a trunk called a pole is wrong
+    return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class ||
+           (cfg.geometric.emit_other && c.id == cfg.geometric.other_class);
   return c.id != 0;  // rgbd: every detector class but the catch-all
-}
-
-// Evaluation group of a class: the geometric mode cannot tell trunks from poles reliably, so
-// there both count as one "cylinder" group.
-int groupOf(const std::string& mode, int class_id, const FrontendConfig& cfg) {
-  if (mode == "geometric" && class_id == cfg.geometric.pole_class) return cfg.geometric.trunk_class;
-  return class_id;
 }
 
 bool isRgbd(const std::string& mode) { return mode.rfind("rgbd", 0) == 0; }
@@ -72,8 +66,10 @@ RgbdFrame emulatedFrame(const RgbdImage& img, const CameraModel& camera, const R
 // ground-truth key pose, are associated with the landmarks by the back-end's own rule
 // (backend/data_association.h: class, centre distance and model difference within the class
 // table's thresholds, one detection per landmark); an associated landmark takes the newer
-// estimate, an unassociated object becomes a new landmark. No evaluator-side merging.
-void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map) {
+// estimate and, as in the back-end, the class with the most confidence-weighted votes; an
+// unassociated object becomes a new landmark. No evaluator-side merging.
+void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
+              std::vector<std::map<int, double>>& votes) {
   std::vector<Detection> detections;
   for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
   std::vector<LandmarkCandidate> candidates;
@@ -82,8 +78,13 @@ void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const Class
       candidates.push_back({static_cast<int>(i), &map[i]});
   const std::vector<int> assoc = associateDetections(detections, candidates, classes);
   for (std::size_t k = 0; k < detections.size(); ++k) {
-    if (assoc[k] >= 0) map[assoc[k]] = detections[k].object;
-    else map.push_back(detections[k].object);
+    const Object& o = detections[k].object;
+    const std::size_t i = assoc[k] >= 0 ? static_cast<std::size_t>(assoc[k]) : map.size();
+    if (i == map.size()) map.push_back(o), votes.emplace_back();
+    else map[i] = o;
+    votes[i][o.class_id] += std::clamp(o.confidence, 1e-3, 1.0);
+    for (const auto& [c, v] : votes[i])
+      if (v > votes[i][map[i].class_id]) map[i].class_id = c;
   }
 }
 
@@ -92,6 +93,7 @@ struct Runner {
   std::unique_ptr<LidarSegmenter> lidar;
   std::unique_ptr<KeyposeBundler> bundler;
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
+  std::vector<std::map<int, double>> votes;  // class votes per landmark
   ModeResult result;
 };
 }  // namespace
@@ -177,7 +179,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
       if (bundle)
-        addToMap(*bundle, T_world_body, classes, r.landmarks);
+        addToMap(*bundle, T_world_body, classes, r.landmarks, r.votes);
     }
   }
 
@@ -192,7 +194,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       if (!c || g.moving() || !producible(r.mode, *c, cfg)) continue;
       const auto it = seen.find(static_cast<int>(g.object.id));
       const bool visible = it != seen.end() && it->second >= spec.min_frames;
-      (visible ? gt : unscored)[groupOf(r.mode, c->id, cfg)].push_back(&g.object);
+      (visible ? gt : unscored)[c->id].push_back(&g.object);
     }
     // The map: every landmark, none merged here. A landmark nearer to a real object below the
     // visibility criterion (too far, too few returns) than to any scored one, and within the
@@ -201,7 +203,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     for (const Object& o : r.landmarks) {
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
-      const int grp = groupOf(r.mode, o.class_id, cfg);
+      const int grp = o.class_id;
       auto nearest = [&](const std::vector<const Object*>& v) {
         double d = 1e18;
         for (const Object* g : v) d = std::min(d, (g->position() - o.position()).head<2>().norm());
@@ -214,7 +216,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       }
       estimates.push_back(o);
     }
-    for (const auto& o : estimates) est[groupOf(r.mode, o.class_id, cfg)].push_back(&o);
+    for (const auto& o : estimates) est[o.class_id].push_back(&o);
     ModeResult& m = r.result;
     std::set<int> groups;
     for (const auto& [g, v] : gt) groups.insert(g);

@@ -5,7 +5,7 @@ demo_usage() {
   cat <<USAGE
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
                     [--overlap F] [--rate R] [--settle SEC] [--out DIR]
-                    [--perception label-free|emulated|oracle]
+                    [--perception label-free|emulated|oracle] [--data SIM_DIR]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -13,6 +13,8 @@ slide-sheriff, with the team links cut and restored on a schedule so robots meet
 intermittently. Robot and team buses are recorded with lcm-logger; slide-demo-report then
 writes report.md with the merged map of each robot as pictures, inter-robot transform errors,
 ATE, object precision/recall and bandwidth. Needs root (network namespaces).
+--data reuses a mission that slide-sim (or an earlier demo: RUN/data) wrote, instead of simulating
+one; --world, --robots, --seed, --distance and --overlap then come from it.
 --overlap is the fraction of each robot's path shared with the others (slide-sim).
 --perception: label-free (default: the drivers publish raw data only, LiDAR robots segment
 geometrically), emulated (the drivers publish the detection emulator's RangeNet++-class labels /
@@ -25,7 +27,7 @@ USAGE
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse=
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
@@ -37,6 +39,7 @@ main() {
       --settle) settle=$2; shift 2 ;;
       --out) out=$2; shift 2 ;;
       --perception) perception=$2; shift 2 ;;
+      --data) reuse=$2; shift 2 ;;
       *) die "demo: unknown option '$1' (see ./slide demo --help)" ;;
     esac
   done
@@ -50,9 +53,16 @@ main() {
   local data="$out/data" t0=$SECONDS
   export PATH="$SLIDE_BIN:$PATH"
 
-  log "1/3 simulating a $robots-robot $world mission ($distance m each, seed $seed) into $data"
-  slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --overlap "$overlap" --rate 5 --out "$data" ||
-    die "demo: simulation failed"
+  if [[ -n "$reuse" ]]; then
+    [[ -f "$reuse/objects.csv" && -d "$reuse/robot0" ]] || die "demo: --data $reuse is not a simulated mission (no objects.csv or robot0/)"
+    robots=$(find "$reuse" -maxdepth 1 -name 'robot[0-9]' -type d | wc -l)
+    log "1/3 reusing the $robots-robot mission in $reuse"
+    ln -sfn "$(cd "$reuse" && pwd)" "$data"
+  else
+    log "1/3 simulating a $robots-robot $world mission ($distance m each, seed $seed) into $data"
+    slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --overlap "$overlap" --rate 5 --out "$data" ||
+      die "demo: simulation failed"
+  fi
 
   local frames mission
   frames=$(wc -l < "$data/robot0/times.txt")

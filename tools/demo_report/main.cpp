@@ -2,6 +2,7 @@
 // ground truth into figures, pictures and a Markdown report.
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -49,6 +50,9 @@ struct RobotFigures {
   std::vector<std::pair<int, double>> peer_traj_rmse;
   double update_ms_median = NAN, update_ms_p99 = NAN;
   int keypose_bundles = 0, peer_bundles = 0;
+  // Landmarks per estimated class: {all, at a real object of that class, at a real object of
+  // another class only, at no real object} (one-to-one matching, as for precision).
+  std::map<int, std::array<int, 4>> landmark_classes;
 };
 
 // Ground-truth objects within `range` (horizontally) of any robot's true path: what the team
@@ -123,6 +127,17 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   f.objects = scoreObjectMap(in_world, visible, mo);
   const ObjectMappingScore against_all = scoreObjectMap(in_world, truth.objects, mo);
   f.objects.overall.precision = against_all.overall.precision;
+  ObjectMatchOptions any = mo;
+  any.match_classes = false;
+  const ObjectMappingScore against_any = scoreObjectMap(in_world, truth.objects, any);
+  std::vector<char> right(in_world.size(), 0), somewhere(in_world.size(), 0);
+  for (const ObjectMatch& m : against_all.matches) right[m.est] = 1;
+  for (const ObjectMatch& m : against_any.matches) somewhere[m.est] = 1;
+  for (std::size_t i = 0; i < in_world.size(); ++i) {
+    auto& c = f.landmark_classes[in_world[i].class_id];
+    ++c[0];
+    ++c[right[i] ? 1 : somewhere[i] ? 2 : 3];
+  }
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
   for (const auto& [b, c] : log.closures) f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
@@ -325,6 +340,16 @@ int main(int argc, char** argv) {
          << f.landmarks << " | " << num(f.objects.overall.precision) << " | " << num(f.objects.overall.recall) << " | "
          << num(f.objects.overall.f1) << " | " << f.trajectories << " | " << f.keypose_bundles << " / "
          << f.peer_bundles << " | " << num(f.update_ms_median, 2) << " / " << num(f.update_ms_p99, 2) << " |\n";
+    md << "\n### Landmarks by class\n\nEach robot's landmarks by the class it gave them: at a real object of that class, "
+          "at a real object of another class only (class confusion), or at no real object within "
+       << opts.match_threshold << " m.\n\n| robot | class | landmarks | right class | other class | nothing there |\n"
+          "|---|---|---|---|---|---|\n";
+    for (const RobotFigures& f : figs)
+      for (const auto& [c, n] : f.landmark_classes) {
+        const ClassInfo* info = classes.find(c);
+        md << "| " << f.robot << " | " << (info ? info->name : std::to_string(c)) << " | " << n[0] << " | " << n[1]
+           << " | " << n[2] << " | " << n[3] << " |\n";
+      }
     md << "\n## Inter-robot transforms\n\nPlace recognition's transform (the loop closer's last), and the optimizer's "
           "estimate of the peer's frame after merging, with the peer's key poses' RMS error in the host frame.\n\n"
           "| robot | peer | place recognition: translation m / yaw deg | optimizer: translation m / yaw deg | "
