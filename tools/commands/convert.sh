@@ -10,6 +10,8 @@ usage: ./slide convert IN OUT [DRIVER OPTIONS...]
                                           DRIVER OPTIONS choose the bag's topics, e.g.
                                           --cloud-topic /points --odom-topic /odom [--robot N]
 Replay a log into running daemons: lcm-logplayer -l 'udpm://239.255.76.67:7670?ttl=0' OUT.lcmlog
+Not supported: bag -> dataset folder, RGBD folder -> bag (the driver reads bags directly:
+./slide run-bag BAG, or slide-sensor-driver BAG).
 USAGE
     [[ $# -lt 2 ]] && ! wants_help "$@" && return 1
     return 0
@@ -19,11 +21,12 @@ USAGE
   [[ -e "$in" ]] || die "convert: $in does not exist"
   case "$out" in
     *.bag)
+      [[ -d "$in" ]] || die "convert: $in is not a folder (bag -> bag and bag -> folder are not supported)"
       [[ -d "$in/velodyne" ]] || die "convert: $in is not a KITTI-layout LiDAR folder (velodyne/)"
       /usr/bin/python3 "$SLIDE_ROOT/tools/convert/folder_to_bag.py" "$in" "$out" "$@" ;;
     *.lcmlog | *.lcm)
-      ensure_built
+      [[ -n "${SLIDE_NO_BUILD:-}" ]] || ensure_built
       "$SLIDE_BIN/slide-sensor-driver" "$in" --no-publish --rate 0 --log "$out" "$@" ;;
-    *) die "convert: OUT must end in .bag or .lcmlog" ;;
+    *) die "convert: OUT must end in .bag or .lcmlog (bag -> dataset folder is not supported)" ;;
   esac
 }
