@@ -33,15 +33,18 @@ for keep in 0 13 4096 $((size / 2)) $((size - 100)); do
   [[ $rc -eq 1 ]] || fail "a bag cut to $keep of $size bytes was read without an error"
 done
 
-# Bytes overwritten at random (fixed seeds): an error, or frames dropped and counted.
+# Bytes overwritten at random (fixed seeds): an error naming the bag, or a replay (frames
+# dropped and counted).
 opened=0
 for seed in $(seq 1 25); do
   /usr/bin/python3 - "$OUT/velodyne.bag" "$OUT/bad.bag" "$seed" <<'PY'
 import random, sys
 data = bytearray(open(sys.argv[1], "rb").read())
 rng = random.Random(int(sys.argv[3]))
-for _ in range(8):
-    data[rng.randrange(len(data))] = rng.randrange(256)
+n = len(data)
+for _ in range(8):  # anywhere (mostly point data), and in the header, connection and index records
+    data[rng.randrange(n)] = rng.randrange(256)
+    data[rng.randrange(8192) if rng.random() < 0.5 else n - 1 - rng.randrange(8192)] = rng.randrange(256)
 open(sys.argv[2], "wb").write(bytes(data))
 PY
   drive "$OUT/bad.bag" "${velodyne[@]}"
