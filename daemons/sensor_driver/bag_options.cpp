@@ -20,7 +20,7 @@ const Field kFields[] = {
     {"--camera-info-topic", "camera_info_topic", &BagOptions::camera_info_topic, "Bag: sensor_msgs/CameraInfo topic (RGBD)"},
     {"--odom-topic", "odom_topic", &BagOptions::odom_topic, "Bag: nav_msgs/Odometry topic (empty: the /tf chain odom frame -> body frame)"},
     {"--odom-frame", "odom_frame", &BagOptions::odom_frame, "Bag: odometry frame of the /tf chain"},
-    {"--body-frame", "body_frame", &BagOptions::body_frame, "Bag: body frame (default: the Odometry child_frame_id, or base_link)"},
+    {"--body-frame", "body_frame", &BagOptions::body_frame, "Bag: body frame (default: the Odometry child_frame_id, or base_link; another frame is reached through /tf)"},
 };
 }  // namespace
 

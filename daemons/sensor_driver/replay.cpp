@@ -58,6 +58,7 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
   const int total = last - first;
   spdlog::info("replaying {} frames [{}, {}) of {} ({}), rate {}", total, first, last, d.path,
                d.sensor == RobotDataset::Sensor::Lidar ? "lidar" : "rgbd", o.rate > 0 ? std::to_string(o.rate) : "max");
+  for (const std::string& w : d.warnings) spdlog::warn("{}: {}", d.path, w);
   if (d.dropped.total() > 0)
     spdlog::warn("{}: {} frames dropped without an odometry pose ({} outside its time span, {} in gaps)", d.path,
                  d.dropped.total(), d.dropped.outside_span, d.dropped.gap);

@@ -48,6 +48,7 @@ struct RobotDataset {
   std::vector<StampedPose> ground_truth;  // optional, at its own times
   CameraCalib camera;                     // RGBD only
   OdometryDrops dropped;
+  std::vector<std::string> warnings;      // read, but suspect (e.g. uncorrected lens distortion); each once
   std::shared_ptr<const FrameReader> reader;
 
   std::size_t size() const { return times.size(); }

@@ -304,16 +304,21 @@ BagOdometry readOdometry(const std::string& path, const rosbag::Bag& bag, const 
     std::stable_sort(traj->begin(), traj->end(), [](const StampedPose& a, const StampedPose& b) { return a.t < b.t; });
     odo.body_frame = o.body_frame.empty() ? child : o.body_frame;
     if (odo.body_frame != child) {
-      // The configured body frame sits below (or beside) the odometry's child: T_child_body from /tf_static.
-      const std::vector<std::string> ch = tree->chain(odo.body_frame, child);
+      // The configured body frame sits below the odometry's child (T_child_body along the /tf
+      // chain body -> child) or above it (the inverse of the chain child -> body), at time t:
+      // a moving joint's pose is interpolated like the odometry, and a miss drops the frame.
+      std::vector<std::string> ch = tree->chain(odo.body_frame, child);
+      const bool inverse = ch.empty();
+      if (inverse) ch = tree->chain(child, odo.body_frame);
       if (ch.empty())
-        throw IoError(path, "no /tf_static chain from odometry frame '" + child + "' to body frame '" + odo.body_frame + "'");
-      Pose T_child_body;
-      chainPose(*tree, ch, 0, 0, T_child_body);
-      odo.at = [traj, max_gap, T_child_body](double t, Pose& T) {
-        const PoseMiss m = poseAtTime(*traj, t, max_gap, T);
-        T = T * T_child_body;
-        return m;
+        throw IoError(path, "topic '" + o.odom_topic + "': no /tf chain between the odometry's child frame '" + child +
+                                "' and body frame '" + odo.body_frame + "' (set sensor_driver.bag.body_frame)");
+      odo.at = [traj, tree, ch, inverse, max_gap](double t, Pose& T) {
+        Pose T_odom_child, T_chain;
+        if (const PoseMiss m = poseAtTime(*traj, t, max_gap, T_odom_child); m != PoseMiss::None) return m;
+        if (const PoseMiss m = chainPose(*tree, ch, t, max_gap, T_chain); m != PoseMiss::None) return m;
+        T = T_odom_child * (inverse ? Pose(T_chain.inverse()) : T_chain);
+        return PoseMiss::None;
       };
     } else {
       odo.at = [traj, max_gap](double t, Pose& T) { return poseAtTime(*traj, t, max_gap, T); };
@@ -341,7 +346,8 @@ Pose sensorExtrinsic(const std::string& path, const BagOptions& o, const TfTree&
     throw IoError(path, "topic '" + topic + "': no /tf_static transform from body frame '" + body + "' to sensor frame '" +
                             sensor_frame + "' (set sensor_driver.bag.T_body_sensor in the config)");
   Pose T;
-  chainPose(tree, ch, 0, 0, T);
+  if (chainPose(tree, ch, 0, 0, T) != PoseMiss::None)  // static edges always have their pose
+    throw std::logic_error("static /tf chain without a pose");
   return T;
 }
 
@@ -453,6 +459,29 @@ class BagReader : public FrameReader {
     return f;
   }
 
+  // Throws IoError naming the topic and message index when the first image of the colour or
+  // depth topic has an encoding this reader cannot decode (a corrupt first message is left to
+  // rgbd(), which drops its frame).
+  void checkFirstEncodings() const {
+    for (const bool depth : {false, true}) {
+      const rosbag::MessageInstance& mi = depth ? images_.front().second : images_.front().first;
+      const std::size_t index = depth ? image_index_.front().second : image_index_.front().first;
+      std::string encoding;
+      try {
+        const boost::shared_ptr<RawMessage> raw = mi.instantiate<RawMessage>();
+        Cursor c(raw->bytes.data(), raw->bytes.size());
+        encoding = readImage(c).encoding;
+      } catch (const std::exception&) {
+        continue;
+      }
+      try {
+        checkEncoding(encoding, depth);
+      } catch (const std::exception& e) {
+        throw IoError(path_, "topic '" + (depth ? depth_topic_ : color_topic_) + "' message " + std::to_string(index) + ": " + e.what());
+      }
+    }
+  }
+
   std::string dropSummary() const override {
     std::string s;
     if (skipped_points_) s += std::to_string(skipped_points_) + " NaN/zero points skipped";
@@ -461,6 +490,15 @@ class BagReader : public FrameReader {
   }
 
  private:
+  // Throws std::invalid_argument for an encoding other than bgr8/8UC3/rgb8 (colour) or
+  // 16UC1/mono16 (millimetres), 32FC1 (metres) (depth).
+  static void checkEncoding(const std::string& e, bool depth) {
+    if (!depth && e != "bgr8" && e != "8UC3" && e != "rgb8")
+      throw std::invalid_argument("unsupported colour encoding '" + e + "' (bgr8, rgb8)");
+    if (depth && e != "16UC1" && e != "mono16" && e != "32FC1")
+      throw std::invalid_argument("unsupported depth encoding '" + e + "' (16UC1 mm, 32FC1 m)");
+  }
+
   // Throws unless the rows (step bytes each, bpp bytes per pixel) fit in the data.
   static void checkRows(const ImageMsg& m, std::size_t bpp) {
     if (m.step < m.width * bpp) throw std::invalid_argument("step " + std::to_string(m.step) + " is shorter than a row");
@@ -477,8 +515,8 @@ class BagReader : public FrameReader {
       ImageMsg m = readImage(c);
       if (m.width == 0 || m.height == 0 || m.width > 16384 || m.height > 16384)
         throw std::invalid_argument("image size " + std::to_string(m.width) + "x" + std::to_string(m.height));
-      const bool bgr = m.encoding == "bgr8" || m.encoding == "8UC3", rgb = m.encoding == "rgb8";
-      if (!bgr && !rgb) throw std::invalid_argument("unsupported colour encoding '" + m.encoding + "' (bgr8, rgb8)");
+      checkEncoding(m.encoding, false);
+      const bool bgr = m.encoding != "rgb8";
       checkRows(m, 3);
       cv::Mat out(static_cast<int>(m.height), static_cast<int>(m.width), CV_8UC3);
       for (uint32_t r = 0; r < m.height; ++r) {
@@ -503,8 +541,8 @@ class BagReader : public FrameReader {
       if (m.width == 0 || m.height == 0 || m.width > 16384 || m.height > 16384)
         throw std::invalid_argument("image size " + std::to_string(m.width) + "x" + std::to_string(m.height));
       if (m.bigendian) throw std::invalid_argument("big-endian depth is not supported");
-      const bool mm = m.encoding == "16UC1" || m.encoding == "mono16", metres = m.encoding == "32FC1";
-      if (!mm && !metres) throw std::invalid_argument("unsupported depth encoding '" + m.encoding + "' (16UC1 mm, 32FC1 m)");
+      checkEncoding(m.encoding, true);
+      const bool mm = m.encoding != "32FC1";
       checkRows(m, mm ? 2 : 4);
       cv::Mat out(static_cast<int>(m.height), static_cast<int>(m.width), CV_16UC1);
       for (uint32_t r = 0; r < m.height; ++r) {
@@ -527,7 +565,10 @@ class BagReader : public FrameReader {
   }
 };
 
-CameraCalib readCameraInfo(const std::string& path, const rosbag::Bag& bag, const std::string& topic) {
+// The first CameraInfo's intrinsics. Images are taken as rectified: a non-zero distortion
+// vector is not corrected, and says so once in `warnings`.
+CameraCalib readCameraInfo(const std::string& path, const rosbag::Bag& bag, const std::string& topic,
+                           std::vector<std::string>& warnings) {
   checkTopics(path, bag, {expect<sensor_msgs::CameraInfo>(topic)});
   CameraCalib cam;
   bool found = false;
@@ -535,9 +576,14 @@ CameraCalib readCameraInfo(const std::string& path, const rosbag::Bag& bag, cons
     if (found) return;
     readHeader(c);
     cam.height = static_cast<int>(c.u32()), cam.width = static_cast<int>(c.u32());
-    c.str();  // distortion model; images are taken as rectified
+    const std::string model = c.str();
     const uint32_t nd = c.u32();
-    c.take(static_cast<std::size_t>(nd) * 8);
+    if (nd > 64) throw std::invalid_argument(std::to_string(nd) + " distortion coefficients");
+    bool distorted = false;
+    for (uint32_t i = 0; i < nd; ++i) distorted |= c.f64() != 0.0;
+    if (distorted)
+      warnings.push_back("topic '" + topic + "': CameraInfo has non-zero " + (model.empty() ? "" : model + " ") +
+                         "distortion, which is not corrected (images are taken as rectified)");
     double K[9];
     for (double& k : K) k = c.f64();
     cam.fx = K[0], cam.cx = K[2], cam.fy = K[4], cam.cy = K[5];
@@ -611,7 +657,7 @@ RobotDataset openBagDataset(const std::string& path, const DatasetOptions& optio
       d.sensor = RobotDataset::Sensor::Rgbd;
       checkTopics(path, bag, {expect<sensor_msgs::Image>(o.color_topic), expect<sensor_msgs::Image>(o.depth_topic)});
       reader->color_topic_ = o.color_topic, reader->depth_topic_ = o.depth_topic;
-      d.camera = readCameraInfo(path, bag, o.camera_info_topic);
+      d.camera = readCameraInfo(path, bag, o.camera_info_topic, d.warnings);
       std::vector<rosbag::MessageInstance> color, depth;
       const std::vector<double> tc = stampsOf(path, bag, o.color_topic, color), td = stampsOf(path, bag, o.depth_topic, depth);
       std::vector<std::size_t> order(td.size());
@@ -631,6 +677,7 @@ RobotDataset openBagDataset(const std::string& path, const DatasetOptions& optio
       if (times.empty())
         throw IoError(path, "no colour image on '" + o.color_topic + "' has a depth image on '" + o.depth_topic + "' within " +
                                 std::to_string(o.max_color_depth_dt) + " s");
+      reader->checkFirstEncodings();
       const Pose T_body_optical =
           sensorExtrinsic(path, o, *tree, odo.body_frame, firstFrameId(path, bag, o.color_topic), o.color_topic);
       d.camera.T_body_camera = T_body_optical;

@@ -14,7 +14,15 @@ writes OUT_DIR/ouster.bag   OS1-64 organised clouds (64 x 1024, per-point uint32
        OUT_DIR/livox.bag    Livox layout (float64 absolute timestamp in ns, uint8 line)
        OUT_DIR/rgbd.bag     RealSense-style colour (rgb8) + depth (16UC1) + CameraInfo, odometry
        OUT_DIR/rgbd32.bag   the same with bgr8 colour and 32FC1 depth
+       OUT_DIR/rgbd_distorted.bag  rgbd.bag with a non-zero plumb_bob distortion in CameraInfo
+       OUT_DIR/rgbd_yuv.bag the same with an unsupported colour encoding (yuv422)
+       OUT_DIR/velodyne_bz2.bag, velodyne_lz4.bag  velodyne.bag with compressed chunks
+       OUT_DIR/frames.bag   odometry of imu_link (0.2 m above base_link, /tf_static) at 100 Hz
+                            and a moving joint imu_link -> gimbal on /tf (0 .. 0.5 s); small clouds
+       OUT_DIR/broken.bag   small clouds on /points: message 1 cut short inside its data,
+                            message 2 with fewer data bytes than its rows need
 """
+import io
 import math
 import struct
 import sys
@@ -152,8 +160,8 @@ def ouster_bag(path, frames):
                       stamp(t + 0.1))
 
 
-def velodyne_bag(path):
-    with rosbag.Bag(path, "w") as bag:
+def velodyne_bag(path, compression="none"):
+    with rosbag.Bag(path, "w", compression=compression) as bag:
         write_static(bag, "velodyne", SENSOR_Z)
         for k in range(11):   # /tf odom -> base_link at 10 Hz, 0.0 .. 1.0 s, without 0.5 .. 0.7
             t = 0.1 * k
@@ -178,7 +186,7 @@ def livox_bag(path):
                                             lambda b, o, p, r, c, dt, t0: livox_pack(b, o, p, c % 6, c, dt, t0)), stamp(t))
 
 
-def rgbd_bag(path, color_enc, depth_enc, w=64, h=48):
+def rgbd_bag(path, color_enc, depth_enc, w=64, h=48, distortion=(0.0,) * 5):
     with rosbag.Bag(path, "w") as bag:
         bag.write("/tf_static", TFMessage(transforms=[
             transform(0, "base_link", "camera_link", 0.1, 0, 0.3, 0),
@@ -190,7 +198,7 @@ def rgbd_bag(path, color_enc, depth_enc, w=64, h=48):
             info.header.stamp, info.header.frame_id = stamp(t), "camera_color_optical_frame"
             info.width, info.height = w, h
             info.distortion_model = "plumb_bob"
-            info.D = [0.0] * 5
+            info.D = list(distortion)
             info.K = [50.0, 0, 32.0, 0, 51.0, 24.0, 0, 0, 1]
             bag.write("/camera/color/camera_info", info, stamp(t))
             col = Image(height=h, width=w, encoding=color_enc, is_bigendian=0, step=w * 3 + 4)
@@ -218,6 +226,51 @@ def rgbd_bag(path, color_enc, depth_enc, w=64, h=48):
             bag.write("/camera/aligned_depth_to_color/image_raw", dep, stamp(t + 0.005))
 
 
+def small_cloud(t, frame, n=100):
+    """n points on the cylinder, seen from the body at time t (no per-point time)."""
+    return cloud(t, frame, [("x", 0, F32), ("y", 4, F32), ("z", 8, F32)], 12, 1, n,
+                 lambda b, o, p, r, c, dt, t0: struct.pack_into("<fff", b, o, *p), sweep=0.0)
+
+
+def odometry_of(t, child, x, y, z, yaw):
+    m = odometry(t)
+    m.child_frame_id = child
+    m.pose.pose.position.x, m.pose.pose.position.y, m.pose.pose.position.z = x, y, z
+    return m
+
+
+def frames_bag(path):
+    """Odometry of imu_link (z 0.2 above base_link, same heading); gimbal x 0.1 ahead of imu_link, yaw 0.3 t."""
+    with rosbag.Bag(path, "w") as bag:
+        bag.write("/tf_static", TFMessage(transforms=[transform(0, "base_link", "imu_link", 0, 0, 0.2, 0)]), stamp(0))
+        for k in range(101):
+            t = 0.01 * k
+            x, y, yaw = pose(t)
+            bag.write("/odom", odometry_of(t, "imu_link", x, y, 0.2, yaw), stamp(t))
+        for k in range(6):
+            t = 0.1 * k
+            bag.write("/tf", TFMessage(transforms=[transform(t, "imu_link", "gimbal", 0.1, 0, 0, 0.3 * t)]), stamp(t))
+        for i in range(9):
+            t = 0.1 * i + 0.05
+            bag.write("/points", small_cloud(t, "base_link"), stamp(t))
+
+
+def broken_bag(path):
+    with rosbag.Bag(path, "w") as bag:
+        odom_100hz(bag, 1.0)
+        for i in range(4):
+            t = 0.1 * i + 0.1
+            m = small_cloud(t, "base_link")
+            if i == 2:
+                m.data = m.data[:len(m.data) // 2]
+            buf = io.BytesIO()
+            m.serialize(buf)
+            raw = buf.getvalue()
+            if i == 1:
+                raw = raw[:-50]
+            bag.write("/points", (m._type, raw, m._md5sum, 0, PointCloud2), stamp(t), raw=True)
+
+
 def optical(t):
     """camera_link -> camera_color_optical_frame: the usual optical rotation (z forward, x right, y down)."""
     m = TransformStamped()
@@ -241,7 +294,14 @@ def main():
             "velodyne": lambda: velodyne_bag(out + "/velodyne.bag"),
             "livox": lambda: livox_bag(out + "/livox.bag"),
             "rgbd": lambda: rgbd_bag(out + "/rgbd.bag", "rgb8", "16UC1"),
-            "rgbd32": lambda: rgbd_bag(out + "/rgbd32.bag", "bgr8", "32FC1")}
+            "rgbd32": lambda: rgbd_bag(out + "/rgbd32.bag", "bgr8", "32FC1"),
+            "rgbd_distorted": lambda: rgbd_bag(out + "/rgbd_distorted.bag", "rgb8", "16UC1",
+                                               distortion=(0.1, -0.05, 0.001, 0.0, 0.0)),
+            "rgbd_yuv": lambda: rgbd_bag(out + "/rgbd_yuv.bag", "yuv422", "16UC1"),
+            "velodyne_bz2": lambda: velodyne_bag(out + "/velodyne_bz2.bag", "bz2"),
+            "velodyne_lz4": lambda: velodyne_bag(out + "/velodyne_lz4.bag", "lz4"),
+            "frames": lambda: frames_bag(out + "/frames.bag"),
+            "broken": lambda: broken_bag(out + "/broken.bag")}
     for name, job in jobs.items():
         if only is None or only == name:
             job()

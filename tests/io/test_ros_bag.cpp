@@ -146,7 +146,9 @@ TEST_F(RosBag, RealSenseDepthAndColourPairs) {
     EXPECT_EQ(d.camera.width, 64);
     EXPECT_EQ(d.camera.fx, 50.0);
     EXPECT_EQ(d.camera.fy, 51.0);
+    EXPECT_EQ(d.camera.cx, 32.0);
     EXPECT_EQ(d.camera.cy, 24.0);
+    EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();  // zero distortion: nothing to say
     const RgbdImages f = d.rgbd(2);
     ASSERT_EQ(f.color.type(), CV_8UC3);
     const cv::Vec3b px = f.color.at<cv::Vec3b>(10, 10);  // BGR in memory whatever the encoding
@@ -212,6 +214,101 @@ TEST_F(RosBag, TruncatedAndCorruptedBagsGiveIoErrorsNeverACrash) {
     }
   }
   RecordProperty("corrupted_bags_opened", opened);
+}
+
+TEST_F(RosBag, CameraInfoDistortionIsReportedOnceNamingTheTopic) {
+  DatasetOptions o;
+  o.bag.color_topic = "/camera/color/image_raw";
+  o.bag.depth_topic = "/camera/aligned_depth_to_color/image_raw";
+  o.bag.camera_info_topic = "/camera/color/camera_info";
+  o.bag.odom_topic = "/odom";
+  const RobotDataset d = openRobotDataset(bag("rgbd_distorted.bag"), o);  // five CameraInfos, all distorted
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find("'/camera/color/camera_info'"), std::string::npos) << d.warnings[0];
+  EXPECT_NE(d.warnings[0].find("plumb_bob distortion, which is not corrected"), std::string::npos) << d.warnings[0];
+  EXPECT_EQ(d.camera.cx, 32.0);
+  EXPECT_EQ(d.rgbd(0).color.cols, 64);  // read as it is
+}
+
+TEST_F(RosBag, CompressedBz2AndLz4BagsReadLikeTheUncompressedOne) {
+  DatasetOptions o;
+  o.bag.cloud_topic = "/velodyne_points";
+  o.max_odometry_gap_s = 0.2;
+  const RobotDataset plain = openRobotDataset(bag("velodyne.bag"), o);
+  for (const char* name : {"velodyne_bz2.bag", "velodyne_lz4.bag"}) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(listBagTopics(bag(name)).size(), 3u);
+    const RobotDataset d = openRobotDataset(bag(name), o);
+    ASSERT_EQ(d.size(), plain.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      EXPECT_EQ(d.times[i], plain.times[i]);
+      EXPECT_TRUE(d.odometry[i].pose.isApprox(plain.odometry[i].pose, 1e-12));
+      const LabelledScan a = plain.scan(i), b = d.scan(i);
+      ASSERT_EQ(a.size(), b.size());
+      EXPECT_TRUE(std::equal(a.xyz.begin(), a.xyz.end(), b.xyz.begin()));
+      EXPECT_EQ(a.intensity, b.intensity);
+    }
+  }
+}
+
+TEST_F(RosBag, BodyFrameAboveOrBelowTheOdometryChildFollowsTheTfChainAtEachFrameTime) {
+  // frames.bag: nav_msgs/Odometry of imu_link, 0.2 m above base_link (/tf_static); a joint
+  // imu_link -> gimbal moving on /tf from 0 to 0.5 s (0.1 m ahead, yaw 0.3 rad/s).
+  DatasetOptions o;
+  o.bag.cloud_topic = "/points";
+  o.bag.odom_topic = "/odom";
+  o.bag.body_frame = "base_link";  // above the odometry's child: the static chain inverted
+  const RobotDataset base = openRobotDataset(bag("frames.bag"), o);
+  ASSERT_EQ(base.size(), 9u);
+  for (std::size_t i = 0; i < base.size(); ++i) EXPECT_TRUE(base.odometry[i].pose.isApprox(truth(base.times[i]), 1e-6)) << i;
+  o.bag.body_frame = "gimbal";  // below it through a moving joint: its pose at each frame's time
+  o.bag.T_body_sensor = Pose::Identity();
+  const RobotDataset g = openRobotDataset(bag("frames.bag"), o);
+  EXPECT_EQ(g.dropped.outside_span, 4u);  // frames after the joint's last /tf sample have no pose
+  ASSERT_EQ(g.size(), 5u);
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const double t = g.times[i] - kT0;
+    const Pose expect = poseFromXyzYaw(kV * t, 0, 0.2, kW * t) * poseFromXyzYaw(0.1, 0, 0, 0.3 * t);
+    EXPECT_TRUE(g.odometry[i].pose.isApprox(expect, 1e-6)) << i << "\n" << g.odometry[i].pose.matrix();
+  }
+  o.bag.body_frame = "somewhere";
+  expectIoError([&] { openRobotDataset(bag("frames.bag"), o); },
+                {"frames.bag", "topic '/odom'", "child frame 'imu_link'", "body frame 'somewhere'"});
+}
+
+TEST_F(RosBag, ErrorsNameTheMessageIndexTheEncodingAndAnUnindexedOrTruncatedBag) {
+  DatasetOptions o;
+  o.bag.cloud_topic = "/points";
+  o.bag.odom_topic = "/odom";
+  const RobotDataset d = openRobotDataset(bag("broken.bag"), o);
+  ASSERT_EQ(d.size(), 4u);
+  EXPECT_EQ(d.scan(0).size(), 100u);
+  expectIoError([&] { d.scan(1); }, {"broken.bag", "topic '/points' message 1: message ends after"});
+  expectIoError([&] { d.scan(2); }, {"broken.bag", "topic '/points' message 2: data holds 600 bytes, rows need 1200"});
+  EXPECT_EQ(d.scan(3).size(), 100u);
+
+  DatasetOptions c;
+  c.bag.color_topic = "/camera/color/image_raw";
+  c.bag.depth_topic = "/camera/aligned_depth_to_color/image_raw";
+  c.bag.camera_info_topic = "/camera/color/camera_info";
+  c.bag.odom_topic = "/odom";
+  expectIoError([&] { openRobotDataset(bag("rgbd_yuv.bag"), c); },  // refused when opened, not frame by frame
+                {"rgbd_yuv.bag", "topic '/camera/color/image_raw' message 0: unsupported colour encoding 'yuv422' (bgr8, rgb8)"});
+
+  // A recording that was cut: its header's index position is still 0 ...
+  std::ifstream in(bag("velodyne.bag"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = bytes.find("index_pos=");
+  ASSERT_NE(at, std::string::npos);
+  std::string unindexed = bytes;
+  std::fill_n(unindexed.begin() + static_cast<std::ptrdiff_t>(at + 10), 8, '\0');
+  const std::string cut = (dir / "unindexed.bag").string();
+  std::ofstream(cut, std::ios::binary).write(unindexed.data(), static_cast<std::streamsize>(unindexed.size()));
+  expectIoError([&] { listBagTopics(cut); }, {"unindexed.bag", "bag is not indexed", "rosbag reindex"});
+  // ... or it points past the end of a file that lost its tail.
+  const std::string half = (dir / "half.bag").string();
+  std::ofstream(half, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  expectIoError([&] { openRobotDataset(half, o); }, {"half.bag", "truncated"});
 }
 
 TEST(PointCloud2, FieldsThatDoNotFitAreRefusedByName) {
