@@ -152,6 +152,39 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
   if (hi) *hi = s.empty() ? 0 : s.back();
   return static_cast<int>(std::unique(s.begin(), s.end()) - s.begin());
 }
+// Is the view just above a point blocked? Returns are binned by azimuth (0.5 deg); a return
+// within 3 deg above the point's elevation, in its azimuth bin or a neighbour, nearer than
+// `range` hides what stands above the point (a crown may be there).
+class ViewAbove {
+ public:
+  ViewAbove(const Cloud& cloud, const std::vector<int>& points) : bins_(kBins) {
+    for (int i : points) bins_[bin(cloud[i])].push_back(polar(cloud[i]));
+  }
+  bool hiddenAbove(const Eigen::Vector3f& p, double range) const {
+    const Polar q = polar(p);
+    const int b = bin(p);
+    for (int d = -1; d <= 1; ++d)
+      for (const Polar& o : bins_[(b + d + kBins) % kBins])
+        if (o.elevation > q.elevation + 1e-4 && o.elevation < q.elevation + kAbove && o.range < range) return true;
+    return false;
+  }
+
+ private:
+  struct Polar {
+    double elevation, range;
+  };
+  static constexpr int kBins = 720;
+  static constexpr double kAbove = 3.0 * M_PI / 180;
+  static int bin(const Eigen::Vector3f& p) {
+    const double az = std::atan2(double(p.y()), double(p.x()));
+    return std::clamp(static_cast<int>((az + M_PI) / (2 * M_PI) * kBins), 0, kBins - 1);
+  }
+  static Polar polar(const Eigen::Vector3f& p) {
+    const double r = std::hypot(double(p.x()), double(p.y()));
+    return {std::atan2(double(p.z()), r), r};
+  }
+  std::vector<std::vector<Polar>> bins_;
+};
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
@@ -173,6 +206,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     slice_buckets[s].add(i);
   }
   const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
+  const ViewAbove view(cloud, above);
   std::vector<int> every(blobs.size());
   std::iota(every.begin(), every.end(), 0);
   auto reject = [&](const Eigen::Vector2d& c, const std::string& why) {
@@ -238,12 +272,13 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     col.slices = static_cast<int>(stack.size());
     const double reach = col.radius + p.margin;
     double top = 0, ground_z = 0;
+    int top_point = -1;
     all.forNear(mid, reach + col.slope.norm() * p.max_height + 0.01, [&](int i, double) {
       if (taken[i] || h[i] > p.max_height) return;
       const Eigen::Vector2d c = col.base + col.slope * h[i];
       if ((Eigen::Vector2d(cloud[i].x(), cloud[i].y()) - c).squaredNorm() > reach * reach) return;
       col.points.push_back(i);
-      if (h[i] > top) top = h[i], ground_z = cloud[i].z() - h[i];
+      if (h[i] > top) top = h[i], ground_z = cloud[i].z() - h[i], top_point = i;
     });
     if (static_cast<int>(col.points.size()) < p.min_points) {
       reject(mid, "too few points");
@@ -263,7 +298,8 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     });
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
-    if (!col.trunk && top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height))
+    if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||
+                       view.hiddenAbove(cloud[top_point], mid.norm() - p.end_margin)))
       col.confidence = p.unsure_confidence;
     for (int i : col.points) taken[i] = 1;
     out.push_back(std::move(col));
