@@ -26,7 +26,7 @@ struct CarParams {
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.
-  double max_roughness = 0.06;
+  double max_roughness = 0.07;
 };
 
 struct GeometricSegmenterParams {

@@ -10,7 +10,10 @@ std::vector<Landmark> landmarksOf(const ObjectMap& map) {
   for (std::size_t i = 0; i < map.size(); ++i) {
     const Object& o = map[i];
     if (!o.isFinite()) continue;
-    out.push_back({o.position(), o.extent(), o.class_id, i});
+    // A column (trunk, pole) is placed at its foot: where it meets the ground is seen alike by
+    // every robot, while its midpoint follows how high each one saw it (range, occlusion).
+    const auto* c = std::get_if<Cylinder>(&o.model);
+    out.push_back({c ? c->root : o.position(), o.extent(), o.class_id, i});
   }
   return out;
 }

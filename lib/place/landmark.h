@@ -10,13 +10,14 @@
 namespace slide {
 
 struct Landmark {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();     // centre; a cylinder's foot
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // bounding-box extents; zero = unknown
   int class_id = 0;
   std::size_t index = 0;  // position in the source ObjectMap
 };
 
-// Landmarks of the finite objects of `map` (non-finite ones are left out).
+// Landmarks of the finite objects of `map` (non-finite ones are left out), at their centres;
+// cylinders at their foot (the axis's lowest point).
 std::vector<Landmark> landmarksOf(const ObjectMap& map);
 
 // Why this set cannot be matched (empty string when usable): fewer than `min_count`

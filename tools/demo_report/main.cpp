@@ -140,7 +140,11 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   }
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
-  for (const auto& [b, c] : log.closures) f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
+  for (const auto& [b, c] : log.closures) {
+    f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
+    const Eigen::Vector3d d = c.T_a_b.translation() - truth.T_a_b(a, b).translation();
+    spdlog::info("robot {} <- {}: place recognition off by x {:.2f} y {:.2f} z {:.2f} m", a, b, d.x(), d.y(), d.z());
+  }
   for (const auto& [b, traj] : log.trajectories) {
     if (b == a || traj.frame_robot != a || traj.poses.size() < 3) continue;
     const RobotTruth& peer = truth.robot(b);
