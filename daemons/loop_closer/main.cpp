@@ -127,8 +127,8 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "slidegraph or slidematch (overrides the config)")
       ->check(CLI::IsMember({"slidegraph", "slidematch"}));
   return slide::runApp(app, common, argc, argv, [&]() {
-    slide::LoopCloserParams params = slide::loadLoopCloserParams(config_path);
     const slide::ConfigNode cfg = slide::ConfigNode::load(config_path);
+    slide::LoopCloserParams params = slide::loadLoopCloserParams(cfg);
     Channels ch;
     std::string cfg_url;
     if (cfg.has("lcm")) {
@@ -139,6 +139,7 @@ int main(int argc, char** argv) {
       ch.trajectory = l.get<std::string>("trajectory", ch.trajectory);
       ch.loop_closures = l.get<std::string>("loop_closures", ch.loop_closures);
     }
+    cfg.rejectUnknownKeys();
     if (robot >= 0) params.robot = robot;
     if (!method.empty()) params.method = slide::parsePlaceMethod(method);
     if (url.empty()) url = cfg_url;

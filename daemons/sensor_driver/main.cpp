@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
           if (!odom_opt->count()) opt.odom_channel = ch.get<std::string>("odom", opt.odom_channel);
           if (!status_opt->count()) opt.status_channel = ch.get<std::string>("status", opt.status_channel);
         }
+        c.rejectUnknownKeys();  // only its section: other daemons' sections may share the file
       }
     }
     if (oracle_labels && detections_opt->count() && detections != "oracle")

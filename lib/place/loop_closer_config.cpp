@@ -4,8 +4,8 @@
 
 namespace slide {
 
-LoopCloserParams loadLoopCloserParams(const std::string& path) {
-  const ConfigNode root = ConfigNode::load(path);
+LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
+  const std::string& path = root.file();
   LoopCloserParams p;
   root.read("robot", p.robot);
   if (root.has("method")) {

@@ -62,6 +62,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     if (c.slidematch.max_yaw_step_deg < c.slidematch.min_yaw_step_deg)
       n.fail("max_yaw_step_deg", "must be at least min_yaw_step_deg");
   }
+  root.rejectUnknownKeys();
   return c;
 }
 
