@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   int robot = -1;
   app.add_option("--config", config_path, "Loop-closer configuration")->capture_default_str();
   app.add_option("--robot", robot, "Own robot id (overrides the config)");
-  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config; default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config; default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--method", method, "slidegraph or slidematch (overrides the config)")
       ->check(CLI::IsMember({"slidegraph", "slidematch"}));
   return slide::runApp(app, common, argc, argv, [&]() {

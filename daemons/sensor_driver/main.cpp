@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   std::string detections = "none", detection_config = std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml";
   app.add_option("dataset", dataset, "Dataset folder of one robot (e.g. OUT/robot0) or a ROS 1 .bag file")->required();
   app.add_option("--robot", opt.robot, "Robot id (stamped into headers; picks the default bus)")->capture_default_str();
-  app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", lcm_url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--config", config_path,
                  "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, detections, "
                  "detection_config, channels: scan, rgbd, odom, status; bag: cloud_topic, color_topic, depth_topic, "

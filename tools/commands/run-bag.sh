@@ -53,7 +53,7 @@ USAGE
     slide-sensor-driver "$bag" "${driver_args[@]}" --no-publish --log /dev/null --frames 1 --no-progress || true
     die "run-bag: the sensor driver cannot read $bag with these options (see above)"
   }
-  local url="udpm://239.255.76.67:7670?ttl=0&recv_buf_size=4194304" common="--robot 0 --lcm-url udpm://239.255.76.67:7670?ttl=0"
+  local url="udpm://239.255.76.67:7670?ttl=0&recv_buf_size=4194304" common="--robot 0 --lcm-url $url"
   local quoted="" a
   for a in "${driver_args[@]}"; do quoted+=" $a"; done
   cat > "$out/run.pmd" <<PMD
