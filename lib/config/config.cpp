@@ -143,6 +143,10 @@ void ConfigNode::unknownBelow(const YAML::Node& n, const std::string& path, std:
   }
 }
 
+void ConfigNode::known(const std::vector<std::string>& keys) const {
+  for (const std::string& k : keys) ask(k);
+}
+
 std::vector<std::string> ConfigNode::unknownKeys() const {
   std::vector<std::string> out;
   usage_->asked[path_];  // this node is the caller's own

@@ -61,6 +61,9 @@ class ConfigNode {
   // tested with has() or read whole (getList) are not searched. One line per key:
   // "<file>: <key path> (line L): unknown key; did you mean '<nearest asked-for key>'?".
   std::vector<std::string> unknownKeys() const;
+  // Marks keys as known without reading them: values the command line overrides, which the
+  // reader then skips.
+  void known(const std::vector<std::string>& keys) const;
   // Throws a ConfigError listing unknownKeys() when there are any. Call it on the part of a
   // file one reader owns (the root of its own file, or its section of a shared file), after
   // everything it knows has been read.

@@ -91,3 +91,12 @@ TEST(ConfigKeys, ClassTableRejectsAMisspelledClassKey) {
   }
   EXPECT_NO_THROW(ClassTable::loadDefault());
 }
+
+TEST(ConfigKeys, KeysOverriddenOnTheCommandLineStayKnown) {
+  const ConfigNode c = ConfigNode::parse("rate: 2\nstate_dir: /x\nstate_dri: /y\n", "d.yaml");
+  c.get<double>("rate", 1.0);
+  c.known({"state_dir"});  // --state-dir given: the reader skips the key but knows it
+  const std::vector<std::string> u = c.unknownKeys();
+  ASSERT_EQ(u.size(), 1u);
+  EXPECT_EQ(u[0], "d.yaml: state_dri (line 3): unknown key; did you mean 'state_dir'?");
+}
