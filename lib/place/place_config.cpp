@@ -46,7 +46,9 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     n.read("retry_tolerance_scale", c.slidegraph.retry_tolerance_scale);
     n.read("min_voted", c.slidegraph.min_voted);
     n.read("min_landmarks", c.slidegraph.min_landmarks);
+    n.read("budget_ms", c.slidegraph.budget_ms);
     n.requirePositive("descriptor_radius", c.slidegraph.descriptor_radius);
+    n.requirePositive("budget_ms", c.slidegraph.budget_ms);
   }
   if (root.has("slidematch")) {
     const ConfigNode n = root.child("slidematch");
