@@ -67,8 +67,10 @@ class Node {
         spdlog::warn("{}: map of robot {}: dropped {} objects with non-finite numbers or beyond {} m", channel, m->robot,
                      dropped, kMaxObjectCoordinate);
       dropped_objects_ += dropped;
-      if (m->robot == robot_) closer_.setOwnMap(map, nowS());
-      else closer_.setPeerMap(m->robot, map, nowS());
+      const bool kept = m->robot == robot_ ? closer_.setOwnMap(map, nowS()) : closer_.setPeerMap(m->robot, map, nowS());
+      if (!kept)
+        spdlog::warn("{}: map of robot {} with {} objects dropped: more than max_map_objects ({} dropped so far)",
+                     channel, m->robot, map.size(), closer_.counts().oversized_maps);
     } catch (const std::exception& e) {
       spdlog::warn("{}: map of robot {} rejected: {}", channel, m->robot, e.what());
     }
@@ -123,12 +125,12 @@ int main(int argc, char** argv) {
   int robot = -1;
   app.add_option("--config", config_path, "Loop-closer configuration")->capture_default_str();
   app.add_option("--robot", robot, "Own robot id (overrides the config)");
-  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config; default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", url, "LCM URL of the robot bus (overrides the config; default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--method", method, "slidegraph or slidematch (overrides the config)")
       ->check(CLI::IsMember({"slidegraph", "slidematch"}));
   return slide::runApp(app, common, argc, argv, [&]() {
-    slide::LoopCloserParams params = slide::loadLoopCloserParams(config_path);
     const slide::ConfigNode cfg = slide::ConfigNode::load(config_path);
+    slide::LoopCloserParams params = slide::loadLoopCloserParams(cfg);
     Channels ch;
     std::string cfg_url;
     if (cfg.has("lcm")) {
@@ -139,6 +141,7 @@ int main(int argc, char** argv) {
       ch.trajectory = l.get<std::string>("trajectory", ch.trajectory);
       ch.loop_closures = l.get<std::string>("loop_closures", ch.loop_closures);
     }
+    cfg.rejectUnknownKeys();
     if (robot >= 0) params.robot = robot;
     if (!method.empty()) params.method = slide::parsePlaceMethod(method);
     if (url.empty()) url = cfg_url;
@@ -153,6 +156,7 @@ int main(int argc, char** argv) {
     spdlog::info("robot {}: {} on {}, maps '{}'/'{}', trajectory '{}', out '{}'", params.robot,
                  slide::methodName(params.method), url, ch.own_map, ch.peer_maps, ch.trajectory, ch.loop_closures);
     std::string last_reason;
+    long budget_exceeded = 0;
     while (!g_stop) {
       if (lcm.handleTimeout(100) < 0) {
         if (g_stop) break;  // select() interrupted by the stop signal
@@ -172,13 +176,20 @@ int main(int argc, char** argv) {
                      v[3] * 180.0 / M_PI);
         if (lc.outcome != slide::ConsensusFilter::Outcome::Pending) node.publish(lc);
       }
+      if (closer.counts().budget_exceeded > budget_exceeded) {
+        budget_exceeded = closer.counts().budget_exceeded;
+        spdlog::warn("place recognition gave no result: {} ({} checks over budget so far)", closer.lastReason(),
+                     budget_exceeded);
+      }
       if (closer.lastReason() != last_reason) {
         last_reason = closer.lastReason();
         if (!last_reason.empty()) spdlog::debug("no closure: {}", last_reason);
       }
     }
-    spdlog::info("stopping; dropped messages: {}; dropped map objects: {}",
-                 node.inbox().dropped() ? node.inbox().summary() : "none", node.droppedObjects());
+    spdlog::info("stopping; dropped messages: {}; dropped map objects: {}; oversized maps dropped: {}; checks over "
+                 "budget: {}",
+                 node.inbox().dropped() ? node.inbox().summary() : "none", node.droppedObjects(),
+                 closer.counts().oversized_maps, closer.counts().budget_exceeded);
     return 0;
   });
 }

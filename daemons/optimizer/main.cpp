@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   int publish_every = 1;
   OptimizerChannels ch;
   app.add_option("--robot", robot, "this robot's id")->capture_default_str();
-  app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
   app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
   app.add_option("--journal", journal_path,

@@ -202,6 +202,8 @@ int main(int argc, char** argv) {
     const int max_deliveries = cfg.get<int>("max_deliveries_per_tick", 4);
     if (max_deliveries < 1) cfg.fail("max_deliveries_per_tick", "must be at least 1");
     if (!(tick_s > 0) || !(stats_s > 0)) cfg.fail("tick_period_s", "tick_period_s and stats_period_s must be positive");
+    cfg.known({"robot", "robot_url", "team_url", "state_dir"});  // read above unless the command line set them
+    cfg.rejectUnknownKeys();  // this file, or its peer_sync section of a shared file
     std::filesystem::create_directories(state_dir);
 
     lcm::LCM robot_bus(robot_url), team_bus(team_url);

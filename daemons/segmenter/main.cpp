@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
   std::string scan_ch = "SCAN", rgbd_ch = "RGBD", odom_ch = "ODOM", out_ch = "INSTANCES", mode;
   std::size_t max_pending = 50;
   app.add_option("--robot", robot, "Robot id")->capture_default_str();
-  app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--config", config_file, "Front-end YAML")->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML")->capture_default_str();
   app.add_option("--mode", mode, "LiDAR mode, overrides the config: auto | labelled | geometric")

@@ -38,6 +38,8 @@ void readBagConfig(const ConfigNode& sd, BagCli& cli) {
     if (!cli.set[i++]->count()) cli.options.*f.member = b.get<std::string>(f.key, cli.options.*f.member);
   }
   if (!cli.set[i]->count()) cli.options.deskew = b.get<bool>("deskew", cli.options.deskew);
+  for (const Field& f : kFields) b.known({f.key});  // read above unless the command line set them
+  b.known({"deskew"});
   cli.options.max_color_depth_dt = b.get<double>("max_color_depth_dt", cli.options.max_color_depth_dt);
   if (b.has("T_body_sensor")) {
     const std::vector<double> v = b.getList<double>("T_body_sensor", 7);

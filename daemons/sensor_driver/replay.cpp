@@ -49,8 +49,22 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
   }
 }
 
+void sendStatus(MessageSink& sink, const ReplayOptions& o, const StreamProgress& p, int8_t state,
+                const std::string& reason) {
+  stream_status_t s;
+  s.utime = wallUtime();
+  s.robot = o.robot;
+  s.state = state;
+  s.frames_sent = p.sent;
+  s.frames_total = p.total;
+  s.source = p.source;
+  s.detections = p.detections;
+  s.reason = reason;
+  sink.send(o.status_channel, s, p.data_utime);
+}
+
 int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerception& perception, MessageSink& sink,
-                  const std::function<bool()>& stop) {
+                  const std::function<bool()>& stop, StreamProgress& progress) {
   const int n = static_cast<int>(d.size());
   int first = std::clamp(o.start_frame, 0, n);
   while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
@@ -66,16 +80,13 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
   const bool bar = o.progress && isatty(STDERR_FILENO);
   const auto wall0 = std::chrono::steady_clock::now();
   auto last_status = wall0;
+  progress.source = d.path;
+  progress.detections = toString(perception.source());
+  progress.total = total;
   auto status = [&](int8_t state, int sent) {
-    stream_status_t s;
-    s.utime = wallUtime();
-    s.robot = o.robot;
-    s.state = state;
-    s.frames_sent = sent;
-    s.frames_total = total;
-    s.source = d.path;
-    s.detections = toString(perception.source());
-    sink.send(o.status_channel, s, first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0);
+    progress.sent = sent;
+    progress.data_utime = first < n ? static_cast<int64_t>(1e6 * (d.times[std::min(first + sent, n - 1)])) : 0;
+    sendStatus(sink, o, progress, state);
   };
   status(stream_status_t::RUNNING, 0);
   int sent = 0, unreadable = 0;
@@ -129,6 +140,7 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
       continue;
     }
     ++sent;
+    progress.sent = sent;
     const auto now = std::chrono::steady_clock::now();
     if (now - last_status > std::chrono::seconds(1)) {
       status(stream_status_t::RUNNING, sent);

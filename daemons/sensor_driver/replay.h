@@ -43,12 +43,26 @@ class MessageSink {
   int64_t event_num_ = 0;
 };
 
+// What the status channel last said: kept up to date by replayDataset, so that a driver that
+// stops on an error can publish FAILED with how far it got.
+struct StreamProgress {
+  std::string source;      // dataset path
+  std::string detections;  // none | emulated | oracle
+  int sent = 0, total = 0;
+  int64_t data_utime = 0;  // stamps log events
+};
+
+// Sends a stream_status_t with `state` (RUNNING, FINISHED, FAILED) and, for FAILED, `reason`.
+void sendStatus(MessageSink& sink, const ReplayOptions& options, const StreamProgress& progress, int8_t state,
+                const std::string& reason = "");
+
 // Replays frames [start, end) of `dataset` into `sink`, with the labels or masks `perception`
 // gives; returns frames sent. Publishes a RUNNING status (naming the detection source) about
-// once a second and FINISHED at the end of data. `stop` is polled between frames and at least
+// once a second and FINISHED at the end of data; `progress` follows it (FAILED is the caller's
+// to send, from progress, when this throws). `stop` is polled between frames and at least
 // every 100 ms while waiting (interrupts end the replay early, without FINISHED). A frame that
 // cannot be read is dropped, logged and counted; the replay goes on.
 int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, const FramePerception& perception,
-                  MessageSink& sink, const std::function<bool()>& stop);
+                  MessageSink& sink, const std::function<bool()>& stop, StreamProgress& progress);
 
 }  // namespace slide

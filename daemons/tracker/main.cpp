@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   std::string classes_file = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   std::string in_ch = "INSTANCES", out_ch = "KEYPOSE_BUNDLE";
   app.add_option("--robot", robot, "Robot id")->capture_default_str();
-  app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0)");
+  app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--config", config_file, "Front-end YAML")->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML")->capture_default_str();
   app.add_option("--instances-channel", in_ch, "Instances in")->capture_default_str();

@@ -38,7 +38,9 @@ int runApp(CLI::App& app, CommonOptions& opts, int argc, char** argv, const std:
   }
 }
 
-std::string robotBusUrl(int robot) { return "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0"; }
+std::string robotBusUrl(int robot) {
+  return "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0&recv_buf_size=" + std::to_string(kRobotBusRecvBufBytes);
+}
 
 std::string persistentStateDir() {
   if (geteuid() == 0) return "/var/lib/slide";

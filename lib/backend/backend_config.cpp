@@ -27,6 +27,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("peer_rotation_sigma", c.peer_rotation_sigma);
     n.read("loop_translation_sigma", c.loop_translation_sigma);
     n.read("loop_rotation_sigma", c.loop_rotation_sigma);
+    n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
   }
   if (root.has("objects")) {
@@ -43,12 +44,14 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("ellipsoid_size_ema", c.ellipsoid_size_ema);
     n.read("robust_loss_scale", c.robust_loss_scale);
     n.read("max_object_range_m", c.max_object_range_m);
+    n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
     if (c.ellipsoid_size_ema > 1) n.fail("ellipsoid_size_ema", "must be in (0, 1]");
   }
   if (root.has("gates")) {
     const ConfigNode n = root.child("gates");
     n.read("max_robot_offset_m", c.max_robot_offset_m);
+    n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
   }
   if (root.has("association")) {
@@ -85,6 +88,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("final_function_tolerance", c.final_function_tolerance);
     n.read("full_trust_region_radius", c.full_trust_region_radius);
     n.read("num_threads", c.num_threads);
+    n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys())
       if (k != "spread_loops" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
   }
@@ -96,9 +100,11 @@ BackendConfig loadBackendConfig(const std::string& path) {
     c.guard_estimate = n.get<bool>("guard_estimate", c.guard_estimate);
     n.read("remerge_translation_m", c.remerge_translation_m);
     n.read("remerge_yaw_deg", c.remerge_yaw_deg);
+    n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys())
       if (k != "guard_estimate" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");
   }
+  root.rejectUnknownKeys();
   return c;
 }
 

@@ -1,9 +1,13 @@
 #pragma once
 // YAML configuration with errors that name the file, the key path, its line and column, and
-// what was expected. A ConfigNode is a view into one loaded file.
+// what was expected. A ConfigNode is a view into one loaded file; every key a reader asks for
+// (has, get, read, child, ...) is remembered for the file, so that a reader can reject the keys
+// it never asked for (misspellings) once it has read its part: rejectUnknownKeys.
 #include <yaml-cpp/yaml.h>
 
+#include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,14 +51,33 @@ class ConfigNode {
   ConfigNode operator[](std::size_t i) const;      // list element
   std::vector<std::string> keys() const;           // map keys in file order
 
-  const std::string& file() const { return *file_; }
+  const std::string& file() const { return usage_->file; }
   const std::string& path() const { return path_; }
   // Throws a ConfigError located at `key` (or at this node when key is empty).
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
+  // Keys at or below this node that no reader has asked for: a map key nobody asked for, or
+  // one inside a map / list element that was read (child, [i]). Maps and lists a reader only
+  // tested with has() or read whole (getList) are not searched. One line per key:
+  // "<file>: <key path> (line L): unknown key; did you mean '<nearest asked-for key>'?".
+  std::vector<std::string> unknownKeys() const;
+  // Marks keys as known without reading them: values the command line overrides, which the
+  // reader then skips.
+  void known(const std::vector<std::string>& keys) const;
+  // Throws a ConfigError listing unknownKeys() when there are any. Call it on the part of a
+  // file one reader owns (the root of its own file, or its section of a shared file), after
+  // everything it knows has been read.
+  void rejectUnknownKeys() const;
+
  private:
-  ConfigNode(YAML::Node node, std::shared_ptr<const std::string> file, std::string path)
-      : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+  struct Usage {  // one per loaded file, shared by its nodes
+    std::string file;
+    std::map<std::string, std::set<std::string>> asked;  // node path -> keys asked for there
+  };
+  ConfigNode(YAML::Node node, std::shared_ptr<Usage> usage, std::string path)
+      : node_(std::move(node)), usage_(std::move(usage)), path_(std::move(path)) {}
+  void ask(const std::string& key) const { usage_->asked[path_].insert(key); }
+  void unknownBelow(const YAML::Node& n, const std::string& path, std::vector<std::string>& out) const;
   std::string keyPath(const std::string& key) const;
   std::string where(const YAML::Node& n) const;
   YAML::Node require(const std::string& key) const;
@@ -62,7 +85,7 @@ class ConfigNode {
   T convert(const YAML::Node& n, const std::string& key) const;
 
   YAML::Node node_;
-  std::shared_ptr<const std::string> file_;
+  std::shared_ptr<Usage> usage_;
   std::string path_;
 };
 

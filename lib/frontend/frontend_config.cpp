@@ -192,6 +192,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     sixVector(c, "sigma_min", cfg.keypose.sigma_min);
     sixVector(c, "sigma_per_m", cfg.keypose.sigma_per_m);
   }
+  root.rejectUnknownKeys();
   return cfg;
 }
 

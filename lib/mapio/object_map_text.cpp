@@ -1,6 +1,8 @@
 #include "mapio/object_map_text.h"
 
 #include <cmath>
+#include <filesystem>
+#include <limits>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -25,6 +27,8 @@ int classOfLabel(const std::string& token, const std::string& name, int line, co
   double v = 0;
   if (!parseNumber(token, v) || !std::isfinite(v) || v != std::floor(v))
     throw lineError(name, line, "expected an integer class label, got '" + token + "'");
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    throw lineError(name, line, "class label '" + token + "' is out of the integer range");
   const int label = static_cast<int>(v);
   if (const auto id = classes.fromMapLabel(label)) return *id;
   if (classes.find(label)) return label;
@@ -94,6 +98,9 @@ ObjectMapText parseObjectMapText(const std::string& text, const std::string& nam
 }
 
 ObjectMapText readObjectMapText(const std::string& path, const ClassTable& classes) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw std::runtime_error(path + ": is a directory, not an object map file");
   std::ifstream f(path);
   if (!f) throw std::runtime_error(path + ": cannot open object map for reading");
   std::stringstream buf;

@@ -17,8 +17,8 @@ struct ObjectMapText {
   std::vector<std::string> warnings;  // e.g. skipped non-finite objects, "file:line: why"
 };
 
-// Throws std::runtime_error naming the file and line (unreadable file, malformed line,
-// unknown label). Objects with a NaN/inf number are skipped with a warning, not an error.
+// Throws std::runtime_error naming the file and line (unreadable file or a directory, malformed
+// line, label not an integer in int range, unknown label). Objects with a NaN/inf number are skipped with a warning, not an error.
 ObjectMapText readObjectMapText(const std::string& path, const ClassTable& classes);
 // Parses text; `name` stands in for the file name in errors.
 ObjectMapText parseObjectMapText(const std::string& text, const std::string& name, const ClassTable& classes);

@@ -65,6 +65,7 @@ ClassTable ClassTable::load(const std::string& path) {
       c.fail("", e.what());
     }
   }
+  root.rejectUnknownKeys();
   return table;
 }
 

@@ -22,7 +22,7 @@ std::uint64_t floatKey(float x, float y) {
 }
 }  // namespace
 
-std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts) {
+std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts, const std::function<bool()>& out_of_time) {
   std::vector<Triangle> out;
   // Centre the points so that float coordinates keep millimetre precision.
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
@@ -66,7 +66,9 @@ std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts) {
                                static_cast<int>(std::ceil(hi_x - lo_x + 2 * margin)) + 1,
                                static_cast<int>(std::ceil(hi_y - lo_y + 2 * margin)) + 1));
   std::unordered_map<std::uint64_t, std::uint32_t> index_of;
+  std::size_t inserted = 0;
   for (std::uint32_t i : unique) {
+    if (out_of_time && ++inserted % 256 == 0 && out_of_time()) return out;
     const Eigen::Vector2d p = pts[i] - centre;
     const cv::Point2f q(static_cast<float>(p.x()), static_cast<float>(p.y()));
     if (index_of.emplace(floatKey(q.x, q.y), i).second) subdiv.insert(q);

@@ -21,15 +21,24 @@ std::vector<std::size_t> everything(const ObjectMap& map) {
 }
 }  // namespace
 
-void LoopCloser::setOwnMap(const ObjectMap& map, double now_s) {
+bool LoopCloser::setOwnMap(const ObjectMap& map, double now_s) {
+  if (map.size() > params_.max_map_objects) {
+    ++counts_.oversized_maps;
+    return false;
+  }
   own_ = map;
   ++own_version_;
   const int seq = keyposes_.empty() ? -1 : keyposes_.back().seq;
   for (const Object& o : own_.objects()) first_seen_.emplace(o.id, seq);
+  return true;
 }
 
-void LoopCloser::setPeerMap(int robot, const ObjectMap& map, double now_s) {
-  if (robot == params_.robot) return;
+bool LoopCloser::setPeerMap(int robot, const ObjectMap& map, double now_s) {
+  if (robot == params_.robot) return true;
+  if (map.size() > params_.max_map_objects) {
+    ++counts_.oversized_maps;
+    return false;
+  }
   auto [it, fresh] = peers_.try_emplace(robot);
   Peer& p = it->second;
   if (fresh) {
@@ -40,6 +49,7 @@ void LoopCloser::setPeerMap(int robot, const ObjectMap& map, double now_s) {
   }
   p.map = map;
   ++p.version;
+  return true;
 }
 
 void LoopCloser::setTrajectory(std::vector<KeyPose> keyposes) { keyposes_ = std::move(keyposes); }
@@ -50,6 +60,7 @@ LoopClosure LoopCloser::run(const ObjectMap& a, const std::vector<std::size_t>& 
   LoopClosure lc;
   lc.method = params_.method;
   lc.result = recognizePlace(params_.method, la, lb, params_.place);
+  if (lc.result.budget_exhausted) ++counts_.budget_exceeded;
   if (!lc.result.found) {
     last_reason_ = lc.result.reason;
     return lc;

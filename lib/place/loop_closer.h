@@ -26,6 +26,13 @@ struct LoopCloserParams {
   int intra_min_keypose_gap = 30;       // ...at least this many key poses older triggers a check
   double intra_local_radius_m = 25.0;   // objects within this of the current pose form the sub-maps
   std::size_t min_objects = 6;          // per map or sub-map
+  std::size_t max_map_objects = 50000;  // a map update with more objects is dropped (counted)
+};
+
+// What the loop closer refused or gave up on, for the daemon's log.
+struct LoopCloserCounts {
+  long oversized_maps = 0;   // map updates over max_map_objects, dropped (the previous map stays)
+  long budget_exceeded = 0;  // checks that ran out of their place-recognition time budget
 };
 
 struct LoopClosure {
@@ -47,10 +54,11 @@ class LoopCloser {
  public:
   explicit LoopCloser(LoopCloserParams params) : params_(std::move(params)) {}
 
-  // The robot's own map in its own frame; objects need stable ids.
-  void setOwnMap(const ObjectMap& map, double now_s);
-  // A peer's map in the peer's own frame.
-  void setPeerMap(int robot, const ObjectMap& map, double now_s);
+  // The robot's own map in its own frame; objects need stable ids. A map with more than
+  // max_map_objects objects is dropped and counted (false); the previous one stays.
+  bool setOwnMap(const ObjectMap& map, double now_s);
+  // A peer's map in the peer's own frame; dropped like the own map when too large.
+  bool setPeerMap(int robot, const ObjectMap& map, double now_s);
   // The robot's key poses (own frame), oldest first.
   void setTrajectory(std::vector<KeyPose> keyposes);
 
@@ -60,6 +68,7 @@ class LoopCloser {
 
   // Why the last check of each kind did not produce a transform (for logs and tests).
   const std::string& lastReason() const { return last_reason_; }
+  const LoopCloserCounts& counts() const { return counts_; }
 
  private:
   struct Peer {
@@ -82,6 +91,7 @@ class LoopCloser {
   std::map<int, ConsensusFilter> intra_filters_;  // keyed by old key pose / gap
   double next_intra_ = 0;
   std::string last_reason_;
+  LoopCloserCounts counts_;
 };
 
 }  // namespace slide

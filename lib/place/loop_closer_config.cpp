@@ -4,8 +4,8 @@
 
 namespace slide {
 
-LoopCloserParams loadLoopCloserParams(const std::string& path) {
-  const ConfigNode root = ConfigNode::load(path);
+LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
+  const std::string& path = root.file();
   LoopCloserParams p;
   root.read("robot", p.robot);
   if (root.has("method")) {
@@ -47,6 +47,11 @@ LoopCloserParams loadLoopCloserParams(const std::string& path) {
     const long v = root.get<long>("min_objects");
     if (v < 3) root.fail("min_objects", "must be at least 3");
     p.min_objects = static_cast<std::size_t>(v);
+  }
+  if (root.has("max_map_objects")) {
+    const long v = root.get<long>("max_map_objects");
+    if (v < static_cast<long>(p.min_objects)) root.fail("max_map_objects", "must be at least min_objects");
+    p.max_map_objects = static_cast<std::size_t>(v);
   }
   if (root.has("consensus")) {
     const ConfigNode n = root.child("consensus");

@@ -8,7 +8,11 @@
 
 namespace slide {
 
-// Every key is optional; errors name the file and key (ConfigError).
-LoopCloserParams loadLoopCloserParams(const std::string& path);
+class ConfigNode;
+
+// Every key is optional; errors name the file and key (ConfigError). Reads the loop closer's
+// keys of `root` (a relative place_config is taken relative to root's file); the daemon reads
+// its bus keys from the same file and then rejects the keys neither knows.
+LoopCloserParams loadLoopCloserParams(const ConfigNode& root);
 
 }  // namespace slide

@@ -46,7 +46,9 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     n.read("retry_tolerance_scale", c.slidegraph.retry_tolerance_scale);
     n.read("min_voted", c.slidegraph.min_voted);
     n.read("min_landmarks", c.slidegraph.min_landmarks);
+    n.read("budget_ms", c.slidegraph.budget_ms);
     n.requirePositive("descriptor_radius", c.slidegraph.descriptor_radius);
+    n.requirePositive("budget_ms", c.slidegraph.budget_ms);
   }
   if (root.has("slidematch")) {
     const ConfigNode n = root.child("slidematch");
@@ -62,6 +64,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     if (c.slidematch.max_yaw_step_deg < c.slidematch.min_yaw_step_deg)
       n.fail("max_yaw_step_deg", "must be at least min_yaw_step_deg");
   }
+  root.rejectUnknownKeys();
   return c;
 }
 

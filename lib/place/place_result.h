@@ -35,7 +35,7 @@ struct PlaceResult {
   std::size_t associations = 0;       // SlideGraph: initial associations given to CLIPPER
   std::size_t clipper_edges = 0;      // SlideGraph: consistent pairs in the sparse graph
   std::size_t clipper_peak_bytes = 0; // SlideGraph: peak bytes held by the consistency graph
-  bool budget_exhausted = false;      // SlideMatch: the search stopped on its time budget
+  bool budget_exhausted = false;      // stopped on its time budget (SlideGraph: no transform; SlideMatch: best so far)
 };
 
 }  // namespace slide

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
@@ -11,11 +13,11 @@
 namespace slide {
 
 namespace {
-std::vector<Triangle> triangulate(const std::vector<Landmark>& lms) {
+std::vector<Triangle> triangulate(const std::vector<Landmark>& lms, const std::function<bool()>& out_of_time) {
   std::vector<Eigen::Vector2d> xy;
   xy.reserve(lms.size());
   for (const Landmark& l : lms) xy.push_back(l.p.head<2>());
-  return delaunay2d(xy);
+  return delaunay2d(xy, out_of_time);
 }
 
 struct Vote {
@@ -23,9 +25,10 @@ struct Vote {
   double best = 1e300;  // smallest descriptor distance among its triangle pairs
 };
 
-// Vertex associations from descriptor matches, strongest first, at most max_associations.
+// Vertex associations from descriptor matches, strongest first, at most max_associations;
+// none once out_of_time says true (polled every 1024 descriptors of A).
 std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, const std::vector<SimplexDescriptor>& db,
-                                   const SlideGraphParams& params) {
+                                   const SlideGraphParams& params, const std::function<bool()>& out_of_time) {
   // One k-d tree per vertex-class triple of B (a single one when classes are ignored).
   struct Group {
     std::vector<Eigen::Vector3d> keys;
@@ -40,9 +43,12 @@ std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, con
     g.members.push_back(j);
   }
   for (auto& [key, g] : groups) g.tree = KdTree<3>(g.keys);
+  if (out_of_time()) return {};
   std::unordered_map<std::uint64_t, Vote> votes;
   const double r2 = params.descriptor_radius * params.descriptor_radius;
-  for (const SimplexDescriptor& d : da) {
+  for (std::size_t i = 0; i < da.size(); ++i) {
+    if (i % 1024 == 1023 && out_of_time()) return {};
+    const SimplexDescriptor& d = da[i];
     const auto it = groups.find(params.use_classes ? d.classes : any);
     if (it == groups.end()) continue;
     for (const auto& [k, dist2] : it->second.tree.nearest(d.distances, params.neighbors_per_simplex)) {
@@ -75,9 +81,10 @@ std::vector<Association> associate(const std::vector<SimplexDescriptor>& da, con
 PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
   PlaceResult res = slideGraphOnce(a, b, params);
   if (res.found || a.size() > params.small_map || b.size() > params.small_map || params.retry_tolerance_scale <= 1.0 ||
-      res.associations == 0)
+      res.associations == 0 || res.budget_exhausted || res.ms >= params.budget_ms)
     return res;
   SlideGraphParams loose = params;
+  loose.budget_ms = params.budget_ms - res.ms;  // the retry spends what is left
   loose.descriptor_radius *= params.retry_tolerance_scale;
   loose.clipper.consistency.sigma *= params.retry_tolerance_scale;
   loose.clipper.consistency.epsilon *= params.retry_tolerance_scale;
@@ -85,7 +92,7 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
   retry.ms += res.ms;
   retry.cpu_ms += res.cpu_ms;
   retry.stage_cpu_ms.insert(retry.stage_cpu_ms.begin(), res.stage_cpu_ms.begin(), res.stage_cpu_ms.end());
-  if (retry.found) return retry;
+  if (retry.found || retry.budget_exhausted) return retry;
   res.ms = retry.ms;
   res.cpu_ms = retry.cpu_ms;
   res.stage_cpu_ms = retry.stage_cpu_ms;
@@ -107,19 +114,36 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
     res.cpu_ms = threadCpuMs() - cpu0;
     return res;
   };
+  const std::function<bool()> out_of_time = [&] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() > params.budget_ms;
+  };
+  auto budgetExceeded = [&](const char* where) {  // no result: the budget ran out first
+    res.found = false;
+    res.inliers.clear();
+    res.budget_exhausted = true;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "time budget of %g ms exceeded in %s", params.budget_ms, where);
+    res.reason = std::string(buf) + " (no result; " + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+                 " landmarks)";
+    return finish();
+  };
   for (const auto& [lms, name] : {std::pair{&a, "map A"}, std::pair{&b, "map B"}}) {
     res.reason = unusableReason(*lms, std::max<std::size_t>(3, params.min_landmarks), name);
     if (!res.reason.empty()) return finish();
   }
-  const std::vector<Triangle> ta = triangulate(a), tb = triangulate(b);
+  const std::vector<Triangle> ta = triangulate(a, out_of_time);
+  const std::vector<Triangle> tb = out_of_time() ? std::vector<Triangle>{} : triangulate(b, out_of_time);
   stage("triangulate");
+  if (out_of_time()) return budgetExceeded("triangulation");
   if (ta.empty() || tb.empty()) {
     res.reason = std::string(ta.empty() ? "map A" : "map B") + " has no triangles (collinear or duplicate points)";
     return finish();
   }
-  const std::vector<Association> assoc = associate(describeTriangles(a, ta), describeTriangles(b, tb), params);
+  const std::vector<Association> assoc =
+      associate(describeTriangles(a, ta), describeTriangles(b, tb), params, out_of_time);
   res.associations = assoc.size();
   stage("associate");
+  if (out_of_time()) return budgetExceeded("association");
   if (assoc.size() < 3) {
     res.reason = "only " + std::to_string(assoc.size()) + " associations from simplex descriptors";
     return finish();
@@ -133,11 +157,16 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   // scenes can hold several consistent sets.
   const ConsistencyGraph graph(pa, pb, assoc, params.clipper.consistency);
   stage("consistency_graph");
+  if (out_of_time()) return budgetExceeded("the consistency graph");
   res.clipper_edges = graph.numEdges();
   std::vector<char> active(assoc.size(), 1);
   const bool small = a.size() <= params.small_map && b.size() <= params.small_map;
   PlaceResult first, best;
   for (int h = 0; h < std::max(1, params.hypotheses); ++h) {
+    if (h > 0 && out_of_time()) {  // a verified transform stands; otherwise no result
+      if (best.found) break;
+      return budgetExceeded("hypothesis verification");
+    }
     const ClipperResult cl = solveClipper(graph, params.clipper, &active);
     stage("clipper");
     res.clipper_peak_bytes = std::max(res.clipper_peak_bytes, cl.peak_bytes);

@@ -132,6 +132,7 @@ DetectionEmulatorConfig loadDetectionEmulatorConfig(const std::string& path) {
   }
   if (root.has("lidar")) cfg.lidar = loadLidar(root.child("lidar"));
   if (root.has("rgbd")) cfg.rgbd = loadRgbd(root.child("rgbd"));
+  root.rejectUnknownKeys();
   return cfg;
 }
 

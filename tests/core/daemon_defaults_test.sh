@@ -7,7 +7,7 @@ bin=$1/bin
 if [[ $(id -u) -ne 0 ]] || ! unshare -n true 2>/dev/null; then echo "skipped: needs root for a network namespace"; exit 77; fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-want="udpm://239.255.76.67:7669?ttl=0"
+want="udpm://239.255.76.67:7669?ttl=0&recv_buf_size=4194304"  # recv_buf_size: a scan burst fits
 "$bin/slide-team-keys" --team 0,1,2 --out "$tmp/keys" >/dev/null 2>&1 || { echo "FAILED: slide-team-keys"; exit 1; }
 keys=$tmp/keys/robot2.keys
 fail=0

@@ -62,6 +62,32 @@ TEST_F(EvalCli, AteOfTumAgainstKittiWithHandComputedError) {
   EXPECT_NE(output().find(path("bad.txt")), std::string::npos) << output();
 }
 
+TEST_F(EvalCli, CollapsedSim3ScaleAndFewReferencePosesWarnInTheJson) {
+  // Reference: 501 poses along x. Estimate: 3 poses ten times as far apart: sim3 shrinks it
+  // (scale 0.1) and only 3 of 501 reference poses are associated.
+  std::vector<StampedPose> ref, est;
+  for (int i = 0; i <= 500; ++i) ref.push_back({0.1 * i, poseFromXyzYaw(0.2 * i, 0, 0, 0)});
+  for (int i : {0, 250, 500}) est.push_back({0.1 * i, poseFromXyzYaw(2.0 * i, 0, 0, 0)});
+  writeTum(path("ref.tum"), ref);
+  writeTum(path("est.tum"), est);
+  ASSERT_EQ(run("slide-eval", "ate " + path("est.tum") + " " + path("ref.tum") + " --align sim3 --json " + path("a.json")),
+            0)
+      << output();
+  const Json j = readJsonFile(path("a.json"));
+  EXPECT_NEAR(j.at("scale").get<double>(), 0.1, 1e-6);
+  const Json& w = j.at("warnings");
+  ASSERT_EQ(w.size(), 2u) << j.dump();
+  EXPECT_NE(w[0].get<std::string>().find("only 3 of 501 reference poses"), std::string::npos) << j.dump();
+  EXPECT_NE(w[1].get<std::string>().find("sim3 scale"), std::string::npos) << j.dump();
+  EXPECT_NE(output().find("WARNING: sim3 scale"), std::string::npos) << output();
+  // The same files under se3 keep only the coverage warning; a full, sane run has none.
+  ASSERT_EQ(run("slide-eval", "ate " + path("est.tum") + " " + path("ref.tum") + " --json " + path("b.json")), 0);
+  EXPECT_EQ(readJsonFile(path("b.json")).at("warnings").size(), 1u);
+  ASSERT_EQ(run("slide-eval", "ate " + path("ref.tum") + " " + path("ref.tum") + " --align sim3 --json " + path("c.json")),
+            0);
+  EXPECT_TRUE(readJsonFile(path("c.json")).at("warnings").empty());
+}
+
 TEST_F(EvalCli, ObjectsTransformAndPlots) {
   std::ofstream(path("gt.txt")) << "-2 0 0 0.8\n-2 10 0 0.8\n-1 5 5 2\n";
   std::ofstream(path("est.txt")) << "-2 0.4 0 0.8\n-1 5 5.2 2\n3 40 40 1\n";

@@ -101,3 +101,38 @@ TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
   EXPECT_LT(transformError(out[0].T_a_b, drift).trans_m, 0.05);
   for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 5000);
 }
+
+// A 200,000-object map: SlideGraph stops on its time budget (no transform, flagged and
+// counted); a map update over max_map_objects is dropped and counted, the previous map stays.
+TEST(LoopCloser, LargeMapsAreBoundedByTheTimeBudgetAndTheMapSizeLimit) {
+  LoopCloserParams p;
+  p.robot = 0;
+  p.stagger_s = 0;
+  p.place.slidegraph.budget_ms = 20;
+  p.max_map_objects = 300000;
+  LoopCloser lc(p);
+  const ObjectMap big = sceneMap(200000, 4000, 5, 0);
+  ASSERT_TRUE(lc.setOwnMap(big, 0.0));
+  ASSERT_TRUE(lc.setPeerMap(1, movedCopy(big, poseFromXyzYaw(5, 3, 0, 0.4), 1000000, 6), 0.0));
+  EXPECT_TRUE(lc.poll(0.0).empty());
+  EXPECT_EQ(lc.counts().budget_exceeded, 1);
+  EXPECT_NE(lc.lastReason().find("time budget of 20 ms exceeded"), std::string::npos) << lc.lastReason();
+
+  const std::vector<Landmark> a = landmarksOf(big);
+  const PlaceResult r = slideGraph(a, a, p.place.slidegraph);
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.budget_exhausted);
+  EXPECT_TRUE(r.inliers.empty());
+
+  LoopCloserParams q = p;
+  q.max_map_objects = 1000;
+  LoopCloser small(q);
+  const ObjectMap own = sceneMap(80, 40, 1, 0);
+  ASSERT_TRUE(small.setOwnMap(own, 0.0));
+  EXPECT_FALSE(small.setPeerMap(2, sceneMap(1001, 400, 2, 5000), 0.0));
+  EXPECT_FALSE(small.setOwnMap(sceneMap(1001, 400, 3, 0), 0.0));
+  EXPECT_EQ(small.counts().oversized_maps, 2);
+  ASSERT_TRUE(small.setPeerMap(2, movedCopy(own, poseFromXyzYaw(1, 2, 0, 0.3), 1000, 2), 0.0));
+  EXPECT_EQ(small.poll(10.0).size(), 1u) << small.lastReason();  // the kept 80-object own map still matches
+  EXPECT_EQ(small.counts().budget_exceeded, 0);
+}

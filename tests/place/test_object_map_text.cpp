@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "mapio/object_map_text.h"
@@ -62,4 +63,24 @@ TEST(ObjectMapText, ErrorsNameFileAndLine) {
   EXPECT_EQ(nan.map.size(), 1u);
   ASSERT_EQ(nan.warnings.size(), 1u);
   EXPECT_EQ(nan.warnings[0], "n.txt:1: non-finite number, object skipped");
+}
+
+TEST(ObjectMapText, DirectoryAndOutOfRangeLabelAreErrorsNamingThem) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const std::string dir = ::testing::TempDir() + "slide_map_dir";
+  std::filesystem::create_directories(dir);
+  try {
+    readObjectMapText(dir, classes);
+    FAIL() << "a directory was read as an empty map";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not an object map file");
+  }
+  for (const char* label : {"1e20", "-1e20", "2147483648"}) {
+    try {
+      parseObjectMapText(std::string("1 0 0 0\n") + label + " 1 2 3\n", "big.txt", classes);
+      ADD_FAILURE() << "label " << label << " was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("big.txt:2: class label '") + label + "' is out of the integer range");
+    }
+  }
 }

@@ -263,3 +263,86 @@ TEST(SensorDriver, RgbdMasksOnlyEmulatedOrOracle) {
     for (float c : f.instance_confidence) EXPECT_EQ(c, 1.0f);
   fs::remove_all(work);
 }
+
+namespace {
+struct Failure {
+  int exit_code = 0;
+  std::vector<stream_status_t> statuses;
+};
+
+std::vector<stream_status_t> readStatuses(const fs::path& log) {
+  std::vector<stream_status_t> out;
+  lcm::LogFile f(log.string(), "r");
+  if (!f.good()) return out;
+  while (const lcm::LogEvent* ev = f.readNextEvent()) {
+    stream_status_t m;
+    if (ev->channel == "SENSOR_STATUS" && m.decode(ev->data, 0, ev->datalen) > 0) out.push_back(m);
+  }
+  return out;
+}
+
+// The driver with --no-publish --log on `dataset`; what its log's status channel says.
+Failure runFailing(const fs::path& work, const std::string& dataset, const std::string& args) {
+  const fs::path log = work / "failed.lcm";
+  fs::remove(log);
+  const std::string cmd = std::string(SLIDE_BINARY_DIR) + "/bin/slide-sensor-driver " + dataset +
+                          " --rate 0 --no-progress --no-publish --log " + log.string() + " " + args + " > " +
+                          (work / "driver.log").string() + " 2>&1";
+  Failure f;
+  f.exit_code = std::system(cmd.c_str());
+  f.statuses = readStatuses(log);
+  return f;
+}
+}  // namespace
+
+TEST(SensorDriver, StopOnABadDatasetOrConfigPublishesFailedWithTheReason) {
+  const fs::path work = fs::temp_directory_path() / ("slide_test_driver_failed_" + std::to_string(::getpid()));
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const std::string missing = (work / "no_such_robot").string();
+  Failure bad = runFailing(work, missing, "");
+  EXPECT_NE(bad.exit_code, 0);
+  ASSERT_EQ(bad.statuses.size(), 1u) << driverLog(work);
+  EXPECT_EQ(bad.statuses[0].state, stream_status_t::FAILED);
+  EXPECT_NE(bad.statuses[0].reason.find(missing), std::string::npos) << bad.statuses[0].reason;
+  EXPECT_EQ(bad.statuses[0].source, missing);
+
+  writeSmallForest(work, 2);
+  std::ofstream(work / "drv.yaml") << "sensor_driver:\n  rate: 1\n  max_gap: 2\n";
+  Failure cfg = runFailing(work, (work / "data" / "robot0").string(), "--config " + (work / "drv.yaml").string());
+  EXPECT_NE(cfg.exit_code, 0);
+  ASSERT_EQ(cfg.statuses.size(), 1u) << driverLog(work);
+  EXPECT_EQ(cfg.statuses[0].state, stream_status_t::FAILED);
+  EXPECT_NE(cfg.statuses[0].reason.find("sensor_driver.max_gap (line 3): unknown key; did you mean 'max_gap_s'?"),
+            std::string::npos)
+      << cfg.statuses[0].reason;
+
+  Failure good = runFailing(work, (work / "data" / "robot0").string(), "");  // control: a clean run ends FINISHED
+  EXPECT_EQ(good.exit_code, 0) << driverLog(work);
+  ASSERT_FALSE(good.statuses.empty());
+  EXPECT_EQ(good.statuses.back().state, stream_status_t::FINISHED);
+  EXPECT_EQ(good.statuses.back().reason, "");
+  fs::remove_all(work);
+}
+
+TEST(SensorDriver, BadDatasetAtStartPublishesFailedOnTheBus) {
+  if (!canRun()) GTEST_SKIP() << "needs root, unshare, ip and the LCM tools";
+  const fs::path work = fs::temp_directory_path() / ("slide_test_driver_failed_bus_" + std::to_string(::getpid()));
+  fs::remove_all(work);
+  fs::create_directories(work / "empty_robot");
+  const std::string url = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+  std::ofstream(work / "run.sh") << "ip link set lo up\nip route add 224.0.0.0/4 dev lo\ncd " << work << "\n"
+                                 << "lcm-logger -q -f --lcm-url='" << url << "' rec.lcm & L=$!\nsleep 1\n"
+                                 << SLIDE_BINARY_DIR << "/bin/slide-sensor-driver " << (work / "empty_robot")
+                                 << " --no-progress --lcm-url='" << url << "'\necho \"driver exit $?\"\n"
+                                 << "sleep 0.5\nkill -INT $L; wait $L\n";
+  std::system(("unshare -n bash " + (work / "run.sh").string() + " > " + (work / "run.log").string() + " 2>&1").c_str());
+  std::ifstream in(work / "run.log");
+  const std::string run_log((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(run_log.find("driver exit 1"), std::string::npos) << run_log;
+  const std::vector<stream_status_t> st = readStatuses(work / "rec.lcm");
+  ASSERT_EQ(st.size(), 1u) << run_log;
+  EXPECT_EQ(st[0].state, stream_status_t::FAILED);
+  EXPECT_NE(st[0].reason.find("empty_robot"), std::string::npos) << st[0].reason;
+  fs::remove_all(work);
+}

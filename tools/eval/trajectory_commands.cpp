@@ -12,6 +12,7 @@
 #include "eval/rpe.h"
 #include "eval/time_association.h"
 #include "eval/trajectory_file.h"
+#include "eval/trajectory_warnings.h"
 #include "io/io_error.h"
 
 namespace slide {
@@ -48,12 +49,7 @@ AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_r
   *n_est = est.size();
   *n_ref = ref.size();
   try {
-    AssociatedPoses p = associatePoses(est, ref, a.max_dt, a.offset, 3);
-    if (p.t.size() * 2 < std::min(est.size(), ref.size()))
-      spdlog::warn("only {} of {} estimate and {} reference poses matched in time: check the stamps (KITTI poses are "
-                   "stamped by frame index unless --est-times/--ref-times are given), --max-dt and --offset",
-                   p.t.size(), est.size(), ref.size());
-    return p;
+    return associatePoses(est, ref, a.max_dt, a.offset, 3);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(e.what()) +
                                 "; KITTI poses are stamped by frame index unless --est-times/--ref-times are given, "
@@ -73,6 +69,18 @@ Json poseJson(const Pose& T) {
   j["qw"] = q.w();
   j["yaw_deg"] = yawOf(T.linear()) * 180 / M_PI;
   return j;
+}
+
+// Logs each warning (and prints it under the figures) and returns them as a JSON array.
+Json warnings(std::initializer_list<std::optional<std::string>> found) {
+  Json out = Json::array();
+  for (const auto& w : found) {
+    if (!w) continue;
+    spdlog::warn("{}", *w);
+    std::printf("  WARNING: %s\n", w->c_str());
+    out.push_back(*w);
+  }
+  return out;
 }
 
 }  // namespace
@@ -118,6 +126,8 @@ EvalCommand addAteCommand(CLI::App* cmd) {
                 r.alignment.T.translation().x(), r.alignment.T.translation().y(), r.alignment.T.translation().z(),
                 yawOf(r.alignment.T.linear()) * 180 / M_PI, r.alignment.scale);
     std::printf("  translation error: %s\n", statsLine(s, "m").c_str());
+    const Json warned = warnings({coverageWarning(p.t.size(), n_est, n_ref),
+                                  *align == "sim3" ? scaleWarning(r.alignment.scale) : std::nullopt});
     if (!save_aligned->empty()) {
       std::vector<StampedPose> out;
       for (std::size_t i = 0; i < p.t.size(); ++i) {
@@ -147,6 +157,7 @@ EvalCommand addAteCommand(CLI::App* cmd) {
     j["translation_m"] = statsJson(s);
     j["scale"] = r.alignment.scale;
     j["transform"] = poseJson(r.alignment.T);
+    j["warnings"] = warned;
     return j;
   };
 }
@@ -179,6 +190,8 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
                 r.trans_errors.size(), o.scale);
     std::printf("  translation: %s\n", statsLine(r.translation, "m").c_str());
     std::printf("  rotation:    %s\n", statsLine(r.rotation_deg, "deg").c_str());
+    const Json warned =
+        warnings({coverageWarning(p.t.size(), n_est, n_ref), *align == "sim3" ? scaleWarning(o.scale) : std::nullopt});
     Json j;
     j["metric"] = "rpe";
     j["estimate"] = a->est;
@@ -189,6 +202,7 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
     j["pairs"] = r.trans_errors.size();
     j["translation_m"] = statsJson(r.translation);
     j["rotation_deg"] = statsJson(r.rotation_deg);
+    j["warnings"] = warned;
     return j;
   };
 }

@@ -32,7 +32,7 @@ void printJson(const std::string& method, const slide::PlaceResult& r) {
   std::printf(", \"inliers\": %zu, \"residual_rms\": %.6f, \"chance_inliers\": %.3f, \"score\": %.1f", r.inliers.size(),
               r.residual_rms, r.chance_inliers, r.score);
   if (method == "slidegraph") std::printf(", \"associations\": %zu", r.associations);
-  std::printf(", \"ms\": %.3f", r.ms);
+  std::printf(", \"ms\": %.3f, \"budget_exhausted\": %s", r.ms, r.budget_exhausted ? "true" : "false");
   if (!r.found) std::printf(", \"reason\": \"%s\"", jsonEscape(r.reason).c_str());
   std::printf("}\n");
 }
@@ -52,14 +52,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--classes", classes_path, "Class table (default: config/classes.yaml)");
   app.add_option("--config", config_path, "Place-recognition parameters (default: config/place.yaml)");
-  app.add_option("--budget-ms", budget_ms, "SlideMatch time budget in ms (overrides the config)");
+  app.add_option("--budget-ms", budget_ms, "Time budget of either method in ms (overrides the config)");
   app.add_option("MAP_A", map_a, "Reference map")->required();
   app.add_option("MAP_B", map_b, "Map whose frame is found in MAP_A's")->required();
   return slide::runApp(app, common, argc, argv, [&]() {
     const slide::ClassTable classes =
         classes_path.empty() ? slide::ClassTable::loadDefault() : slide::ClassTable::load(classes_path);
     slide::PlaceConfig config = config_path.empty() ? slide::loadDefaultPlaceConfig() : slide::loadPlaceConfig(config_path);
-    if (budget_ms >= 0) config.slidematch.budget_ms = budget_ms;
+    if (budget_ms >= 0) config.slidematch.budget_ms = config.slidegraph.budget_ms = budget_ms;
     std::vector<slide::Landmark> lms[2];
     const std::string paths[2] = {map_a, map_b};
     for (int k = 0; k < 2; ++k) {
