@@ -9,11 +9,7 @@ ObservationDb::ObservationDb(const std::string& journal_path) {
   if (journal_path.empty()) return;
   std::vector<JournalRecord> records;
   journal_ = std::make_unique<Journal>(journal_path, &records, &recovery_);
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const std::string why = apply(records[i]);
-    if (why.empty()) continue;
-    if (recovery_.skipped++ == 0) recovery_.first_skipped = "record " + std::to_string(i + 1) + ": " + why;
-  }
+  replayRecords(records, [this](const JournalRecord& r) { return apply(r); }, recovery_);
 }
 
 std::string ObservationDb::apply(const JournalRecord& r) {
