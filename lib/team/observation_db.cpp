@@ -58,13 +58,11 @@ bool ObservationDb::addAbsent(std::int32_t origin, std::int32_t first, std::int3
   if (first > last) return false;
   auto held = held_.find(origin);
   if (held != held_.end() && held->second.intersects({first, last})) return false;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(first);
-    w.svarint(last);
-    journal_->append(kAbsent, w.data());
-  }
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(first);
+  w.svarint(last);
+  if (!journal(kAbsent, w.data())) return false;
   absent_[origin].insert(SeqRange{first, last});
   held_[origin].insert(SeqRange{first, last});
   return true;
@@ -89,15 +87,13 @@ const ObservationDb::Entry* ObservationDb::get(std::int32_t origin, std::int32_t
 
 bool ObservationDb::add(std::int32_t origin, std::int32_t seq, Entry entry) {
   if (has(origin, seq)) return false;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(seq);
-    w.u8(entry.first ? 1 : 0);
-    w.f32(entry.step_m);
-    w.bytes(entry.data.data(), entry.data.size());
-    journal_->append(kBundle, w.data());
-  }
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(seq);
+  w.u8(entry.first ? 1 : 0);
+  w.f32(entry.step_m);
+  w.bytes(entry.data.data(), entry.data.size());
+  if (!journal(kBundle, w.data())) return false;
   insert(origin, seq, std::move(entry));
   return true;
 }
@@ -132,13 +128,23 @@ std::optional<std::pair<std::int32_t, std::int32_t>> ObservationDb::nextToDelive
 
 void ObservationDb::markDelivered(std::int32_t origin, std::int32_t seq) {
   if (delivered(origin, seq)) return;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(seq);
-    journal_->append(kDelivered, w.data());
-  }
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(seq);
+  journal(kDelivered, w.data());  // recorded in memory all the same: no delivery loop on a full disk
   delivered_[origin].insert(seq);
+}
+
+bool ObservationDb::journal(std::uint8_t type, const Bytes& payload) {
+  if (!journal_) return true;
+  try {
+    journal_->append(type, payload);
+    return true;
+  } catch (const std::runtime_error& e) {
+    ++journal_failures_;
+    journal_error_ = e.what();
+    return false;
+  }
 }
 
 bool ObservationDb::delivered(std::int32_t origin, std::int32_t seq) const {

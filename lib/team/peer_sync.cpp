@@ -127,11 +127,16 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     else if (missing > cfg_.max_seq_jump) d = Drop::SeqJump;
     if (d != Drop::kCount) return drop(d), d;
     // Bundles lost on the robot bus: peers learn that they do not exist, delivery goes on.
-    b.gap = static_cast<std::int32_t>(missing);
+    // The gap reaches back to the last bundle held: absences journalled here before a bundle
+    // the journal then refused (a full disk) were never sent with it.
     if (missing > 0) {
-      db_.addAbsent(cfg_.robot, own.max() + 1, b.seq - 1);
+      if (!db_.addAbsent(cfg_.robot, own.max() + 1, b.seq - 1)) return drop(Drop::JournalWrite), Drop::JournalWrite;
       drops_[static_cast<int>(Drop::Lost)] += static_cast<std::uint64_t>(missing);
     }
+    const auto stored = db_.stored().find(cfg_.robot);
+    b.gap = static_cast<std::int32_t>(stored == db_.stored().end() || stored->second.empty()
+                                          ? missing
+                                          : std::int64_t{b.seq} - stored->second.max() - 1);
   } else {
     b.gap = 0;
   }
@@ -139,11 +144,13 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
   ObservationDb::Entry e;
   e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
-  own_shared_[b.seq] = sharedEncoding(b.seq, e.data);
-  own_added_at_[b.seq] = now;
+  Bytes shared = sharedEncoding(b.seq, e.data);
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
-  db_.add(b.origin, b.seq, std::move(e));
+  // Not journalled (a full disk): not held either; the next one bridges the gap to it.
+  if (!db_.add(b.origin, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
+  own_shared_[b.seq] = std::move(shared);
+  own_added_at_[b.seq] = now;
   return std::nullopt;
 }
 
@@ -290,13 +297,15 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
         (stored != db_.stored().end() && stored->second.intersects(gap)))
       return drop(Drop::Malformed);
     // (Already absent when an earlier copy was cut short between the two journal records.)
-    if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last)) return drop(Drop::Malformed);
+    const std::uint64_t failures = db_.journalFailures();
+    if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last))
+      return drop(db_.journalFailures() > failures ? Drop::JournalWrite : Drop::Malformed);
   }
   ObservationDb::Entry e;
   e.data = std::move(data);
   e.first = starts;
   e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
-  db_.add(m.origin, seq, std::move(e));
+  if (!db_.add(m.origin, seq, std::move(e))) return drop(Drop::JournalWrite);  // not held: sent again
   // In order, the next heartbeat acknowledges it whenever it goes; a gap means a loss that only
   // our heartbeat gets resent.
   if (lacksSome(m.origin)) somethingNew();

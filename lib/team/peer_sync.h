@@ -82,6 +82,9 @@ class PeerSyncNode {
   // One line per peer: rates, bytes per landmark and per metre.
   std::vector<std::string> trafficSummary(Micros now) const;
   void persist() { counters_.save(); }
+  const CounterStore& counters() const { return counters_; }
+  // Writes of the journal or counters.txt that failed (a full disk): an alarm, never fatal.
+  std::uint64_t stateWriteFailures() const { return db_.journalFailures() + counters_.writeFailures(); }
 
  private:
   using Key = std::pair<std::int32_t, std::int32_t>;  // (origin, seq)

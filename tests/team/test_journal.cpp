@@ -127,7 +127,8 @@ TEST(CounterStore, OwnCountersGrowAcrossRestartsAndAcceptedPersist) {
   EXPECT_TRUE(c.accept(3, 101));
   EXPECT_FALSE(c.accept(3, 99));  // at or below the persisted highest: too old to tell
   std::ofstream(path) << "own x\n";
-  EXPECT_THROW(CounterStore bad(path), std::runtime_error);
+  CounterStore bad(path);  // skipped with a warning (test_peer_sync_full_disk.cpp), not fatal
+  EXPECT_EQ(bad.warnings().size(), 1u);
   fs::remove_all(dir);
 }
 
