@@ -62,6 +62,16 @@ Bytes MessageAuth::canonical(const Chunk& m) {
   return w.take();
 }
 
+Bytes MessageAuth::canonicalBundle(std::int32_t origin, std::int32_t seq, const Bytes& data) {
+  ByteWriter w;
+  w.u8('B');
+  w.u32(static_cast<std::uint32_t>(origin));
+  w.u32(static_cast<std::uint32_t>(seq));
+  w.u32(static_cast<std::uint32_t>(data.size()));
+  w.bytes(data.data(), data.size());
+  return w.take();
+}
+
 Bytes MessageAuth::canonical(const Ack& m) {
   ByteWriter w;
   w.u8('A');
@@ -104,6 +114,12 @@ bool MessageAuth::check(std::int32_t sender, const Bytes& data, const Mac& mac) 
   if (!sender_in_team) return false;
   const Mac t = tag(keys_.at(sender), data);
   return equal(mac.data() + slot * kTagBytes, t.data(), kTagBytes);
+}
+
+bool MessageAuth::verifyBundle(std::int32_t origin, std::int32_t seq, const Bytes& data, const Mac& tags) const {
+  if (origin != robot_) return check(origin, canonicalBundle(origin, seq, data), tags);
+  const Mac mine = bundleTags(seq, data);
+  return !mine.empty() && tags.size() == mine.size() && equal(tags.data(), mine.data(), mine.size());
 }
 
 bool MessageAuth::equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t n) {

@@ -5,6 +5,11 @@
 // A receiver checks its own tag only, so a team member can forge nothing another robot would
 // accept as coming from a third (it lacks their pair's key). 64-bit tags: a forgery succeeds
 // with probability 2^-64 per try.
+//
+// Bundles carry their origin's tags too (over origin, seq and encoding), which relays forward
+// unchanged: a relayed bundle is taken only when its origin's tag for the receiver verifies,
+// so a relay can pass bundles on but forge none (bundle_pack.h). An origin checks the bundles
+// of its own that come back from peers (after it lost its journal) against all its tags.
 #include <string>
 #include <vector>
 
@@ -31,7 +36,14 @@ class MessageAuth {
   bool verify(const Chunk& m) const { return check(m.sender, canonical(m), m.mac); }
   bool verify(const Ack& m) const { return check(m.sender, canonical(m), m.mac); }
 
+  // This robot's tags, as origin, for its bundle `seq` encoded as `data`.
+  Mac bundleTags(std::int32_t seq, const Bytes& data) const { return tags(canonicalBundle(robot_, seq, data)); }
+  // Whether `tags` hold `origin`'s good tag for this robot over its bundle `seq`; for this
+  // robot's own bundle (coming back from a peer), whether every tag is this robot's.
+  bool verifyBundle(std::int32_t origin, std::int32_t seq, const Bytes& data, const Mac& tags) const;
+
   static Bytes canonical(const Heartbeat& m);
+  static Bytes canonicalBundle(std::int32_t origin, std::int32_t seq, const Bytes& data);
   static Bytes canonical(const Chunk& m);
   static Bytes canonical(const Ack& m);
   // Tag bytes a message of a team of `n` robots carries.

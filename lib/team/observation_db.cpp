@@ -18,11 +18,17 @@ std::string ObservationDb::apply(const JournalRecord& r) {
   if (in.ok() && (origin < INT32_MIN || origin > INT32_MAX || seq < INT32_MIN || seq > INT32_MAX))
     in.fail("origin or seq out of range");
   const auto o = static_cast<std::int32_t>(origin), q = static_cast<std::int32_t>(seq);
-  if (r.type == kBundle) {
+  if (r.type == kBundle || r.type == kReceived) {
     Entry e;
     e.first = in.u8() != 0;
     e.step_m = in.f32();
     if (in.ok() && !(std::isfinite(e.step_m) && e.step_m >= 0)) in.fail("step length not finite and >= 0");
+    if (r.type == kReceived) {
+      e.received = true;
+      const std::uint64_t n = in.varint();
+      if (in.ok() && n > in.remaining()) in.fail("tag length out of range");
+      for (std::uint64_t k = 0; in.ok() && k < n; ++k) e.tags.push_back(in.u8());
+    }
     if (!in.ok()) return "bad bundle record: " + in.error();
     if (absent(o, q)) return "bundle " + std::to_string(o) + "/" + std::to_string(q) + " was declared absent";
     e.data.assign(r.payload.begin() + static_cast<std::ptrdiff_t>(in.position()), r.payload.end());
@@ -92,8 +98,12 @@ bool ObservationDb::add(std::int32_t origin, std::int32_t seq, Entry entry) {
   w.svarint(seq);
   w.u8(entry.first ? 1 : 0);
   w.f32(entry.step_m);
+  if (entry.received) {
+    w.varint(entry.tags.size());
+    w.bytes(entry.tags.data(), entry.tags.size());
+  }
   w.bytes(entry.data.data(), entry.data.size());
-  if (!journal(kBundle, w.data())) return false;
+  if (!journal(entry.received ? kReceived : kBundle, w.data())) return false;
   insert(origin, seq, std::move(entry));
   return true;
 }

@@ -24,6 +24,8 @@ class ObservationDb {
     Bytes data;           // compact encoding (codec.h)
     bool first = false;   // first bundle of its origin
     float step_m = 0;     // length of its relative odometry (for per-metre accounting)
+    bool received = false;  // from a peer (not this robot's own input)
+    Bytes tags;           // its origin's tags (message_auth.h), forwarded when relayed
   };
 
   // Rebuilds from the journal at `journal_path` (created if missing; empty path: memory only).
@@ -55,7 +57,8 @@ class ObservationDb {
   const std::string& lastJournalError() const { return journal_error_; }
 
  private:
-  enum RecordType : std::uint8_t { kBundle = 1, kDelivered = 2, kAbsent = 3 };
+  // kBundle: own input; kReceived: from a peer, with its origin's tags.
+  enum RecordType : std::uint8_t { kBundle = 1, kDelivered = 2, kAbsent = 3, kReceived = 4 };
   // Empty when the record was used, else why it was skipped.
   std::string apply(const JournalRecord& r);
   bool journal(std::uint8_t type, const Bytes& payload);  // false (and counted) when the write failed

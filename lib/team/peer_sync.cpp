@@ -33,17 +33,24 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       next_heartbeat_(now) {
   // What was shared of the journalled own bundles: the same stream through the same policy.
   // One that does not decode (a journal of another encoding version) is not shared, and counted.
+  // Own bundles that came back from peers keep the tags they came with: never signed here.
   auto own = db_.stored().find(cfg_.robot);
   if (own == db_.stored().end()) return;
   for (const SeqRange& r : own->second.ranges())
     for (std::int64_t seq = r.first; seq <= r.last; ++seq) {
       const auto s = static_cast<std::int32_t>(seq);
+      if (db_.get(cfg_.robot, s)->received) continue;
       try {
-        own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
+        share(s, sharedEncoding(s, db_.get(cfg_.robot, s)->data));
       } catch (const std::runtime_error&) {
         drop(Drop::Undeliverable);
       }
     }
+}
+
+void PeerSyncNode::share(std::int32_t seq, Bytes shared) {
+  own_tags_[seq] = auth_.bundleTags(seq, shared);
+  own_shared_[seq] = std::move(shared);
 }
 
 // The thinning sees the bundle as decoded from its journalled encoding, so that replaying the
@@ -65,6 +72,15 @@ const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) co
   }  // (own bundles recovered from peers after losing the journal are held as shared)
   const ObservationDb::Entry* e = db_.get(origin, seq);
   return e ? &e->data : nullptr;
+}
+
+const Bytes* PeerSyncNode::wireTags(std::int32_t origin, std::int32_t seq) const {
+  if (origin == cfg_.robot) {
+    auto it = own_tags_.find(seq);
+    if (it != own_tags_.end()) return &it->second;
+  }
+  const ObservationDb::Entry* e = db_.get(origin, seq);
+  return e && !e->tags.empty() ? &e->tags : nullptr;
 }
 
 PeerSyncNode::~PeerSyncNode() {
@@ -149,7 +165,7 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   // Not journalled (a full disk): not held either; the next one bridges the gap to it.
   if (!db_.add(b.origin, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
-  own_shared_[b.seq] = std::move(shared);
+  share(b.seq, std::move(shared));
   own_added_at_[b.seq] = now;
   return std::nullopt;
 }
@@ -265,7 +281,11 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
     receiveBundle(m, static_cast<std::int32_t>(m.seq + static_cast<std::int64_t>(i)), std::move((*bundles)[i]), now);
 }
 
-void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now) {
+void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle packed, Micros now) {
+  // The chunk's MAC proves its sender only; the origin's tag for this robot proves the bundle,
+  // whoever relays it (and whatever its origin holds, which may be a bundle given back).
+  if (!auth_.verifyBundle(m.origin, seq, packed.data, packed.tags)) return drop(Drop::BadMac);
+  Bytes data = std::move(packed.data);
   const Key key{m.origin, seq};
   // Overheard or not, the addressees now have it: do not send it to them too.
   for (auto& [id, p] : peers_)
@@ -303,6 +323,8 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
   }
   ObservationDb::Entry e;
   e.data = std::move(data);
+  e.received = true;
+  e.tags = std::move(packed.tags);
   e.first = starts;
   e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
   if (!db_.add(m.origin, seq, std::move(e))) return drop(Drop::JournalWrite);  // not held: sent again
@@ -517,7 +539,7 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
   // bundle larger than a chunk goes alone, in several).
   struct Pack {
     std::int32_t first;
-    std::vector<const Bytes*> bundles;
+    std::vector<const Bytes*> bundles, tags;
     std::vector<std::int32_t> to;
     std::size_t bytes;
   };
@@ -526,16 +548,20 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
     std::vector<Pack> list;
     for (const auto& [seq, to] : seqs) {
       const Bytes* data = wirePayload(origin, seq);
-      if (!data) continue;
-      const std::size_t add = packedSize(data->size());
+      const Bytes* tags = wireTags(origin, seq);
+      // A bundle without its origin's tags (journalled by an older version) would be refused
+      // by everyone: not sent.
+      if (!data || !tags) continue;
+      const std::size_t add = packedSize(data->size(), tags ? tags->size() : 0);
       Pack* last = list.empty() ? nullptr : &list.back();
       if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
           last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack &&
           last->bundles[0]->front() == data->front()) {
         last->bundles.push_back(data);
+        last->tags.push_back(tags);
         last->bytes += add;
       } else {
-        list.push_back({seq, {data}, to, 2 + add});  // format byte, count
+        list.push_back({seq, {data}, {tags}, to, 2 + add});  // format byte, count
       }
     }
     // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).
@@ -558,7 +584,7 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       if (next[i] == list.size()) continue;
       const Pack& pack = list[next[i]++];
       const SendResult r = sendPayload(ChunkKind::Bundle, pack.to.size() == 1 ? pack.to[0] : -1, origin, pack.first,
-                                       packBundles(pack.bundles), pack.to, now, out);
+                                       packBundles(pack.bundles, pack.tags), pack.to, now, out);
       if (r == SendResult::TooLarge) continue;
       if (r == SendResult::RateLimited) return;
       for (std::size_t k = 0; k < pack.bundles.size(); ++k) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "team/bandwidth.h"
+#include "team/bundle_pack.h"
 #include "team/bundle.h"
 #include "team/counters.h"
 #include "team/drop_reason.h"
@@ -107,7 +108,7 @@ class PeerSyncNode {
   void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
   void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
   void receiveBundleChunk(const Chunk& m, Micros now);
-  void receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now);  // one of its pack
+  void receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle packed, Micros now);  // one of its pack
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
   OriginRanges announced() const;  // what heartbeats say is held (own bundles once sent)
@@ -124,6 +125,8 @@ class PeerSyncNode {
   // encoding is held (cached).
   std::optional<BundleContext> contextOf(std::int32_t origin, std::int32_t seq) const;
   Bytes sharedEncoding(std::int32_t seq, const Bytes& full);
+  void share(std::int32_t seq, Bytes shared);  // an own bundle as shared, with its tags
+  const Bytes* wireTags(std::int32_t origin, std::int32_t seq) const;  // origin's tags, or null
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
@@ -133,6 +136,7 @@ class PeerSyncNode {
   ObservationDb db_;
   ObservationThinning thinning_;
   std::map<std::int32_t, Bytes> own_shared_;  // own bundles as shared, by seq
+  std::map<std::int32_t, Bytes> own_tags_;    // and their tags, as origin
   std::map<std::int32_t, Micros> own_added_at_;  // own bundles not sent yet: when they came
   mutable std::map<Key, BundleContext> contexts_;
   Reassembler reassembler_;
