@@ -8,15 +8,18 @@ Bytes packBundles(const std::vector<const Bytes*>& bundles, const std::vector<co
   if (bundles.empty() || bundles[0]->empty()) throw std::invalid_argument("packBundles: nothing to pack");
   if (!tags.empty() && tags.size() != bundles.size()) throw std::invalid_argument("packBundles: tags do not match");
   const std::uint8_t format = (*bundles[0])[0];
+  bool tagged = false;
+  for (const Bytes* t : tags) tagged = tagged || (t && !t->empty());
   ByteWriter w;
   w.u8(format);
-  w.varint(bundles.size());
+  w.varint(bundles.size() * 2 + (tagged ? 1 : 0));
   for (std::size_t i = 0; i < bundles.size(); ++i) {
     const Bytes* b = bundles[i];
     if (b->empty() || (*b)[0] != format) throw std::invalid_argument("packBundles: bundles of different formats");
     w.varint(b->size() - 1);
     w.bytes(b->data() + 1, b->size() - 1);
-    const Bytes* t = tags.empty() ? nullptr : tags[i];
+    if (!tagged) continue;
+    const Bytes* t = tags[i];
     if (t && t->size() > kMaxPackedTags) throw std::invalid_argument("packBundles: tags too long");
     w.varint(t ? t->size() : 0);
     if (t) w.bytes(t->data(), t->size());
@@ -32,15 +35,16 @@ std::size_t varintSize(std::uint64_t v) {
 }
 }  // namespace
 
-std::size_t packedSize(std::size_t size, std::size_t tag_bytes) {
+std::size_t packedSize(std::size_t size, std::size_t tag_bytes, bool tagged) {
   const std::size_t body = size > 0 ? size - 1 : 0;
-  return varintSize(body) + body + varintSize(tag_bytes) + tag_bytes;
+  return varintSize(body) + body + (tagged ? varintSize(tag_bytes) + tag_bytes : 0);
 }
 
 std::optional<std::vector<PackedBundle>> unpackBundles(const Bytes& payload, std::string* error) {
   ByteReader r(payload);
   const std::uint8_t format = r.u8();
-  const std::uint64_t n = r.varint();
+  const std::uint64_t head = r.varint(), n = head / 2;
+  const bool tagged = head & 1;
   if (r.ok() && (n < 1 || n > kMaxBundlesPerPack || n > r.remaining()))
     r.fail("bundle count " + std::to_string(n) + " out of range");
   std::vector<PackedBundle> out;
@@ -58,7 +62,7 @@ std::optional<std::vector<PackedBundle>> unpackBundles(const Bytes& payload, std
     b.data.push_back(format);
     b.data.insert(b.data.end(), p, p + len);
     for (std::uint64_t k = 0; k < len; ++k) r.u8();
-    const std::uint64_t tag_len = r.varint();
+    const std::uint64_t tag_len = tagged ? r.varint() : 0;
     if (r.ok() && (tag_len > kMaxPackedTags || tag_len > r.remaining())) {
       r.fail("bundle " + std::to_string(i) + " tag length " + std::to_string(tag_len) + " out of range");
       break;

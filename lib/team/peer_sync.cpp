@@ -41,16 +41,11 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       const auto s = static_cast<std::int32_t>(seq);
       if (db_.get(cfg_.robot, s)->received) continue;
       try {
-        share(s, sharedEncoding(s, db_.get(cfg_.robot, s)->data));
+        own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
       } catch (const std::runtime_error&) {
         drop(Drop::Undeliverable);
       }
     }
-}
-
-void PeerSyncNode::share(std::int32_t seq, Bytes shared) {
-  own_tags_[seq] = auth_.bundleTags(seq, shared);
-  own_shared_[seq] = std::move(shared);
 }
 
 // The thinning sees the bundle as decoded from its journalled encoding, so that replaying the
@@ -74,14 +69,6 @@ const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) co
   return e ? &e->data : nullptr;
 }
 
-const Bytes* PeerSyncNode::wireTags(std::int32_t origin, std::int32_t seq) const {
-  if (origin == cfg_.robot) {
-    auto it = own_tags_.find(seq);
-    if (it != own_tags_.end()) return &it->second;
-  }
-  const ObservationDb::Entry* e = db_.get(origin, seq);
-  return e && !e->tags.empty() ? &e->tags : nullptr;
-}
 
 PeerSyncNode::~PeerSyncNode() {
   try {
@@ -165,7 +152,7 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   // Not journalled (a full disk): not held either; the next one bridges the gap to it.
   if (!db_.add(b.origin, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
-  share(b.seq, std::move(shared));
+  own_shared_[b.seq] = std::move(shared);
   own_added_at_[b.seq] = now;
   return std::nullopt;
 }
@@ -282,9 +269,17 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
 }
 
 void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle packed, Micros now) {
-  // The chunk's MAC proves its sender only; the origin's tag for this robot proves the bundle,
-  // whoever relays it (and whatever its origin holds, which may be a bundle given back).
-  if (!auth_.verifyBundle(m.origin, seq, packed.data, packed.tags)) return drop(Drop::BadMac);
+  // The chunk's MAC proves its sender only: a relayed bundle needs its origin's tag for this
+  // robot. An own bundle given back (this robot lost its journal) needs its tags as this robot
+  // makes them, or, untagged, must be older than every own bundle made since: it is then held
+  // but never sent on, so it vouches for nothing and blocks no new one.
+  if (m.origin == cfg_.robot) {
+    const bool older = !own_shared_.empty() && seq < own_shared_.begin()->first;
+    if (packed.tags.empty() ? !older : !auth_.verifyBundle(m.origin, seq, packed.data, packed.tags))
+      return drop(Drop::BadMac);
+  } else if (m.sender != m.origin && !auth_.verifyBundle(m.origin, seq, packed.data, packed.tags)) {
+    return drop(Drop::BadMac);
+  }
   Bytes data = std::move(packed.data);
   const Key key{m.origin, seq};
   // Overheard or not, the addressees now have it: do not send it to them too.
@@ -521,6 +516,16 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
           own_to_origin && k != p.known.end() && !k->second.empty() ? k->second.max() : INT32_MIN;
       for (std::int32_t seq : missing) {
         if (own_to_origin && seq >= origin_max) break;
+        // Another origin's bundle goes only where its tag block lets it be taken (its origin
+        // takes it back untagged, see receiveBundle); an own one given back untagged
+        // (unverified) goes nowhere.
+        if (origin != cfg_.robot) {
+          const ObservationDb::Entry* e = db_.get(origin, seq);
+          if (!e || (!own_to_origin && !auth_.bundleTagged(origin, e->tags, id))) continue;
+        } else if (!own_shared_.count(seq)) {
+          const ObservationDb::Entry* e = db_.get(origin, seq);
+          if (!e || e->tags.empty()) continue;
+        }
         const Key key{origin, seq};
         const Micros lacking = p.lacking_since.emplace(key, now).first->second;
         if (relay && now - lacking < secs(cfg_.relay_delay_s)) continue;
@@ -542,26 +547,45 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
     std::vector<const Bytes*> bundles, tags;
     std::vector<std::int32_t> to;
     std::size_t bytes;
+    bool tagged;
   };
+  std::deque<Bytes> own_tags;  // made for this send (stable addresses)
   std::vector<std::pair<std::int32_t, std::vector<Pack>>> packs;
   for (const auto& [origin, seqs] : due) {
     std::vector<Pack> list;
     for (const auto& [seq, to] : seqs) {
       const Bytes* data = wirePayload(origin, seq);
-      const Bytes* tags = wireTags(origin, seq);
-      // A bundle without its origin's tags (journalled by an older version) would be refused
-      // by everyone: not sent.
-      if (!data || !tags) continue;
-      const std::size_t add = packedSize(data->size(), tags ? tags->size() : 0);
+      if (!data) continue;
+      const Bytes* tags = nullptr;
+      if (origin == cfg_.robot && own_shared_.count(seq)) {
+        // Tagged for the members it does not reach now (relays take it there); when sent
+        // again (something was lost), for all.
+        bool again = false;
+        for (std::int32_t id : to) again = again || peers_[id].sent.count({origin, seq}) > 0;
+        std::vector<std::int32_t> members;
+        for (std::int32_t id : cfg_.team)
+          if (again || std::find(to.begin(), to.end(), id) == to.end()) members.push_back(id);
+        own_tags.push_back(auth_.bundleTags(seq, *data, members));
+        if (!own_tags.back().empty()) tags = &own_tags.back();
+      } else if (const ObservationDb::Entry* e = db_.get(origin, seq); e && !e->tags.empty()) {
+        tags = &e->tags;  // as its origin made them
+      }
+      const std::size_t tag_bytes = tags ? tags->size() : 0;
       Pack* last = list.empty() ? nullptr : &list.back();
-      if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
-          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack &&
-          last->bundles[0]->front() == data->front()) {
+      const bool joins = last && last->to == to &&
+                         last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
+                         last->bundles.size() < kMaxBundlesPerPack && last->bundles[0]->front() == data->front();
+      const bool tagged = tag_bytes > 0 || (joins && last->tagged);
+      // A pack turning tagged: a tag length (0) for each bundle already in it.
+      const std::size_t add = packedSize(data->size(), tag_bytes, tagged) +
+                              (joins && tagged && !last->tagged ? last->bundles.size() : 0);
+      if (joins && last->bytes + add <= cfg_.max_chunk_bytes) {
         last->bundles.push_back(data);
         last->tags.push_back(tags);
         last->bytes += add;
+        last->tagged = tagged;
       } else {
-        list.push_back({seq, {data}, {tags}, to, 2 + add});  // format byte, count
+        list.push_back({seq, {data}, {tags}, to, 2 + packedSize(data->size(), tag_bytes, tag_bytes > 0), tag_bytes > 0});
       }
     }
     // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).

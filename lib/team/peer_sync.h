@@ -125,8 +125,6 @@ class PeerSyncNode {
   // encoding is held (cached).
   std::optional<BundleContext> contextOf(std::int32_t origin, std::int32_t seq) const;
   Bytes sharedEncoding(std::int32_t seq, const Bytes& full);
-  void share(std::int32_t seq, Bytes shared);  // an own bundle as shared, with its tags
-  const Bytes* wireTags(std::int32_t origin, std::int32_t seq) const;  // origin's tags, or null
   std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
 
   SyncConfig cfg_;
@@ -136,7 +134,6 @@ class PeerSyncNode {
   ObservationDb db_;
   ObservationThinning thinning_;
   std::map<std::int32_t, Bytes> own_shared_;  // own bundles as shared, by seq
-  std::map<std::int32_t, Bytes> own_tags_;    // and their tags, as origin
   std::map<std::int32_t, Micros> own_added_at_;  // own bundles not sent yet: when they came
   mutable std::map<Key, BundleContext> contexts_;
   Reassembler reassembler_;
