@@ -77,8 +77,10 @@ int OptimizerNode::openJournal(const std::string& path) {
   journal_.reset();
   journal_ = std::make_unique<team::Journal>(path, &records, &journal_recovery_);
   if (journal_recovery_.dropped_bytes)
-    spdlog::warn("journal {}: cut a damaged tail of {} bytes after {} good records (saved to {})", path,
-                 journal_recovery_.dropped_bytes, journal_recovery_.records, journal_recovery_.damaged_copy);
+    spdlog::warn("journal {}: cut a damaged tail of {} bytes after {} good records ({})", path,
+                 journal_recovery_.dropped_bytes, journal_recovery_.records,
+                 journal_recovery_.not_saved.empty() ? "saved to " + journal_recovery_.damaged_copy
+                                                     : journal_recovery_.not_saved);
   replaying_ = true;
   // Whatever one record does (not an input, its replay throws), the others are still replayed.
   const int replayed = static_cast<int>(team::replayRecords(

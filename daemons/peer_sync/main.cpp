@@ -234,8 +234,8 @@ int main(int argc, char** argv) {
       spdlog::warn("robot {}: journal {}: skipped {} records it cannot use (first: {})", robot, state_dir, rec.skipped,
                    rec.first_skipped);
     spdlog::info("robot {}: journal {} holds {} bundles ({} records){}", robot, state_dir, node.db().size(), rec.records,
-                 rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
-                                                 rec.damaged_copy)
+                 rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes ({})", rec.dropped_bytes,
+                                                 rec.not_saved.empty() ? "saved to " + rec.damaged_copy : rec.not_saved)
                                    : std::string());
     spdlog::info("robot {}: robot bus {}, team bus {}", robot, robot_url, team_url);
     PeerSyncDaemon daemon(node, robot_bus, team_bus, ch, max_deliveries);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -96,7 +97,12 @@ Journal::Journal(const std::string& path, std::vector<JournalRecord>* records, J
     info.damaged_copy = path + ".damaged-" + std::to_string(pos);
     std::ofstream out(info.damaged_copy, std::ios::binary);
     out.write(reinterpret_cast<const char*>(file.data() + pos), static_cast<std::streamsize>(info.dropped_bytes));
-    if (!out) throw std::runtime_error("journal " + path + ": cannot save damaged tail to " + info.damaged_copy);
+    out.close();
+    if (!out) {  // a damaged tail is no reason not to start: it is cut all the same
+      info.not_saved = "cannot save it to " + info.damaged_copy + ": " + std::strerror(errno);
+      std::remove(info.damaged_copy.c_str());
+      info.damaged_copy.clear();
+    }
   }
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw sysError("cannot open for writing", path);

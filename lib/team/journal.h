@@ -1,8 +1,8 @@
 #pragma once
 // An append-only file of checksummed records that survives kill -9 at any instant: each
 // record goes out in one write(), and on opening, a damaged or truncated tail is detected,
-// saved aside (<path>.damaged-<offset>) and cut off, so appends continue after the last good
-// record. A failed append (a full disk) is cut back off too, so a torn record never hides the
+// saved aside (<path>.damaged-<offset>; on a full disk it is not) and cut off, so appends
+// continue after the last good record. A failed append (a full disk) is cut back off too, so a torn record never hides the
 // records after it. Record: magic "SJ1\n", type u8, length u32, payload, CRC-32 of
 // type+length+payload. Used by peer sync (observation_db.h) and the optimizer daemon.
 #include <cstdint>
@@ -24,6 +24,7 @@ struct JournalRecovery {
   std::size_t good_bytes = 0;     // file length kept
   std::size_t dropped_bytes = 0;  // damaged tail cut off (0 when the file was clean)
   std::string damaged_copy;       // where the damaged tail was saved, if any
+  std::string not_saved;          // why it could not be saved (a full disk): cut all the same
   std::size_t skipped = 0;        // intact records the reader could not use (and skipped)
   std::string first_skipped;      // why the first of them was skipped
 };

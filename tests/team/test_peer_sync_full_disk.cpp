@@ -1,7 +1,8 @@
 // Peer sync's state files against an unlucky disk (issue 16, findings 5 and 6): a full disk
 // while journalling bundles, deliveries and counters is counted (an alarm), never fatal, and
 // syncing goes on once space returns; a damaged counters.txt (one bad character) does not stop
-// the robot: the bad line is skipped with a warning and the robot is heard after a restart.
+// the robot: the bad line is skipped with a warning and the robot is heard after a restart. A
+// damaged journal tail on a full disk is cut without its saved copy.
 #include <gtest/gtest.h>
 
 #include <sched.h>
@@ -13,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "team/journal.h"
 #include "team/sim_network.h"
 #include "team_test_util.h"
 
@@ -100,6 +102,35 @@ TEST(PeerSyncFullDisk, WritesThatFailAreCountedNotFatalAndSyncGoesOnWhenSpaceRet
     net.run(30 * kSecond);
     EXPECT_TRUE(deliveredFrom(net, 2, kIds[0]).count(43));
   }
+  umount(dir.c_str());
+  fs::remove_all(dir);
+}
+
+TEST(PeerSyncFullDisk, AJournalWithADamagedTailOpensOnAFullDiskAndTheTailIsCutUnsaved) {
+  const std::string dir = freshDir("tail");
+  if (geteuid() != 0 || unshare(CLONE_NEWNS) != 0 || mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
+      mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=64k") != 0)
+    GTEST_SKIP() << "cannot mount a small tmpfs (needs root)";
+  const std::string path = dir + "/journal.bin";
+  {
+    Journal j(path, nullptr);
+    for (int i = 0; i < 3; ++i) j.append(1, Bytes(100, static_cast<std::uint8_t>(i)));
+  }
+  const auto good = fs::file_size(path);
+  std::ofstream(path, std::ios::app | std::ios::binary) << std::string(5000, 'x');  // a torn tail
+  {
+    std::ofstream fill(dir + "/fill", std::ios::binary);
+    const std::string block(4096, 'x');
+    while (fill << block << std::flush) {
+    }
+  }
+  std::vector<JournalRecord> records;
+  JournalRecovery info;
+  ASSERT_NO_THROW(Journal(path, &records, &info));
+  EXPECT_EQ(records.size(), 3u);
+  EXPECT_EQ(fs::file_size(path), good);
+  EXPECT_NE(info.not_saved.find("cannot save it to " + path + ".damaged-"), std::string::npos) << info.not_saved;
+  EXPECT_TRUE(info.damaged_copy.empty());
   umount(dir.c_str());
   fs::remove_all(dir);
 }
