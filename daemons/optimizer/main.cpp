@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
   app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
   app.add_option("--journal", journal_path,
-                 "LCM log of every accepted input: replayed at start, appended while running");
+                 "journal of every accepted input (checksummed records): replayed at start, appended while running");
   app.add_option("--out-dir", out_dir, "write TUM trajectories here at exit and on SIGUSR1");
   app.add_option("--publish-every", publish_every, "publish map and trajectories every N updates (and on full solves)")
       ->capture_default_str();

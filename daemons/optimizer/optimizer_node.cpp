@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -16,10 +15,23 @@
 namespace slide {
 
 namespace {
-// Journal channel names are fixed, whatever the bus's channel names are.
+// Journal record types are the inputs' fixed channel names, whatever the bus calls them.
+constexpr int kInputs = 3;
 const char* journalChannel(int kind) {
-  static const char* names[] = {"KEYPOSE_BUNDLE", "PEER_BUNDLE", "LOOP_CLOSURE"};
+  static const char* names[kInputs] = {"KEYPOSE_BUNDLE", "PEER_BUNDLE", "LOOP_CLOSURE"};
   return names[kind];
+}
+std::uint8_t recordType(int kind) { return static_cast<std::uint8_t>(kind + 1); }
+
+// The journal of versions before checksums was an LCM log: refused, not cut as damage.
+void checkJournalFile(const std::string& path) {
+  if (!std::filesystem::exists(path)) return;
+  // A device or pipe would feed the reader without end.
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("journal " + path + " is not a regular file");
+  if (!team::Journal::looksLikeJournal(path))
+    throw std::runtime_error("journal " + path + " is not a slide journal (an LCM log of an optimizer before "
+                             "checksummed journals?): move it aside to start afresh; slide-journal-replay --journal " +
+                             path + " still reads an LCM log");
 }
 
 template <typename M>
@@ -50,51 +62,64 @@ std::int64_t OptimizerNode::now() const {
       .count();
 }
 
+std::vector<OptimizerNode::JournalInput> OptimizerNode::readJournal(const std::string& path,
+                                                                   team::JournalRecovery* recovery) {
+  checkJournalFile(path);
+  std::vector<JournalInput> out;
+  for (auto& r : team::Journal::read(path, recovery))
+    if (r.type >= 1 && r.type <= kInputs) out.push_back({journalChannel(r.type - 1), std::move(r.payload)});
+  return out;
+}
+
 int OptimizerNode::openJournal(const std::string& path) {
-  int replayed = 0;
-  if (std::filesystem::exists(path)) {
-    // A device or pipe would feed the log reader without end.
-    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("journal " + path + " is not a regular file");
-    lcm::LogFile in(path, "r");
-    if (!in.good()) throw std::runtime_error("cannot read journal " + path);
-    replaying_ = true;
-    while (const lcm::LogEvent* e = in.readNextEvent()) {
-      for (int kind = 0; kind < 3; ++kind)
-        if (e->channel == journalChannel(kind)) {
-          process(static_cast<Input>(kind), e->data, e->datalen);
-          ++replayed;
-        }
-    }
-    replaying_ = false;
-    spdlog::info("journal {}: replayed {} inputs ({} key poses, {} landmarks)", path, replayed,
-                 optimizer_.numKeyPoses(), optimizer_.numLandmarks());
-  }
-  journal_ = std::make_unique<lcm::LogFile>(path, "a");
-  if (!journal_->good()) throw std::runtime_error("cannot append to journal " + path);
+  checkJournalFile(path);
+  std::vector<team::JournalRecord> records;
+  journal_.reset();
+  journal_ = std::make_unique<team::Journal>(path, &records, &journal_recovery_);
+  if (journal_recovery_.dropped_bytes)
+    spdlog::warn("journal {}: cut a damaged tail of {} bytes after {} good records ({})", path,
+                 journal_recovery_.dropped_bytes, journal_recovery_.records,
+                 journal_recovery_.not_saved.empty() ? "saved to " + journal_recovery_.damaged_copy
+                                                     : journal_recovery_.not_saved);
+  replaying_ = true;
+  // Whatever one record does (not an input, its replay throws), the others are still replayed.
+  const int replayed = static_cast<int>(team::replayRecords(
+      records,
+      [this](const team::JournalRecord& r) -> std::string {
+        if (r.type < 1 || r.type > kInputs) return "unknown record type " + std::to_string(r.type);
+        process(static_cast<Input>(r.type - 1), r.payload.data(), static_cast<int>(r.payload.size()));
+        return {};
+      },
+      journal_recovery_));
+  replaying_ = false;
+  replay_skipped_ = static_cast<int>(journal_recovery_.skipped);
+  if (replay_skipped_)
+    spdlog::warn("journal {}: skipped {} records it cannot replay (first: {})", path, replay_skipped_,
+                 journal_recovery_.first_skipped);
+  spdlog::info("journal {}: replayed {} inputs ({} key poses, {} landmarks)", path, replayed, optimizer_.numKeyPoses(),
+               optimizer_.numLandmarks());
   return replayed;
 }
 
 void OptimizerNode::journal(Input kind, const void* data, int size) {
   if (!journal_ || replaying_) return;
-  lcm::LogEvent e;
-  e.timestamp = now();
-  e.channel = journalChannel(static_cast<int>(kind));
-  e.datalen = size;
-  e.data = const_cast<void*>(data);
   // A failed write (a full disk) is an alarm, not a reason to stop: the input is in the graph
-  // but would be lost at a restart. Counted, logged as an error, shown in every status.
-  errno = 0;
-  const bool ok = journal_->writeEvent(&e) == 0 && std::fflush(journal_->getFilePtr()) == 0;
-  if (ok) return;
-  ++unjournalled_;
-  const auto t = std::chrono::steady_clock::now();
-  if (unjournalled_ == 1 || t - last_alarm_ > std::chrono::seconds(10)) {
-    spdlog::error("JOURNAL WRITE FAILED ({}): {} accepted inputs so far are not in the journal and would be lost "
-                  "at a restart",
-                  errno ? std::strerror(errno) : "short write", unjournalled_);
-    last_alarm_ = t;
+  // but would be lost at a restart. Counted, logged as an error, shown in every status. The
+  // journal cuts a torn record back off, so later records stay reachable.
+  try {
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    journal_->append(recordType(static_cast<int>(kind)), team::Bytes(p, p + size));
+    return;
+  } catch (const std::exception& e) {
+    ++unjournalled_;
+    const auto t = std::chrono::steady_clock::now();
+    if (unjournalled_ == 1 || t - last_alarm_ > std::chrono::seconds(10)) {
+      spdlog::error("JOURNAL WRITE FAILED ({}): {} accepted inputs so far are not in the journal and would be lost "
+                    "at a restart",
+                    e.what(), unjournalled_);
+      last_alarm_ = t;
+    }
   }
-  std::clearerr(journal_->getFilePtr());
 }
 
 void OptimizerNode::handle(const std::string& channel, const void* data, int size) {

@@ -1,9 +1,8 @@
 #pragma once
 // The optimizer daemon's logic without the LCM loop: decodes input messages, feeds the
-// back-end, journals every accepted input to an LCM log (replayed at start, so a restarted
+// back-end, journals every accepted input (team/journal.h: checksummed records, one per input,
+// its type the input channel and its payload the LCM bytes; replayed at start, so a restarted
 // daemon rebuilds the same state), and publishes map, trajectories and status.
-#include <lcm/lcm-cpp.hpp>
-
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "backend/optimizer.h"
 #include "slide/keypose_bundle_t.hpp"
 #include "slide/loop_closure_t.hpp"
+#include "team/journal.h"
 
 namespace slide {
 
@@ -34,9 +34,19 @@ class OptimizerNode {
   ~OptimizerNode();
 
   // Replays the journal at `path` (if it exists) through the same handlers without
-  // publishing, then keeps appending accepted inputs to it. Returns the events replayed.
-  // Throws std::runtime_error naming the path when it cannot be opened or written.
+  // publishing, then keeps appending accepted inputs to it. Returns the inputs replayed. A
+  // damaged tail is cut and saved aside (<path>.damaged-<offset>); a record that is not an
+  // input or whose replay throws is skipped, counted (replaySkipped) and logged. Throws
+  // std::runtime_error naming the path when it cannot be opened or written, or when it holds
+  // the LCM log of versions before the checksummed journal.
   int openJournal(const std::string& path);
+  // The inputs of the journal at `path` as (channel, LCM bytes), the file unchanged (for tools);
+  // a damaged tail is reported in `recovery`. Throws like openJournal.
+  struct JournalInput {
+    std::string channel;
+    std::vector<uint8_t> bytes;
+  };
+  static std::vector<JournalInput> readJournal(const std::string& path, team::JournalRecovery* recovery = nullptr);
 
   // Raw LCM input on `channel` (one of the three input channels). Undecodable data and
   // rejected inputs are counted and logged as warnings.
@@ -54,6 +64,9 @@ class OptimizerNode {
   int decodeErrors() const { return decode_errors_; }
   // Accepted inputs the journal could not take (a full disk): an alarm in every status.
   int unjournalled() const { return unjournalled_; }
+  // Journal records skipped at the last openJournal (not an input, or their replay threw).
+  int replaySkipped() const { return replay_skipped_; }
+  const team::JournalRecovery& journalRecovery() const { return journal_recovery_; }
 
  private:
   enum class Input { Bundle, PeerBundle, LoopClosure };
@@ -73,7 +86,9 @@ class OptimizerNode {
   int unjournalled_ = 0;
   std::chrono::steady_clock::time_point last_alarm_{};
   bool replaying_ = false;
-  std::unique_ptr<lcm::LogFile> journal_;
+  int replay_skipped_ = 0;
+  team::JournalRecovery journal_recovery_;
+  std::unique_ptr<team::Journal> journal_;
 };
 
 }  // namespace slide

@@ -111,6 +111,23 @@ class PeerSyncDaemon {
       robot_.publish(ch_.peer_map, &m);
       spdlog::info("map of robot {} ({} objects) delivered", map.robot, map.objects.size());
     }
+    alarmOnWriteFailures();
+  }
+
+  // A full disk is an alarm, not a crash: an error at the first failed write and every 10 s
+  // while more fail; the count goes out in every status.
+  void alarmOnWriteFailures() {
+    const std::uint64_t n = node_.stateWriteFailures();
+    if (n == alarmed_failures_) return;
+    const auto t = std::chrono::steady_clock::now();
+    if (alarmed_failures_ != 0 && t - last_alarm_ < std::chrono::seconds(10)) return;
+    const std::string& journal = node_.db().lastJournalError();
+    const std::string& counters = node_.counters().lastWriteError();
+    spdlog::error("STATE WRITE FAILED: {} writes of the journal or counters.txt failed so far (last: {}{}{}); bundles "
+                  "not journalled are not taken, peers send them again",
+                  n, journal, !journal.empty() && !counters.empty() ? "; " : "", counters);
+    alarmed_failures_ = n;
+    last_alarm_ = t;
   }
 
   void logStats() {
@@ -136,6 +153,7 @@ class PeerSyncDaemon {
       st.drop_counts.push_back(static_cast<int64_t>(node_.drops()[d]));
     }
     st.num_drops = static_cast<int16_t>(st.drop_reasons.size());
+    st.state_write_failures = static_cast<int64_t>(node_.stateWriteFailures());
     if (robot_.publish(ch_.status, &st) != 0) spdlog::warn("{}: publish failed", ch_.status);
   }
 
@@ -150,6 +168,8 @@ class PeerSyncDaemon {
   msg::Inbox robot_inbox_, team_inbox_;
   Channels ch_;
   int max_deliveries_;
+  std::uint64_t alarmed_failures_ = 0;
+  std::chrono::steady_clock::time_point last_alarm_{};
 };
 
 }  // namespace
@@ -210,13 +230,14 @@ int main(int argc, char** argv) {
     if (!robot_bus.good()) throw std::runtime_error("cannot open robot bus " + robot_url);
     if (!team_bus.good()) throw std::runtime_error("cannot open team bus " + team_url);
     PeerSyncNode node(sync, state_dir, nowMicros(), ch.team);
+    for (const auto& w : node.counters().warnings()) spdlog::warn("robot {}: {}", robot, w);
     const auto& rec = node.db().recovery();
     if (rec.skipped)
       spdlog::warn("robot {}: journal {}: skipped {} records it cannot use (first: {})", robot, state_dir, rec.skipped,
                    rec.first_skipped);
     spdlog::info("robot {}: journal {} holds {} bundles ({} records){}", robot, state_dir, node.db().size(), rec.records,
-                 rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes (saved to {})", rec.dropped_bytes,
-                                                 rec.damaged_copy)
+                 rec.dropped_bytes ? fmt::format(", cut a damaged tail of {} bytes ({})", rec.dropped_bytes,
+                                                 rec.not_saved.empty() ? "saved to " + rec.damaged_copy : rec.not_saved)
                                    : std::string());
     spdlog::info("robot {}: robot bus {}, team bus {}", robot, robot_url, team_url);
     PeerSyncDaemon daemon(node, robot_bus, team_bus, ch, max_deliveries);

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
-#include <stdexcept>
 
 namespace slide::team {
 
@@ -28,19 +29,19 @@ CounterStore::CounterStore(std::string path, WallClock clock, std::int64_t max_a
     if (line.empty()) continue;
     std::istringstream ss(line);
     std::string key;
+    std::int32_t id = 0;
+    std::int64_t c = 0;
     ss >> key;
-    if (key == "own") {
-      ss >> reserved_;
-      own_ = reserved_;
-    } else if (key == "sender") {
-      std::int32_t id;
-      std::int64_t c;
-      ss >> id >> c;
-      accepted_[id] = Seen{c};
-    } else {
-      ss.setstate(std::ios::failbit);
+    if (key == "own") ss >> c;
+    else if (key == "sender") ss >> id >> c;
+    else ss.setstate(std::ios::failbit);
+    std::string rest;  // nothing may follow the numbers
+    if (!ss || ss >> rest) {
+      warnings_.push_back(path_ + ":" + std::to_string(lineno) + ": skipped malformed counter line '" + line + "'");
+      continue;
     }
-    if (!ss) throw std::runtime_error(path_ + ":" + std::to_string(lineno) + ": malformed counter line '" + line + "'");
+    if (key == "own") own_ = reserved_ = c;
+    else accepted_[id] = Seen{c};
   }
   // Reserved beyond what any receiver accepts (a clock that ran ahead, a damaged file): going on
   // from there would silence this robot, so start again from the clock.
@@ -52,7 +53,9 @@ std::int64_t CounterStore::nextOwn() {
   own_ = std::max(own_ + 1, clock_());
   if (own_ > reserved_) {
     reserved_ = own_ + kBlock;
-    write();  // before the counter is used, so a restart never reuses it
+    // Before the counter is used, so a restart never reuses it. Should the write fail, the
+    // clock still keeps a restart beyond it (unless the clock is set back meanwhile).
+    write();
   }
   return own_;
 }
@@ -101,15 +104,24 @@ void CounterStore::save() {
 void CounterStore::write() {
   if (path_.empty()) return;
   const std::string tmp = path_ + ".tmp";
+  std::string error;
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << "own " << reserved_ << "\n";
     for (const auto& [id, c] : accepted_) out << "sender " << id << " " << c.highest << "\n";
     out.flush();
-    if (!out) throw std::runtime_error("cannot write counter file " + tmp);
+    if (!out) error = "cannot write counter file " + tmp;
   }
-  if (std::rename(tmp.c_str(), path_.c_str()) != 0) throw std::runtime_error("cannot replace counter file " + path_);
-  dirty_ = false;
+  if (error.empty() && std::rename(tmp.c_str(), path_.c_str()) != 0) error = "cannot replace counter file " + path_;
+  if (error.empty()) {
+    dirty_ = false;
+    return;
+  }
+  // The old file stays as it was; this state is written again at the next save.
+  write_error_ = error + ": " + std::strerror(errno);
+  std::remove(tmp.c_str());
+  ++write_failures_;
+  dirty_ = true;
 }
 
 }  // namespace slide::team

@@ -11,10 +11,17 @@
 // `max_ahead` µs (a counter from the future would otherwise lock the sender out until its
 // clock got there), and forgets a persisted highest that lies beyond that. Only the highest is
 // persisted: after a restart nothing at or below it is accepted.
+//
+// A damaged file does not stop a robot: a line that does not parse is skipped with a warning
+// (warnings()); without its `own` line the robot goes on from the clock, as with the file lost,
+// and a sender without its line is taken as new, as with the file lost. A failed write (a
+// full disk) is counted (writeFailures), never thrown: counters go on from memory and the
+// clock, and the file is written again at the next save.
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace slide::team {
 
@@ -27,8 +34,9 @@ class CounterStore {
   static constexpr std::int64_t kWindow = 64;
   enum class Verdict { New, Replay, Future };
 
-  // Loads `path` if it exists (empty path: in memory only); throws std::runtime_error naming the
-  // file and line on a malformed file. `max_ahead`: µs a sender's counter may lead `clock`.
+  // Loads `path` if it exists (empty path: in memory only); lines that do not parse are
+  // skipped, each named by file and line in warnings(). `max_ahead`: µs a sender's counter may
+  // lead `clock`.
   explicit CounterStore(std::string path, WallClock clock = systemWallClock(), std::int64_t max_ahead = 300000000);
 
   std::int64_t nextOwn();  // reserves a new block on disk when needed
@@ -37,7 +45,10 @@ class CounterStore {
   Verdict check(std::int32_t sender, std::int64_t counter);
   bool accept(std::int32_t sender, std::int64_t counter) { return check(sender, counter) == Verdict::New; }
   std::int64_t lastAccepted(std::int32_t sender) const;
-  void save();  // writes the file when something changed since the last save
+  void save();  // writes the file when something changed since the last save (or a write failed)
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  std::uint64_t writeFailures() const { return write_failures_; }
+  const std::string& lastWriteError() const { return write_error_; }
 
  private:
   void write();
@@ -52,6 +63,9 @@ class CounterStore {
   };
   std::map<std::int32_t, Seen> accepted_;
   bool dirty_ = false;
+  std::vector<std::string> warnings_;
+  std::uint64_t write_failures_ = 0;
+  std::string write_error_;
 };
 
 }  // namespace slide::team

@@ -20,6 +20,7 @@ enum class Drop : int {
   Lost,            // own bundles that never reached peer sync (counted per bundle; the gap is bridged)
   FutureCounter,   // counter beyond the local clock plus max_counter_ahead_s (not accepted, locks nobody out)
   Undeliverable,   // a held bundle that does not decode with its predecessor: skipped at delivery
+  JournalWrite,    // not taken: the journal could not be written (a full disk); peers send it again
   kCount
 };
 
@@ -27,7 +28,7 @@ inline const char* dropName(Drop d) {
   static constexpr std::array<const char*, static_cast<int>(Drop::kCount)> names = {
       "unknown_sender", "bad_mac",  "replay",    "malformed", "unknown_origin", "wrong_origin",
       "seq_backwards",  "seq_jump", "duplicate", "stale",     "overflow",       "lost",
-      "future_counter", "undeliverable"};
+      "future_counter", "undeliverable",  "journal_write"};
   return names[static_cast<int>(d)];
 }
 

@@ -62,6 +62,16 @@ Bytes MessageAuth::canonical(const Chunk& m) {
   return w.take();
 }
 
+Bytes MessageAuth::canonicalBundle(std::int32_t origin, std::int32_t seq, const Bytes& data) {
+  ByteWriter w;
+  w.u8('B');
+  w.u32(static_cast<std::uint32_t>(origin));
+  w.u32(static_cast<std::uint32_t>(seq));
+  w.u32(static_cast<std::uint32_t>(data.size()));
+  w.bytes(data.data(), data.size());
+  return w.take();
+}
+
 Bytes MessageAuth::canonical(const Ack& m) {
   ByteWriter w;
   w.u8('A');
@@ -104,6 +114,64 @@ bool MessageAuth::check(std::int32_t sender, const Bytes& data, const Mac& mac) 
   if (!sender_in_team) return false;
   const Mac t = tag(keys_.at(sender), data);
   return equal(mac.data() + slot * kTagBytes, t.data(), kTagBytes);
+}
+
+int MessageAuth::slotOf(std::int32_t origin, std::int32_t member) const {
+  if (member == origin) return -1;
+  int slot = 0;
+  for (std::int32_t id : team_) {
+    if (id == member) return slot;
+    if (id != origin) ++slot;
+  }
+  return -1;
+}
+
+Bytes MessageAuth::bundleTags(std::int32_t seq, const Bytes& data, const std::vector<std::int32_t>& members) const {
+  std::uint16_t bits = 0;
+  for (std::int32_t m : members)
+    if (const int slot = slotOf(robot_, m); slot >= 0) bits |= static_cast<std::uint16_t>(1u << slot);
+  if (!bits) return {};
+  const Bytes data_c = canonicalBundle(robot_, seq, data);
+  ByteWriter w;
+  w.u16(bits);
+  for (std::int32_t id : team_)  // ascending, so tags follow the bits in order
+    if (const int slot = slotOf(robot_, id); slot >= 0 && (bits >> slot & 1)) {
+      const Mac t = tag(keys_.at(id), data_c);
+      w.bytes(t.data(), t.size());
+    }
+  return w.take();
+}
+
+bool MessageAuth::bundleTagged(std::int32_t origin, const Bytes& block, std::int32_t member) const {
+  const int slot = slotOf(origin, member);
+  return slot >= 0 && block.size() >= 2 && ((block[0] | block[1] << 8) >> slot & 1);
+}
+
+bool MessageAuth::verifyBundle(std::int32_t origin, std::int32_t seq, const Bytes& data, const Bytes& block) const {
+  if (block.size() < 2) return false;
+  const unsigned bits = block[0] | block[1] << 8;
+  if (block.size() != 2 + kTagBytes * static_cast<std::size_t>(__builtin_popcount(bits))) return false;
+  if (origin == robot_) {  // every tag must be one this robot would make
+    const Bytes mine = bundleTags(seq, data, team_);
+    if (mine.size() < 2) return false;
+    const unsigned my_bits = mine[0] | mine[1] << 8;
+    if ((bits & ~my_bits) != 0 || bits == 0) return false;
+    std::size_t at = 2, mine_at = 2;
+    for (int slot = 0; slot < 16; ++slot) {
+      if (!(my_bits >> slot & 1)) continue;
+      if (bits >> slot & 1) {
+        if (!equal(block.data() + at, mine.data() + mine_at, kTagBytes)) return false;
+        at += kTagBytes;
+      }
+      mine_at += kTagBytes;
+    }
+    return true;
+  }
+  const int slot = slotOf(origin, robot_);
+  if (slot < 0 || !(bits >> slot & 1) || !keys_.count(origin)) return false;
+  const std::size_t index = static_cast<std::size_t>(__builtin_popcount(bits & ((1u << slot) - 1)));
+  const Mac t = tag(keys_.at(origin), canonicalBundle(origin, seq, data));
+  return equal(block.data() + 2 + index * kTagBytes, t.data(), kTagBytes);
 }
 
 bool MessageAuth::equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t n) {

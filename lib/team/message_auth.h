@@ -5,6 +5,14 @@
 // A receiver checks its own tag only, so a team member can forge nothing another robot would
 // accept as coming from a third (it lacks their pair's key). 64-bit tags: a forgery succeeds
 // with probability 2^-64 per try.
+//
+// A bundle can carry its origin's tags too (over origin, seq and encoding), which relays
+// forward unchanged: a relayed bundle is taken only when its origin's tag for the receiver
+// verifies, so a relay can pass bundles on but forge none (bundle_pack.h). A tag block holds
+// a u16 bitmap over the members other than the origin (ascending ids) and a tag per set bit;
+// the origin tags a bundle for the members it does not reach directly (for all when it sends
+// again), so bundles that need no relay carry no tags. An origin checks the bundles of its own
+// that come back from peers (after it lost its journal) against its own tags.
 #include <string>
 #include <vector>
 
@@ -31,7 +39,18 @@ class MessageAuth {
   bool verify(const Chunk& m) const { return check(m.sender, canonical(m), m.mac); }
   bool verify(const Ack& m) const { return check(m.sender, canonical(m), m.mac); }
 
+  // This robot's tag block, as origin, for its bundle `seq` encoded as `data`, with a tag for
+  // each of `members` (other team members; others ignored); empty when there is none.
+  Bytes bundleTags(std::int32_t seq, const Bytes& data, const std::vector<std::int32_t>& members) const;
+  Bytes bundleTags(std::int32_t seq, const Bytes& data) const { return bundleTags(seq, data, team_); }  // for all
+  // Whether the tag block holds a tag of `origin` for `member`.
+  bool bundleTagged(std::int32_t origin, const Bytes& block, std::int32_t member) const;
+  // Whether the tag block holds `origin`'s good tag for this robot over its bundle `seq`; for
+  // this robot's own bundle (coming back from a peer), whether it holds tags and all are right.
+  bool verifyBundle(std::int32_t origin, std::int32_t seq, const Bytes& data, const Bytes& block) const;
+
   static Bytes canonical(const Heartbeat& m);
+  static Bytes canonicalBundle(std::int32_t origin, std::int32_t seq, const Bytes& data);
   static Bytes canonical(const Chunk& m);
   static Bytes canonical(const Ack& m);
   // Tag bytes a message of a team of `n` robots carries.
@@ -42,6 +61,7 @@ class MessageAuth {
 
  private:
   Mac tag(const std::string& key, const Bytes& data) const;
+  int slotOf(std::int32_t origin, std::int32_t member) const;  // bit of `member` in origin's blocks, or -1
   static bool equal(const std::uint8_t* a, const std::uint8_t* b, std::size_t n);  // constant time
   std::int32_t robot_;
   std::vector<std::int32_t> team_;  // sorted

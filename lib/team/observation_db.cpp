@@ -9,11 +9,7 @@ ObservationDb::ObservationDb(const std::string& journal_path) {
   if (journal_path.empty()) return;
   std::vector<JournalRecord> records;
   journal_ = std::make_unique<Journal>(journal_path, &records, &recovery_);
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const std::string why = apply(records[i]);
-    if (why.empty()) continue;
-    if (recovery_.skipped++ == 0) recovery_.first_skipped = "record " + std::to_string(i + 1) + ": " + why;
-  }
+  replayRecords(records, [this](const JournalRecord& r) { return apply(r); }, recovery_);
 }
 
 std::string ObservationDb::apply(const JournalRecord& r) {
@@ -22,11 +18,17 @@ std::string ObservationDb::apply(const JournalRecord& r) {
   if (in.ok() && (origin < INT32_MIN || origin > INT32_MAX || seq < INT32_MIN || seq > INT32_MAX))
     in.fail("origin or seq out of range");
   const auto o = static_cast<std::int32_t>(origin), q = static_cast<std::int32_t>(seq);
-  if (r.type == kBundle) {
+  if (r.type == kBundle || r.type == kReceived) {
     Entry e;
     e.first = in.u8() != 0;
     e.step_m = in.f32();
     if (in.ok() && !(std::isfinite(e.step_m) && e.step_m >= 0)) in.fail("step length not finite and >= 0");
+    if (r.type == kReceived) {
+      e.received = true;
+      const std::uint64_t n = in.varint();
+      if (in.ok() && n > in.remaining()) in.fail("tag length out of range");
+      for (std::uint64_t k = 0; in.ok() && k < n; ++k) e.tags.push_back(in.u8());
+    }
     if (!in.ok()) return "bad bundle record: " + in.error();
     if (absent(o, q)) return "bundle " + std::to_string(o) + "/" + std::to_string(q) + " was declared absent";
     e.data.assign(r.payload.begin() + static_cast<std::ptrdiff_t>(in.position()), r.payload.end());
@@ -62,13 +64,11 @@ bool ObservationDb::addAbsent(std::int32_t origin, std::int32_t first, std::int3
   if (first > last) return false;
   auto held = held_.find(origin);
   if (held != held_.end() && held->second.intersects({first, last})) return false;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(first);
-    w.svarint(last);
-    journal_->append(kAbsent, w.data());
-  }
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(first);
+  w.svarint(last);
+  if (!journal(kAbsent, w.data())) return false;
   absent_[origin].insert(SeqRange{first, last});
   held_[origin].insert(SeqRange{first, last});
   return true;
@@ -93,15 +93,17 @@ const ObservationDb::Entry* ObservationDb::get(std::int32_t origin, std::int32_t
 
 bool ObservationDb::add(std::int32_t origin, std::int32_t seq, Entry entry) {
   if (has(origin, seq)) return false;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(seq);
-    w.u8(entry.first ? 1 : 0);
-    w.f32(entry.step_m);
-    w.bytes(entry.data.data(), entry.data.size());
-    journal_->append(kBundle, w.data());
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(seq);
+  w.u8(entry.first ? 1 : 0);
+  w.f32(entry.step_m);
+  if (entry.received) {
+    w.varint(entry.tags.size());
+    w.bytes(entry.tags.data(), entry.tags.size());
   }
+  w.bytes(entry.data.data(), entry.data.size());
+  if (!journal(entry.received ? kReceived : kBundle, w.data())) return false;
   insert(origin, seq, std::move(entry));
   return true;
 }
@@ -136,13 +138,23 @@ std::optional<std::pair<std::int32_t, std::int32_t>> ObservationDb::nextToDelive
 
 void ObservationDb::markDelivered(std::int32_t origin, std::int32_t seq) {
   if (delivered(origin, seq)) return;
-  if (journal_) {
-    ByteWriter w;
-    w.svarint(origin);
-    w.svarint(seq);
-    journal_->append(kDelivered, w.data());
-  }
+  ByteWriter w;
+  w.svarint(origin);
+  w.svarint(seq);
+  journal(kDelivered, w.data());  // recorded in memory all the same: no delivery loop on a full disk
   delivered_[origin].insert(seq);
+}
+
+bool ObservationDb::journal(std::uint8_t type, const Bytes& payload) {
+  if (!journal_) return true;
+  try {
+    journal_->append(type, payload);
+    return true;
+  } catch (const std::runtime_error& e) {
+    ++journal_failures_;
+    journal_error_ = e.what();
+    return false;
+  }
 }
 
 bool ObservationDb::delivered(std::int32_t origin, std::int32_t seq) const {

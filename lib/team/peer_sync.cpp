@@ -33,11 +33,13 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       next_heartbeat_(now) {
   // What was shared of the journalled own bundles: the same stream through the same policy.
   // One that does not decode (a journal of another encoding version) is not shared, and counted.
+  // Own bundles that came back from peers keep the tags they came with: never signed here.
   auto own = db_.stored().find(cfg_.robot);
   if (own == db_.stored().end()) return;
   for (const SeqRange& r : own->second.ranges())
     for (std::int64_t seq = r.first; seq <= r.last; ++seq) {
       const auto s = static_cast<std::int32_t>(seq);
+      if (db_.get(cfg_.robot, s)->received) continue;
       try {
         own_shared_[s] = sharedEncoding(s, db_.get(cfg_.robot, s)->data);
       } catch (const std::runtime_error&) {
@@ -66,6 +68,7 @@ const Bytes* PeerSyncNode::wirePayload(std::int32_t origin, std::int32_t seq) co
   const ObservationDb::Entry* e = db_.get(origin, seq);
   return e ? &e->data : nullptr;
 }
+
 
 PeerSyncNode::~PeerSyncNode() {
   try {
@@ -127,11 +130,16 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     else if (missing > cfg_.max_seq_jump) d = Drop::SeqJump;
     if (d != Drop::kCount) return drop(d), d;
     // Bundles lost on the robot bus: peers learn that they do not exist, delivery goes on.
-    b.gap = static_cast<std::int32_t>(missing);
+    // The gap reaches back to the last bundle held: absences journalled here before a bundle
+    // the journal then refused (a full disk) were never sent with it.
     if (missing > 0) {
-      db_.addAbsent(cfg_.robot, own.max() + 1, b.seq - 1);
+      if (!db_.addAbsent(cfg_.robot, own.max() + 1, b.seq - 1)) return drop(Drop::JournalWrite), Drop::JournalWrite;
       drops_[static_cast<int>(Drop::Lost)] += static_cast<std::uint64_t>(missing);
     }
+    const auto stored = db_.stored().find(cfg_.robot);
+    b.gap = static_cast<std::int32_t>(stored == db_.stored().end() || stored->second.empty()
+                                          ? missing
+                                          : std::int64_t{b.seq} - stored->second.max() - 1);
   } else {
     b.gap = 0;
   }
@@ -139,11 +147,13 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
   const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
   ObservationDb::Entry e;
   e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
-  own_shared_[b.seq] = sharedEncoding(b.seq, e.data);
-  own_added_at_[b.seq] = now;
+  Bytes shared = sharedEncoding(b.seq, e.data);
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
-  db_.add(b.origin, b.seq, std::move(e));
+  // Not journalled (a full disk): not held either; the next one bridges the gap to it.
+  if (!db_.add(b.origin, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
+  own_shared_[b.seq] = std::move(shared);
+  own_added_at_[b.seq] = now;
   return std::nullopt;
 }
 
@@ -258,7 +268,19 @@ void PeerSyncNode::receiveBundleChunk(const Chunk& m, Micros now) {
     receiveBundle(m, static_cast<std::int32_t>(m.seq + static_cast<std::int64_t>(i)), std::move((*bundles)[i]), now);
 }
 
-void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now) {
+void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle packed, Micros now) {
+  // The chunk's MAC proves its sender only: a relayed bundle needs its origin's tag for this
+  // robot. An own bundle given back (this robot lost its journal) needs its tags as this robot
+  // makes them, or, untagged, must be older than every own bundle made since: it is then held
+  // but never sent on, so it vouches for nothing and blocks no new one.
+  if (m.origin == cfg_.robot) {
+    const bool older = !own_shared_.empty() && seq < own_shared_.begin()->first;
+    if (packed.tags.empty() ? !older : !auth_.verifyBundle(m.origin, seq, packed.data, packed.tags))
+      return drop(Drop::BadMac);
+  } else if (m.sender != m.origin && !auth_.verifyBundle(m.origin, seq, packed.data, packed.tags)) {
+    return drop(Drop::BadMac);
+  }
+  Bytes data = std::move(packed.data);
   const Key key{m.origin, seq};
   // Overheard or not, the addressees now have it: do not send it to them too.
   for (auto& [id, p] : peers_)
@@ -290,13 +312,17 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, M
         (stored != db_.stored().end() && stored->second.intersects(gap)))
       return drop(Drop::Malformed);
     // (Already absent when an earlier copy was cut short between the two journal records.)
-    if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last)) return drop(Drop::Malformed);
+    const std::uint64_t failures = db_.journalFailures();
+    if (!db_.absentAll(m.origin, gap) && !db_.addAbsent(m.origin, gap.first, gap.last))
+      return drop(db_.journalFailures() > failures ? Drop::JournalWrite : Drop::Malformed);
   }
   ObservationDb::Entry e;
   e.data = std::move(data);
+  e.received = true;
+  e.tags = std::move(packed.tags);
   e.first = starts;
   e.step_m = static_cast<float>(bundle->first || needs_previous ? 0.0 : bundle->relative_odom.translation().norm());
-  db_.add(m.origin, seq, std::move(e));
+  if (!db_.add(m.origin, seq, std::move(e))) return drop(Drop::JournalWrite);  // not held: sent again
   // In order, the next heartbeat acknowledges it whenever it goes; a gap means a loss that only
   // our heartbeat gets resent.
   if (lacksSome(m.origin)) somethingNew();
@@ -490,6 +516,16 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
           own_to_origin && k != p.known.end() && !k->second.empty() ? k->second.max() : INT32_MIN;
       for (std::int32_t seq : missing) {
         if (own_to_origin && seq >= origin_max) break;
+        // Another origin's bundle goes only where its tag block lets it be taken (its origin
+        // takes it back untagged, see receiveBundle); an own one given back untagged
+        // (unverified) goes nowhere.
+        if (origin != cfg_.robot) {
+          const ObservationDb::Entry* e = db_.get(origin, seq);
+          if (!e || (!own_to_origin && !auth_.bundleTagged(origin, e->tags, id))) continue;
+        } else if (!own_shared_.count(seq)) {
+          const ObservationDb::Entry* e = db_.get(origin, seq);
+          if (!e || e->tags.empty()) continue;
+        }
         const Key key{origin, seq};
         const Micros lacking = p.lacking_since.emplace(key, now).first->second;
         if (relay && now - lacking < secs(cfg_.relay_delay_s)) continue;
@@ -508,25 +544,48 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
   // bundle larger than a chunk goes alone, in several).
   struct Pack {
     std::int32_t first;
-    std::vector<const Bytes*> bundles;
+    std::vector<const Bytes*> bundles, tags;
     std::vector<std::int32_t> to;
     std::size_t bytes;
+    bool tagged;
   };
+  std::deque<Bytes> own_tags;  // made for this send (stable addresses)
   std::vector<std::pair<std::int32_t, std::vector<Pack>>> packs;
   for (const auto& [origin, seqs] : due) {
     std::vector<Pack> list;
     for (const auto& [seq, to] : seqs) {
       const Bytes* data = wirePayload(origin, seq);
       if (!data) continue;
-      const std::size_t add = packedSize(data->size());
+      const Bytes* tags = nullptr;
+      if (origin == cfg_.robot && own_shared_.count(seq)) {
+        // Tagged for the members it does not reach now (relays take it there); when sent
+        // again (something was lost), for all.
+        bool again = false;
+        for (std::int32_t id : to) again = again || peers_[id].sent.count({origin, seq}) > 0;
+        std::vector<std::int32_t> members;
+        for (std::int32_t id : cfg_.team)
+          if (again || std::find(to.begin(), to.end(), id) == to.end()) members.push_back(id);
+        own_tags.push_back(auth_.bundleTags(seq, *data, members));
+        if (!own_tags.back().empty()) tags = &own_tags.back();
+      } else if (const ObservationDb::Entry* e = db_.get(origin, seq); e && !e->tags.empty()) {
+        tags = &e->tags;  // as its origin made them
+      }
+      const std::size_t tag_bytes = tags ? tags->size() : 0;
       Pack* last = list.empty() ? nullptr : &list.back();
-      if (last && last->to == to && last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
-          last->bytes + add <= cfg_.max_chunk_bytes && last->bundles.size() < kMaxBundlesPerPack &&
-          last->bundles[0]->front() == data->front()) {
+      const bool joins = last && last->to == to &&
+                         last->first + static_cast<std::int64_t>(last->bundles.size()) == seq &&
+                         last->bundles.size() < kMaxBundlesPerPack && last->bundles[0]->front() == data->front();
+      const bool tagged = tag_bytes > 0 || (joins && last->tagged);
+      // A pack turning tagged: a tag length (0) for each bundle already in it.
+      const std::size_t add = packedSize(data->size(), tag_bytes, tagged) +
+                              (joins && tagged && !last->tagged ? last->bundles.size() : 0);
+      if (joins && last->bytes + add <= cfg_.max_chunk_bytes) {
         last->bundles.push_back(data);
+        last->tags.push_back(tags);
         last->bytes += add;
+        last->tagged = tagged;
       } else {
-        list.push_back({seq, {data}, to, 2 + add});  // format byte, count
+        list.push_back({seq, {data}, {tags}, to, 2 + packedSize(data->size(), tag_bytes, tag_bytes > 0), tag_bytes > 0});
       }
     }
     // Own new bundles wait up to bundle_hold_s for company (one chunk's worth at most).
@@ -549,7 +608,7 @@ void PeerSyncNode::sendBundles(Micros now, TickOutput& out) {
       if (next[i] == list.size()) continue;
       const Pack& pack = list[next[i]++];
       const SendResult r = sendPayload(ChunkKind::Bundle, pack.to.size() == 1 ? pack.to[0] : -1, origin, pack.first,
-                                       packBundles(pack.bundles), pack.to, now, out);
+                                       packBundles(pack.bundles, pack.tags), pack.to, now, out);
       if (r == SendResult::TooLarge) continue;
       if (r == SendResult::RateLimited) return;
       for (std::size_t k = 0; k < pack.bundles.size(); ++k) {

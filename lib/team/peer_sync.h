@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "team/bandwidth.h"
+#include "team/bundle_pack.h"
 #include "team/bundle.h"
 #include "team/counters.h"
 #include "team/drop_reason.h"
@@ -82,6 +83,9 @@ class PeerSyncNode {
   // One line per peer: rates, bytes per landmark and per metre.
   std::vector<std::string> trafficSummary(Micros now) const;
   void persist() { counters_.save(); }
+  const CounterStore& counters() const { return counters_; }
+  // Writes of the journal or counters.txt that failed (a full disk): an alarm, never fatal.
+  std::uint64_t stateWriteFailures() const { return db_.journalFailures() + counters_.writeFailures(); }
 
  private:
   using Key = std::pair<std::int32_t, std::int32_t>;  // (origin, seq)
@@ -104,7 +108,7 @@ class PeerSyncNode {
   void drop(Drop d) { ++drops_[static_cast<int>(d)]; }
   void scheduleAck(std::int32_t peer, std::int32_t origin, Micros now);
   void receiveBundleChunk(const Chunk& m, Micros now);
-  void receiveBundle(const Chunk& m, std::int32_t seq, Bytes data, Micros now);  // one of its pack
+  void receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle packed, Micros now);  // one of its pack
   void receiveMapChunk(const Chunk& m, Micros now);
   OriginRanges truncated(const OriginRanges& r, const std::set<std::int32_t>* only) const;
   OriginRanges announced() const;  // what heartbeats say is held (own bundles once sent)

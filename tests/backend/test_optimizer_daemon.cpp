@@ -49,7 +49,7 @@ TEST(OptimizerDaemon, PublishesMapAndTrajectoryOverLcm) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string bin = std::string(SLIDE_BINARY_DIR) + "/bin/slide-optimizer";
-  const std::string journal = (dir / "journal.lcmlog").string(), out = (dir / "tum").string();
+  const std::string journal = (dir / "optimizer.journal").string(), out = (dir / "tum").string();
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {

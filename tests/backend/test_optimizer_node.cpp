@@ -25,12 +25,7 @@ void feed(OptimizerNode& node, const std::vector<RawMessage>& msgs, std::size_t 
     node.handle(msgs[i].channel, msgs[i].bytes.data(), static_cast<int>(msgs[i].bytes.size()));
 }
 
-int journalEvents(const std::string& path) {
-  lcm::LogFile in(path, "r");
-  int n = 0;
-  while (in.readNextEvent()) ++n;
-  return n;
-}
+int journalEvents(const std::string& path) { return static_cast<int>(OptimizerNode::readJournal(path).size()); }
 
 }  // namespace
 
@@ -40,7 +35,7 @@ TEST(OptimizerNode, RestartFromJournalGivesTheSameMap) {
   OptimizerNode clean(BackendConfig{}, classes, 0, {}, {});
   feed(clean, msgs, 0, msgs.size());
 
-  const std::string journal = tempPath("journal.lcmlog");
+  const std::string journal = tempPath("optimizer.journal");
   const std::size_t cut = msgs.size() * 3 / 5;  // after the merge, before the loop closure
   {
     OptimizerNode first(BackendConfig{}, classes, 0, {}, {});

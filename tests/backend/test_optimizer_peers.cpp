@@ -51,7 +51,7 @@ TEST(OptimizerPeers, FarObjectInAHeldPeerBundleIsDroppedAlsoAfterReplay) {
     if (msgs[i].channel == "LOOP_CLOSURE") merge_at = i;
   ASSERT_GT(merge_at, far_at);
 
-  const std::string dir = tempDir(), journal = dir + "/journal.lcmlog";
+  const std::string dir = tempDir(), journal = dir + "/optimizer.journal";
   const ClassTable classes = ClassTable::loadDefault();
   {
     OptimizerNode first(BackendConfig{}, classes, 0, {}, {});

@@ -20,7 +20,7 @@ run() {  # name, then the command line
 }
 run segmenter "$bin/slide-segmenter" --robot 2
 run tracker "$bin/slide-tracker" --robot 2
-run optimizer "$bin/slide-optimizer" --robot 2 --journal "$tmp/opt.lcmlog"
+run optimizer "$bin/slide-optimizer" --robot 2 --journal "$tmp/opt.journal"
 run loop-closer "$bin/slide-loop-closer" --robot 2
 run peer-sync "$bin/slide-peer-sync" --robot 2 --state-dir "$tmp/ps" --team-key-file "$keys"
 # Peer sync's default journal folder survives reboots: for a user, ~/.local/state/slide (the

@@ -75,6 +75,30 @@ TEST(MessageAuth, NoRobotCanSpeakForAnother) {
   EXPECT_TRUE(three.verify(h));
 }
 
+TEST(MessageAuth, BundleTagsHoldATagForEachMemberAskedAndForNoOther) {
+  const std::vector<std::int32_t> team = {1, 2, 3, 4};
+  auto authOf = [&](std::int32_t id) { return MessageAuth(id, team, derivePairKeys("m", id, team)); };
+  const MessageAuth one = authOf(1), two = authOf(2), three = authOf(3), four = authOf(4);
+  const Bytes data = {9, 8, 7, 6};
+  const Bytes block = one.bundleTags(5, data, {3, 4});
+  EXPECT_EQ(block.size(), 2 + 2 * MessageAuth::kTagBytes);
+  EXPECT_TRUE(one.bundleTagged(1, block, 3));
+  EXPECT_FALSE(one.bundleTagged(1, block, 2));
+  EXPECT_TRUE(three.verifyBundle(1, 5, data, block));
+  EXPECT_TRUE(four.verifyBundle(1, 5, data, block));
+  EXPECT_FALSE(two.verifyBundle(1, 5, data, block));           // no tag for robot 2
+  EXPECT_FALSE(three.verifyBundle(1, 6, data, block));         // another seq
+  EXPECT_FALSE(three.verifyBundle(2, 5, data, block));         // another origin
+  EXPECT_TRUE(one.bundleTags(5, data, {1}).empty());           // none for the origin itself
+  EXPECT_TRUE(one.verifyBundle(1, 5, data, block));            // the origin checks its own tags
+  Bytes flipped = block;
+  flipped.back() ^= 1;
+  EXPECT_FALSE(one.verifyBundle(1, 5, data, flipped));
+  EXPECT_TRUE(three.verifyBundle(1, 5, data, flipped));        // robot 3's tag is intact
+  EXPECT_FALSE(four.verifyBundle(1, 5, data, flipped));
+  EXPECT_FALSE(three.verifyBundle(1, 5, data, Bytes(block.begin(), block.end() - 1)));  // truncated
+}
+
 TEST(TeamKeys, FilesRoundTripAndBadFilesAreNamed) {
   const std::string dir = ::testing::TempDir() + "/slide_keys_" + std::to_string(::getpid());
   std::filesystem::create_directories(dir);

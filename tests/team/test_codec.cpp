@@ -385,13 +385,28 @@ TEST(Quantise, HalfAUnitAndNoSilentClamping) {
 
 TEST(BundlePack, RoundTripAndMalformedPacksAreNamed) {
   const Bytes a = {3, 2, 3}, b(200, 3), c = {3};  // each starts with its format byte
-  const Bytes pack = packBundles({&a, &b, &c});
-  EXPECT_EQ(pack.size(), 2 + packedSize(a.size()) + packedSize(b.size()) + packedSize(c.size()));
-  EXPECT_EQ(pack.size(), 2 + 3 + 201 + 1u);  // the format byte once: 2 + (1 + 2) + (2 + 199) + (1 + 0)
+  const Bytes plain = packBundles({&a, &b, &c});
+  EXPECT_EQ(plain.size(), 2 + packedSize(a.size()) + packedSize(b.size()) + packedSize(c.size()));
+  EXPECT_EQ(plain.size(), 2 + 3 + 201 + 1u);  // the format byte once: 2 + (1 + 2) + (2 + 199) + (1 + 0)
+  const Bytes tags(18, 0xAA);  // its origin's tag block travels with a bundle
+  const Bytes pack = packBundles({&a, &b, &c}, {nullptr, &tags, nullptr});
+  EXPECT_EQ(pack.size(), 2 + packedSize(a.size(), 0, true) + packedSize(b.size(), tags.size(), true) +
+                             packedSize(c.size(), 0, true));
+  // With tags, each bundle has a tag length: 2 + (1 + 2 + 1) + (2 + 199 + 1 + 18) + (1 + 0 + 1).
+  EXPECT_EQ(pack.size(), 2 + 4 + 220 + 2u);
   std::string err;
+  const auto untagged = unpackBundles(plain, &err);
+  ASSERT_TRUE(untagged) << err;
+  EXPECT_EQ((*untagged)[1].data, b);
+  EXPECT_TRUE((*untagged)[1].tags.empty());
   const auto got = unpackBundles(pack, &err);
   ASSERT_TRUE(got) << err;
-  EXPECT_EQ(*got, (std::vector<Bytes>{a, b, c}));
+  ASSERT_EQ(got->size(), 3u);
+  EXPECT_EQ((*got)[0].data, a);
+  EXPECT_EQ((*got)[1].data, b);
+  EXPECT_EQ((*got)[2].data, c);
+  EXPECT_EQ((*got)[1].tags, tags);
+  EXPECT_TRUE((*got)[0].tags.empty());
   const Bytes other = {2, 1}, none;
   EXPECT_THROW(packBundles({&a, &other}), std::invalid_argument);
   EXPECT_THROW(packBundles({&a, &none}), std::invalid_argument);
@@ -403,8 +418,9 @@ TEST(BundlePack, RoundTripAndMalformedPacksAreNamed) {
   };
   rejects({}, "truncated");
   rejects({3, 0}, "bundle count 0 out of range");
-  rejects({3, 3, 1, 9}, "bundle count 3 out of range");
-  rejects({3, 1, 5, 1, 2}, "bundle 0 length 5 exceeds");
-  rejects({3, 1, 1, 9, 9}, "1 trailing bytes");
+  rejects({3, 6, 1, 9}, "bundle count 3 out of range");
+  rejects({3, 2, 5, 1, 2}, "bundle 0 length 5 exceeds");
+  rejects({3, 2, 1, 9, 9}, "1 trailing bytes");
+  rejects({3, 3, 1, 9, 5, 1}, "bundle 0 tag length 5 out of range");
   for (std::size_t n = 0; n < pack.size(); ++n) EXPECT_FALSE(unpackBundles(Bytes(pack.begin(), pack.begin() + n), &err));
 }

@@ -4,6 +4,10 @@
 #include <fstream>
 #include <random>
 
+#include <sys/resource.h>
+
+#include <csignal>
+
 #include "team/counters.h"
 #include "team/journal.h"
 #include "team/observation_db.h"
@@ -123,7 +127,8 @@ TEST(CounterStore, OwnCountersGrowAcrossRestartsAndAcceptedPersist) {
   EXPECT_TRUE(c.accept(3, 101));
   EXPECT_FALSE(c.accept(3, 99));  // at or below the persisted highest: too old to tell
   std::ofstream(path) << "own x\n";
-  EXPECT_THROW(CounterStore bad(path), std::runtime_error);
+  CounterStore bad(path);  // skipped with a warning (test_peer_sync_full_disk.cpp), not fatal
+  EXPECT_EQ(bad.warnings().size(), 1u);
   fs::remove_all(dir);
 }
 
@@ -146,4 +151,52 @@ TEST(CounterStore, ReorderedCountersWithinTheWindowAreTakenOnce) {
   EXPECT_TRUE(c.accept(3, 1264));
   EXPECT_FALSE(c.accept(3, 1200));  // now exactly kWindow below and seen
   EXPECT_EQ(c.lastAccepted(3), 1264);
+}
+
+TEST(Journal, ARecordWhoseReplayThrowsIsSkippedAndCountedAndTheOthersReplayed) {
+  std::vector<JournalRecord> records;
+  for (int i = 0; i < 5; ++i) records.push_back({1, payloadOf(i + 1)});
+  std::vector<int> used;
+  JournalRecovery info;
+  const std::size_t n = replayRecords(
+      records,
+      [&](const JournalRecord& r) -> std::string {
+        if (r.payload.size() == 3) throw std::out_of_range("no such key pose");
+        if (r.payload.size() == 4) return "not usable";
+        used.push_back(static_cast<int>(r.payload.size()));
+        return {};
+      },
+      info);
+  EXPECT_EQ(n, 3u);
+  EXPECT_EQ(used, (std::vector<int>{1, 2, 5}));
+  EXPECT_EQ(info.skipped, 2u);
+  EXPECT_EQ(info.first_skipped, "record 3: replay failed: no such key pose");
+}
+
+TEST(Journal, AFailedAppendIsCutBackSoLaterRecordsStayReachable) {
+  // A file size limit stands in for a full disk: the record is written in part, then the write
+  // fails. The torn part must go, or every later record would sit behind it.
+  const fs::path dir = freshDir("torn");
+  const std::string path = (dir / "j.bin").string();
+  Journal j(path, nullptr);
+  j.append(1, payloadOf(7));
+  const auto size = fs::file_size(path);
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &old), 0);
+  auto* previous = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = size + 20;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  EXPECT_THROW(j.append(2, Bytes(100, 0xAB)), std::runtime_error);
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_EQ(fs::file_size(path), size);
+  j.append(3, payloadOf(9));
+  std::vector<JournalRecord> recs;
+  JournalRecovery info;
+  Journal again(path, &recs, &info);
+  ASSERT_EQ(recs.size(), 2u);
+  EXPECT_EQ(recs[1].type, 3);
+  EXPECT_EQ(info.dropped_bytes, 0u);
+  fs::remove_all(dir);
 }

@@ -169,8 +169,10 @@ struct Receiver {
     c.counter = ++counter;
     c.origin = 7;
     c.seq = seq;
-    c.data = packBundles({&bundle});
-    authOf(7, {3, 7}).sign(c);
+    const MessageAuth auth = authOf(7, {3, 7});
+    const Bytes tags = auth.bundleTags(seq, bundle);
+    c.data = packBundles({&bundle}, {&tags});
+    auth.sign(c);
     node->receive(c, 0);
   }
   std::vector<std::int32_t> deliverAll() {

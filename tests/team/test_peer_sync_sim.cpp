@@ -337,7 +337,7 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   EXPECT_EQ(delta(Drop::UnknownOrigin), 1u);
   EXPECT_EQ(delta(Drop::Malformed), 3u);
   EXPECT_EQ(delta(Drop::SeqJump), 1u);
-  EXPECT_GE(delta(Drop::Duplicate), 1u);
+  EXPECT_EQ(delta(Drop::BadMac), 4u);  // the one for a held id: relayed without robot 3's tags
   EXPECT_EQ(victim.db().get(3, 5)->data, stored);
   EXPECT_EQ(victim.db().size(), held);
   // After a restart the replay protection still holds.
@@ -347,6 +347,53 @@ TEST(PeerSyncSim, ReplayTamperForgeryAndBadInputAreDroppedAndCounted) {
   EXPECT_GE(run.net().node(1).dropped(Drop::Replay), 5u);
   EXPECT_EQ(run.net().node(1).db().size(), held);
   run.expectExactlyOnceInOrder();
+}
+
+TEST(PeerSyncSim, ARelayCannotForgeABundleOfAnotherOrigin) {
+  // Robot 11 holds its own pair keys only; it relays to robot 7 a bundle "of robot 3" (which
+  // robot 3 overhears too).
+  Scenario s;
+  s.bundles = 5;
+  SimRun run(s, "relay_forgery");
+  run.produce();
+  run.converge(20 * kSecond);
+  PeerSyncNode& victim = run.net().node(1);
+  const std::uint64_t bad_before = victim.dropped(Drop::BadMac);
+  std::mt19937 rng(9);
+  const std::int32_t seq = victim.db().held().at(kIds[0]).max() + 1;
+  const Bytes forged = encodeBundle(randomBundle(rng, kIds[0], seq));
+  const MessageAuth relay = authOf(kIds[2], kTeam);
+  // What it can make: no tags, its own tags as if it were the origin, and robot 3's tags made
+  // with the keys it holds (right only in the slot of the pair {3, 11}, i.e. for itself).
+  const PairKeys held = derivePairKeys("team-secret", kIds[2], kTeam);
+  const MessageAuth impostor(kIds[0], kTeam, {{kIds[1], held.at(kIds[0])}, {kIds[2], held.at(kIds[0])}, {20, held.at(20)}});
+  std::int64_t counter = SimNetwork::kSimEpoch + run.net().now() + 100 * kSecond;
+  auto relayWith = [&](const Bytes& data, const Bytes* tags) {
+    Chunk c;
+    c.sender = kIds[2];
+    c.receiver = kIds[1];
+    c.counter = ++counter;
+    c.origin = kIds[0];
+    c.seq = seq;
+    c.data = packBundles({&data}, {tags});
+    relay.sign(c);
+    run.net().inject(2, c);
+  };
+  const Bytes own_tags = relay.bundleTags(seq, forged), impostor_tags = impostor.bundleTags(seq, forged);
+  relayWith(forged, nullptr);
+  relayWith(forged, &own_tags);
+  relayWith(forged, &impostor_tags);
+  run.net().run(kSecond);
+  EXPECT_EQ(victim.dropped(Drop::BadMac) - bad_before, 3u);
+  EXPECT_FALSE(victim.db().has(kIds[0], seq));
+  // Nor does robot 3 take it as its own bundle given back (and then vouch for it).
+  EXPECT_FALSE(run.net().node(0).db().has(kIds[0], seq));
+  // The same relay with robot 3's own tags (as a true relay forwards them) is taken.
+  const Bytes origin_tags = authOf(kIds[0], kTeam).bundleTags(seq, forged);
+  relayWith(forged, &origin_tags);
+  run.net().run(kSecond);
+  EXPECT_TRUE(victim.db().has(kIds[0], seq));
+  EXPECT_EQ(victim.dropped(Drop::BadMac) - bad_before, 3u);
 }
 
 TEST(PeerSyncSim, OwnInputGoingBackwardsOrJumpingFarIsRefused) {

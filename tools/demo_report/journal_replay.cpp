@@ -79,11 +79,36 @@ void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std
   std::printf("\n");
 }
 
+struct JournalEvent {
+  std::string channel;
+  const void* data;
+  int datalen;
+};
+
+// The optimizer's journal, or the LCM log that was its format before checksums.
+std::vector<OptimizerNode::JournalInput> readInputs(const std::string& path) {
+  if (team::Journal::looksLikeJournal(path)) {
+    team::JournalRecovery rec;
+    auto inputs = OptimizerNode::readJournal(path, &rec);
+    if (rec.dropped_bytes)
+      spdlog::warn("{}: {} damaged bytes after {} good records are not replayed", path, rec.dropped_bytes, rec.records);
+    return inputs;
+  }
+  lcm::LogFile in(path, "r");
+  if (!in.good()) throw std::runtime_error(path + ": neither a journal nor an LCM log");
+  std::vector<OptimizerNode::JournalInput> inputs;
+  while (const lcm::LogEvent* e = in.readNextEvent()) {
+    const auto* p = static_cast<const std::uint8_t*>(e->data);
+    inputs.push_back({e->channel, std::vector<uint8_t>(p, p + e->datalen)});
+  }
+  return inputs;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Replay an optimizer journal (state/optimizer<N>.lcmlog of a team run) in-process and print, against "
-               "the simulator's ground truth, what each loop closure and inter-robot transform did to the estimate",
+  CLI::App app{"Replay an optimizer journal (state/optimizer<N>.journal of a team run, or the .lcmlog of older runs) "
+               "in-process and print, against the simulator's ground truth, what each loop closure and inter-robot transform did to the estimate",
                "slide-journal-replay"};
   CommonOptions common;
   addCommonOptions(app, common);
@@ -91,7 +116,7 @@ int main(int argc, char** argv) {
                             classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   int robot = 0, every = 50;
   std::vector<int> robots{0, 1, 2};
-  app.add_option("--journal", journal, "Optimizer journal (LCM log)")->required();
+  app.add_option("--journal", journal, "Optimizer journal (or the LCM log of versions before checksums)")->required();
   app.add_option("--data", data, "Simulator output folder of the run (robot<N>/, objects.csv)")->required();
   app.add_option("--robot", robot, "The journal's host robot")->capture_default_str();
   app.add_option("--robots", robots, "Robot ids of the team")->delimiter(',')->capture_default_str();
@@ -101,11 +126,12 @@ int main(int argc, char** argv) {
   return runApp(app, common, argc, argv, [&] {
     const TeamTruth truth = readTeamTruth(data, robots);
     OptimizerNode node(loadBackendConfig(config), ClassTable::load(classes_path), robot, {}, {});
-    lcm::LogFile in(journal, "r");
-    if (!in.good()) throw std::runtime_error(journal + ": cannot open LCM log");
+    const std::vector<OptimizerNode::JournalInput> inputs = readInputs(journal);
     std::map<std::pair<int, int>, Pose> odom_of;  // (robot, seq) -> odometry pose of the bundle
     int bundles = 0, index = 0;
-    while (const lcm::LogEvent* e = in.readNextEvent()) {
+    for (const OptimizerNode::JournalInput& in : inputs) {
+      const JournalEvent ev{in.channel, in.bytes.data(), static_cast<int>(in.bytes.size())};
+      const JournalEvent* e = &ev;
       ++index;
       if (e->channel == "LOOP_CLOSURE") {
         loop_closure_t m;

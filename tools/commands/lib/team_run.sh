@@ -43,7 +43,7 @@ team_run_write_config() {
 group "robot$r" {
   cmd "logger-$r" { exec = "lcm-logger -f --lcm-url=$url -c (OBJECT_MAP|TRAJECTORY|LOOP_CLOSURE|OPTIMIZER_STATUS|KEYPOSE_BUNDLE|PEER_BUNDLE|PEER_MAP|SENSOR_STATUS) $run/logs/robot$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "team-logger-$r" { exec = "lcm-logger -f --lcm-url=$team_url $run/logs/team$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
-  cmd "optimizer-$r" { exec = "slide-optimizer $common --config $SLIDE_ROOT/config/backend.yaml --journal $run/state/optimizer$r.lcmlog --out-dir $o"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 10; }
+  cmd "optimizer-$r" { exec = "slide-optimizer $common --config $SLIDE_ROOT/config/backend.yaml --journal $run/state/optimizer$r.journal --out-dir $o"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 10; }
   cmd "loop-closer-$r" { exec = "slide-loop-closer $common --config $SLIDE_ROOT/config/loop_closer.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
   cmd "peer-sync-$r" { exec = "slide-peer-sync --robot $r --robot-url $url --config $cfg/peer_sync.yaml --team-key-file $run/keys/robot$r.keys"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
   cmd "segmenter-$r" { exec = "slide-segmenter $common --config $cfg/frontend.yaml $segmenter_args"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 3; }
