@@ -27,6 +27,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("peer_rotation_sigma", c.peer_rotation_sigma);
     n.read("loop_translation_sigma", c.loop_translation_sigma);
     n.read("loop_rotation_sigma", c.loop_rotation_sigma);
+    n.read("gravity_sigma", c.gravity_sigma);
     n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys()) n.requirePositive(k, n.get<double>(k));
   }

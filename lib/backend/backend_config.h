@@ -28,6 +28,9 @@ struct BackendConfig {
   double peer_rotation_sigma = 0.05;
   double loop_translation_sigma = 0.05;
   double loop_rotation_sigma = 0.005;
+  // Roll and pitch of every key pose from the odometry's attitude (an IMU's gravity
+  // direction does not drift), radians.
+  double gravity_sigma = 0.005;
 
   // Object measurement noise (range-bearing model for positions).
   double range_sigma = 0.1;

@@ -30,6 +30,12 @@ ceres::CostFunction* relativePoseFactor(const Pose& measured_a_b, const PoseSigm
 ceres::CostFunction* posePriorFactor(const Pose& measured, const PoseSigma& sigma,
                                      Differentiation d = Differentiation::Automatic);
 
+// Roll and pitch of one pose (block: pose) from the odometry's attitude, which an IMU keeps
+// gravity-aligned without drift (every robot frame is gravity-aligned): the up direction in
+// the body frame, measured against the pose's (their difference). Yaw is free. 3 residuals.
+ceres::CostFunction* gravityFactor(const Eigen::Quaterniond& measured, double sigma,
+                                   Differentiation d = Differentiation::Automatic);
+
 // Cuboid seen from a key pose (blocks: key pose, cuboid pose, cuboid dims): SE(3) log error
 // between predicted and measured cuboid pose in the body frame, then the dims difference.
 // 9 residuals.

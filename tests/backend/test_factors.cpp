@@ -87,6 +87,23 @@ TEST(BackendFactors, PosePriorMatchesNumeric) {
                       {t.data()});
 }
 
+TEST(BackendFactors, GravityHoldsRollAndPitchNotYawNorPosition) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Pose T = randomPose(rng);
+    const Eigen::Quaterniond q(T.linear());
+    const PoseBlock t = toPoseBlock(T);
+    EXPECT_LT(residualNorm(gravityFactor(q, 0.01), {t.data()}), 1e-9);
+    // Another heading and position, the same tilt: still no residual.
+    const PoseBlock turned = toPoseBlock(poseFromXyzRpy({5, -3, 2}, 0, 0, 1.3) * T);
+    EXPECT_LT(residualNorm(gravityFactor(q, 0.01), {turned.data()}), 1e-9);
+    // Tilted by 0.02 rad about a level axis: 2 sin(0.01) / sigma.
+    const PoseBlock tilted = toPoseBlock(poseFromXyzRpy({0, 0, 0}, 0.02, 0, 0) * T);
+    EXPECT_NEAR(residualNorm(gravityFactor(q, 0.01), {tilted.data()}), 200 * std::sin(0.01), 1e-9);
+    expectSameJacobians(gravityFactor(q, 0.01), gravityFactor(q, 0.01, Differentiation::Numeric), {tilted.data()});
+  }
+}
+
 TEST(BackendFactors, CuboidMatchesNumeric) {
   std::mt19937 rng(3);
   const Pose body = randomPose(rng), box = randomPose(rng, 10);
