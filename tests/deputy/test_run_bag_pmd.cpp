@@ -40,7 +40,7 @@ TEST(RunBagPmd, ArgumentsWithSpacesAndQuotesStayOneWordEach) {
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   const PmdConfig c = loadPmd(pmd);
   EXPECT_EQ(argvOf(c, "driver"),
-            (std::vector<std::string>{"slide-sensor-driver", bag, "--robot", "0", "--lcm-url", "udpm://239.255.76.67:7670?ttl=0",
+            (std::vector<std::string>{"slide-sensor-driver", bag, "--robot", "0", "--lcm-url", "udpm://239.255.76.67:7670?ttl=0&recv_buf_size=4194304",
                                       "--rate", "2", "--no-progress", "--config", dir.string() + "/a b\\c.yaml",
                                       "--cloud-topic", "/points"}));
   EXPECT_EQ(argvOf(c, "logger"), (std::vector<std::string>{"lcm-logger", "-f",
