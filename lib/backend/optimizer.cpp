@@ -117,10 +117,12 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     graph_.addFactor(relativePoseFactor(relative, sigma), {prev_var, var}, false);
     step = {relative.translation().norm(), sigma.head<3>().maxCoeff(), sigma[5]};
   }
-  // Every robot's frame is gravity-aligned (inter-robot transforms turn about z only), so the
-  // odometry's attitude gives the key pose's roll and pitch in any frame.
+  // The odometry's attitude, taken into the host frame, gives the key pose's roll and pitch
+  // (robot frames are gravity-aligned and inter-robot transforms turn about z, so this is the
+  // IMU's tilt; the transform only matters for frames that are not).
   if (cfg_.gravity_sigma > 0)
-    graph_.addFactor(gravityFactor(Eigen::Quaterniond(b.odom_pose.linear()), cfg_.gravity_sigma), {var}, false);
+    graph_.addFactor(gravityFactor(Eigen::Quaterniond((robot.T_host_robot * b.odom_pose).linear()), cfg_.gravity_sigma),
+                     {var}, false);
   keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose, step});
   robot.keyposes.push_back(static_cast<int>(keyposes_.size()) - 1);
   ++step_;

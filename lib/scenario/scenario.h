@@ -21,7 +21,7 @@ struct ScenarioNoise {
   double bearing_sigma = 0.05;    // radians, on azimuth and elevation
   double odom_fraction = 0.01;    // translation sigma per axis as a fraction of the step
   double odom_yaw_per_m = 0.001;  // yaw sigma per metre of step (radians)
-  double odom_tilt_per_m = 0.0002;  // roll/pitch sigma per metre (trusted IMU)
+  double odom_tilt_sigma = 0.0009;  // roll/pitch white noise (radians): an IMU keeps them, no drift
   double yaw_sigma = 0.05;        // cuboid heading
   double axis_sigma = 0.02;       // cylinder axis tilt
   double size_sigma = 0.03;       // radius, height, dims

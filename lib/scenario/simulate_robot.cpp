@@ -88,12 +88,19 @@ ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::v
       const Pose step = truth[k - 1].inverse() * truth[k];
       const double d = step.translation().norm();
       const double st = std::max(1e-3, n.odom_fraction * d);
-      const double sr = std::max(1e-4, n.odom_tilt_per_m * d), sy = std::max(1e-4, n.odom_yaw_per_m * d);
+      const double sy = std::max(1e-4, n.odom_yaw_per_m * d);
       Vector6d xi;
-      xi << gauss(rng, st), gauss(rng, st), gauss(rng, st), gauss(rng, sr), gauss(rng, sr), gauss(rng, sy);
-      b.relative_odom = step * expSE3(xi);
+      xi << gauss(rng, st), gauss(rng, st), gauss(rng, st), 0.0, 0.0, gauss(rng, sy);
+      Pose next = odom * step * expSE3(xi);
+      // Position and heading drift; roll and pitch follow the truth (relative to the start
+      // frame) with white noise, as an IMU's gravity direction keeps them.
+      const Eigen::Vector3d tilt = rpyOf(truth[0].linear().transpose() * truth[k].linear());
+      next = poseFromXyzRpy(next.translation(), tilt[0] + gauss(rng, n.odom_tilt_sigma),
+                            tilt[1] + gauss(rng, n.odom_tilt_sigma), rpyOf(next.linear())[2]);
+      b.relative_odom = odom.inverse() * next;
+      const double sr = std::max(1e-4, std::sqrt(2.0) * n.odom_tilt_sigma);
       b.odom_sigma << st, st, st, sr, sr, sy;
-      odom = odom * b.relative_odom;
+      odom = next;
     }
     b.odom_pose = odom;
     // The nearest landmarks within range, observed with noise in the body frame.
