@@ -200,6 +200,7 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
   const std::uint64_t dropped = static_cast<std::uint64_t>(decode_errors_) + (bus_drops_ ? bus_drops_() : 0);
   s.dropped_messages = static_cast<std::int32_t>(std::min<std::uint64_t>(dropped, INT32_MAX));
   s.unjournalled_inputs = unjournalled_;
+  s.missing_keyposes = static_cast<std::int32_t>(std::min<std::int64_t>(optimizer_.missingKeyposes(), INT32_MAX));
   publish_(channels_.status, encode(s));
 }
 

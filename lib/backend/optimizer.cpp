@@ -101,6 +101,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     if (b.seq != last.seq + 1) {
       relative = last.odom_pose.inverse() * b.odom_pose;
       bridged = true;
+      missing_keyposes_ += b.seq - last.seq - 1;
       r.warnings.push_back("gap: robot " + std::to_string(b.robot) + " key poses " + std::to_string(last.seq + 1) + ".." +
                            std::to_string(b.seq - 1) + " missing, bridged with odometry poses");
     }

@@ -72,6 +72,9 @@ class Optimizer {
   int numPeersMerged() const;
   int numHeld() const;
   int rejected() const { return rejected_; }
+  // Key poses never received: gaps in a robot's sequence, bridged with odometry (lost
+  // datagrams, or a sender flooding faster than this robot reads).
+  std::int64_t missingKeyposes() const { return missing_keyposes_; }
   int merges() const { return merges_; }
   int detached() const { return detached_; }
   int unmerged() const { return unmerged_; }   // merges undone (contradicted or unsound)
@@ -186,6 +189,7 @@ class Optimizer {
   int last_full_step_ = 0;
   bool full_pending_ = false;
   int rejected_ = 0;
+  std::int64_t missing_keyposes_ = 0;
   int merges_ = 0;
   int detached_ = 0;
   std::map<std::string, int> rejections_;
