@@ -10,6 +10,7 @@
 #include "config/config.h"
 #include "msg/convert.h"
 #include "msg/inbox.h"
+#include "msg/status_beacon.h"
 #include "place/loop_closer_config.h"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
@@ -28,6 +29,7 @@ std::int64_t utimeNow() {
 
 struct Channels {
   std::string own_map = "OBJECT_MAP", peer_maps = "PEER_MAP", trajectory = "TRAJECTORY", loop_closures = "LOOP_CLOSURE";
+  std::string status = "DAEMON_STATUS";
 };
 
 // Objects farther than this from the map's origin are no robot's (they would overflow the
@@ -54,6 +56,7 @@ class Node {
   }
   const slide::msg::Inbox& inbox() const { return inbox_; }
   long droppedObjects() const { return dropped_objects_; }
+  long published() const { return published_; }
 
   void onMap(const lcm::ReceiveBuffer*, const std::string& channel, const slide::object_map_t* m) {
     if (m->frame_robot != m->robot) {
@@ -102,6 +105,7 @@ class Node {
       out.inliers_b.push_back(b);
     }
     lcm_.publish(ch_.loop_closures, &out);
+    ++published_;
   }
 
  private:
@@ -111,6 +115,7 @@ class Node {
   int robot_;
   Channels ch_;
   long dropped_objects_ = 0;
+  long published_ = 0;
 };
 }  // namespace
 
@@ -140,6 +145,7 @@ int main(int argc, char** argv) {
       ch.peer_maps = l.get<std::string>("peer_maps", ch.peer_maps);
       ch.trajectory = l.get<std::string>("trajectory", ch.trajectory);
       ch.loop_closures = l.get<std::string>("loop_closures", ch.loop_closures);
+      ch.status = l.get<std::string>("status", ch.status);
     }
     cfg.rejectUnknownKeys();
     if (robot >= 0) params.robot = robot;
@@ -157,7 +163,13 @@ int main(int argc, char** argv) {
                  slide::methodName(params.method), url, ch.own_map, ch.peer_maps, ch.trajectory, ch.loop_closures);
     std::string last_reason;
     long budget_exceeded = 0;
+    slide::msg::StatusBeacon status(lcm, ch.status, params.robot, "loop_closer");
+    auto counts = [&](bool now) {
+      status.tick(node.published(), node.inbox().dropped(),
+                  node.droppedObjects() + closer.counts().oversized_maps + closer.counts().budget_exceeded, now);
+    };
     while (!g_stop) {
+      counts(false);
       if (lcm.handleTimeout(100) < 0) {
         if (g_stop) break;  // select() interrupted by the stop signal
         throw std::runtime_error("LCM receive failed on '" + url + "'");
@@ -186,6 +198,7 @@ int main(int argc, char** argv) {
         if (!last_reason.empty()) spdlog::debug("no closure: {}", last_reason);
       }
     }
+    counts(true);
     spdlog::info("stopping; dropped messages: {}; dropped map objects: {}; oversized maps dropped: {}; checks over "
                  "budget: {}",
                  node.inbox().dropped() ? node.inbox().summary() : "none", node.droppedObjects(),

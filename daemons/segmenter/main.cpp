@@ -17,6 +17,7 @@
 #include "frontend_msg/frontend_convert.h"
 #include "msg/convert.h"
 #include "msg/inbox.h"
+#include "msg/status_beacon.h"
 #include "slide/odometry_t.hpp"
 
 using namespace slide;
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
   int robot = 0;
   std::string url, config_file = std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml";
   std::string classes_file = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
-  std::string scan_ch = "SCAN", rgbd_ch = "RGBD", odom_ch = "ODOM", out_ch = "INSTANCES", mode;
+  std::string scan_ch = "SCAN", rgbd_ch = "RGBD", odom_ch = "ODOM", out_ch = "INSTANCES", status_ch = "DAEMON_STATUS", mode;
   std::size_t max_pending = 50;
   app.add_option("--robot", robot, "Robot id")->capture_default_str();
   app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
@@ -142,6 +143,7 @@ int main(int argc, char** argv) {
   app.add_option("--rgbd-channel", rgbd_ch, "RGBD frames in")->capture_default_str();
   app.add_option("--odom-channel", odom_ch, "Odometry in")->capture_default_str();
   app.add_option("--instances-channel", out_ch, "Instances out")->capture_default_str();
+  app.add_option("--status-channel", status_ch, "Counts out (daemon_status_t every 5 s)")->capture_default_str();
   app.add_option("--max-pending", max_pending, "Frames kept waiting for odometry")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
     if (url.empty()) url = slide::robotBusUrl(robot);
@@ -159,10 +161,14 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, [](int) { g_stop = true; });
     spdlog::info("robot {}: {} + {} + {} -> {} on {} (lidar mode {})", robot, scan_ch, rgbd_ch, odom_ch, out_ch, url,
                  cfg.lidar_mode);
+    msg::StatusBeacon status(lcm, status_ch, robot, "segmenter");
+    auto counts = [&](bool now) { status.tick(node.published(), inbox.dropped(), node.issues().total(), now); };
     while (!g_stop) {
       if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
+      counts(false);
     }
+    counts(true);
     spdlog::info("stopping after {} frames; skipped bad input: {}; dropped messages: {}", node.published(),
                  node.issues().empty() ? "none" : node.issues().summary(),
                  inbox.dropped() ? inbox.summary() : "none");

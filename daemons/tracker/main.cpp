@@ -12,6 +12,7 @@
 #include "frontend/frontend_config.h"
 #include "frontend_msg/frontend_convert.h"
 #include "msg/inbox.h"
+#include "msg/status_beacon.h"
 
 using namespace slide;
 
@@ -61,13 +62,14 @@ int main(int argc, char** argv) {
   int robot = 0;
   std::string url, config_file = std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml";
   std::string classes_file = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
-  std::string in_ch = "INSTANCES", out_ch = "KEYPOSE_BUNDLE";
+  std::string in_ch = "INSTANCES", out_ch = "KEYPOSE_BUNDLE", status_ch = "DAEMON_STATUS";
   app.add_option("--robot", robot, "Robot id")->capture_default_str();
   app.add_option("--lcm-url", url, "Robot bus URL (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
   app.add_option("--config", config_file, "Front-end YAML")->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML")->capture_default_str();
   app.add_option("--instances-channel", in_ch, "Instances in")->capture_default_str();
   app.add_option("--bundle-channel", out_ch, "Key-pose bundles out")->capture_default_str();
+  app.add_option("--status-channel", status_ch, "Counts out (daemon_status_t every 5 s)")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
     if (url.empty()) url = slide::robotBusUrl(robot);
     const ClassTable classes = ClassTable::load(classes_file);
@@ -80,10 +82,14 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, [](int) { g_stop = true; });
     std::signal(SIGTERM, [](int) { g_stop = true; });
     spdlog::info("robot {}: {} -> {} on {} (key pose every {} m)", robot, in_ch, out_ch, url, cfg.keypose.distance);
+    msg::StatusBeacon status(lcm, status_ch, robot, "tracker");
+    auto counts = [&](bool now) { status.tick(node.bundles(), inbox.dropped(), node.issues().total(), now); };
     while (!g_stop) {
       if (lcm.handleTimeout(200) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
       node.report();
+      counts(false);
     }
+    counts(true);
     spdlog::info("stopping after {} key poses; skipped bad input: {}; dropped messages: {}", node.bundles(),
                  node.issues().empty() ? "none" : node.issues().summary(),
                  inbox.dropped() ? inbox.summary() : "none");

@@ -22,12 +22,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <lcm/lcm-cpp.hpp>
 #include <sstream>
 #include <thread>
 
 #include "../deputy/netns.h"
 #include "hostile_messages.h"
+#include "slide/daemon_status_t.hpp"
 #include "slide/optimizer_status_t.hpp"
 #include "team/journal.h"
 
@@ -104,6 +106,12 @@ struct Probe {
     dropped_in_status = std::max(dropped_in_status, m->dropped_messages);
   }
   void onBundle(const lcm::ReceiveBuffer*, const std::string&, const keypose_bundle_t*) { ++bundles; }
+  // Daemons without a status of their own: the most each one said it dropped.
+  std::map<std::string, std::int64_t> daemon_dropped;
+  void onDaemonStatus(const lcm::ReceiveBuffer*, const std::string&, const daemon_status_t* m) {
+    auto& d = daemon_dropped[m->daemon];
+    d = std::max(d, m->dropped_messages);
+  }
 };
 
 void pump(lcm::LCM& lcm, double seconds, const std::function<bool()>& done = [] { return false; }) {
@@ -273,6 +281,7 @@ TEST(SLIDE_FUZZ_SUITE, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsSer
   Probe probe;
   bus.subscribe("OPTIMIZER_STATUS", &Probe::onStatus, &probe);
   bus.subscribe("KEYPOSE_BUNDLE", &Probe::onBundle, &probe);
+  bus.subscribe("DAEMON_STATUS", &Probe::onDaemonStatus, &probe);
 
   Mutator mut(20261201);
   const int rounds = SLIDE_FUZZ_ROUNDS;
@@ -331,5 +340,9 @@ TEST(SLIDE_FUZZ_SUITE, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsSer
     const std::string log = d->text();
     EXPECT_NE(log.find("dropped"), std::string::npos) << d->name << " counted no dropped message:\n" << log;
   }
+  // The segmenter, tracker and loop closer say so on the bus too (their last status at stop).
+  pump(bus, 0.5);
+  for (const char* name : {"segmenter", "tracker", "loop_closer"})
+    EXPECT_GT(probe.daemon_dropped[name], 0) << name << " published no count of its dropped messages";
   std::filesystem::remove_all(dir);
 }
