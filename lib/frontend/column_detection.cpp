@@ -157,33 +157,49 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
 // `range` hides what stands above the point (a crown may be there).
 class ViewAbove {
  public:
-  ViewAbove(const Cloud& cloud, const std::vector<int>& points) : bins_(kBins) {
-    for (int i : points) bins_[bin(cloud[i])].push_back(polar(cloud[i]));
-  }
-  bool hiddenAbove(const Eigen::Vector3f& p, double range) const {
+  ViewAbove(const Cloud& cloud, const std::vector<int>& points) : cloud_(cloud), points_(points) {}
+  bool hiddenAbove(const Eigen::Vector3f& p, float range) {
+    if (start_.empty()) {  // built at the first question, as one array sorted by bin
+      std::vector<int> bin_of(points_.size());
+      start_.assign(kBins + 1, 0);
+      for (std::size_t k = 0; k < points_.size(); ++k) ++start_[(bin_of[k] = bin(cloud_[points_[k]])) + 1];
+      for (int b = 0; b < kBins; ++b) start_[b + 1] += start_[b];
+      std::vector<int> fill(start_.begin(), start_.end() - 1);
+      polar_.resize(points_.size());
+      for (std::size_t k = 0; k < points_.size(); ++k) polar_[fill[bin_of[k]]++] = polar(cloud_[points_[k]]);
+    }
     const Polar q = polar(p);
+    // tan(elevation + 3 deg) from tan(elevation), without trigonometry per point.
+    const float lo = q.tan_elevation + 1e-4f, hi = (q.tan_elevation + kTanAbove) / (1.0f - q.tan_elevation * kTanAbove);
     const int b = bin(p);
-    for (int d = -1; d <= 1; ++d)
-      for (const Polar& o : bins_[(b + d + kBins) % kBins])
-        if (o.elevation > q.elevation + 1e-4 && o.elevation < q.elevation + kAbove && o.range < range) return true;
+    for (int d = -1; d <= 1; ++d) {
+      const int n = (b + d + kBins) % kBins;
+      for (int k = start_[n]; k < start_[n + 1]; ++k) {
+        const Polar& o = polar_[k];
+        if (o.tan_elevation > lo && o.tan_elevation < hi && o.range < range) return true;
+      }
+    }
     return false;
   }
 
  private:
   struct Polar {
-    double elevation, range;
+    float tan_elevation, range;
   };
   static constexpr int kBins = 720;
-  static constexpr double kAbove = 3.0 * M_PI / 180;
+  static constexpr float kTanAbove = 0.052408f;  // tan(3 deg)
   static int bin(const Eigen::Vector3f& p) {
-    const double az = std::atan2(double(p.y()), double(p.x()));
-    return std::clamp(static_cast<int>((az + M_PI) / (2 * M_PI) * kBins), 0, kBins - 1);
+    const float az = std::atan2(p.y(), p.x());
+    return std::clamp(static_cast<int>((az + float(M_PI)) * (kBins / (2 * float(M_PI)))), 0, kBins - 1);
   }
   static Polar polar(const Eigen::Vector3f& p) {
-    const double r = std::hypot(double(p.x()), double(p.y()));
-    return {std::atan2(double(p.z()), r), r};
+    const float r = std::max(std::sqrt(p.x() * p.x() + p.y() * p.y()), 1e-3f);
+    return {p.z() / r, r};
   }
-  std::vector<std::vector<Polar>> bins_;
+  const Cloud& cloud_;
+  const std::vector<int>& points_;
+  std::vector<int> start_;    // polar_[start_[b] .. start_[b + 1]) lie in azimuth bin b
+  std::vector<Polar> polar_;
 };
 }  // namespace
 
@@ -206,7 +222,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     slice_buckets[s].add(i);
   }
   const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
-  const ViewAbove view(cloud, above);
+  ViewAbove view(cloud, above);
   std::vector<int> every(blobs.size());
   std::iota(every.begin(), every.end(), 0);
   auto reject = [&](const Eigen::Vector2d& c, const std::string& why) {
@@ -299,7 +315,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
     if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||
-                       view.hiddenAbove(cloud[top_point], mid.norm() - p.end_margin)))
+                       view.hiddenAbove(cloud[top_point], static_cast<float>(mid.norm() - p.end_margin))))
       col.confidence = p.unsure_confidence;
     for (int i : col.points) taken[i] = 1;
     out.push_back(std::move(col));

@@ -93,6 +93,28 @@ TEST(ColumnDetection, ThickTrunkIsTrunkThinPoleIsPole) {
   }
 }
 
+TEST(ColumnDetection, AThinColumnIsASurePoleOnlyWithOpenViewAboveItsTop) {
+  Cloud c;
+  addGround(c);
+  addPole(c, {5, -3}, 0.25, 12.0);  // a thick trunk: a sure trunk call, and a high view
+  addPole(c, {8, 0}, 0.05, 4.0);    // thin, its top seen with open view above: a sure pole
+  auto thin = [](const std::vector<Column>& cols) {
+    for (const auto& col : cols)
+      if ((col.base - Eigen::Vector2d(8, 0)).norm() < 0.3) return col;
+    ADD_FAILURE() << "thin column not found";
+    return Column{};
+  };
+  const Column open = thin(columnsOf(c));
+  EXPECT_FALSE(open.trunk);
+  EXPECT_EQ(open.confidence, 1.0);
+  // A few nearer returns just above its top in its direction (a nearer crown's edge): its top
+  // may go on behind them, so the call is unsure and follows the scan's sure call (trunk).
+  for (double y = -0.1; y <= 0.1; y += 0.05) c.emplace_back(4.0f, float(y), 2.15f);
+  const Column hidden = thin(columnsOf(c));
+  EXPECT_TRUE(hidden.trunk);
+  EXPECT_LT(hidden.confidence, 1.0);
+}
+
 TEST(ColumnDetection, ArcTestRejectsAFlatPillar) {
   Cloud c;
   addGround(c);
