@@ -104,8 +104,9 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o,
 
 void Optimizer::voteClass(Landmark& lm, int class_id, double confidence) {
   lm.class_votes[class_id] += std::isfinite(confidence) ? std::clamp(confidence, 1e-3, 1.0) : 1e-3;
+  double most = -1;  // ties go to the lower class id
   for (const auto& [c, v] : lm.class_votes)
-    if (v > lm.class_votes[lm.class_id]) lm.class_id = c;
+    if (v > most) most = v, lm.class_id = c;
 }
 
 void Optimizer::moveObservations(Landmark& from, Landmark& to) {

@@ -105,7 +105,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.missed = 0;
     t.confidence_sum += o.confidence;
     t.last_centroid = o.centroid;
-    t.class_votes[o.class_id] += o.confidence;
+    t.class_votes[o.class_id] += std::isfinite(o.confidence) ? std::clamp(o.confidence, 1e-3f, 1.0f) : 1e-3f;
     t.class_id = std::max_element(t.class_votes.begin(), t.class_votes.end(),
                                   [](const auto& x, const auto& y) { return x.second < y.second; })->first;
     t.observations.push_back(std::move(o.points));

@@ -83,8 +83,9 @@ void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const Class
     if (i == map.size()) map.push_back(o), votes.emplace_back();
     else map[i] = o;
     votes[i][o.class_id] += std::clamp(o.confidence, 1e-3, 1.0);
+    double most = -1;  // as the back-end: ties go to the lower class id
     for (const auto& [c, v] : votes[i])
-      if (v > votes[i][map[i].class_id]) map[i].class_id = c;
+      if (v > most) most = v, map[i].class_id = c;
   }
 }
 
