@@ -53,9 +53,10 @@ struct ColumnParams {
   // A thin column without a canopy is a pole for sure only when its top is seen with open view
   // above it: top + end_margin below both the highest visible point at its range and
   // max_height, and no nearer return just above its top (in a forest, nearer trunks and crowns
-  // hide the upper parts of farther ones). Otherwise a crown may be out of view: the call is unsure; it then takes the
-  // class most sure columns of the same scan have (a forest's trunks, a street's poles; a
-  // pole when there is none) with unsure_confidence (the tracker weighs class votes by it).
+  // hide the upper parts of farther ones). Otherwise a crown may be out of view: the call is
+  // unsure; it then takes the class most sure columns of the same scan have (a forest's trunks,
+  // a street's poles; a pole when there is none) with unsure_confidence (the tracker and the
+  // back-end weigh class votes by it).
   double end_margin = 0.5;
   double unsure_confidence = 0.3;
 };

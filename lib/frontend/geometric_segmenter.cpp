@@ -118,10 +118,9 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
       int label = 0;
       for (const auto& cl : clusterGrid(cloud, rest, params_.other_cluster)) {
         const Footprint f = footprintOf(cloud, cl);
-        const double height = quantileOf(h, cl, 0.98) - quantileOf(h, cl, 0.02);
+        const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
         if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
-        if (f.length < other.size_min.x() && height < other.size_min.z()) continue;
-        if (height < other.size_min.z() || quantileOf(h, cl, 0.02) > params_.other_max_bottom) continue;
+        if (height < other.size_min.z() || bottom > params_.other_max_bottom) continue;
         if (params_.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > params_.other_max_roughness) continue;
         emit(params_.other_class, cl);
       }
