@@ -35,7 +35,11 @@ MapResult mapOf(const RobotDataset& d, double t0) {
   const FrontendConfig fe = loadDefaultFrontendConfig();
   const GeometricSegmenter segmenter(classes, fe.geometric);
   KeyposeBundler bundler(Tracker(classes, fe.tracker, fe.fit), fe.keypose);
-  Optimizer optimizer(loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), classes, 0);
+  // One solver thread: two-thread full solves sum in varying order and differ by ~1e-5 m from
+  // run to run, which would hide whether the inputs were the same.
+  BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+  backend.num_threads = 1;
+  Optimizer optimizer(backend, classes, 0);
   MapResult out;
   for (std::size_t i = 0; i < d.size(); ++i) {
     LabelledScan scan = d.scan(i);
