@@ -37,13 +37,22 @@ void writeRobotYaml(const std::string& path, const Scenario& sc, const RobotRun&
   std::ofstream out(path);
   if (!out) throw IoError(path, "cannot write file");
   const Eigen::Vector4d o = xyzYawOf(r.T_world_odom);
-  out << "robot: " << r.id << "\nworld: " << sc.world.name << "\nseed: " << sc.spec.seed << "\nsensor: " << s.sensor
-      << "\nmodel: " << (s.sensor == "lidar" ? s.lidar.name : s.camera.name) << "\nframes: " << r.ground_truth.size()
-      << "\naerial: " << (sc.spec.aerial ? "true" : "false") << "\nfirst_source_frame: " << r.first_source_frame
+  const std::string& sensor = s.sensorOf(r.id);
+  out << "robot: " << r.id << "\nworld: " << sc.world.name << "\nseed: " << sc.spec.seed << "\nsensor: " << sensor
+      << "\nmodel: " << (sensor == "lidar" ? s.lidar.name : s.camera.name) << "\nframes: " << r.ground_truth.size()
+      << "\naerial: " << (r.aerial ? "true" : "false") << "\nfirst_source_frame: " << r.first_source_frame
       << "\n# pose of the robot's odometry frame in the world frame: x y z yaw (metres, radians)\n"
       << "T_world_odom: [" << o[0] << ", " << o[1] << ", " << o[2] << ", " << o[3] << "]\n";
 }
 }  // namespace
+
+const std::string& SensorOptions::sensorOf(int id) const {
+  if (per_robot.empty()) return sensor;
+  if (id < 0 || id >= static_cast<int>(per_robot.size()))
+    throw std::invalid_argument("no sensor given for robot " + std::to_string(id) + " (" +
+                                std::to_string(per_robot.size()) + " sensors listed)");
+  return per_robot[id];
+}
 
 std::mt19937_64 frameRng(uint64_t seed, int robot, int frame) {
   std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32), static_cast<uint32_t>(robot),
@@ -65,8 +74,9 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
                                   const ProgressFn& progress) {
   const fs::path root(dir);
   fs::create_directories(root);
-  const bool lidar = s.sensor == "lidar";
-  if (!lidar && s.sensor != "rgbd") throw std::invalid_argument("unknown sensor '" + s.sensor + "' (lidar, rgbd)");
+  const std::string& sensor = s.sensorOf(r.id);
+  const bool lidar = sensor == "lidar";
+  if (!lidar && sensor != "rgbd") throw std::invalid_argument("unknown sensor '" + sensor + "' (lidar, rgbd)");
   const Trajectory& gt = r.ground_truth;
   std::vector<StampedPose> odom, truth;
   for (std::size_t i = 0; i < gt.size(); ++i) {

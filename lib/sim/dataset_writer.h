@@ -12,6 +12,7 @@
 // The LiDAR sits at the body origin; the camera too, looking along body x.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "sim/lidar.h"
 #include "sim/rgbd_camera.h"
@@ -21,8 +22,11 @@ namespace slide {
 
 struct SensorOptions {
   std::string sensor = "lidar";  // lidar | rgbd
+  std::vector<std::string> per_robot;  // mixed teams: robot r carries per_robot[r] (else `sensor`)
   LidarModel lidar = lidarModel("os1-64");
   CameraModel camera = cameraModel("d455");
+  // The sensor robot `id` carries.
+  const std::string& sensorOf(int id) const;
 };
 
 struct GenerationStats {
@@ -39,7 +43,7 @@ std::mt19937_64 frameRng(uint64_t seed, int robot, int frame);
 
 // Writes objects.csv and world.yaml into out_dir (created if needed).
 void writeWorldFiles(const Scenario& scenario, const std::string& out_dir);
-// Writes one robot's folder (trajectories and every sensor frame).
+// Writes one robot's folder (trajectories and every sensor frame) with the sensor s.sensorOf(robot.id).
 GenerationStats writeRobotDataset(const Scenario& scenario, const RobotRun& robot, const SensorOptions& sensor,
                                   const std::string& robot_dir, const ProgressFn& progress = {});
 // Both of the above for every robot (OUT/robotN), robots in parallel on up to `threads`

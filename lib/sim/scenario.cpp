@@ -1,5 +1,6 @@
 #include "sim/scenario.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "io/kitti_poses.h"
@@ -59,30 +60,38 @@ Scenario buildKitti(const ScenarioSpec& spec) {
 }
 }  // namespace
 
+bool isAerial(const ScenarioSpec& spec, int id) {
+  return spec.aerial || std::find(spec.aerial_robots.begin(), spec.aerial_robots.end(), id) != spec.aerial_robots.end();
+}
+
 Scenario buildScenario(const ScenarioSpec& spec) {
   if (spec.robots < 1) throw std::invalid_argument("robots must be at least 1");
+  for (int id : spec.aerial_robots)
+    if (id < 0 || id >= spec.robots)
+      throw std::invalid_argument("aerial robot " + std::to_string(id) + " is not in the team (robots 0.." +
+                                  std::to_string(spec.robots - 1) + ")");
   if (spec.rate <= 0) throw std::invalid_argument("rate must be positive");
   if (spec.world == "kitti05" || spec.world == "kitti07") return buildKitti(spec);
 
   Scenario sc;
   sc.spec = spec;
   MotionParams motion;
-  motion.aerial = spec.aerial;
   motion.rate = spec.rate;
+  double ground_height = 0, aerial_height = 0;  // sensor height above the terrain, or mean altitude
   if (spec.world == "forest") {
     ForestParams fp = spec.forest;
     if (fp.inventory_dir.empty()) fp.inventory_dir = dataDir(spec) + "/forest_inventory";
     sc.world = makeForestWorld(fp, spec.seed);
     motion.speed = 1.5;
-    motion.height = spec.aerial ? 3.0 : 0.8;
+    ground_height = 0.8, aerial_height = 3.0;
   } else if (spec.world == "urban") {
     sc.world = makeUrbanWorld(UrbanParams{}, spec.seed);
     motion.speed = 2.0;
-    motion.height = spec.aerial ? 4.0 : 1.0;
+    ground_height = 1.0, aerial_height = 4.0;
   } else if (spec.world == "indoor") {
     sc.world = makeIndoorWorld(IndoorParams{}, spec.seed);
     motion.speed = 0.8;
-    motion.height = spec.aerial ? 1.4 : 0.5;
+    ground_height = 0.5, aerial_height = 1.4;
     motion.altitude_amplitude = 0.5;
     motion.altitude_wavelength = 10;
     motion.corner_radius = 0.5;
@@ -97,6 +106,9 @@ Scenario buildScenario(const ScenarioSpec& spec) {
   for (int r = 0; r < spec.robots; ++r) {
     RobotRun run;
     run.id = r;
+    run.aerial = isAerial(spec, r);
+    motion.aerial = run.aerial;
+    motion.height = run.aerial ? aerial_height : ground_height;
     run.ground_truth = followRoute(routes[r], sc.world.terrain, motion, length, spec.frames);
     std::vector<Eigen::Vector2d> driven;
     for (const Pose& p : run.ground_truth.poses) driven.push_back(p.translation().head<2>());

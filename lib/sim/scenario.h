@@ -18,6 +18,7 @@ struct ScenarioSpec {
   int frames = 0;                // > 0: frames per robot instead of a distance
   double overlap = 0.3;          // share of each route on a route common to all robots
   bool aerial = false;           // aerial robots change altitude (ground robots follow terrain)
+  std::vector<int> aerial_robots;  // ids of aerial robots in an otherwise ground team (mixed teams)
   double speed = 0;              // m/s; 0: the world's default (forest 1.5, urban 2, indoor 0.8)
   double rate = 10.0;            // sensor frames per second
   double clearance = 0;           // metres kept free around robot paths; 0: world default
@@ -32,7 +33,11 @@ struct RobotRun {
   std::vector<Pose> odometry;    // body poses in the robot's own odometry frame
   Pose T_world_odom = Pose::Identity();  // where that odometry frame lies in the world
   int first_source_frame = 0;    // KITTI scenarios: index of frame 0 in the real sequence
+  bool aerial = false;           // flies (altitude changes) rather than following the ground
 };
+
+// Whether robot `id` of a spec flies: every robot with `aerial`, else those in aerial_robots.
+bool isAerial(const ScenarioSpec& spec, int id);
 
 struct Scenario {
   ScenarioSpec spec;

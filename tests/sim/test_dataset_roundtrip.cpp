@@ -112,6 +112,33 @@ TEST(Dataset, RgbdScenarioReadsBack) {
   fs::remove_all(out);
 }
 
+TEST(Dataset, MixedTeamGivesEachRobotItsOwnSensorAndMotion) {
+  ScenarioSpec spec;
+  spec.world = "forest";
+  spec.forest.num_trees = 150;
+  spec.robots = 3;
+  spec.frames = 2;
+  spec.aerial_robots = {2};
+  const Scenario sc = buildScenario(spec);
+  const fs::path out = scratch("mixed");
+  SensorOptions sensors;
+  sensors.per_robot = {"lidar", "rgbd", "rgbd"};
+  writeScenarioDataset(sc, sensors, out.string());
+  EXPECT_EQ(openRobotDataset((out / "robot0").string()).sensor, RobotDataset::Sensor::Lidar);
+  EXPECT_EQ(openRobotDataset((out / "robot1").string()).sensor, RobotDataset::Sensor::Rgbd);
+  EXPECT_EQ(openRobotDataset((out / "robot2").string()).sensor, RobotDataset::Sensor::Rgbd);
+  for (int r = 0; r < 3; ++r) {
+    std::ifstream yaml(out / ("robot" + std::to_string(r)) / "robot.yaml");
+    const std::string text((std::istreambuf_iterator<char>(yaml)), {});
+    EXPECT_NE(text.find(r == 2 ? "aerial: true" : "aerial: false"), std::string::npos) << text;
+  }
+  // A sensor list that does not cover the team is an error, not a silent default.
+  sensors.per_robot = {"lidar", "rgbd"};
+  EXPECT_THROW(writeScenarioDataset(sc, sensors, scratch("mixed_short").string()), std::invalid_argument);
+  fs::remove_all(out);
+  fs::remove_all(scratch("mixed_short"));
+}
+
 TEST(Dataset, EveryWorldForOneToThreeRobots) {
   const bool kitti = fs::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/05.txt");
   int robots = 1;

@@ -184,6 +184,27 @@ TEST(Scenario, AerialRobotsChangeAltitudeGroundRobotsFollowTheGround) {
   }
 }
 
+TEST(Scenario, AMixedTeamFliesOnlyItsAerialRobots) {
+  ScenarioSpec spec;
+  spec.robots = 3;
+  spec.distance = 60;
+  spec.forest.num_trees = 150;
+  spec.aerial_robots = {1};
+  const Scenario sc = buildScenario(spec);
+  for (const RobotRun& r : sc.robots) {
+    EXPECT_EQ(r.aerial, r.id == 1);
+    double hi = -1e9;
+    for (const Pose& p : r.ground_truth.poses)
+      hi = std::max(hi, p.translation().z() - sc.world.terrain.height(p.translation().x(), p.translation().y()));
+    if (r.aerial)
+      EXPECT_GT(hi, 2.5);
+    else
+      EXPECT_NEAR(hi, 0.8, 1e-6);
+  }
+  spec.aerial_robots = {3};  // not in a team of three
+  EXPECT_THROW(buildScenario(spec), std::invalid_argument);
+}
+
 TEST(Scenario, OverlapSharesTheRoutes) {
   // Share of robot 1's poses within 3 m of robot 0's path.
   auto shared = [](double overlap) {

@@ -6,6 +6,7 @@ demo_usage() {
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
                     [--overlap F] [--rate R] [--settle SEC] [--out DIR]
                     [--perception label-free|emulated|oracle] [--data SIM_DIR]
+                    [--sensors lidar,rgbd,...] [--aerial-robots IDS]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -20,6 +21,9 @@ one; --world, --robots, --seed, --distance and --overlap then come from it.
 geometrically), emulated (the drivers publish the detection emulator's RangeNet++-class labels /
 YOLOv8-seg-class masks, made from ground truth inside the driver) or oracle (the simulator's
 ground-truth labels reach the robots: an upper bound, and the report says so).
+--sensors gives each robot its sensor (a mixed team, e.g. lidar,rgbd,rgbd; default all lidar);
+an RGBD robot in a label-free run takes the detection emulator's masks, as it would a detector's.
+--aerial-robots lists the robots that fly (e.g. 2), the others drive.
 Defaults: --world forest --robots 3 --seed 1 --distance 150 --overlap 0.6 --rate 1 --settle 25
           --out runs/demo-<time> --perception label-free
 USAGE
@@ -27,7 +31,7 @@ USAGE
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse=
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse= sensors="" aerial=""
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
@@ -40,6 +44,8 @@ main() {
       --out) out=$2; shift 2 ;;
       --perception) perception=$2; shift 2 ;;
       --data) reuse=$2; shift 2 ;;
+      --sensors) sensors=$2; shift 2 ;;
+      --aerial-robots) aerial=$2; shift 2 ;;
       *) die "demo: unknown option '$1' (see ./slide demo --help)" ;;
     esac
   done
@@ -59,14 +65,19 @@ main() {
     log "1/3 reusing the $robots-robot mission in $reuse"
     ln -sfn "$(cd "$reuse" && pwd)" "$data"
   else
-    log "1/3 simulating a $robots-robot $world mission ($distance m each, seed $seed) into $data"
-    slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --overlap "$overlap" --rate 5 --out "$data" ||
-      die "demo: simulation failed"
+    local team=() sim_team
+    [[ -z "$sensors" ]] || team+=(--sensors "$sensors")
+    [[ -z "$aerial" ]] || team+=(--aerial-robots "$aerial")
+    sim_team=${sensors:+ ($sensors)}${aerial:+, aerial: $aerial}
+    log "1/3 simulating a $robots-robot $world mission$sim_team ($distance m each, seed $seed) into $data"
+    slide-sim --world "$world" --robots "$robots" --seed "$seed" --distance "$distance" --overlap "$overlap" --rate 5 \
+      "${team[@]}" --out "$data" || die "demo: simulation failed"
   fi
 
+  # Mission length from robot 0's odometry (one line per frame, first column its time).
   local frames mission
-  frames=$(wc -l < "$data/robot0/times.txt")
-  mission=$(awk -v f="$frames" -v r="$rate" -v d="$(head -2 "$data/robot0/times.txt" | awk 'NR==1{a=$1} NR==2{print $1-a}')" \
+  frames=$(wc -l < "$data/robot0/odom.txt")
+  mission=$(awk -v f="$frames" -v r="$rate" -v d="$(head -2 "$data/robot0/odom.txt" | awk 'NR==1{a=$1} NR==2{print $1-a}')" \
     'BEGIN { printf "%d", (f * d) / (r > 0 ? r : 1) + 1 }')
   local duration=$((mission + settle))
   team_run_write_config "$out" "$data" "$robots" "$rate" "$perception"

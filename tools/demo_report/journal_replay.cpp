@@ -65,11 +65,31 @@ std::optional<TransformError> mergedFrameError(const Optimizer& opt, int peer, c
   return transformError(traj.front().pose * it->second.inverse(), truth.T_a_b(opt.hostRobot(), peer));
 }
 
+// The host's raw odometry at the key poses it holds, in the same measure (no alignment).
+TrajectoryError odometryError(const Optimizer& opt, const TeamTruth& truth,
+                              const std::map<std::pair<int, int>, Pose>& odom_of) {
+  TrajectoryError e;
+  const int host = opt.hostRobot();
+  const Pose T_host_world = truth.robot(host).T_world_odom.inverse();
+  double sq = 0;
+  for (const TrajectoryPose& p : opt.trajectory(host)) {
+    const StampedPose* g = truthAt(truth.robot(host), p.utime * 1e-6);
+    const auto o = odom_of.find({host, p.seq});
+    if (!g || o == odom_of.end()) continue;
+    const double d = (o->second.translation() - (T_host_world * g->pose).translation()).norm();
+    sq += d * d;
+    e.last = d;
+    ++e.poses;
+  }
+  if (e.poses) e.rmse = std::sqrt(sq / e.poses);
+  return e;
+}
+
 void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std::pair<int, int>, Pose>& odom_of,
                 const char* prefix) {
-  const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth);
-  std::printf("%s own %d poses rmse %.3f m last %.3f m; landmarks %d", prefix, own.poses, own.rmse, own.last,
-              opt.numLandmarks());
+  const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth), odom = odometryError(opt, truth, odom_of);
+  std::printf("%s own %d poses rmse %.3f m last %.3f m (odometry %.3f / %.3f m); landmarks %d", prefix, own.poses,
+              own.rmse, own.last, odom.rmse, odom.last, opt.numLandmarks());
   for (int r : opt.robots()) {
     if (r == opt.hostRobot()) continue;
     const auto e = mergedFrameError(opt, r, truth, odom_of);
@@ -123,6 +143,8 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "Back-end configuration")->capture_default_str();
   app.add_option("--classes", classes_path, "Class table")->capture_default_str();
   app.add_option("--every", every, "Also print the state every this many bundles")->capture_default_str();
+  bool own_only = false;
+  app.add_flag("--own-only", own_only, "Replay only the host's own inputs (no peer bundles, no inter-robot transforms)");
   return runApp(app, common, argc, argv, [&] {
     const TeamTruth truth = readTeamTruth(data, robots);
     OptimizerNode node(loadBackendConfig(config), ClassTable::load(classes_path), robot, {}, {});
@@ -137,6 +159,7 @@ int main(int argc, char** argv) {
         loop_closure_t m;
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable loop closure");
         const Pose T = poseFromXyzYaw(m.x, m.y, m.z, m.yaw);
+        if (own_only && m.robot_a != m.robot_b) continue;
         std::printf("#%d after %d bundles: ", index, bundles);
         if (m.robot_a == m.robot_b) {
           std::string err = "truth n/a";
@@ -163,7 +186,7 @@ int main(int argc, char** argv) {
         }
         node.handle("LOOP_CLOSURE", e->data, e->datalen);
         printState(node.optimizer(), truth, odom_of, "   ->");
-      } else if (e->channel == "KEYPOSE_BUNDLE" || e->channel == "PEER_BUNDLE") {
+      } else if (e->channel == "KEYPOSE_BUNDLE" || (e->channel == "PEER_BUNDLE" && !own_only)) {
         keypose_bundle_t m;
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable bundle");
         std::vector<std::string> warnings;
@@ -179,18 +202,6 @@ int main(int argc, char** argv) {
     }
     node.optimizer().fullSolve();
     printState(node.optimizer(), truth, odom_of, "final (full solve):");
-    // The host's raw odometry at the same key poses, in the same measure (no alignment).
-    double sq = 0;
-    int n = 0;
-    const Pose T_host_world = truth.robot(robot).T_world_odom.inverse();
-    for (const TrajectoryPose& p : node.optimizer().trajectory(robot)) {
-      const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
-      const auto o = odom_of.find({robot, p.seq});
-      if (!g || o == odom_of.end()) continue;
-      sq += (o->second.translation() - (T_host_world * g->pose).translation()).squaredNorm();
-      ++n;
-    }
-    if (n) std::printf("odometry: own %d poses rmse %.3f m\n", n, std::sqrt(sq / n));
     std::printf("merges undone: %d, rebuilds: %d\n", node.optimizer().unmerged(), node.optimizer().rebuilds());
     return 0;
   });

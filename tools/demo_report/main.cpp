@@ -336,10 +336,10 @@ int main(int argc, char** argv) {
        << " static ground-truth objects within " << opts.visible_range
        << " m of any robot's path, precision counts matches against all " << truth.objects.size()
        << " static objects.\n\n";
-    md << "## Per robot\n\n| robot | key poses | ATE m | ATE m, no alignment | odometry ATE m | landmarks | precision | recall | F1 | "
-          "trajectories held | bundles own / peers | update ms median / p99 |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md << "## Per robot\n\n| robot | platform | detections | key poses | ATE m | ATE m, no alignment | odometry ATE m | landmarks | precision | recall | F1 | "
+          "trajectories held | bundles own / peers | update ms median / p99 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RobotFigures& f : figs)
-      md << "| " << f.robot << " | " << f.poses << " | " << num(f.ate) << " | " << num(f.ate_anchored) << " | "
+      md << "| " << f.robot << " | " << truth.robot(f.robot).platform << " | " << detections[f.robot] << " | " << f.poses << " | " << num(f.ate) << " | " << num(f.ate_anchored) << " | "
          << num(f.odom_ate) << " | "
          << f.landmarks << " | " << num(f.objects.overall.precision) << " | " << num(f.objects.overall.recall) << " | "
          << num(f.objects.overall.f1) << " | " << f.trajectories << " | " << f.keypose_bundles << " / "

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "config/config.h"
 #include "io/ground_truth_objects.h"
 #include "io/robot_dataset.h"
 
@@ -27,6 +28,9 @@ TeamTruth readTeamTruth(const std::string& data_dir, const std::vector<int>& rob
     r.ground_truth = ds.ground_truth;
     r.odometry = ds.odometry;
     r.T_world_odom = ds.ground_truth.front().pose * ds.odometry.front().pose.inverse();
+    const ConfigNode yaml = ConfigNode::load(dir + "/robot.yaml");
+    r.platform = std::string(yaml.get<bool>("aerial", false) ? "aerial " : "ground ") +
+                 (ds.sensor == RobotDataset::Sensor::Rgbd ? "RGBD" : "LiDAR");
     for (std::size_t i = 1; i < ds.ground_truth.size(); ++i)
       r.path_length_m += (ds.ground_truth[i].pose.translation() - ds.ground_truth[i - 1].pose.translation()).norm();
     truth.robots.push_back(r);

@@ -15,6 +15,7 @@ struct RobotTruth {
   std::vector<StampedPose> ground_truth;  // world frame
   std::vector<StampedPose> odometry;      // own odometry frame
   double path_length_m = 0;
+  std::string platform;  // e.g. "ground LiDAR", "aerial RGBD" (robot.yaml of the simulator)
 };
 
 struct TeamTruth {

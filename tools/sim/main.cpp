@@ -24,7 +24,13 @@ int main(int argc, char** argv) {
   app.add_option("--robots", spec.robots, "Number of robots")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_option("--seed", spec.seed, "Random seed (same seed, same dataset)")->capture_default_str();
   app.add_option("--out", out, "Output folder")->required();
-  app.add_option("--sensor", sensor, "Sensor: lidar | rgbd")->check(CLI::IsMember({"lidar", "rgbd"}))->capture_default_str();
+  std::vector<std::string> sensors_list;
+  auto* sensor_opt =
+      app.add_option("--sensor", sensor, "Sensor of every robot: lidar | rgbd")->check(CLI::IsMember({"lidar", "rgbd"}))->capture_default_str();
+  app.add_option("--sensors", sensors_list, "Mixed team: one sensor per robot, e.g. lidar,rgbd,rgbd")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"lidar", "rgbd"}))
+      ->excludes(sensor_opt);
   auto* lidar_opt = app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16 (KITTI worlds: hdl-64e)")
       ->check(CLI::IsMember(slide::lidarModelNames()))
       ->capture_default_str();
@@ -38,7 +44,10 @@ int main(int argc, char** argv) {
   app.add_option("--overlap", spec.overlap, "Share of each route on a route common to all robots (0..1)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  app.add_flag("--aerial", spec.aerial, "Aerial robots (altitude changes) instead of ground robots");
+  auto* aerial_opt = app.add_flag("--aerial", spec.aerial, "Aerial robots (altitude changes) instead of ground robots");
+  app.add_option("--aerial-robots", spec.aerial_robots, "Mixed team: ids of the aerial robots, e.g. 2 (the others drive)")
+      ->delimiter(',')
+      ->excludes(aerial_opt);
   app.add_option("--speed", spec.speed, "Robot speed m/s (0: world default: forest 1.5, urban 2, indoor 0.8)");
   app.add_option("--rate", spec.rate, "Sensor frames per second")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--clearance", spec.clearance, "Metres kept free of objects around paths (0: world default)");
@@ -59,8 +68,12 @@ int main(int argc, char** argv) {
     namespace fs = std::filesystem;
     if (fs::exists(out) && !fs::is_empty(out) && !force)
       throw std::runtime_error("output folder " + out + " is not empty (use --force to write into it)");
+    if (!sensors_list.empty() && static_cast<int>(sensors_list.size()) != spec.robots)
+      throw std::runtime_error("--sensors lists " + std::to_string(sensors_list.size()) + " sensors for " +
+                               std::to_string(spec.robots) + " robots");
     slide::SensorOptions sensors;
     sensors.sensor = sensor;
+    sensors.per_robot = sensors_list;
     if (lidar_opt->count() == 0 && spec.world.rfind("kitti", 0) == 0) lidar = "hdl-64e";  // KITTI's own sensor
     sensors.lidar = slide::lidarModel(lidar);
     sensors.camera = slide::cameraModel(camera);
@@ -69,7 +82,8 @@ int main(int argc, char** argv) {
     spdlog::info("world '{}': {} objects, {} scenery shapes; {} robot(s)", sc.world.name, sc.world.objects.size(),
                  sc.world.structures.size(), sc.robots.size());
     for (const auto& r : sc.robots)
-      spdlog::info("robot {}: {} frames, {:.0f} m", r.id, r.ground_truth.size(), r.ground_truth.length());
+      spdlog::info("robot {}: {} {} robot, {} frames, {:.0f} m", r.id, r.aerial ? "aerial" : "ground", sensors.sensorOf(r.id),
+                   r.ground_truth.size(), r.ground_truth.length());
     // Progress: one line for all robots, redrawn in place on a terminal, every 10 % otherwise.
     const bool bar = !quiet && isatty(STDERR_FILENO);
     std::vector<int> done(sc.robots.size(), 0);
@@ -93,8 +107,7 @@ int main(int argc, char** argv) {
     };
     const slide::GenerationStats st = slide::writeScenarioDataset(sc, sensors, out, progress, threads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    spdlog::info("wrote {} frames ({} {}) to {} in {:.1f} s", st.frames, st.points,
-                 sensor == "lidar" ? "points" : "valid depth pixels", out, s);
+    spdlog::info("wrote {} frames ({} points or valid depth pixels) to {} in {:.1f} s", st.frames, st.points, out, s);
     return 0;
   });
 }

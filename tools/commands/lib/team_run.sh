@@ -14,11 +14,25 @@ team_run_perception() {
   esac
 }
 
+# team_run_sensor DATA R: the sensor (lidar | rgbd) of robot R in a simulated mission.
+team_run_sensor() {
+  local s
+  s=$(sed -n 's/^sensor: *//p' "$1/robot$2/robot.yaml" 2>/dev/null)
+  echo "${s:-lidar}"
+}
+
+# team_run_robot_perception PERCEPTION SENSOR: the perception a robot with SENSOR runs in a team
+# run of PERCEPTION. An RGBD robot has no label-free path (objects in colour images need a
+# detector), so in a label-free run it takes the detection emulator's masks, the stand-in for
+# a YOLOv8-seg-class model; LiDAR robots run as asked.
+team_run_robot_perception() {
+  if [[ "$2" == rgbd && "$1" == label-free ]]; then echo emulated; else echo "$1"; fi
+}
+
 # team_run_write_config RUN DATA ROBOTS RATE [PERCEPTION]: writes RUN/config/*.yaml and RUN/team.pmd.
 team_run_write_config() {
-  local run=$1 data=$2 robots=$3 rate=$4 perception=${5:-label-free} pargs
-  pargs=$(team_run_perception "$perception") || { echo "unknown perception mode '$perception'" >&2; return 1; }
-  local driver_args=${pargs%%|*} segmenter_args=${pargs#*|}
+  local run=$1 data=$2 robots=$3 rate=$4 perception=${5:-label-free}
+  team_run_perception "$perception" > /dev/null || { echo "unknown perception mode '$perception'" >&2; return 1; }
   local cfg="$run/config" team_url="udpm://239.255.76.90:7690?ttl=1"
   mkdir -p "$cfg" "$run/logs" "$run/state" "$run/out"
   # One key per pair of robots, each robot's in its own file (mode 0600), never on a command line.
@@ -38,7 +52,9 @@ team_run_write_config() {
     local r
     for ((r = 0; r < robots; r++)); do
       local url="udpm://239.255.76.67:$((7670 + r))?ttl=0&recv_buf_size=4194304" dep="robot$((r + 1))" o="$run/out/robot$r"
-      local common="--robot $r --lcm-url $url"
+      local common="--robot $r --lcm-url $url" pargs
+      pargs=$(team_run_perception "$(team_run_robot_perception "$perception" "$(team_run_sensor "$data" "$r")")")
+      local driver_args=${pargs%%|*} segmenter_args=${pargs#*|}
       cat <<PMD
 group "robot$r" {
   cmd "logger-$r" { exec = "lcm-logger -f --lcm-url=$url -c (OBJECT_MAP|TRAJECTORY|LOOP_CLOSURE|OPTIMIZER_STATUS|KEYPOSE_BUNDLE|PEER_BUNDLE|PEER_MAP|SENSOR_STATUS) $run/logs/robot$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
