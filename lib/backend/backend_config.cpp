@@ -37,6 +37,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("bearing_sigma", c.bearing_sigma);
     n.read("vertical_sigma", c.vertical_sigma);
     n.read("position_sigma_floor", c.position_sigma_floor);
+    n.read("ellipsoid_partial_view", c.ellipsoid_partial_view);
     n.read("cuboid_rotation_sigma", c.cuboid_rotation_sigma);
     n.read("cuboid_dims_sigma", c.cuboid_dims_sigma);
     n.read("cylinder_along_axis_sigma", c.cylinder_along_axis_sigma);

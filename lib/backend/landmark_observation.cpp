@@ -88,9 +88,9 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o,
     if (lm.observations > 0) lm.length = (1 - a) * lm.length + a * c->length;
   } else {
     const auto& e = std::get<Ellipsoid>(o.model);
-    factor = graph_.addFactor(
-        ellipsoidFactor(e.centroid, std::max(cfg_.position_sigma_floor, cfg_.range_sigma), cfg_.bearing_sigma),
-        {pose_var, lm.var}, true);
+    const double range_sigma =
+        std::max({cfg_.position_sigma_floor, cfg_.range_sigma, cfg_.ellipsoid_partial_view * e.radius});
+    factor = graph_.addFactor(ellipsoidFactor(e.centroid, range_sigma, cfg_.bearing_sigma), {pose_var, lm.var}, true);
     if (lm.observations > 0) {
       lm.radius = (1 - a) * lm.radius + a * e.radius;
       lm.height = (1 - a) * lm.height + a * e.height;

@@ -25,7 +25,7 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
       break;
     }
     case Shape::Ellipsoid: {
-      auto ell = fitEllipsoid(pts, p.ellipsoid, why);
+      auto ell = fitEllipsoid(pts, p.ellipsoid, viewpoint, why);
       if (!ell) return std::nullopt;
       o.model = *ell;
       break;

@@ -59,7 +59,10 @@ std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
                                 const Eigen::Vector3d& size_typical, std::string* why = nullptr);
-std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, std::string* why = nullptr);
+// The centroid is completed away from the viewpoint: a partly seen object is taken as deep as
+// it is wide across the line of sight.
+std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, const Eigen::Vector3d& viewpoint,
+                                      std::string* why = nullptr);
 
 // The model of the object's class (ClassTable shape), with class size gates applied.
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,

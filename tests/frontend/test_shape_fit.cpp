@@ -228,7 +228,7 @@ TEST(EllipsoidFit, CentroidRadiusHeight) {
   Cloud pts;
   for (double a = 0; a < 2 * M_PI; a += 0.05)
     for (double z = 0; z <= 0.8; z += 0.05) pts.push_back(Eigen::Vector3f(3 + 0.4 * std::cos(a), 2 + 0.4 * std::sin(a), z));
-  const auto e = fitEllipsoid(pts, {});
+  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
   ASSERT_TRUE(e);
   EXPECT_NEAR((e->centroid - Eigen::Vector3d(3, 2, 0.4)).norm(), 0, 0.03);
   EXPECT_NEAR(e->radius, 0.4, 0.02);
@@ -238,4 +238,24 @@ TEST(EllipsoidFit, CentroidRadiusHeight) {
   ASSERT_TRUE(o);
   EXPECT_EQ(o->shape(), Shape::Ellipsoid);
   EXPECT_FALSE(fitObject(pts, 12345, classes, {}, Eigen::Vector3d::Zero()));
+}
+
+TEST(EllipsoidFit, APartlySeenBodyIsCompletedAwayFromTheViewpoint) {
+  // The half of a 0.4 m-radius drum that faces a sensor at the origin (centre 4 m away, at
+  // 30 degrees).
+  const Eigen::Vector2d c = 4.0 * Eigen::Vector2d(std::cos(M_PI / 6), std::sin(M_PI / 6));
+  Cloud pts;
+  for (double a = M_PI / 2; a <= 3 * M_PI / 2; a += 0.05)
+    for (double z = 0; z <= 0.8; z += 0.05) {
+      const double t = a + M_PI / 6;
+      pts.push_back(Eigen::Vector3f(c.x() + 0.4 * std::cos(t), c.y() + 0.4 * std::sin(t), z));
+    }
+  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(e);
+  EXPECT_LT((e->centroid.head<2>() - c).norm(), 0.05);
+  EXPECT_NEAR(e->radius, 0.4, 0.03);
+  // Without the completion (the box centre of the visible half) the error is 0.11 m.
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const auto& q : pts) lo = lo.cwiseMin(q.head<2>().cast<double>()), hi = hi.cwiseMax(q.head<2>().cast<double>());
+  EXPECT_GT((0.5 * (lo + hi) - c).norm(), 0.1);
 }
