@@ -37,10 +37,10 @@ struct BackendConfig {
   double bearing_sigma = 0.05;
   double vertical_sigma = 0.2;
   double position_sigma_floor = 0.05;
-  // An ellipsoid's centroid comes from the part of the object in view: along the ray it is
-  // off by up to half the hidden depth. Its range sigma is at least this times the measured
-  // horizontal radius (a 1.6 m table seen edge-on: 0.8 m radius, 0.4 m sigma).
-  double ellipsoid_partial_view = 0.5;
+  // An ellipsoid's centroid comes from the part of the object in view; the fit completes it
+  // behind the visible side by a guess of the hidden depth, which can be off by about the
+  // body's radius. Its range sigma is at least this times the measured horizontal radius.
+  double ellipsoid_partial_view = 1.0;
   double cuboid_rotation_sigma = 0.1;
   double cuboid_dims_sigma = 0.3;
   double cylinder_along_axis_sigma = 2.0;
