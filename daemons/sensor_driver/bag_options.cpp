@@ -28,9 +28,13 @@ void addBagOptions(CLI::App& app, BagCli& cli) {
   for (const Field& f : kFields) cli.set.push_back(app.add_option(f.flag, cli.options.*f.member, f.help));
   cli.set.push_back(app.add_flag("--deskew", cli.options.deskew, "Bag: motion-compensate sweeps from per-point times"));
   app.add_flag("--list", cli.list, "Print the bag's topics, types, message counts and rates, then exit");
+  cli.gap = app.add_option("--max-odom-gap", cli.max_odometry_gap_s,
+                           "Frames between odometry samples further apart than this (seconds) are dropped")
+                ->capture_default_str();
 }
 
 void readBagConfig(const ConfigNode& sd, BagCli& cli) {
+  if (!cli.gap->count()) cli.max_odometry_gap_s = sd.get<double>("max_odom_gap", cli.max_odometry_gap_s);
   if (!sd.has("bag")) return;
   const ConfigNode b = sd.child("bag");
   std::size_t i = 0;

@@ -66,9 +66,6 @@ void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<slide::Messag
     auto* start_frame_opt = app.add_option("--start-frame", opt.start_frame, "Skip the first K frames")->capture_default_str();
     auto* start_time_opt = app.add_option("--start-time", opt.start_time, "Skip the first S seconds of data")->capture_default_str();
     slide::DatasetOptions data_opt;
-    auto* gap_opt = app.add_option("--max-odom-gap", data_opt.max_odometry_gap_s,
-                                   "Frames between odometry samples further apart than this (seconds) are dropped")
-                        ->capture_default_str();
     slide::BagCli bag_cli;
     slide::addBagOptions(app, bag_cli);
     app.add_option("--frames", opt.max_frames, "Send at most N frames (0 = all)")->capture_default_str();
@@ -110,7 +107,6 @@ void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<slide::Messag
           if (!start_frame_opt->count()) opt.start_frame = c.get<int>("start_frame", opt.start_frame);
           if (!start_time_opt->count()) opt.start_time = c.get<double>("start_time", opt.start_time);
           slide::readBagConfig(c, bag_cli);
-          if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
           if (!detections_opt->count() && !oracle_labels) detections = c.get<std::string>("detections", detections);
           if (!detection_config_opt->count()) detection_config = c.get<std::string>("detection_config", detection_config);
           opt.max_gap_s = c.get<double>("max_gap_s", opt.max_gap_s);
@@ -144,6 +140,7 @@ void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<slide::Messag
         spdlog::info("detections: none (raw data only; ground-truth labels / masks stay on disk)");
       progress.detections = slide::toString(source);
       data_opt.bag = bag_cli.options;
+      data_opt.max_odometry_gap_s = bag_cli.max_odometry_gap_s;
       const slide::RobotDataset d = slide::openRobotDataset(dataset, data_opt);
       if (!no_publish) {
         auto b = std::make_unique<lcm::LCM>(url);

@@ -16,9 +16,6 @@ int main(int argc, char** argv) {
   app.add_option("out", out, "Output folder (created; must be empty)")->required();
   app.add_option("--config", config_path, "YAML with a 'sensor_driver' section (bag, max_odom_gap), as the driver's");
   slide::DatasetOptions data_opt;
-  auto* gap_opt = app.add_option("--max-odom-gap", data_opt.max_odometry_gap_s,
-                                 "Frames between odometry samples further apart than this (seconds) are dropped")
-                      ->capture_default_str();
   slide::BagCli bag_cli;
   slide::addBagOptions(app, bag_cli);
   return slide::runApp(app, common, argc, argv, [&]() {
@@ -28,10 +25,10 @@ int main(int argc, char** argv) {
       if (root.has("sensor_driver")) {
         const slide::ConfigNode c = root.child("sensor_driver");
         slide::readBagConfig(c, bag_cli);
-        if (!gap_opt->count()) data_opt.max_odometry_gap_s = c.get<double>("max_odom_gap", data_opt.max_odometry_gap_s);
       }
     }
     data_opt.bag = bag_cli.options;
+    data_opt.max_odometry_gap_s = bag_cli.max_odometry_gap_s;
     const slide::RobotDataset d = slide::openRobotDataset(in, data_opt);
     for (const std::string& w : d.warnings) spdlog::warn("{}: {}", d.path, w);
     if (d.dropped.total() > 0)
