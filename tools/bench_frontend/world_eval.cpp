@@ -161,9 +161,11 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
       frame = rgbdFrameOf(img, camera);
       emulated_frame = emulatedFrame(img, camera, spec.emulator.rgbd, detectionSeed(emulator_seed, 0, static_cast<int>(k)));
+      // Seen: at least min_points pixels of the object with a depth reading (beyond the
+      // camera's depth range an object is in the picture but not measurable).
       std::vector<int> pix(img.instance_object.size() + 1, 0);
-      for (auto id : frame.mask)
-        if (id > 0 && id < pix.size()) ++pix[id];
+      for (std::size_t i = 0; i < frame.mask.size(); ++i)
+        if (const auto id = frame.mask[i]; id > 0 && id < pix.size() && frame.depth[i] > 0) ++pix[id];
       for (std::size_t i = 0; i < img.instance_object.size(); ++i)
         if (img.instance_object[i] > 0 && pix[i + 1] >= spec.min_points) ++seen_rgbd[img.instance_object[i]];
     }

@@ -61,7 +61,7 @@ main() {
 
   if [[ -n "$reuse" ]]; then
     [[ -f "$reuse/objects.csv" && -d "$reuse/robot0" ]] || die "demo: --data $reuse is not a simulated mission (no objects.csv or robot0/)"
-    robots=$(find "$reuse" -maxdepth 1 -name 'robot[0-9]' -type d | wc -l)
+    robots=$(find "$reuse/" -maxdepth 1 -name 'robot[0-9]' -type d | wc -l)  # "/": RUN/data of a reused run is a link
     log "1/3 reusing the $robots-robot mission in $reuse"
     ln -sfn "$(cd "$reuse" && pwd)" "$data"
   else
