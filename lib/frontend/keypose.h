@@ -13,8 +13,8 @@ namespace slide {
 struct KeyposeParams {
   double distance = 1.0;   // metres travelled since the previous key pose
   double yaw_deg = 30.0;   // or this much turning
-  std::array<double, 6> sigma_min{0.01, 0.01, 0.01, 0.002, 0.002, 0.005};    // x y z roll pitch yaw
-  std::array<double, 6> sigma_per_m{0.02, 0.02, 0.02, 0.002, 0.002, 0.005};  // added per metre
+  std::array<double, 6> sigma_min{0.002, 0.002, 0.002, 0.0002, 0.0002, 0.0002};  // x y z roll pitch yaw
+  std::array<double, 6> sigma_per_m{0.01, 0.01, 0.01, 0.001, 0.001, 0.001};      // added per metre
 };
 
 struct KeyposeBundle {
