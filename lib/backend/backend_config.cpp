@@ -24,6 +24,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("first_translation_sigma", c.prior_translation_sigma);
     n.read("first_rotation_sigma", c.prior_rotation_sigma);
     n.read("peer_translation_sigma", c.peer_translation_sigma);
+    n.read("peer_vertical_sigma", c.peer_vertical_sigma);
     n.read("peer_rotation_sigma", c.peer_rotation_sigma);
     n.read("loop_translation_sigma", c.loop_translation_sigma);
     n.read("loop_rotation_sigma", c.loop_rotation_sigma);

@@ -24,7 +24,11 @@ struct BackendConfig {
   // transform; intra-robot loop closures.
   double prior_translation_sigma = 0.001;
   double prior_rotation_sigma = 0.001;
-  double peer_translation_sigma = 1.0;
+  double peer_translation_sigma = 1.0;  // horizontal
+  // Vertical: place recognition takes the height offset from many matched landmarks' height
+  // differences, much better than the horizontal one; peers' heights are otherwise only
+  // weakly held (trunk feet along their axes), and a loose anchor let a peer's frame sink.
+  double peer_vertical_sigma = 0.3;
   double peer_rotation_sigma = 0.05;
   double loop_translation_sigma = 0.05;
   double loop_rotation_sigma = 0.005;

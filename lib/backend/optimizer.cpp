@@ -19,6 +19,13 @@ PoseSigma sigma6(double t, double r) {
   s << t, t, t, r, r, r;
   return s;
 }
+
+// The anchor prior of a merged peer's first pose (from an inter-robot transform).
+PoseSigma peerAnchorSigma(const BackendConfig& c) {
+  PoseSigma s = sigma6(c.peer_translation_sigma, c.peer_rotation_sigma);
+  s[2] = c.peer_vertical_sigma;
+  return s;
+}
 }  // namespace
 
 Optimizer::Optimizer(BackendConfig config, ClassTable classes, int host_robot)
@@ -111,7 +118,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   OdometryStep step;
   if (prev_var < 0) {
     const PoseSigma s = b.robot == host_ ? sigma6(cfg_.prior_translation_sigma, cfg_.prior_rotation_sigma)
-                                         : sigma6(cfg_.peer_translation_sigma, cfg_.peer_rotation_sigma);
+                                         : peerAnchorSigma(cfg_);
     robot.anchor_factor = graph_.addFactor(posePriorFactor(T_w_b, s), {var}, false);
   } else {
     const Vector6d sigma = odometrySigma(b, relative, bridged);
@@ -284,7 +291,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
     const KeyPose& first = keyposes_[robot.keyposes.front()];
     graph_.removeFactor(robot.anchor_factor);
     robot.anchor_factor = graph_.addFactor(
-        posePriorFactor(T_host_peer * first.odom_pose, sigma6(cfg_.peer_translation_sigma, cfg_.peer_rotation_sigma)),
+        posePriorFactor(T_host_peer * first.odom_pose, peerAnchorSigma(cfg_)),
         {first.var}, false);
   }
   if (!robot.keyposes.empty()) {
