@@ -80,6 +80,19 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
     opt(c, "end_margin", p.end_margin, 0.0);
     opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
+    if (c.has("wall")) {
+      const ConfigNode w = c.child("wall");
+      auto& q = p.wall;
+      opt(w, "window_deg", q.window_deg, 0.0, 10.0);
+      opt(w, "window_length", q.window_length, 0.0);
+      opt(w, "beam_tolerance_deg", q.beam_tolerance_deg, 0.0, 5.0);
+      opt(w, "max_step", q.max_step, 0.0);
+      opt(w, "line_tolerance", q.line_tolerance, 0.0);
+      opt(w, "max_step_ratio", q.max_step_ratio, 1.0);
+      opt(w, "corner_run", q.corner_run, 0.0);
+      opt(w, "max_run_returns", q.max_run_returns, 2, 100);
+      opt(w, "min_fraction", q.min_fraction, 0.0, 1.0);
+    }
   }
   if (n.has("car")) {
     const ConfigNode c = n.child("car");

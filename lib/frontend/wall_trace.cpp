@@ -1,0 +1,87 @@
+#include "frontend/wall_trace.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slide {
+
+namespace {
+// Distance of c from the line through a and b (a != b).
+float offLine(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c) {
+  const Eigen::Vector2f u = (b - a).normalized(), w = c - a;
+  return std::abs(u.x() * w.y() - u.y() * w.x());
+}
+
+// Does the scan line continue beyond `edge` (direction +1: growing azimuth) as a face?
+bool continuesAsFace(const Cloud& cloud, const ScanLines& lines, int edge, int direction, const std::vector<char>& in_column,
+                     const WallTraceParams& p) {
+  const Eigen::Vector2f e = cloud[edge].head<2>();
+  const double window = std::min(10.0, std::max(p.window_deg, p.window_length / std::max(0.1f, e.norm()) * 180.0 / M_PI));
+  const std::vector<int> n =
+      lines.next(edge, direction, p.corner_run > 0 ? p.max_run_returns : 2, window, p.beam_tolerance_deg, in_column);
+  if (n.size() < 2) return false;
+  auto xy = [&](int i) { return Eigen::Vector2f(cloud[i].head<2>()); };
+  const Eigen::Vector2f n1 = xy(n[0]), n2 = xy(n[1]);
+  const float s1 = (n1 - e).norm(), s2 = (n2 - n1).norm();
+  if (s1 > p.max_step || s2 > p.max_step || s1 < 1e-3f || s2 < 1e-3f) return false;
+  // Straight on: the edge lies on the line of the next two, at a regular spacing.
+  if (s1 <= p.max_step_ratio * s2 && s2 <= p.max_step_ratio * s1 && (n1 - e).dot(n2 - n1) > 0 &&
+      offLine(n1, n2, e) <= p.line_tolerance)
+    return true;
+  // Round a corner: the edge lies behind the first of a straight run of at least three
+  // returns, at a regular spacing, longer than a column is wide.
+  if (p.corner_run <= 0 || e.norm() < n1.norm() - p.line_tolerance) return false;
+  for (std::size_t j = 1; j < n.size(); ++j) {
+    const Eigen::Vector2f nj = xy(n[j]);
+    const float step = (nj - xy(n[j - 1])).norm();
+    if (step > p.max_step || step > p.max_step_ratio * s2 || s2 > p.max_step_ratio * step) return false;
+    for (std::size_t k = 1; k < j; ++k)
+      if (offLine(n1, nj, xy(n[k])) > p.line_tolerance) return false;
+    if (j >= 2 && (nj - n1).norm() >= p.corner_run) return true;
+  }
+  return false;
+}
+
+float azimuthOf(const Eigen::Vector3f& p) { return std::atan2(p.y(), p.x()); }
+float wrapped(float d) {
+  if (d > float(M_PI)) return d - 2 * float(M_PI);
+  if (d <= -float(M_PI)) return d + 2 * float(M_PI);
+  return d;
+}
+}  // namespace
+
+double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& column,
+                    const std::vector<char>& in_column, const WallTraceParams& p) {
+  if (column.empty()) return 0.0;
+  struct Beam {
+    float tan_elevation, azimuth;
+    int index;
+  };
+  std::vector<Beam> pts;  // the column's returns, sorted by elevation
+  pts.reserve(column.size());
+  for (int i : column)
+    pts.push_back({cloud[i].z() / std::max(1e-3f, cloud[i].head<2>().norm()), azimuthOf(cloud[i]), i});
+  std::sort(pts.begin(), pts.end(), [](const Beam& a, const Beam& b) { return a.tan_elevation < b.tan_elevation; });
+  const float tol = static_cast<float>(std::tan(p.beam_tolerance_deg * M_PI / 180.0));
+  int total = 0, faces = 0;
+  for (std::size_t s = 0; s < pts.size();) {
+    // One beam: returns within the tolerance of the previous one in elevation; its edges are
+    // the extreme azimuths (measured from its first return, so the +-pi seam does not matter).
+    std::size_t e = s + 1;
+    while (e < pts.size() && pts[e].tan_elevation - pts[e - 1].tan_elevation <= tol) ++e;
+    std::size_t lo = s, hi = s;
+    float dlo = 0, dhi = 0;
+    for (std::size_t k = s + 1; k < e; ++k) {
+      const float d = wrapped(pts[k].azimuth - pts[s].azimuth);
+      if (d < dlo) dlo = d, lo = k;
+      if (d > dhi) dhi = d, hi = k;
+    }
+    ++total;
+    faces += continuesAsFace(cloud, lines, pts[hi].index, +1, in_column, p) ||
+             continuesAsFace(cloud, lines, pts[lo].index, -1, in_column, p);
+    s = e;
+  }
+  return static_cast<double>(faces) / total;
+}
+
+}  // namespace slide
