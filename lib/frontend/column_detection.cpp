@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <optional>
 #include <unordered_map>
 
 #include "frontend/circle_fit.h"
@@ -156,7 +155,7 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                  const ColumnParams& p, std::vector<char>& taken, std::vector<ColumnRejection>* rejected) {
+                                  const ScanLines& lines, const ColumnParams& p, std::vector<char>& taken, std::vector<ColumnRejection>* rejected) {
   std::vector<Column> out;
   const int num_slices = std::max(1, static_cast<int>(std::floor((p.slice_high - p.slice_low) / p.slice_height)));
   std::vector<std::vector<int>> slices(num_slices);
@@ -174,11 +173,6 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     slice_buckets[s].add(i);
   }
   const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
-  std::optional<ScanLines> lines;  // built at the first column that needs it
-  auto scanLines = [&]() -> const ScanLines& {
-    if (!lines) lines.emplace(cloud, above);
-    return *lines;
-  };
   std::vector<char> in_column;
   std::vector<int> every(blobs.size());
   std::iota(every.begin(), every.end(), 0);
@@ -265,7 +259,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     if (p.wall.min_fraction > 0) {
       if (in_column.empty()) in_column.assign(cloud.size(), 0);
       for (int i : col.points) in_column[i] = 1;
-      const double face = faceFraction(cloud, scanLines(), col.points, in_column, p.wall);
+      const double face = faceFraction(cloud, lines, col.points, in_column, p.wall);
       for (int i : col.points) in_column[i] = 0;
       if (face >= p.wall.min_fraction) {
         reject(mid, "a face seen edge-on (" + std::to_string(face) + " of its beams continue on a line)");
@@ -282,7 +276,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
     if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||
-                       scanLines().hiddenAbove(cloud[top_point], static_cast<float>(mid.norm() - p.end_margin))))
+                       lines.hiddenAbove(cloud[top_point], static_cast<float>(mid.norm() - p.end_margin))))
       col.confidence = p.unsure_confidence;
     for (int i : col.points) taken[i] = 1;
     out.push_back(std::move(col));

@@ -83,11 +83,12 @@ struct ColumnRejection {
   std::string reason;
 };
 
-// Columns among the points `above` (indices into cloud, h = height above ground). Points that
-// end up in a column are marked in `taken` (sized like the cloud); points already marked are
-// not collected. `rejected`, when given, receives the stacks that were turned down.
+// Columns among the points `above` (indices into cloud, h = height above ground; `lines`
+// indexes them). Points that end up in a column are marked in `taken` (sized like the cloud);
+// points already marked are not collected. `rejected`, when given, receives the stacks that
+// were turned down.
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                  const ColumnParams& params, std::vector<char>& taken,
+                                  const ScanLines& lines, const ColumnParams& params, std::vector<char>& taken,
                                   std::vector<ColumnRejection>* rejected = nullptr);
 
 }  // namespace slide

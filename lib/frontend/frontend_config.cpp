@@ -37,6 +37,13 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "emit_other", g.emit_other);
   opt(n, "other_max_roughness", g.other_max_roughness, 0.0);
   opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
+  opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
+  if (n.has("occlusion")) {
+    const ConfigNode c = n.child("occlusion");
+    opt(c, "window_deg", g.occlusion.window_deg, 0.0, 10.0);
+    opt(c, "beam_tolerance_deg", g.occlusion.beam_tolerance_deg, 0.0, 5.0);
+    opt(c, "min_gap", g.occlusion.min_gap, 0.0);
+  }
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
     opt(c, "cell", g.ground.cell, 0.05);

@@ -82,9 +82,10 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
     out.push_back(std::move(inst));
   };
   std::vector<char> taken(cloud.size(), 0);
+  const ScanLines lines(cloud, above);
 
   // 1. Columns (trunks, poles).
-  for (const Column& c : detectColumns(cloud, h, above, params_.column, taken, rejected))
+  for (const Column& c : detectColumns(cloud, h, above, lines, params_.column, taken, rejected))
     emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
 
   // 2. Cars: clusters of the untaken points below the height cap.
@@ -115,6 +116,7 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
     const ClassInfo& other = classes_.at(params_.other_class);
     if (!rest.empty()) {
       std::vector<int> mark(cloud.size(), -1);
+      std::vector<char> in_cluster(cloud.size(), 0);
       int label = 0;
       for (const auto& cl : clusterGrid(cloud, rest, params_.other_cluster)) {
         const Footprint f = footprintOf(cloud, cl);
@@ -122,6 +124,12 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
         if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
         if (height < other.size_min.z() || bottom > params_.other_max_bottom) continue;
         if (params_.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > params_.other_max_roughness) continue;
+        if (params_.other_max_occluded < 1) {
+          for (int i : cl) in_cluster[i] = 1;
+          const double occluded = occludedFraction(cloud, lines, cl, in_cluster, params_.occlusion);
+          for (int i : cl) in_cluster[i] = 0;
+          if (occluded > params_.other_max_occluded) continue;
+        }
         emit(params_.other_class, cl);
       }
     }

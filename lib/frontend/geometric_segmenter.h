@@ -5,11 +5,13 @@
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car,
-//  3. other: clusters of what is left whose extents fit the "other" class, that stand low and
-//     whose surfaces are solid (not foliage).
+//  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
+//     whose surfaces are solid (not foliage) and that are seen whole (not cut off by a nearer
+//     occluder beside them; see occlusion.h).
 #include "frontend/column_detection.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
+#include "frontend/occlusion.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
@@ -43,6 +45,10 @@ struct GeometricSegmenterParams {
   // ... and that stand on the ground or on furniture (2nd percentile of height above ground
   // at most this; a crown's lower edge floats metres up).
   double other_max_bottom = 1.0;
+  // ... and that are seen whole: at most this share of their beams end at a nearer occluder
+  // (a car's end seen past the car in front of it is no small object). 1 disables.
+  double other_max_occluded = 0.5;
+  OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };
 

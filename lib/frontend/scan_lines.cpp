@@ -67,6 +67,28 @@ std::vector<int> ScanLines::next(int from, int direction, int count, double wind
   return out;
 }
 
+std::vector<ScanLines::BeamEdges> ScanLines::beamEdges(const std::vector<int>& points, double beam_tolerance_deg) const {
+  std::vector<Return> pts;  // sorted by elevation
+  pts.reserve(points.size());
+  for (int i : points) pts.push_back(polar(cloud_[i], i));
+  std::sort(pts.begin(), pts.end(), [](const Return& a, const Return& b) { return a.tan_elevation < b.tan_elevation; });
+  const float tol = static_cast<float>(std::tan(beam_tolerance_deg * M_PI / 180.0));
+  std::vector<BeamEdges> out;
+  for (std::size_t s = 0; s < pts.size();) {
+    // Azimuths are measured from the beam's first return, so the +-pi seam does not matter.
+    std::size_t e = s + 1, lo = s, hi = s;
+    float dlo = 0, dhi = 0;
+    for (; e < pts.size() && pts[e].tan_elevation - pts[e - 1].tan_elevation <= tol; ++e) {
+      const float d = wrapped(pts[e].azimuth - pts[s].azimuth);
+      if (d < dlo) dlo = d, lo = e;
+      if (d > dhi) dhi = d, hi = e;
+    }
+    out.push_back({pts[lo].index, pts[hi].index});
+    s = e;
+  }
+  return out;
+}
+
 bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   constexpr float kTanAbove = 0.052408f;  // tan(3 deg)
   const Return q = polar(p, -1);

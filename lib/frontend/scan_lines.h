@@ -1,9 +1,10 @@
 #pragma once
 // The returns of a spinning-LiDAR scan looked up by beam direction: binned by azimuth (0.25
-// deg), each bin sorted by elevation. Answers two questions a column detector asks of the
-// scan's geometry: which returns follow a given one on its beam (same elevation, growing or
-// shrinking azimuth), and whether a nearer return lies just above a point (its upward view is
-// blocked). Points are in the sensor frame (sensor at the origin, z up).
+// deg), each bin sorted by elevation. Answers the questions the segmenter asks of the scan's
+// geometry: where a set of points ends on each beam through it (its azimuth edges), which
+// returns follow a given one on its beam (same elevation, growing or shrinking azimuth), and
+// whether a nearer return lies just above a point (its upward view is blocked). Points are in
+// the sensor frame (sensor at the origin, z up).
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,6 +17,14 @@ class ScanLines {
  public:
   // `points`: indices into `cloud` (e.g. the points above ground); both must outlive this.
   ScanLines(const Cloud& cloud, const std::vector<int>& points);
+
+  // The beams through `points` (indices into the cloud): returns within beam_tolerance_deg of
+  // each other in elevation form one beam; its edges are its returns of lowest and highest
+  // azimuth.
+  struct BeamEdges {
+    int low, high;  // indices into the cloud
+  };
+  std::vector<BeamEdges> beamEdges(const std::vector<int>& points, double beam_tolerance_deg) const;
 
   // Up to `count` of the indexed returns on the beam of cloud point `from` (elevation within
   // beam_tolerance_deg) beyond it in azimuth (direction +1: counter-clockwise, -1: clockwise)

@@ -42,46 +42,16 @@ bool continuesAsFace(const Cloud& cloud, const ScanLines& lines, int edge, int d
   return false;
 }
 
-float azimuthOf(const Eigen::Vector3f& p) { return std::atan2(p.y(), p.x()); }
-float wrapped(float d) {
-  if (d > float(M_PI)) return d - 2 * float(M_PI);
-  if (d <= -float(M_PI)) return d + 2 * float(M_PI);
-  return d;
-}
 }  // namespace
 
 double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& column,
                     const std::vector<char>& in_column, const WallTraceParams& p) {
-  if (column.empty()) return 0.0;
-  struct Beam {
-    float tan_elevation, azimuth;
-    int index;
-  };
-  std::vector<Beam> pts;  // the column's returns, sorted by elevation
-  pts.reserve(column.size());
-  for (int i : column)
-    pts.push_back({cloud[i].z() / std::max(1e-3f, cloud[i].head<2>().norm()), azimuthOf(cloud[i]), i});
-  std::sort(pts.begin(), pts.end(), [](const Beam& a, const Beam& b) { return a.tan_elevation < b.tan_elevation; });
-  const float tol = static_cast<float>(std::tan(p.beam_tolerance_deg * M_PI / 180.0));
-  int total = 0, faces = 0;
-  for (std::size_t s = 0; s < pts.size();) {
-    // One beam: returns within the tolerance of the previous one in elevation; its edges are
-    // the extreme azimuths (measured from its first return, so the +-pi seam does not matter).
-    std::size_t e = s + 1;
-    while (e < pts.size() && pts[e].tan_elevation - pts[e - 1].tan_elevation <= tol) ++e;
-    std::size_t lo = s, hi = s;
-    float dlo = 0, dhi = 0;
-    for (std::size_t k = s + 1; k < e; ++k) {
-      const float d = wrapped(pts[k].azimuth - pts[s].azimuth);
-      if (d < dlo) dlo = d, lo = k;
-      if (d > dhi) dhi = d, hi = k;
-    }
-    ++total;
-    faces += continuesAsFace(cloud, lines, pts[hi].index, +1, in_column, p) ||
-             continuesAsFace(cloud, lines, pts[lo].index, -1, in_column, p);
-    s = e;
-  }
-  return static_cast<double>(faces) / total;
+  const std::vector<ScanLines::BeamEdges> beams = lines.beamEdges(column, p.beam_tolerance_deg);
+  if (beams.empty()) return 0.0;
+  int faces = 0;
+  for (const auto& b : beams)
+    faces += continuesAsFace(cloud, lines, b.high, +1, in_column, p) || continuesAsFace(cloud, lines, b.low, -1, in_column, p);
+  return static_cast<double>(faces) / beams.size();
 }
 
 }  // namespace slide
