@@ -114,6 +114,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "max_length", p.max_length, p.min_length);
     opt(c, "max_width", p.max_width, 0.0);
     opt(c, "max_roughness", p.max_roughness, 0.0);
+    opt(c, "max_covered", p.max_covered, 0.0, 1.0);
+    opt(c, "cover_height", p.cover_height, 0.0);
   }
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "frontend/point_stats.h"
 
@@ -33,6 +35,21 @@ double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<in
     d.push_back(std::abs(double(cloud[i - 1].norm()) - 2.0 * cloud[i].norm() + cloud[i + 1].norm()));
   }
   return d.size() < 10 ? std::nan("") : quantileInPlace(d, 0.5);
+}
+
+std::int64_t cellKey(const Eigen::Vector3f& p, double inv_cell) {
+  return (static_cast<std::int64_t>(std::floor(p.x() * inv_cell)) << 32) ^
+         (static_cast<std::int64_t>(std::floor(p.y() * inv_cell)) & 0xffffffffLL);
+}
+
+// Share of the cluster's planar cells that also hold one of the `over` cells.
+double coveredFraction(const Cloud& cloud, const std::vector<int>& idx, const std::unordered_set<std::int64_t>& over,
+                       double inv_cell) {
+  std::unordered_set<std::int64_t> cells;
+  for (int i : idx) cells.insert(cellKey(cloud[i], inv_cell));
+  int covered = 0;
+  for (std::int64_t c : cells) covered += over.count(c) > 0;
+  return cells.empty() ? 0.0 : static_cast<double>(covered) / cells.size();
 }
 
 double quantileOf(const std::vector<float>& values, const std::vector<int>& idx, double q) {
@@ -91,8 +108,12 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
   // 2. Cars: clusters of the untaken points below the height cap.
   const CarParams& kp = params_.car;
   std::vector<int> low;
-  for (int i : above)
+  std::unordered_set<std::int64_t> over;  // cells with returns just above the cap
+  for (int i : above) {
     if (!taken[i] && h[i] <= kp.height_cap) low.push_back(i);
+    else if (kp.max_covered < 1 && h[i] > kp.height_cap && h[i] <= kp.height_cap + kp.cover_height)
+      over.insert(cellKey(cloud[i], 1.0 / kp.cell));
+  }
   if (!low.empty()) {
     std::vector<int> mark(cloud.size(), -1);
     int label = 0;
@@ -103,6 +124,7 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
       if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
       const Footprint f = footprintOf(cloud, cl);
       if (f.length < kp.min_length || f.length > kp.max_length || f.width > kp.max_width) continue;
+      if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
       for (int i : cl) taken[i] = 1;
       emit(params_.car_class, cl);
     }

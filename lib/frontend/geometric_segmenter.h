@@ -4,7 +4,7 @@
 //     (trunks and poles; a trunk when a canopy spreads above it or it is thick; see
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
-//     fit a car,
+//     fit a car and whose roof is open (a wall's lower part goes on above the cap),
 //  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
 //     whose surfaces are solid (not foliage) and that are seen whole (not cut off by a nearer
 //     occluder beside them; see occlusion.h).
@@ -29,6 +29,11 @@ struct CarParams {
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.
   double max_roughness = 0.07;
+  // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
+  // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a
+  // building's lower storey goes on above the cap; a car ends below it). 1 disables.
+  double max_covered = 0.3;
+  double cover_height = 1.0;
 };
 
 struct GeometricSegmenterParams {

@@ -179,12 +179,15 @@ TEST(ColumnDetection, AFaceSeenEdgeOnIsNoColumnThePoleBesideItIs) {
   EXPECT_TRUE(columnNear(without, {-6, 20}, 0.3));
 }
 
-// The same LiDAR over flat ground (dense grid) scanning axis-aligned boxes [lo, hi]: exact
-// hits on the nearest box, no noise.
-Cloud scannedBoxes(const std::vector<Eigen::AlignedBox3d>& boxes) {
+// The same LiDAR scanning axis-aligned boxes [lo, hi] over flat ground at z = -1: exact hits
+// on the nearest box, no noise; the ground as a dense grid or (scanned_ground) scanned too,
+// so that it is missing where the boxes hide it.
+Cloud scannedBoxes(std::vector<Eigen::AlignedBox3d> boxes, bool scanned_ground = false) {
   Cloud c;
-  for (double x = -30; x <= 30; x += 0.25)
-    for (double y = -30; y <= 30; y += 0.25) c.emplace_back(x, y, -1.0);
+  if (scanned_ground) boxes.emplace_back(Eigen::Vector3d(-60, -60, -1.1), Eigen::Vector3d(60, 60, -1));
+  else
+    for (double x = -30; x <= 30; x += 0.25)
+      for (double y = -30; y <= 30; y += 0.25) c.emplace_back(x, y, -1.0);
   for (int b = 0; b < 64; ++b) {
     const double tan_e = std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180);
     for (int a = 0; a < 1024; ++a) {
@@ -238,6 +241,41 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
   off.other_max_occluded = 1;  // without the test the hidden box's strip is an "other"
   EXPECT_EQ(othersNear(off, {14, 2}), 1);
   EXPECT_EQ(othersNear(off, {6.3f, -5}), 1);
+}
+
+// A building's face behind a parked car (seen side-on, 5 m long), past the car's roof: the
+// ground before the face is hidden, so the face's lowest visible returns pass for ground and
+// the strip of face above them, under the car height cap, can fit a car's footprint and height. The face goes on above
+// the cap, a car's roof does not: the open-roof test turns the strip down. Several distances,
+// as whether the strip fits a car's height depends on where the beams cross it.
+TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  auto carsNear = [&](const Cloud& c, const GeometricSegmenterParams& p, const Eigen::Vector2f& xy, float d) {
+    LabelledScan scan;
+    scan.xyz = c;
+    InputIssues issues;
+    int n = 0;
+    for (const auto& inst : GeometricSegmenter(classes, p).segment(scan, issues)) {
+      Eigen::Vector3f m = Eigen::Vector3f::Zero();
+      for (const auto& q : inst.points) m += q;
+      m /= static_cast<float>(inst.points.size());
+      n += inst.class_id == p.car_class && (m.head<2>() - xy).norm() < d;
+    }
+    return n;
+  };
+  GeometricSegmenterParams off = cfg.geometric;
+  off.car.max_covered = 1;  // without the test
+  int face_cars_without = 0;
+  for (double x = 26; x <= 36; x += 1.0) {
+    const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(10, -2.5, -1), Eigen::Vector3d(12, 2.5, 0.5)),
+                                  Eigen::AlignedBox3d(Eigen::Vector3d(x, -1.6, -1), Eigen::Vector3d(x + 8, 1.6, 7))},
+                                 true);
+    EXPECT_EQ(carsNear(c, cfg.geometric, {10, 0}, 1.0f), 1) << x;
+    EXPECT_EQ(carsNear(c, cfg.geometric, {static_cast<float>(x), 0}, 2.0f), 0) << x;
+    face_cars_without += carsNear(c, off, {static_cast<float>(x), 0}, 2.0f);
+  }
+  EXPECT_GE(face_cars_without, 1);
 }
 
 // The window minimum alone cuts into a 25 % slope (by up to 0.375 m over its 1.5 m radius);
