@@ -42,6 +42,22 @@ bool continuesAsFace(const Cloud& cloud, const ScanLines& lines, int edge, int d
   return false;
 }
 
+// Is `edge`, the only return of its beam in the column, a stack between two others on one
+// line: its nearest returns on either side in azimuth, on the same beam, at a regular spacing?
+bool betweenOnALine(const Cloud& cloud, const ScanLines& lines, int edge, const std::vector<char>& in_column,
+                    const WallTraceParams& p) {
+  const Eigen::Vector2f e = cloud[edge].head<2>();
+  const double window = std::min(10.0, std::max(p.window_deg, p.window_length / std::max(0.1f, e.norm()) * 180.0 / M_PI));
+  const std::vector<int> a = lines.next(edge, +1, 1, window, p.beam_tolerance_deg, in_column);
+  const std::vector<int> b = lines.next(edge, -1, 1, window, p.beam_tolerance_deg, in_column);
+  if (a.empty() || b.empty()) return false;
+  const Eigen::Vector2f na = cloud[a[0]].head<2>(), nb = cloud[b[0]].head<2>();
+  const float sa = (na - e).norm(), sb = (nb - e).norm();
+  if (sa > p.max_step || sb > p.max_step || sa < 1e-3f || sb < 1e-3f) return false;
+  if (sa > p.max_step_ratio * sb || sb > p.max_step_ratio * sa || (na - e).dot(e - nb) <= 0) return false;
+  return offLine(na, nb, e) <= p.line_tolerance;
+}
+
 }  // namespace
 
 double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& column,
@@ -50,7 +66,8 @@ double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vecto
   if (beams.empty()) return 0.0;
   int faces = 0;
   for (const auto& b : beams)
-    faces += continuesAsFace(cloud, lines, b.high, +1, in_column, p) || continuesAsFace(cloud, lines, b.low, -1, in_column, p);
+    faces += continuesAsFace(cloud, lines, b.high, +1, in_column, p) || continuesAsFace(cloud, lines, b.low, -1, in_column, p) ||
+             (b.low == b.high && betweenOnALine(cloud, lines, b.low, in_column, p));
   return static_cast<double>(faces) / beams.size();
 }
 

@@ -5,7 +5,8 @@
 // like a thin isolated column (one return per beam) to the cross-section tests. What gives it
 // away is the scan line: on a beam through the column, the next returns beyond the column's
 // edge in azimuth continue it on a straight line in the plane, at a regular spacing (the face
-// sampled at the next azimuth steps). A free-standing trunk or pole has its background there:
+// sampled at the next azimuth steps; or, for a lone return, its neighbours on both sides lie on
+// one line with it). A free-standing trunk or pole has its background there:
 // farther away, off that line, or nothing.
 // The same holds round a corner: a stack seen just behind the end of a nearer face (the next
 // return beyond its edge begins a straight run of returns longer than any column is wide) is

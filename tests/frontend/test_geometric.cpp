@@ -3,6 +3,7 @@
 // on a slope, and the scan scorer's verdicts.
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -12,6 +13,7 @@
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/ground_removal.h"
+#include "frontend/wall_trace.h"
 #include "io/kitti_scan.h"
 
 using namespace slide;
@@ -276,6 +278,29 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
     face_cars_without += carsNear(c, off, {static_cast<float>(x), 0}, 2.0f);
   }
   EXPECT_GE(face_cars_without, 1);
+}
+
+// Far off (45-52 m), a face nearly edge-on shows three stacks, one per azimuth step, 2.7-3 m
+// apart: the middle one has a single neighbour on each side, so neither side continues it on
+// two returns, but it lies on the line between them: a face. Moved 0.5 m off that line (a
+// pole standing beside the sparse face) it is no face.
+TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
+  auto stacks = [](double off) {  // metres the middle stack stands off the line (x = 5.13)
+    Cloud c;
+    for (const Eigen::Vector2d xy : {Eigen::Vector2d(5.13, -46.25), Eigen::Vector2d(5.13 - off, -49.0), Eigen::Vector2d(5.13, -52.05)})
+      for (int b = 40; b < 60; ++b) c.emplace_back(xy.x(), xy.y(), xy.norm() * std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180));
+    return c;
+  };
+  for (const double off : {0.0, 0.5}) {
+    const Cloud c = stacks(off);
+    std::vector<int> all(c.size()), middle;
+    std::iota(all.begin(), all.end(), 0);
+    std::vector<char> in_column(c.size(), 0);
+    for (int i = 20; i < 40; ++i) middle.push_back(i), in_column[i] = 1;
+    const double f = faceFraction(c, ScanLines(c, all), middle, in_column, loadDefaultFrontendConfig().geometric.column.wall);
+    if (off == 0) EXPECT_DOUBLE_EQ(f, 1.0);
+    else EXPECT_DOUBLE_EQ(f, 0.0);
+  }
 }
 
 // The window minimum alone cuts into a 25 % slope (by up to 0.375 m over its 1.5 m radius);
