@@ -287,7 +287,7 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
 TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
   auto stacks = [](double off) {  // metres the middle stack stands off the line (x = 5.13)
     Cloud c;
-    for (const Eigen::Vector2d xy : {Eigen::Vector2d(5.13, -46.25), Eigen::Vector2d(5.13 - off, -49.0), Eigen::Vector2d(5.13, -52.05)})
+    for (const Eigen::Vector2d& xy : {Eigen::Vector2d(5.13, -46.25), Eigen::Vector2d(5.13 - off, -49.0), Eigen::Vector2d(5.13, -52.05)})
       for (int b = 40; b < 60; ++b) c.emplace_back(xy.x(), xy.y(), xy.norm() * std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180));
     return c;
   };
