@@ -12,6 +12,20 @@ float wrapped(float d) {
   if (d <= -float(M_PI)) return d + 2 * float(M_PI);
   return d;
 }
+// atan2(y, x) by the octant's symmetry and the polynomial of Abramowitz & Stegun 4.4.49 for
+// atan on [0, 1] (error 2e-8 rad, float rounding aside): several times cheaper than
+// std::atan2, far finer than the 0.1-0.4 deg azimuth step of a spinning LiDAR. The index
+// computes every azimuth with it.
+float azimuthOf(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y), hi = std::max(ax, ay);
+  if (hi == 0) return 0;
+  const float a = std::min(ax, ay) / hi, s = a * a;
+  float r = a * (1 + s * (-0.3333314528f + s * (0.1999355085f + s * (-0.1420889944f + s * (0.1065626393f +
+                 s * (-0.0752896400f + s * (0.0429096138f + s * (-0.0161657367f + s * 0.0028662257f))))))));
+  if (ay > ax) r = float(M_PI_2) - r;
+  if (x < 0) r = float(M_PI) - r;
+  return y < 0 ? -r : r;
+}
 }  // namespace
 
 ScanLines::ScanLines(const Cloud& cloud, const std::vector<int>& points) : cloud_(cloud) {
@@ -33,7 +47,7 @@ int ScanLines::bin(float azimuth) {
 
 ScanLines::Return ScanLines::polar(const Eigen::Vector3f& p, int index) {
   const float r = std::max(std::sqrt(p.x() * p.x() + p.y() * p.y()), 1e-3f);
-  return {std::atan2(p.y(), p.x()), p.z() / r, r, index};
+  return {azimuthOf(p.y(), p.x()), p.z() / r, r, index};
 }
 
 std::pair<const ScanLines::Return*, const ScanLines::Return*> ScanLines::band(int b, float lo, float hi) const {

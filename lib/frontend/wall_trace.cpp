@@ -64,11 +64,16 @@ double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vecto
                     const std::vector<char>& in_column, const WallTraceParams& p) {
   const std::vector<ScanLines::BeamEdges> beams = lines.beamEdges(column, p.beam_tolerance_deg);
   if (beams.empty()) return 0.0;
-  int faces = 0;
-  for (const auto& b : beams)
+  const int n = static_cast<int>(beams.size());
+  int faces = 0, seen = 0;
+  for (const auto& b : beams) {
     faces += continuesAsFace(cloud, lines, b.high, +1, in_column, p) || continuesAsFace(cloud, lines, b.low, -1, in_column, p) ||
              (b.low == b.high && betweenOnALine(cloud, lines, b.low, in_column, p));
-  return static_cast<double>(faces) / beams.size();
+    ++seen;
+    // Decided against min_fraction either way: the rest cannot change the verdict.
+    if (p.min_fraction > 0 && (faces >= p.min_fraction * n || faces + (n - seen) < p.min_fraction * n)) break;
+  }
+  return static_cast<double>(faces) / n;
 }
 
 }  // namespace slide

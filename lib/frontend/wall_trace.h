@@ -31,7 +31,9 @@ struct WallTraceParams {
 
 // Share of the beams through `column` (indices into the cloud `lines` indexes; `in_column`
 // marks them, sized like the cloud) whose next returns beyond either edge of the column
-// continue it as a face (straight on, or round a corner; see above). 0 for an empty column.
+// continue it as a face (straight on, round a corner, or between two; see above). 0 for an
+// empty column. With params.min_fraction > 0 it stops once the share is decided against it:
+// the share returned is then a lower bound when >= min_fraction, an upper bound otherwise.
 double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& column,
                     const std::vector<char>& in_column, const WallTraceParams& params);
 

@@ -297,7 +297,9 @@ TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
     std::iota(all.begin(), all.end(), 0);
     std::vector<char> in_column(c.size(), 0);
     for (int i = 20; i < 40; ++i) middle.push_back(i), in_column[i] = 1;
-    const double f = faceFraction(c, ScanLines(c, all), middle, in_column, loadDefaultFrontendConfig().geometric.column.wall);
+    WallTraceParams wp = loadDefaultFrontendConfig().geometric.column.wall;
+    wp.min_fraction = 0;  // the exact share, no early stop
+    const double f = faceFraction(c, ScanLines(c, all), middle, in_column, wp);
     if (off == 0) EXPECT_DOUBLE_EQ(f, 1.0);
     else EXPECT_DOUBLE_EQ(f, 0.0);
   }
