@@ -155,7 +155,8 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                  const ScanLines& lines, const ColumnParams& p, std::vector<char>& taken, std::vector<ColumnRejection>* rejected) {
+                                  const ScanLines& lines, const ColumnParams& p, std::vector<char>& taken,
+                                  std::vector<ColumnRejection>* rejected) {
   std::vector<Column> out;
   const int num_slices = std::max(1, static_cast<int>(std::floor((p.slice_high - p.slice_low) / p.slice_height)));
   std::vector<std::vector<int>> slices(num_slices);
