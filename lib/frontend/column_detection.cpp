@@ -152,59 +152,11 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
   if (hi) *hi = s.empty() ? 0 : s.back();
   return static_cast<int>(std::unique(s.begin(), s.end()) - s.begin());
 }
-// Is the view just above a point blocked? Returns are binned by azimuth (0.5 deg); a return
-// within 3 deg above the point's elevation, in its azimuth bin or a neighbour, nearer than
-// `range` hides what stands above the point (a crown may be there).
-class ViewAbove {
- public:
-  ViewAbove(const Cloud& cloud, const std::vector<int>& points) : cloud_(cloud), points_(points) {}
-  bool hiddenAbove(const Eigen::Vector3f& p, float range) {
-    if (start_.empty()) {  // built at the first question, as one array sorted by bin
-      std::vector<int> bin_of(points_.size());
-      start_.assign(kBins + 1, 0);
-      for (std::size_t k = 0; k < points_.size(); ++k) ++start_[(bin_of[k] = bin(cloud_[points_[k]])) + 1];
-      for (int b = 0; b < kBins; ++b) start_[b + 1] += start_[b];
-      std::vector<int> fill(start_.begin(), start_.end() - 1);
-      polar_.resize(points_.size());
-      for (std::size_t k = 0; k < points_.size(); ++k) polar_[fill[bin_of[k]]++] = polar(cloud_[points_[k]]);
-    }
-    const Polar q = polar(p);
-    // tan(elevation + 3 deg) from tan(elevation), without trigonometry per point.
-    const float lo = q.tan_elevation + 1e-4f, hi = (q.tan_elevation + kTanAbove) / (1.0f - q.tan_elevation * kTanAbove);
-    const int b = bin(p);
-    for (int d = -1; d <= 1; ++d) {
-      const int n = (b + d + kBins) % kBins;
-      for (int k = start_[n]; k < start_[n + 1]; ++k) {
-        const Polar& o = polar_[k];
-        if (o.tan_elevation > lo && o.tan_elevation < hi && o.range < range) return true;
-      }
-    }
-    return false;
-  }
-
- private:
-  struct Polar {
-    float tan_elevation, range;
-  };
-  static constexpr int kBins = 720;
-  static constexpr float kTanAbove = 0.052408f;  // tan(3 deg)
-  static int bin(const Eigen::Vector3f& p) {
-    const float az = std::atan2(p.y(), p.x());
-    return std::clamp(static_cast<int>((az + float(M_PI)) * (kBins / (2 * float(M_PI)))), 0, kBins - 1);
-  }
-  static Polar polar(const Eigen::Vector3f& p) {
-    const float r = std::max(std::sqrt(p.x() * p.x() + p.y() * p.y()), 1e-3f);
-    return {p.z() / r, r};
-  }
-  const Cloud& cloud_;
-  const std::vector<int>& points_;
-  std::vector<int> start_;    // polar_[start_[b] .. start_[b + 1]) lie in azimuth bin b
-  std::vector<Polar> polar_;
-};
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                  const ColumnParams& p, std::vector<char>& taken, std::vector<ColumnRejection>* rejected) {
+                                  const ScanLines& lines, const ColumnParams& p, std::vector<char>& taken,
+                                  std::vector<ColumnRejection>* rejected) {
   std::vector<Column> out;
   const int num_slices = std::max(1, static_cast<int>(std::floor((p.slice_high - p.slice_low) / p.slice_height)));
   std::vector<std::vector<int>> slices(num_slices);
@@ -222,7 +174,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     slice_buckets[s].add(i);
   }
   const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
-  ViewAbove view(cloud, above);
+  std::vector<char> in_column;
   std::vector<int> every(blobs.size());
   std::iota(every.begin(), every.end(), 0);
   auto reject = [&](const Eigen::Vector2d& c, const std::string& why) {
@@ -305,6 +257,16 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
       reject(mid, "too short (" + std::to_string(top) + " m)");
       continue;
     }
+    if (p.wall.min_fraction > 0) {
+      if (in_column.empty()) in_column.assign(cloud.size(), 0);
+      for (int i : col.points) in_column[i] = 1;
+      const double face = faceFraction(cloud, lines, col.points, in_column, p.wall);
+      for (int i : col.points) in_column[i] = 0;
+      if (face >= p.wall.min_fraction) {
+        reject(mid, "a face seen edge-on (" + std::to_string(face) + " of its beams continue on a line)");
+        continue;
+      }
+    }
     // Canopy: points above min_top spreading well beyond the axis.
     int canopy = 0, high = 0;
     all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d2) {
@@ -315,7 +277,7 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
     if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||
-                       view.hiddenAbove(cloud[top_point], static_cast<float>(mid.norm() - p.end_margin))))
+                       lines.hiddenAbove(cloud[top_point], static_cast<float>(mid.norm() - p.end_margin))))
       col.confidence = p.unsure_confidence;
     for (int i : col.points) taken[i] = 1;
     out.push_back(std::move(col));

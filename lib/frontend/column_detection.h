@@ -4,14 +4,17 @@
 // (in that slice: a hedge or a car beside a pole only spoils the slices it reaches) are column
 // cross-sections. Cross-sections whose centres stack up (within stack_distance of each other)
 // over enough slices, on a near-vertical axis, with arc-shaped cross-sections, are one column; its points are those near the
-// axis up to max_height. Walls never give an isolated cross-section, pedestrians and cars do
-// not reach min_top, bushes are too wide in every slice.
+// axis up to max_height. Walls give no isolated cross-section except where seen edge-on (each
+// azimuth step a stack of single returns metres apart; the scan line beyond such a stack
+// continues as the face: wall_trace.h), pedestrians and cars do not reach min_top, bushes are
+// too wide in every slice. The upward view above a column's top comes from scan_lines.h.
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "frontend/instance.h"
+#include "frontend/wall_trace.h"
 
 namespace slide {
 
@@ -59,6 +62,9 @@ struct ColumnParams {
   // back-end weigh class votes by it).
   double end_margin = 0.5;
   double unsure_confidence = 0.3;
+  // A column whose scan lines continue as a vertical face beyond its edges (on at least
+  // wall.min_fraction of its beams) is that face seen edge-on, not a column (wall_trace.h).
+  WallTraceParams wall;
 };
 
 struct Column {
@@ -77,11 +83,12 @@ struct ColumnRejection {
   std::string reason;
 };
 
-// Columns among the points `above` (indices into cloud, h = height above ground). Points that
-// end up in a column are marked in `taken` (sized like the cloud); points already marked are
-// not collected. `rejected`, when given, receives the stacks that were turned down.
+// Columns among the points `above` (indices into cloud, h = height above ground; `lines`
+// indexes them). Points that end up in a column are marked in `taken` (sized like the cloud);
+// points already marked are not collected. `rejected`, when given, receives the stacks that
+// were turned down.
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                  const ColumnParams& params, std::vector<char>& taken,
+                                  const ScanLines& lines, const ColumnParams& params, std::vector<char>& taken,
                                   std::vector<ColumnRejection>* rejected = nullptr);
 
 }  // namespace slide

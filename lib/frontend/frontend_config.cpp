@@ -37,6 +37,13 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "emit_other", g.emit_other);
   opt(n, "other_max_roughness", g.other_max_roughness, 0.0);
   opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
+  opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
+  if (n.has("occlusion")) {
+    const ConfigNode c = n.child("occlusion");
+    opt(c, "window_deg", g.occlusion.window_deg, 0.0, 10.0);
+    opt(c, "beam_tolerance_deg", g.occlusion.beam_tolerance_deg, 0.0, 5.0);
+    opt(c, "min_gap", g.occlusion.min_gap, 0.0);
+  }
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
     opt(c, "cell", g.ground.cell, 0.05);
@@ -80,6 +87,19 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
     opt(c, "end_margin", p.end_margin, 0.0);
     opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
+    if (c.has("wall")) {
+      const ConfigNode w = c.child("wall");
+      auto& q = p.wall;
+      opt(w, "window_deg", q.window_deg, 0.0, 10.0);
+      opt(w, "window_length", q.window_length, 0.0);
+      opt(w, "beam_tolerance_deg", q.beam_tolerance_deg, 0.0, 5.0);
+      opt(w, "max_step", q.max_step, 0.0);
+      opt(w, "line_tolerance", q.line_tolerance, 0.0);
+      opt(w, "max_step_ratio", q.max_step_ratio, 1.0);
+      opt(w, "corner_run", q.corner_run, 0.0);
+      opt(w, "max_run_returns", q.max_run_returns, 2, 100);
+      opt(w, "min_fraction", q.min_fraction, 0.0, 1.0);
+    }
   }
   if (n.has("car")) {
     const ConfigNode c = n.child("car");
@@ -94,6 +114,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "max_length", p.max_length, p.min_length);
     opt(c, "max_width", p.max_width, 0.0);
     opt(c, "max_roughness", p.max_roughness, 0.0);
+    opt(c, "max_covered", p.max_covered, 0.0, 1.0);
+    opt(c, "cover_height", p.cover_height, 0.0);
   }
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }

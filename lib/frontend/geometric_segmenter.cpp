@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "frontend/point_stats.h"
 
@@ -35,11 +37,85 @@ double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<in
   return d.size() < 10 ? std::nan("") : quantileInPlace(d, 0.5);
 }
 
+std::int64_t cellKey(const Eigen::Vector3f& p, double inv_cell) {
+  return (static_cast<std::int64_t>(std::floor(p.x() * inv_cell)) << 32) ^
+         (static_cast<std::int64_t>(std::floor(p.y() * inv_cell)) & 0xffffffffLL);
+}
+
+// Share of the cluster's planar cells that also hold one of the `over` cells.
+double coveredFraction(const Cloud& cloud, const std::vector<int>& idx, const std::unordered_set<std::int64_t>& over,
+                       double inv_cell) {
+  std::unordered_set<std::int64_t> cells;
+  for (int i : idx) cells.insert(cellKey(cloud[i], inv_cell));
+  int covered = 0;
+  for (std::int64_t c : cells) covered += over.count(c) > 0;
+  return cells.empty() ? 0.0 : static_cast<double>(covered) / cells.size();
+}
+
 double quantileOf(const std::vector<float>& values, const std::vector<int>& idx, double q) {
   std::vector<double> v;
   v.reserve(idx.size());
   for (int i : idx) v.push_back(values[i]);
   return quantileInPlace(v, q);
+}
+
+// Step 2: clusters of the untaken points `above` (h: height above ground) below the height
+// cap that fit a car (module comment in the header); their points are marked taken.
+std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
+                                          const CarParams& kp, std::vector<char>& taken) {
+  std::vector<int> low;
+  std::unordered_set<std::int64_t> over;  // cells with returns just above the cap
+  for (int i : above) {
+    if (!taken[i] && h[i] <= kp.height_cap) low.push_back(i);
+    else if (kp.max_covered < 1 && h[i] > kp.height_cap && h[i] <= kp.height_cap + kp.cover_height)
+      over.insert(cellKey(cloud[i], 1.0 / kp.cell));
+  }
+  std::vector<std::vector<int>> cars;
+  if (low.empty()) return cars;
+  std::vector<int> mark(cloud.size(), -1);
+  int label = 0;
+  for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) {
+    const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
+    if (rough > kp.max_roughness) continue;
+    const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
+    if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
+    const Footprint f = footprintOf(cloud, cl);
+    if (f.length < kp.min_length || f.length > kp.max_length || f.width > kp.max_width) continue;
+    if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
+    for (int i : cl) taken[i] = 1;
+    cars.push_back(std::move(cl));
+  }
+  return cars;
+}
+
+// Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
+// are solid and are seen whole.
+std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
+                                            const ScanLines& lines, const GeometricSegmenterParams& p,
+                                            const ClassInfo& other, const std::vector<char>& taken) {
+  std::vector<int> rest;
+  for (int i : above)
+    if (!taken[i]) rest.push_back(i);
+  std::vector<std::vector<int>> out;
+  if (rest.empty()) return out;
+  std::vector<int> mark(cloud.size(), -1);
+  std::vector<char> in_cluster(cloud.size(), 0);
+  int label = 0;
+  for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
+    const Footprint f = footprintOf(cloud, cl);
+    const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
+    if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
+    if (height < other.size_min.z() || bottom > p.other_max_bottom) continue;
+    if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
+    if (p.other_max_occluded < 1) {
+      for (int i : cl) in_cluster[i] = 1;
+      const double occluded = occludedFraction(cloud, lines, cl, in_cluster, p.occlusion);
+      for (int i : cl) in_cluster[i] = 0;
+      if (occluded > p.other_max_occluded) continue;
+    }
+    out.push_back(std::move(cl));
+  }
+  return out;
 }
 }  // namespace
 
@@ -82,50 +158,17 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
     out.push_back(std::move(inst));
   };
   std::vector<char> taken(cloud.size(), 0);
+  const ScanLines lines(cloud, above);
 
   // 1. Columns (trunks, poles).
-  for (const Column& c : detectColumns(cloud, h, above, params_.column, taken, rejected))
+  for (const Column& c : detectColumns(cloud, h, above, lines, params_.column, taken, rejected))
     emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
 
-  // 2. Cars: clusters of the untaken points below the height cap.
-  const CarParams& kp = params_.car;
-  std::vector<int> low;
-  for (int i : above)
-    if (!taken[i] && h[i] <= kp.height_cap) low.push_back(i);
-  if (!low.empty()) {
-    std::vector<int> mark(cloud.size(), -1);
-    int label = 0;
-    for (const auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) {
-      const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
-      if (rough > kp.max_roughness) continue;
-      const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
-      if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
-      const Footprint f = footprintOf(cloud, cl);
-      if (f.length < kp.min_length || f.length > kp.max_length || f.width > kp.max_width) continue;
-      for (int i : cl) taken[i] = 1;
-      emit(params_.car_class, cl);
-    }
-  }
-
-  // 3. Other: remaining compact clusters.
-  if (params_.emit_other) {
-    std::vector<int> rest;
-    for (int i : above)
-      if (!taken[i]) rest.push_back(i);
-    const ClassInfo& other = classes_.at(params_.other_class);
-    if (!rest.empty()) {
-      std::vector<int> mark(cloud.size(), -1);
-      int label = 0;
-      for (const auto& cl : clusterGrid(cloud, rest, params_.other_cluster)) {
-        const Footprint f = footprintOf(cloud, cl);
-        const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
-        if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
-        if (height < other.size_min.z() || bottom > params_.other_max_bottom) continue;
-        if (params_.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > params_.other_max_roughness) continue;
-        emit(params_.other_class, cl);
-      }
-    }
-  }
+  // 2. Cars, 3. other.
+  for (const auto& cl : carClusters(cloud, h, above, params_.car, taken)) emit(params_.car_class, cl);
+  if (params_.emit_other)
+    for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
+      emit(params_.other_class, cl);
   return out;
 }
 

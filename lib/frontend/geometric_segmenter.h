@@ -4,12 +4,14 @@
 //     (trunks and poles; a trunk when a canopy spreads above it or it is thick; see
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
-//     fit a car,
-//  3. other: clusters of what is left whose extents fit the "other" class, that stand low and
-//     whose surfaces are solid (not foliage).
+//     fit a car and whose roof is open (a wall's lower part goes on above the cap),
+//  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
+//     whose surfaces are solid (not foliage) and that are seen whole (not cut off by a nearer
+//     occluder beside them; see occlusion.h).
 #include "frontend/column_detection.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
+#include "frontend/occlusion.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
@@ -27,6 +29,11 @@ struct CarParams {
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.
   double max_roughness = 0.07;
+  // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
+  // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a
+  // building's lower storey goes on above the cap; a car ends below it). 1 disables.
+  double max_covered = 0.3;
+  double cover_height = 1.0;
 };
 
 struct GeometricSegmenterParams {
@@ -43,6 +50,10 @@ struct GeometricSegmenterParams {
   // ... and that stand on the ground or on furniture (2nd percentile of height above ground
   // at most this; a crown's lower edge floats metres up).
   double other_max_bottom = 1.0;
+  // ... and that are seen whole: at most this share of their beams end at a nearer occluder
+  // (a car's end seen past the car in front of it is no small object). 1 disables.
+  double other_max_occluded = 0.5;
+  OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };
 

@@ -1,0 +1,56 @@
+#pragma once
+// The returns of a spinning-LiDAR scan looked up by beam direction: binned by azimuth (0.25
+// deg), each bin sorted by elevation. Answers the questions the segmenter asks of the scan's
+// geometry: where a set of points ends on each beam through it (its azimuth edges), which
+// returns follow a given one on its beam (same elevation, growing or shrinking azimuth), and
+// whether a nearer return lies just above a point (its upward view is blocked). Points are in
+// the sensor frame (sensor at the origin, z up).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "frontend/instance.h"
+
+namespace slide {
+
+class ScanLines {
+ public:
+  // `points`: indices into `cloud` (e.g. the points above ground); both must outlive this.
+  ScanLines(const Cloud& cloud, const std::vector<int>& points);
+
+  // The beams through `points` (indices into the cloud): returns within beam_tolerance_deg of
+  // each other in elevation form one beam; its edges are its returns of lowest and highest
+  // azimuth.
+  struct BeamEdges {
+    int low, high;  // indices into the cloud
+  };
+  std::vector<BeamEdges> beamEdges(const std::vector<int>& points, double beam_tolerance_deg) const;
+
+  // Up to `count` of the indexed returns on the beam of cloud point `from` (elevation within
+  // beam_tolerance_deg) beyond it in azimuth (direction +1: counter-clockwise, -1: clockwise)
+  // by at most window_deg, skipping those marked in `skip` (sized like the cloud); nearest in
+  // azimuth first.
+  std::vector<int> next(int from, int direction, int count, double window_deg, double beam_tolerance_deg,
+                        const std::vector<char>& skip) const;
+
+  // Whether an indexed return nearer than `range` (horizontal metres) lies within 3 deg above
+  // the elevation of p, within about 1 deg of its azimuth: something in front hides what
+  // stands above p (a crown may be there).
+  bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
+
+ private:
+  struct Return {
+    float azimuth, tan_elevation, range;  // radians; z over horizontal range; horizontal metres
+    int index;
+  };
+  static constexpr int kBins = 1440;
+  static int bin(float azimuth);
+  static Return polar(const Eigen::Vector3f& p, int index);
+  // Returns of bin b with tan_elevation in [lo, hi].
+  std::pair<const Return*, const Return*> band(int b, float lo, float hi) const;
+  const Cloud& cloud_;
+  std::vector<int> start_;        // returns_[start_[b] .. start_[b + 1]) lie in bin b
+  std::vector<Return> returns_;
+};
+
+}  // namespace slide
