@@ -214,6 +214,21 @@ Cloud scannedBoxes(std::vector<Eigen::AlignedBox3d> boxes, bool scanned_ground =
   return c;
 }
 
+// Instances of class_id the segmenter finds in `c` whose point mean lies within d of xy.
+static int instancesNear(const Cloud& c, const GeometricSegmenterParams& p, int class_id, const Eigen::Vector2f& xy, float d) {
+  LabelledScan scan;
+  scan.xyz = c;
+  InputIssues issues;
+  int n = 0;
+  for (const auto& inst : GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
+    Eigen::Vector3f m = Eigen::Vector3f::Zero();
+    for (const auto& q : inst.points) m += q;
+    m /= static_cast<float>(inst.points.size());
+    n += inst.class_id == class_id && (m.head<2>() - xy).norm() < d;
+  }
+  return n;
+}
+
 // A car-sized box 8-12 m ahead hides most of a second one behind it (from x = 14 m): what
 // shows of the far one past the near one's edge is a compact, smooth, 0.45 m wide strip of its
 // face, which the extent tests would call "other". Its scan lines end at the nearer box beside
@@ -222,20 +237,9 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
   const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -1, -1), Eigen::Vector3d(12, 1, 0.5)),
                                 Eigen::AlignedBox3d(Eigen::Vector3d(14, 0.2, -1), Eigen::Vector3d(18, 2.2, 0.5)),
                                 Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
-  const ClassTable classes = ClassTable::loadDefault();
   const FrontendConfig cfg = loadDefaultFrontendConfig();
   auto othersNear = [&](const GeometricSegmenterParams& p, const Eigen::Vector2f& xy) {
-    LabelledScan scan;
-    scan.xyz = c;
-    InputIssues issues;
-    int n = 0;
-    for (const auto& inst : GeometricSegmenter(classes, p).segment(scan, issues)) {
-      Eigen::Vector3f m = Eigen::Vector3f::Zero();
-      for (const auto& q : inst.points) m += q;
-      m /= static_cast<float>(inst.points.size());
-      n += inst.class_id == p.other_class && (m.head<2>() - xy).norm() < 1.0f;
-    }
-    return n;
+    return instancesNear(c, p, p.other_class, xy, 1.0f);
   };
   EXPECT_EQ(othersNear(cfg.geometric, {14, 2}), 0);
   EXPECT_EQ(othersNear(cfg.geometric, {6.3f, -5}), 1);
@@ -251,20 +255,9 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
 // the cap, a car's roof does not: the open-roof test turns the strip down. Several distances,
 // as whether the strip fits a car's height depends on where the beams cross it.
 TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
-  const ClassTable classes = ClassTable::loadDefault();
   const FrontendConfig cfg = loadDefaultFrontendConfig();
   auto carsNear = [&](const Cloud& c, const GeometricSegmenterParams& p, const Eigen::Vector2f& xy, float d) {
-    LabelledScan scan;
-    scan.xyz = c;
-    InputIssues issues;
-    int n = 0;
-    for (const auto& inst : GeometricSegmenter(classes, p).segment(scan, issues)) {
-      Eigen::Vector3f m = Eigen::Vector3f::Zero();
-      for (const auto& q : inst.points) m += q;
-      m /= static_cast<float>(inst.points.size());
-      n += inst.class_id == p.car_class && (m.head<2>() - xy).norm() < d;
-    }
-    return n;
+    return instancesNear(c, p, p.car_class, xy, d);
   };
   GeometricSegmenterParams off = cfg.geometric;
   off.car.max_covered = 1;  // without the test
