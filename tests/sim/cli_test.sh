@@ -20,6 +20,14 @@ head -1 "$OUT/indoor/objects.csv" | grep -q '^id,class_id,shape,x,y,z,yaw' || fa
 if "$BIN/slide-sim" --world indoor --frames 1 --out "$OUT/indoor" --quiet 2>"$OUT/err"; then fail "overwrote"; fi
 grep -q "not empty" "$OUT/err" || fail "no 'not empty' message"
 if "$BIN/slide-sim" --world moon --out "$OUT/x" 2>"$OUT/err"; then fail "accepted --world moon"; fi
+# Mixed teams: one sensor per robot, aerial robots by id; a list that does not fit the team fails.
+"$BIN/slide-sim" --world indoor --robots 2 --frames 2 --sensors lidar,rgbd --aerial-robots 1 --out "$OUT/mixed" --quiet 2>/dev/null
+[[ -s "$OUT/mixed/robot0/velodyne/000001.bin" && -s "$OUT/mixed/robot1/rgb.txt" ]] || fail "mixed team sensors"
+grep -q "aerial: true" "$OUT/mixed/robot1/robot.yaml" || fail "robot 1 not aerial"
+if "$BIN/slide-sim" --world indoor --robots 3 --frames 1 --sensors lidar,rgbd --out "$OUT/y" --quiet 2>"$OUT/err"; then fail "accepted 2 sensors for 3 robots"; fi
+grep -q "2 sensors for 3 robots" "$OUT/err" || fail "no message naming the sensor count"
+if "$BIN/slide-sim" --world indoor --robots 2 --frames 1 --aerial-robots 5 --out "$OUT/z" --quiet 2>"$OUT/err"; then fail "accepted aerial robot 5"; fi
+grep -q "aerial robot 5" "$OUT/err" || fail "no message naming the aerial robot"
 # The driver refuses a folder that is not a dataset, naming it.
 if "$BIN/slide-sensor-driver" "$OUT" --no-publish --log "$OUT/x.lcm" 2>"$OUT/err"; then fail "driver accepted $OUT"; fi
 grep -q "$OUT" "$OUT/err" || fail "driver error does not name the folder"
