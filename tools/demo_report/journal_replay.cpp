@@ -38,15 +38,23 @@ struct TrajectoryError {
   int poses = 0;
 };
 
-// A robot's key poses as the host holds them, against truth expressed in the host's frame.
-TrajectoryError trajectoryError(const Optimizer& opt, int robot, const TeamTruth& truth) {
+// A robot's key poses as the host holds them, against truth expressed in the host's frame; with
+// `odom_of`, the robot's raw odometry at the same key poses instead (the same measure).
+TrajectoryError trajectoryError(const Optimizer& opt, int robot, const TeamTruth& truth,
+                                const std::map<std::pair<int, int>, Pose>* odom_of = nullptr) {
   TrajectoryError e;
   const Pose T_host_world = truth.robot(opt.hostRobot()).T_world_odom.inverse();
   double sq = 0;
   for (const TrajectoryPose& p : opt.trajectory(robot)) {
     const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
     if (!g) continue;
-    const double d = (p.pose.translation() - (T_host_world * g->pose).translation()).norm();
+    Pose estimate = p.pose;
+    if (odom_of) {
+      const auto o = odom_of->find({robot, p.seq});
+      if (o == odom_of->end()) continue;
+      estimate = o->second;
+    }
+    const double d = (estimate.translation() - (T_host_world * g->pose).translation()).norm();
     sq += d * d;
     e.last = d;
     ++e.poses;
@@ -65,29 +73,10 @@ std::optional<TransformError> mergedFrameError(const Optimizer& opt, int peer, c
   return transformError(traj.front().pose * it->second.inverse(), truth.T_a_b(opt.hostRobot(), peer));
 }
 
-// The host's raw odometry at the key poses it holds, in the same measure (no alignment).
-TrajectoryError odometryError(const Optimizer& opt, const TeamTruth& truth,
-                              const std::map<std::pair<int, int>, Pose>& odom_of) {
-  TrajectoryError e;
-  const int host = opt.hostRobot();
-  const Pose T_host_world = truth.robot(host).T_world_odom.inverse();
-  double sq = 0;
-  for (const TrajectoryPose& p : opt.trajectory(host)) {
-    const StampedPose* g = truthAt(truth.robot(host), p.utime * 1e-6);
-    const auto o = odom_of.find({host, p.seq});
-    if (!g || o == odom_of.end()) continue;
-    const double d = (o->second.translation() - (T_host_world * g->pose).translation()).norm();
-    sq += d * d;
-    e.last = d;
-    ++e.poses;
-  }
-  if (e.poses) e.rmse = std::sqrt(sq / e.poses);
-  return e;
-}
-
 void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std::pair<int, int>, Pose>& odom_of,
                 const char* prefix) {
-  const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth), odom = odometryError(opt, truth, odom_of);
+  const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth),
+                        odom = trajectoryError(opt, opt.hostRobot(), truth, &odom_of);
   std::printf("%s own %d poses rmse %.3f m last %.3f m (odometry %.3f / %.3f m); landmarks %d", prefix, own.poses,
               own.rmse, own.last, odom.rmse, odom.last, opt.numLandmarks());
   for (int r : opt.robots()) {
