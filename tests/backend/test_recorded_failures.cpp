@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 
 #include "bundle_messages.h"
+#include "config/config.h"
 #include "eval/transform_error.h"
 #include "io/tum_trajectory.h"
 #include "optimizer_node.h"
@@ -19,19 +19,11 @@ namespace {
 
 const std::string kDir = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/";
 
-// robot -> T_world_odom from a truth.txt ("robot x y z yaw" lines, '#' comments).
-std::map<int, Pose> readOdomFrames(const std::string& path) {
-  std::ifstream in(path);
-  std::map<int, Pose> frames;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    int robot;
-    double x, y, z, yaw;
-    if (s >> robot >> x >> y >> z >> yaw) frames[robot] = poseFromXyzYaw(x, y, z, yaw);
-  }
-  return frames;
+// T_world_odom of robot r, from the simulator's robot file (sim/dataset_writer.h).
+Pose odomFrame(const std::string& dir, int r) {
+  const std::vector<double> v =
+      ConfigNode::load(dir + "robot" + std::to_string(r) + ".yaml").getList<double>("T_world_odom", 4);
+  return poseFromXyzYaw(v[0], v[1], v[2], v[3]);
 }
 
 // The true pose nearest in time (within 50 ms), or nullptr.
@@ -46,8 +38,8 @@ const StampedPose* nearest(const std::vector<StampedPose>& truth, double t) {
 
 TEST(RecordedFailures, AMergedPeersFrameKeepsItsHeight) {
   const std::string dir = kDir + "forest_peer_height/";
-  const std::map<int, Pose> T_world_odom = readOdomFrames(dir + "truth.txt");
-  ASSERT_EQ(T_world_odom.size(), 3u);
+  std::map<int, Pose> T_world_odom;
+  for (int r : {0, 1, 2}) T_world_odom[r] = odomFrame(dir, r);
   const std::vector<StampedPose> truth = readTum(dir + "robot1_groundtruth.txt");
   const int host = 1;
   OptimizerNode node(loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"),
