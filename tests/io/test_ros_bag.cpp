@@ -68,6 +68,16 @@ DatasetOptions ousterOptions(bool deskew) {
   o.bag.deskew = deskew;
   return o;
 }
+
+// The topics of the RGBD test bags (a RealSense's color / aligned depth / camera info, /odom).
+DatasetOptions realSenseOptions() {
+  DatasetOptions o;
+  o.bag.color_topic = "/camera/color/image_raw";
+  o.bag.depth_topic = "/camera/aligned_depth_to_color/image_raw";
+  o.bag.camera_info_topic = "/camera/color/camera_info";
+  o.bag.odom_topic = "/odom";
+  return o;
+}
 }  // namespace
 
 TEST_F(RosBag, ListsTopicsTypesCountsAndRates) {
@@ -133,11 +143,7 @@ TEST_F(RosBag, LivoxAbsoluteNanosecondTimestamps) {
 }
 
 TEST_F(RosBag, RealSenseDepthAndColourPairs) {
-  DatasetOptions o;
-  o.bag.color_topic = "/camera/color/image_raw";
-  o.bag.depth_topic = "/camera/aligned_depth_to_color/image_raw";
-  o.bag.camera_info_topic = "/camera/color/camera_info";
-  o.bag.odom_topic = "/odom";
+  const DatasetOptions o = realSenseOptions();
   for (const char* name : {"rgbd.bag", "rgbd32.bag"}) {
     SCOPED_TRACE(name);
     const RobotDataset d = openRobotDataset(bag(name), o);
@@ -217,11 +223,7 @@ TEST_F(RosBag, TruncatedAndCorruptedBagsGiveIoErrorsNeverACrash) {
 }
 
 TEST_F(RosBag, CameraInfoDistortionIsReportedOnceNamingTheTopic) {
-  DatasetOptions o;
-  o.bag.color_topic = "/camera/color/image_raw";
-  o.bag.depth_topic = "/camera/aligned_depth_to_color/image_raw";
-  o.bag.camera_info_topic = "/camera/color/camera_info";
-  o.bag.odom_topic = "/odom";
+  const DatasetOptions o = realSenseOptions();
   const RobotDataset d = openRobotDataset(bag("rgbd_distorted.bag"), o);  // five CameraInfos, all distorted
   ASSERT_EQ(d.warnings.size(), 1u);
   EXPECT_NE(d.warnings[0].find("'/camera/color/camera_info'"), std::string::npos) << d.warnings[0];
