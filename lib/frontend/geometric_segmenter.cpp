@@ -1,8 +1,10 @@
 #include "frontend/geometric_segmenter.h"
 
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -15,10 +17,42 @@ struct Footprint {
   double length = 0, width = 0;
 };
 
-Footprint footprintOf(const Cloud& cloud, const std::vector<int>& idx) {
+// The minimum-area rectangle of the cluster's top view. Points strictly inside the octagon of
+// the extremes along x, y, x + y and x - y cannot be on the convex hull, so they are dropped
+// before OpenCV sorts the rest (Akl-Toussaint); the rectangle is the same. A cluster whose
+// bounding box has a side longer than `max_diagonal` fits no rectangle of that diagonal: it gets
+// an infinite footprint without a fit.
+Footprint footprintOf(const Cloud& cloud, const std::vector<int>& idx,
+                      double max_diagonal = std::numeric_limits<double>::infinity()) {
+  if (idx.empty()) return {};
+  // Extremes in the directions 180, 225, 270, 315, 0, 45, 90, 135 degrees: counter-clockwise.
+  std::array<Eigen::Vector2f, 8> ext;
+  std::array<float, 8> best;
+  best.fill(-std::numeric_limits<float>::infinity());
+  for (int i : idx) {
+    const float x = cloud[i].x(), y = cloud[i].y();
+    const std::array<float, 8> score{-x, -x - y, -y, x - y, x, x + y, y, y - x};
+    for (int d = 0; d < 8; ++d)
+      if (score[d] > best[d]) best[d] = score[d], ext[d] = {x, y};
+  }
+  if (std::max(best[4] + best[0], best[6] + best[2]) > max_diagonal)
+    return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  std::array<Eigen::Vector2f, 8> from, normal;  // inner normals of the octagon's proper edges
+  int edges = 0;
+  for (int d = 0; d < 8; ++d) {
+    const Eigen::Vector2f e = ext[(d + 1) % 8] - ext[d];
+    if (e.squaredNorm() == 0) continue;
+    from[edges] = ext[d];
+    normal[edges++] = {-e.y(), e.x()};
+  }
   std::vector<cv::Point2f> pts;
   pts.reserve(idx.size());
-  for (int i : idx) pts.emplace_back(cloud[i].x(), cloud[i].y());
+  for (int i : idx) {
+    const Eigen::Vector2f p(cloud[i].x(), cloud[i].y());
+    bool inside = edges >= 3;
+    for (int k = 0; k < edges && inside; ++k) inside = normal[k].dot(p - from[k]) > 1e-4f * normal[k].norm();
+    if (!inside) pts.emplace_back(p.x(), p.y());
+  }
   const cv::RotatedRect r = cv::minAreaRect(pts);
   return {std::max(r.size.width, r.size.height), std::min(r.size.width, r.size.height)};
 }
@@ -79,7 +113,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
-    const Footprint f = footprintOf(cloud, cl);
+    const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
     if (f.length < kp.min_length || f.length > kp.max_length || f.width > kp.max_width) continue;
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
     for (int i : cl) taken[i] = 1;
@@ -102,10 +136,10 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   std::vector<char> in_cluster(cloud.size(), 0);
   int label = 0;
   for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
-    const Footprint f = footprintOf(cloud, cl);
     const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
-    if (f.length > other.size_max.x() || f.width > other.size_max.y() || height > other.size_max.z()) continue;
-    if (height < other.size_min.z() || bottom > p.other_max_bottom) continue;
+    if (height > other.size_max.z() || height < other.size_min.z() || bottom > p.other_max_bottom) continue;
+    const Footprint f = footprintOf(cloud, cl, std::hypot(other.size_max.x(), other.size_max.y()));
+    if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
     if (p.other_max_occluded < 1) {
       for (int i : cl) in_cluster[i] = 1;

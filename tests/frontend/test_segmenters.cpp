@@ -2,7 +2,12 @@
 // clustering, ground removal, and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
 #include <limits>
+#include <map>
+#include <numeric>
+#include <random>
 
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
@@ -42,6 +47,50 @@ TEST(GridClustering, SplitsSeparatedBlobsAndDropsSmallOnes) {
   Cloud stack{{0, 0, 0}, {0, 0, 5}};
   EXPECT_EQ(clusterGrid(stack, {}, {0.3, true, 1}).size(), 1u);
   EXPECT_EQ(clusterGrid(stack, {}, {0.3, false, 1}).size(), 2u);
+}
+
+// Brute-force reference: points whose cells differ by at most one in every axis are joined.
+std::vector<std::vector<int>> clusterByPairs(const Cloud& c, double cell, int min_points) {
+  const int n = static_cast<int>(c.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int i) { return parent[i] == i ? i : parent[i] = root(parent[i]); };
+  auto cellOf = [&](const Eigen::Vector3f& p) { return (p.cast<double>() / cell).array().floor().eval(); };
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if ((cellOf(c[i]) - cellOf(c[j])).abs().maxCoeff() <= 1) parent[root(j)] = root(i);
+  std::map<int, std::vector<int>> groups;
+  for (int i = 0; i < n; ++i) groups[root(i)].push_back(i);
+  std::vector<std::vector<int>> out;
+  for (auto& [r, g] : groups)
+    if (static_cast<int>(g.size()) >= min_points) out.push_back(g);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(GridClustering, MatchesPairwiseCellAdjacencyWithNegativeAndFarCoordinates) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Cloud c;
+  // Blobs around negative and positive coordinates, some touching only at cell corners.
+  for (const Eigen::Vector3f centre : {Eigen::Vector3f(-3.1f, -2.2f, -0.4f), Eigen::Vector3f(-2.5f, -1.6f, 0.2f),
+                                       Eigen::Vector3f(4.0f, 0.0f, 1.0f), Eigen::Vector3f(0.0f, 6.0f, -1.0f)})
+    for (int i = 0; i < 40; ++i) c.push_back(centre + 0.25f * Eigen::Vector3f(u(rng), u(rng), u(rng)));
+  for (int i = 0; i < 60; ++i) c.emplace_back(10 * u(rng), 10 * u(rng), 2 * u(rng));  // scattered singles
+  const auto reference = clusterByPairs(c, 0.3, 3);
+  auto sorted = [](std::vector<std::vector<int>> v) {  // clusters as sets
+    for (auto& cl : v) std::sort(cl.begin(), cl.end());
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const auto near = clusterGrid(c, {}, {0.3, false, 3});
+  EXPECT_EQ(sorted(near), reference);
+  // Two lone points 100 km away in every axis widen the cell box past one 64-bit word (the
+  // other sorting path); the clusters must not change.
+  Cloud wide = c;
+  wide.emplace_back(1e5f, 1e5f, 1e5f);
+  wide.emplace_back(-1e5f, -1e5f, -1e5f);
+  EXPECT_EQ(sorted(clusterGrid(wide, {}, {0.3, false, 3})), reference);
 }
 
 TEST(GroundRemoval, CarRoofIsNotGround) {
