@@ -52,7 +52,7 @@ struct ColumnParams {
   int min_points = 8;
   double trunk_min_radius = 0.12;      // thicker columns are trunks
   double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
-  double canopy_min_fraction = 0.2;    // ... in this fraction of the cluster make it a trunk
+  double canopy_min_fraction = 0.02;   // ... in this fraction of the cluster make it a trunk
   // A thin column without a canopy is a pole for sure only when its top is seen with open view
   // above it: top + end_margin below both the highest visible point at its range and
   // max_height, and no nearer return just above its top (in a forest, nearer trunks and crowns

@@ -140,6 +140,7 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
     if (height > other.size_max.z() || height < other.size_min.z() || bottom > p.other_max_bottom) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(other.size_max.x(), other.size_max.y()));
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
+    if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;
     if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
     if (p.other_max_occluded < 1) {
       for (int i : cl) in_cluster[i] = 1;

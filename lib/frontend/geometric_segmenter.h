@@ -6,8 +6,8 @@
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car and whose roof is open (a wall's lower part goes on above the cap),
 //  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
-//     whose surfaces are solid (not foliage) and that are seen whole (not cut off by a nearer
-//     occluder beside them; see occlusion.h).
+//     whose surfaces are solid (not foliage), that are seen whole (not cut off by a nearer
+//     occluder beside them; see occlusion.h) and that are no upright column.
 #include "frontend/column_detection.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
@@ -53,6 +53,10 @@ struct GeometricSegmenterParams {
   // ... and that are seen whole: at most this share of their beams end at a nearer occluder
   // (a car's end seen past the car in front of it is no small object). 1 disables.
   double other_max_occluded = 0.5;
+  // ... and that are no upright column: a cluster as tall as a column must be (column.min_top)
+  // whose footprint is no longer than a column's cross-section (column.max_diameter) is a
+  // trunk or pole the column step turned down (not isolated, a bush at its foot). false: off.
+  bool other_not_column = true;
   OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };

@@ -249,6 +249,23 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
   EXPECT_EQ(othersNear(off, {6.3f, -5}), 1);
 }
 
+// A square pillar 3.5 m tall with flat faces fails the column step's arc test; a bin beside it
+// is a free "other". The pillar is as tall as a column and no wider than one: it is no "other"
+// either (in the forest such clusters are trunks the column step turned down).
+TEST(GeometricSegmenter, AnUprightColumnTurnedDownIsNoOtherABinIs) {
+  const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -0.3, -1), Eigen::Vector3d(8.6, 0.3, 2.5)),
+                                Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const GeometricSegmenterParams& p = cfg.geometric;
+  EXPECT_EQ(instancesNear(c, p, p.trunk_class, {8.3f, 0}, 1.0f) + instancesNear(c, p, p.pole_class, {8.3f, 0}, 1.0f), 0)
+      << "flat faces: no column";
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {8.3f, 0}, 1.0f), 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -5}, 1.0f), 1);
+  GeometricSegmenterParams off = p;
+  off.other_not_column = false;  // without the rule the pillar is an "other"
+  EXPECT_EQ(instancesNear(c, off, off.other_class, {8.3f, 0}, 1.0f), 1);
+}
+
 // A building's face behind a parked car (seen side-on, 5 m long), past the car's roof: the
 // ground before the face is hidden, so the face's lowest visible returns pass for ground and
 // the strip of face above them, under the car height cap, can fit a car's footprint and height. The face goes on above

@@ -220,6 +220,15 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       estimates.push_back(o);
     }
     for (const auto& o : estimates) est[o.class_id].push_back(&o);
+    // --verbose: the real object nearest to an estimate (any class), its distance in `d`.
+    auto nearestTruth = [&](const Object& o, double& d) {
+      const GroundTruthObject* near = nullptr;
+      for (const auto& g : sc.world.objects) {
+        const double dg = (g.object.position() - o.position()).head<2>().norm();
+        if (dg < d) d = dg, near = &g;
+      }
+      return near;
+    };
     ModeResult& m = r.result;
     std::set<int> groups;
     for (const auto& [g, v] : gt) groups.insert(g);
@@ -247,12 +256,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         if (spec.verbose)
           for (std::size_t i = 0; i < E.size(); ++i) {
             if (assign[i] >= 0) continue;
-            const GroundTruthObject* near = nullptr;
             double d = 1e9;
-            for (const auto& g : sc.world.objects) {
-              const double dg = (g.object.position() - E[i]->position()).head<2>().norm();
-              if (dg < d) d = dg, near = &g;
-            }
+            const GroundTruthObject* near = nearestTruth(*E[i], d);
             const auto it = near ? seen.find(static_cast<int>(near->object.id)) : seen.end();
             std::printf("  extra %s %s at (%.1f, %.1f): nearest object %ld (class %d%s, seen in %d frames) at %.2f m\n",
                         r.mode.c_str(), info.name.c_str(), E[i]->position().x(), E[i]->position().y(),
@@ -293,6 +298,14 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           const auto* b = std::get_if<Cuboid>(&e->model);
           std::printf("  extra %s %s at (%.1f, %.1f): no ground truth of the class", r.mode.c_str(), info.name.c_str(),
                       e->position().x(), e->position().y());
+          double d = 1e9;
+          if (const GroundTruthObject* near = nearestTruth(*e, d))
+            std::printf("; nearest object of any class: class %d at %.2f m (height %.1f, its %.1f)", near->object.class_id, d,
+                        e->position().z(), near->object.position().z());
+          if (const auto* el = std::get_if<Ellipsoid>(&e->model))
+            std::printf("; ellipsoid radius %.2f height %.2f, %d observations", el->radius, el->height, e->num_observations);
+          if (const auto* cy = std::get_if<Cylinder>(&e->model))
+            std::printf("; cylinder radius %.2f, %d observations", cy->radius, e->num_observations);
           if (b) std::printf("; box yaw %.0f deg dims %.1f x %.1f x %.1f, %d observations", yawOf(b->pose.linear()) * 180 / M_PI,
                              b->dims.x(), b->dims.y(), b->dims.z(), e->num_observations);
           std::printf("\n");
