@@ -178,6 +178,14 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
       opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
+      if (c.has("cluster_cell_by_class")) {
+        const ConfigNode cells = c.child("cluster_cell_by_class");
+        for (const std::string& name : cells.keys()) {
+          double cell = 0;
+          opt(cells, name, cell, 1e-3);
+          cfg.labelled.cluster_cell_by_class[name] = cell;
+        }
+      }
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);
     if (s.has("rgbd")) {

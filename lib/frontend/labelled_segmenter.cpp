@@ -2,8 +2,18 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
 
 namespace slide {
+
+LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
+    : classes_(std::move(classes)), params_(std::move(params)) {
+  for (const auto& [name, cell] : params_.cluster_cell_by_class) {
+    const ClassInfo* c = classes_.findByName(name);
+    if (!c) throw std::invalid_argument("cluster_cell_by_class: no class named '" + name + "' in the class table");
+    cell_of_class_[c->id] = cell;
+  }
+}
 
 std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, InputIssues& issues) const {
   if (scan.size() == 0) {
@@ -43,6 +53,7 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     // Columns are vertical: cluster their points on x, y so a trunk split by occlusion or
     // bled labels in the middle stays one object.
     cp.planar = group == -1 || (group >= 0 && classes_.at(group).shape == Shape::Cylinder);
+    if (const auto it = cell_of_class_.find(group); it != cell_of_class_.end()) cp.cell = it->second;
     for (const auto& cluster : clusterGrid(scan.xyz, idx, cp)) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;

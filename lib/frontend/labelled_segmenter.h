@@ -11,6 +11,9 @@
 // on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
 // background and shadows behind objects form small separate clusters that min_points drops,
 // and flat patches (ground labelled as an object) fall below the class's height.
+#include <map>
+#include <string>
+
 #include "frontend/grid_clustering.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -23,12 +26,15 @@ struct LabelledSegmenterParams {
   double max_range = 80.0;      // metres, horizontal
   bool merge_cylinders = true;  // cluster all cylinder classes together, majority class per cluster
   double min_height_fraction = 0.5;  // clusters lower than this times their class's size_min z are dropped
+  // Cluster cell per class name, for classes whose objects stand closer together than
+  // cluster.cell joins (chairs at a table, monitors side by side); others use cluster.cell.
+  std::map<std::string, double> cluster_cell_by_class;
 };
 
 class LabelledSegmenter : public LidarSegmenter {
  public:
-  LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
-      : classes_(std::move(classes)), params_(params) {}
+  // Throws std::invalid_argument for a cluster_cell_by_class name that is not in `classes`.
+  LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params);
   std::string name() const override { return "labelled"; }
   // Scans without labels give no instances and count "scan without labels".
   std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override;
@@ -36,6 +42,7 @@ class LabelledSegmenter : public LidarSegmenter {
  private:
   ClassTable classes_;
   LabelledSegmenterParams params_;
+  std::map<int, double> cell_of_class_;  // cluster_cell_by_class by class id
 };
 
 }  // namespace slide

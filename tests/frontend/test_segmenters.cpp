@@ -8,6 +8,7 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
@@ -127,6 +128,28 @@ TEST(LabelledSegmenter, InstancesFromClassesAloneAndBadInput) {
   unlabelled.xyz = scan.xyz;
   EXPECT_TRUE(seg.segment(unlabelled, empty_issues).empty());
   EXPECT_EQ(empty_issues.get("scan without labels"), 1);
+}
+
+// Two chairs 0.35 m apart (label 100): one 0.3 m grid joins them, the chair's own 0.15 m cell
+// keeps them apart; a cell for a class the table lacks is a configuration error.
+TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
+  LabelledScan scan;
+  for (double x0 : {4.0, 4.75})  // 0.4 m wide seats: a 0.35 m gap between them
+    for (double x = 0; x <= 0.4; x += 0.03)
+      for (double z = -1.0; z <= -0.2; z += 0.05) {
+        scan.xyz.emplace_back(static_cast<float>(x0 + x), 1.0f, static_cast<float>(z));
+        scan.intensity.push_back(0.5f);
+        scan.semantic.push_back(100);
+        scan.instance.push_back(0);
+      }
+  const ClassTable classes = ClassTable::loadDefault();
+  LabelledSegmenterParams p = loadDefaultFrontendConfig().labelled;
+  InputIssues issues;
+  EXPECT_EQ(LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u);
+  p.cluster_cell_by_class.clear();
+  EXPECT_EQ(LabelledSegmenter(classes, p).segment(scan, issues).size(), 1u) << "0.3 m cells join the chairs";
+  p.cluster_cell_by_class["sofa"] = 0.1;
+  EXPECT_THROW(LabelledSegmenter(classes, p), std::invalid_argument);
 }
 
 TEST(LabelledSegmenter, RealScanCarBecomesCarSizedCuboid) {
