@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   std::string journal_path, out_dir;
   int publish_every = 1;
+  double write_period = 10;
+  bool sync_solves = false;
   OptimizerChannels ch;
   app.add_option("--robot", robot, "this robot's id")->capture_default_str();
   app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
@@ -40,7 +42,10 @@ int main(int argc, char** argv) {
   app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
   app.add_option("--journal", journal_path,
                  "journal of every accepted input (checksummed records): replayed at start, appended while running");
-  app.add_option("--out-dir", out_dir, "write TUM trajectories here at exit and on SIGUSR1");
+  app.add_option("--out-dir", out_dir, "write TUM trajectories and the object map here: periodically, on SIGUSR1 and at exit");
+  app.add_option("--write-period", write_period, "seconds between writes of the outputs (0: only on SIGUSR1 and at exit)")
+      ->capture_default_str();
+  app.add_flag("--sync-solves", sync_solves, "full solves inside the updates that ask for them, not on a worker thread");
   app.add_option("--publish-every", publish_every, "publish map and trajectories every N updates (and on full solves)")
       ->capture_default_str();
   app.add_option("--bundle-channel", ch.bundle)->capture_default_str();
@@ -52,7 +57,8 @@ int main(int argc, char** argv) {
   addCommonOptions(app, common);
   return runApp(app, common, argc, argv, [&]() {
     if (url.empty()) url = slide::robotBusUrl(robot);
-    const BackendConfig cfg = loadBackendConfig(config_path);
+    BackendConfig cfg = loadBackendConfig(config_path);
+    cfg.background_solves = !sync_solves;
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
@@ -61,6 +67,10 @@ int main(int argc, char** argv) {
                          lcm.publish(c, b.data(), static_cast<unsigned>(b.size()));
                        },
                        publish_every);
+    node.setOutputs(out_dir, write_period);
+    std::signal(SIGINT, [](int) { g_stop = 1; });
+    std::signal(SIGTERM, [](int) { g_stop = 1; });
+    std::signal(SIGUSR1, [](int) { g_write = 1; });
     if (!journal_path.empty()) {
       node.openJournal(journal_path);
       node.publishAll();
@@ -69,20 +79,17 @@ int main(int argc, char** argv) {
     msg::Inbox inbox(lcm);
     for (const std::string& c : {ch.bundle, ch.peer_bundle, ch.loop_closure}) inbox.subscribeRaw(c, &Receiver::onMessage, &rx);
     node.setBusDrops([&inbox]() { return inbox.dropped(); });
-    std::signal(SIGINT, [](int) { g_stop = 1; });
-    std::signal(SIGTERM, [](int) { g_stop = 1; });
-    std::signal(SIGUSR1, [](int) { g_write = 1; });
     spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", robot, url, ch.bundle, ch.peer_bundle,
                  ch.loop_closure, ch.object_map, ch.trajectory, ch.status);
     while (!g_stop) {
       if (lcm.handleTimeout(100) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
-      if (g_write && !out_dir.empty()) {
+      node.poll();
+      if (g_write) {
         g_write = 0;
-        node.writeTrajectories(out_dir);
+        node.writeOutputs();
       }
     }
-    if (!out_dir.empty()) node.writeTrajectories(out_dir);
-    node.publishAll();
+    node.stop();
     const Optimizer& o = node.optimizer();
     spdlog::info("stopping: {} key poses, {} landmarks, {} peers merged, {} inputs rejected, {} undecodable, "
                  "dropped on the bus: {}", o.numKeyPoses(), o.numLandmarks(), o.numPeersMerged(), o.rejected(),

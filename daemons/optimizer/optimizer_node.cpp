@@ -175,6 +175,8 @@ bool OptimizerNode::process(Input kind, const void* data, int size) {
   }
   if (!r.accepted) {
     if (!replaying_) publishStatus(r);
+    if (r.full_solve) ++updates_;  // a background solve was taken in: the estimate changed
+    if (!replaying_ && r.full_solve) publishAll();
     return false;
   }
   ++updates_;
@@ -212,20 +214,59 @@ void OptimizerNode::publishAll() {
   for (int r : optimizer_.robots()) publish_(channels_.trajectory, encode(trajectoryMsg(t, r, host, optimizer_.trajectory(r))));
 }
 
-void OptimizerNode::writeTrajectories(const std::string& dir) {
-  optimizer_.fullSolve();
-  std::filesystem::create_directories(dir);
-  for (int r : optimizer_.robots()) {
-    std::vector<StampedPose> poses;
-    for (const TrajectoryPose& p : optimizer_.trajectory(r)) poses.push_back({p.utime * 1e-6, p.pose});
-    const std::string path = dir + "/trajectory_robot" + std::to_string(r) + ".txt";
-    writeTum(path, poses);
-    spdlog::info("wrote {} poses of robot {} to {}", poses.size(), r, path);
+void OptimizerNode::setOutputs(const std::string& dir, double period_s) {
+  out_dir_ = dir;
+  write_period_s_ = std::max(0.0, period_s);
+  last_write_ = std::chrono::steady_clock::now();
+}
+
+bool OptimizerNode::writeOutputs() {
+  if (out_dir_.empty()) return true;
+  // A full disk or a removed folder is logged, never fatal: the next write tries again.
+  try {
+    std::filesystem::create_directories(out_dir_);
+    for (int r : optimizer_.robots()) {
+      std::vector<StampedPose> poses;
+      for (const TrajectoryPose& p : optimizer_.trajectory(r)) poses.push_back({p.utime * 1e-6, p.pose});
+      writeTum(out_dir_ + "/trajectory_robot" + std::to_string(r) + ".txt", poses);
+    }
+    const ObjectMap objects(optimizer_.landmarks());
+    writeObjectMapText(out_dir_ + "/map_robot" + std::to_string(optimizer_.hostRobot()) + ".txt", objects, classes_);
+    spdlog::debug("wrote {} key poses and {} objects to {}", optimizer_.numKeyPoses(), objects.size(), out_dir_);
+  } catch (const std::exception& e) {
+    spdlog::error("outputs not written: {}", e.what());
+    return false;
   }
-  const std::string map = dir + "/map_robot" + std::to_string(optimizer_.hostRobot()) + ".txt";
-  const ObjectMap objects(optimizer_.landmarks());
-  writeObjectMapText(map, objects, classes_);
-  spdlog::info("wrote {} objects to {}", objects.size(), map);
+  written_updates_ = updates_;
+  return true;
+}
+
+void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
+  UpdateResult r;
+  if (optimizer_.poll(&r)) {
+    ++updates_;
+    logResult(r, "background solve");
+    publishAll();
+  }
+  if (write_period_s_ > 0 && updates_ != written_updates_ &&
+      now - last_write_ >= std::chrono::duration<double>(write_period_s_)) {
+    last_write_ = now;
+    writeOutputs();
+  }
+}
+
+void OptimizerNode::stop(double budget_s) {
+  optimizer_.cancelSolve();
+  if (writeOutputs() && !out_dir_.empty())
+    spdlog::info("wrote the estimate of {} key poses to {}", optimizer_.numKeyPoses(), out_dir_);
+  const SolveReport s = optimizer_.fullSolve(budget_s);
+  if (s.aborted) {
+    spdlog::warn("final solve not used: {}", s.message);
+    return;
+  }
+  if (writeOutputs() && !out_dir_.empty())
+    spdlog::info("wrote the final solve ({} iterations, {}) to {}", s.iterations, s.message, out_dir_);
+  publishAll();
 }
 
 }  // namespace slide

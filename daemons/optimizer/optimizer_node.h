@@ -53,9 +53,20 @@ class OptimizerNode {
   void handle(const std::string& channel, const void* data, int size);
 
   void publishAll();
-  // Full solve to convergence, then TUM files <dir>/trajectory_robot<N>.txt for every robot
-  // and the (merged) object map <dir>/map_robot<host>.txt (mapio text).
-  void writeTrajectories(const std::string& dir);
+  // Outputs: TUM files <dir>/trajectory_robot<N>.txt for every robot and the (merged) object
+  // map <dir>/map_robot<host>.txt (mapio text), each written whole or not at all. Written
+  // every `period_s` seconds by poll() when the estimate changed (0: never), by writeOutputs()
+  // and at stop(). An empty dir writes nothing.
+  void setOutputs(const std::string& dir, double period_s);
+  // The current estimate to the outputs (no solve); false (logged) when a file cannot be written.
+  bool writeOutputs();
+  // Between messages: takes a finished background solve into the estimate (then publishes
+  // it) and writes the outputs when their period has passed.
+  void poll(std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
+  // Asked to stop: cancels a running solve without waiting for it and writes the current
+  // estimate at once; then refines it with a full solve of at most `budget_s` seconds (an
+  // iteration may overrun it) and writes and publishes that unless it left an odometry envelope.
+  void stop(double budget_s = 1.0);
   // Messages the bus layer dropped before they reached handle() (size cap, handler
   // exceptions): added to the status message's dropped_messages.
   void setBusDrops(std::function<std::uint64_t()> count) { bus_drops_ = std::move(count); }
@@ -89,6 +100,10 @@ class OptimizerNode {
   int replay_skipped_ = 0;
   team::JournalRecovery journal_recovery_;
   std::unique_ptr<team::Journal> journal_;
+  std::string out_dir_;
+  double write_period_s_ = 0;
+  std::chrono::steady_clock::time_point last_write_{};
+  int written_updates_ = -1;  // updates_ when the outputs were last written
 };
 
 }  // namespace slide

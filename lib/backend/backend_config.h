@@ -90,6 +90,10 @@ struct BackendConfig {
   // Initial Levenberg-Marquardt trust region of full solves (all start from the last solution).
   double full_trust_region_radius = 1e8;
   int num_threads = 2;  // Ceres threads of full solves (per-key-pose solves use one)
+  // Full solves on a worker thread, taken in by the first update after they finish. Not read
+  // from YAML: the optimizer daemon turns it on; in-process runs (tests, benchmarks) keep each
+  // full solve inside its update, so their figures are reproducible.
+  bool background_solves = false;
 
   // Soundness: an intra-robot loop closure, or an estimate of any robot's trajectory after a
   // merge or full solve, that leaves that robot's odometry envelope is refused or undone.

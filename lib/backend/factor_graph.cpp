@@ -24,12 +24,34 @@ ceres::Problem::Options sharedOptions() {
 
 SolveReport report(const ceres::Solver::Summary& s) {
   SolveReport r;
+  r.aborted = s.termination_type == ceres::USER_FAILURE;
   r.initial_cost = s.initial_cost;
   r.final_cost = s.final_cost;
   r.iterations = static_cast<int>(s.iterations.size());
   r.residual_blocks = s.num_residual_blocks;
   r.message = s.message;
   return r;
+}
+
+// Stops a solve whose cancel flag is set (at the end of an iteration).
+class CancelCallback : public ceres::IterationCallback {
+ public:
+  explicit CancelCallback(const std::atomic<bool>* cancel) : cancel_(cancel) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return cancel_ && cancel_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* cancel_;
+};
+
+ceres::Manifold* manifoldOf(BlockKind kind, const FactorGraph::Snapshot& s) {
+  switch (kind) {
+    case BlockKind::Pose: return s.pose_manifold.get();
+    case BlockKind::Cylinder: return s.cylinder_manifold.get();
+    case BlockKind::Vector3: return nullptr;
+  }
+  return nullptr;
 }
 
 ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance, int num_threads,
@@ -50,29 +72,11 @@ ceres::Solver::Options fullOptions(int max_iterations, double function_tolerance
 FactorGraph::FactorGraph(double robust_loss_scale)
     : robust_scale_(robust_loss_scale),
       pose_manifold_(newPoseManifold()),
-      cylinder_manifold_(newCylinderManifold()) {
-  ceres::Problem::Options o = sharedOptions();
-  o.enable_fast_removal = true;
-  global_ = std::make_unique<ceres::Problem>(o);
-}
+      cylinder_manifold_(newCylinderManifold()) {}
 
-FactorGraph::~FactorGraph() { global_.reset(); }
-
+FactorGraph::~FactorGraph() = default;
 FactorGraph::FactorGraph(FactorGraph&&) noexcept = default;
-
-FactorGraph& FactorGraph::operator=(FactorGraph&& o) noexcept {
-  if (this == &o) return *this;
-  global_.reset();  // before the blocks and cost functions it points to go
-  vars_ = std::move(o.vars_);
-  factors_ = std::move(o.factors_);
-  removed_ = o.removed_;
-  robust_scale_ = o.robust_scale_;
-  losses_ = std::move(o.losses_);
-  pose_manifold_ = std::move(o.pose_manifold_);
-  cylinder_manifold_ = std::move(o.cylinder_manifold_);
-  global_ = std::move(o.global_);
-  return *this;
-}
+FactorGraph& FactorGraph::operator=(FactorGraph&&) noexcept = default;
 
 ceres::Manifold* FactorGraph::manifoldFor(BlockKind kind) const {
   switch (kind) {
@@ -95,9 +99,7 @@ int FactorGraph::addVariable(BlockKind kind, const double* init, bool eliminate_
   std::copy(init, init + blockSize(kind), v.value.begin());
   v.initial = v.value;
   vars_.push_back(v);
-  const int id = static_cast<int>(vars_.size()) - 1;
-  global_->AddParameterBlock(vars_[id].value.data(), blockSize(kind), manifoldFor(kind));
-  return id;
+  return static_cast<int>(vars_.size()) - 1;
 }
 
 void FactorGraph::addToProblem(ceres::Problem& p, const Factor& f, std::vector<double*>& blocks, Values* storage) const {
@@ -119,11 +121,8 @@ int FactorGraph::addFactor(ceres::CostFunction* cost, std::vector<int> vars, boo
   if (static_cast<int>(losses_.size()) <= n) losses_.resize(n + 1);
   if (!losses_[n]) {
     const double a = robust_scale_ * std::sqrt(static_cast<double>(n));
-    losses_[n] = std::make_unique<ceres::HuberLoss>(a);
+    losses_[n] = std::make_shared<ceres::HuberLoss>(a);
   }
-  std::vector<double*> blocks;
-  for (int v : f.vars) blocks.push_back(vars_[v].value.data());
-  f.global_id = global_->AddResidualBlock(f.cost.get(), lossFor(f), blocks);
   const int id = static_cast<int>(factors_.size());
   for (int v : f.vars) vars_[v].factors.push_back(id);
   factors_.push_back(std::move(f));
@@ -133,7 +132,6 @@ int FactorGraph::addFactor(ceres::CostFunction* cost, std::vector<int> vars, boo
 void FactorGraph::removeFactor(int id) {
   Factor& f = factors_[id];
   if (f.removed) return;
-  global_->RemoveResidualBlock(static_cast<ceres::ResidualBlockId>(f.global_id));
   for (int v : f.vars) {
     auto& list = vars_[v].factors;
     list.erase(std::remove(list.begin(), list.end(), id), list.end());
@@ -147,7 +145,6 @@ void FactorGraph::removeVariable(int var) {
   Variable& v = vars_[var];
   if (v.removed) return;
   if (!v.factors.empty()) throw std::logic_error("FactorGraph::removeVariable: variable still has factors");
-  global_->RemoveParameterBlock(v.value.data());
   v.removed = true;
 }
 
@@ -184,14 +181,93 @@ SolveReport FactorGraph::solveLocal(const std::vector<int>& active, int max_iter
 
 SolveReport FactorGraph::solveFull(int max_iterations, double function_tolerance, int num_threads,
                                    double trust_region_radius) {
-  ceres::Solver::Options o = fullOptions(max_iterations, function_tolerance, num_threads, trust_region_radius);
+  Snapshot s = snapshot();
+  const SolveReport r = solveSnapshot(s, {max_iterations, function_tolerance, num_threads, trust_region_radius});
+  for (std::size_t i = 0; i < vars_.size(); ++i)
+    if (!vars_[i].removed) vars_[i].value = s.values[i];
+  return r;
+}
+
+FactorGraph::Snapshot FactorGraph::snapshot() const {
+  Snapshot s;
+  const std::size_t n = vars_.size();
+  s.kinds.resize(n);
+  s.eliminate_first.resize(n);
+  s.removed.resize(n);
+  s.values.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.kinds[i] = vars_[i].kind;
+    s.eliminate_first[i] = vars_[i].eliminate_first;
+    s.removed[i] = vars_[i].removed;
+    s.values[i] = vars_[i].value;
+  }
+  s.terms.reserve(factors_.size() - removed_);
+  s.vars.reserve(3 * (factors_.size() - removed_));
+  for (std::size_t id = 0; id < factors_.size(); ++id) {
+    const Factor& f = factors_[id];
+    if (f.removed) continue;
+    s.terms.push_back({f.cost, lossFor(f), static_cast<int>(id), static_cast<int>(s.vars.size()),
+                       static_cast<int>(f.vars.size())});
+    s.vars.insert(s.vars.end(), f.vars.begin(), f.vars.end());
+  }
+  s.num_factors = factors_.size();
+  s.losses = losses_;
+  s.pose_manifold = pose_manifold_;
+  s.cylinder_manifold = cylinder_manifold_;
+  return s;
+}
+
+SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt, std::vector<double>* residual_norms) {
+  SolveReport aborted;
+  aborted.aborted = true;
+  aborted.message = "cancelled";
+  if (opt.cancel && opt.cancel->load()) return aborted;
+  ceres::Problem::Options po = sharedOptions();
+  po.disable_all_safety_checks = true;
+  ceres::Problem problem(po);
+  std::vector<double*> blocks;
+  for (const Snapshot::Term& t : s.terms) {
+    blocks.clear();
+    for (int k = 0; k < t.count; ++k) {
+      const int v = s.vars[t.first + k];
+      double* b = s.values[v].data();
+      if (!problem.HasParameterBlock(b)) problem.AddParameterBlock(b, blockSize(s.kinds[v]), manifoldOf(s.kinds[v], s));
+      blocks.push_back(b);
+    }
+    problem.AddResidualBlock(t.cost.get(), t.loss, blocks);
+  }
+  if (opt.cancel && opt.cancel->load()) return aborted;
+  ceres::Solver::Options o = fullOptions(opt.max_iterations, opt.function_tolerance, opt.num_threads,
+                                         opt.trust_region_radius);
+  if (opt.max_seconds > 0) o.max_solver_time_in_seconds = opt.max_seconds;
   auto* ordering = new ceres::ParameterBlockOrdering;
-  for (auto& v : vars_)
-    if (!v.removed) ordering->AddElementToGroup(v.value.data(), v.eliminate_first ? 0 : 1);
+  for (std::size_t i = 0; i < s.values.size(); ++i)
+    if (!s.removed[i] && problem.HasParameterBlock(s.values[i].data()))
+      ordering->AddElementToGroup(s.values[i].data(), s.eliminate_first[i] ? 0 : 1);
   o.linear_solver_ordering.reset(ordering);
-  ceres::Solver::Summary s;
-  ceres::Solve(o, global_.get(), &s);
-  return report(s);
+  CancelCallback callback(opt.cancel);
+  if (opt.cancel) o.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem, &summary);
+  const SolveReport r = report(summary);
+  if (r.aborted || !residual_norms) return r;
+  residual_norms->assign(s.num_factors, 0.0);
+  std::vector<const double*> params;
+  std::vector<double> res;
+  for (const Snapshot::Term& t : s.terms) {
+    params.clear();
+    for (int k = 0; k < t.count; ++k) params.push_back(s.values[s.vars[t.first + k]].data());
+    res.resize(t.cost->num_residuals());
+    double sq = 0;
+    if (!t.cost->Evaluate(params.data(), res.data(), nullptr)) sq = std::numeric_limits<double>::infinity();
+    for (double x : res) sq += x * x;
+    (*residual_norms)[t.factor] = std::sqrt(sq);
+  }
+  return r;
+}
+
+void FactorGraph::setValue(int var, const double* v) {
+  std::copy(v, v + blockSize(vars_[var].kind), vars_[var].value.begin());
 }
 
 FactorGraph::Values FactorGraph::solveBatch(int max_iterations, double function_tolerance, SolveReport* out,
@@ -233,8 +309,16 @@ FactorGraph::Values FactorGraph::values() const {
 }
 
 double FactorGraph::cost() const {
+  // As Ceres counts it: half the sum of each block's (robust) squared norm.
   double c = 0;
-  global_->Evaluate(ceres::Problem::EvaluateOptions(), &c, nullptr, nullptr, nullptr);
+  for (std::size_t id = 0; id < factors_.size(); ++id) {
+    const Factor& f = factors_[id];
+    if (f.removed) continue;
+    const double n = residualNorm(static_cast<int>(id));
+    double rho[3] = {n * n, 1, 0};
+    if (const ceres::LossFunction* loss = lossFor(f)) loss->Evaluate(n * n, rho);
+    c += 0.5 * rho[0];
+  }
   return c;
 }
 

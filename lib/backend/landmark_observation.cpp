@@ -123,7 +123,7 @@ void Optimizer::moveObservations(Landmark& from, Landmark& to) {
   if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
 }
 
-int Optimizer::detachOutliers() {
+int Optimizer::detachOutliers(const std::vector<double>* norms) {
   int detached = 0;
   const std::size_t count = landmarks_.size();
   for (std::size_t i = 0; i < count; ++i) {
@@ -131,7 +131,8 @@ int Optimizer::detachOutliers() {
     std::vector<Observation> keep, bad;
     for (const Observation& obs : landmarks_[i].seen) {
       const double limit = cfg_.outlier_sigmas * std::sqrt(static_cast<double>(graph_.residualCount(obs.factor)));
-      (graph_.residualNorm(obs.factor) > limit ? bad : keep).push_back(obs);
+      const bool solved = norms && obs.factor < static_cast<int>(norms->size());
+      ((solved ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit ? bad : keep).push_back(obs);
     }
     if (bad.empty() || keep.empty()) continue;
     landmarks_[i].seen = keep;

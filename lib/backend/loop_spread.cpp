@@ -72,7 +72,7 @@ void Optimizer::spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b
     std::copy(block.begin(), block.end(), graph_.value(vars[i]));
   }
   // Each landmark follows the observer that moved least (those seen from before the loop stay).
-  for (Landmark& lm : landmarks_) {
+  for (const Landmark& lm : landmarks_) {
     if (!lm.alive || lm.seen.empty()) continue;
     const Pose* C = nullptr;
     double least = 1e300;
@@ -80,19 +80,22 @@ void Optimizer::spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b
       const double d = moved[o.pose_var] ? correction[o.pose_var].translation().norm() : 0.0;
       if (d < least) least = d, C = moved[o.pose_var] ? &correction[o.pose_var] : nullptr;
     }
-    if (!C) continue;
-    double* v = graph_.value(lm.var);
-    if (lm.shape == Shape::Cuboid) {
-      const PoseBlock block = toPoseBlock(*C * fromPoseBlock(v));
-      std::copy(block.begin(), block.end(), v);
-    } else if (lm.shape == Shape::Cylinder) {
-      const Eigen::Vector3d root = *C * Eigen::Vector3d(v[0], v[1], v[2]);
-      const Eigen::Vector3d axis = C->linear() * Eigen::Vector3d(v[3], v[4], v[5]);
-      for (int k = 0; k < 3; ++k) v[k] = root[k], v[3 + k] = axis[k];
-    } else {
-      const Eigen::Vector3d c = *C * Eigen::Vector3d(v[0], v[1], v[2]);
-      for (int k = 0; k < 3; ++k) v[k] = c[k];
-    }
+    if (C) moveLandmark(lm, *C);
+  }
+}
+
+void Optimizer::moveLandmark(const Landmark& lm, const Pose& C) {
+  double* v = graph_.value(lm.var);
+  if (lm.shape == Shape::Cuboid) {
+    const PoseBlock block = toPoseBlock(C * fromPoseBlock(v));
+    std::copy(block.begin(), block.end(), v);
+  } else if (lm.shape == Shape::Cylinder) {
+    const Eigen::Vector3d root = C * Eigen::Vector3d(v[0], v[1], v[2]);
+    const Eigen::Vector3d axis = C.linear() * Eigen::Vector3d(v[3], v[4], v[5]);
+    for (int k = 0; k < 3; ++k) v[k] = root[k], v[3 + k] = axis[k];
+  } else {
+    const Eigen::Vector3d c = C * Eigen::Vector3d(v[0], v[1], v[2]);
+    for (int k = 0; k < 3; ++k) v[k] = c[k];
   }
 }
 

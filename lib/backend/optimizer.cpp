@@ -7,6 +7,7 @@
 #include "backend/data_association.h"
 #include "backend/factors.h"
 #include "backend/pose_block.h"
+#include "backend/solve_worker.h"
 
 namespace slide {
 
@@ -63,6 +64,7 @@ Vector6d Optimizer::odometrySigma(const KeyPoseBundle& b, const Pose& relative, 
 UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
   const auto t0 = Clock::now();
   UpdateResult r;
+  poll(&r);
   // Bounded: peers (any id a message claims) and what is held of each.
   if (!robots_.count(b.robot) && static_cast<int>(robots_.size()) - 1 >= cfg_.max_peers)
     return reject(r, "too many peers: robot " + std::to_string(b.robot) + " would be peer " +
@@ -88,7 +90,6 @@ UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
   const int pose_var = insertBundle(b, r, touched, loop);
   r.solve = solveAfterInsert(b.robot, pose_var, touched, loop, r);
   r.accepted = true;
-  if (r.full_solve) guard(r);
   r.update_ms = msSince(t0);
   return r;
 }
@@ -183,9 +184,8 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
                                         UpdateResult& r) {
   if (loop) full_pending_ = true;
   const int since_full = step_ - last_full_step_;
-  if ((full_pending_ && since_full >= cfg_.min_full_gap) || since_full >= cfg_.full_every) {
-    r.full_solve = true;
-    return solveAll(cfg_.full_iterations, cfg_.full_function_tolerance);
+  if (!solving() && ((full_pending_ && since_full >= cfg_.min_full_gap) || since_full >= cfg_.full_every)) {
+    if (requestFull(cfg_.full_iterations, r)) return r.solve;  // solved here: it replaces the local solve
   }
   std::vector<int> active;
   const auto& kps = robots_[robot].keyposes;
@@ -203,30 +203,6 @@ SolveReport Optimizer::solveAfterInsert(int robot, int pose_var, const std::vect
   return s;
 }
 
-SolveReport Optimizer::fullSolve() {
-  SolveReport s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
-  for (int round = 0; round < 3; ++round) {
-    const int changed = detachOutliers() + mergeDuplicates();
-    if (changed == 0) break;
-    s = solveAll(cfg_.final_iterations, cfg_.final_function_tolerance);
-  }
-  UpdateResult r;
-  const int before = unmerged_;
-  guard(r);
-  if (unmerged_ != before) return fullSolve();
-  return s;
-}
-
-SolveReport Optimizer::solveAll(int max_iterations, double function_tolerance) {
-  const SolveReport s =
-      graph_.solveFull(max_iterations, function_tolerance, cfg_.num_threads, cfg_.full_trust_region_radius);
-  full_pending_ = false;
-  last_full_step_ = step_;
-  afterSolve({}, true);
-  if (max_iterations < cfg_.final_iterations && detachOutliers() + mergeDuplicates() > 0) afterSolve({}, true);
-  return s;
-}
-
 void Optimizer::afterSolve(const std::vector<int>& moved, bool all) {
   if (all) {
     for (std::size_t i = 0; i < landmarks_.size(); ++i)
@@ -239,6 +215,7 @@ void Optimizer::afterSolve(const std::vector<int>& moved, bool all) {
 UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   const auto t0 = Clock::now();
   UpdateResult r;
+  poll(&r);
   if (peer == host_) return reject(r, "bad transform: robot " + std::to_string(peer) + " is this robot");
   if (!T_host_peer.matrix().allFinite()) return reject(r, "non-finite value: transform to robot " + std::to_string(peer));
   if (!(T_host_peer.translation().norm() <= cfg_.max_robot_offset_m))
@@ -294,11 +271,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
         posePriorFactor(T_host_peer * first.odom_pose, peerAnchorSigma(cfg_)),
         {first.var}, false);
   }
-  if (!robot.keyposes.empty()) {
-    r.full_solve = true;
-    r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
-    guard(r);
-  }
+  if (!robot.keyposes.empty()) requestFull(cfg_.loop_iterations, r);
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;
@@ -307,6 +280,7 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
 UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b) {
   const auto t0 = Clock::now();
   UpdateResult r;
+  poll(&r);
   if (!T_a_b.matrix().allFinite()) return reject(r, "non-finite value: loop closure of robot " + std::to_string(robot));
   const KeyPose* a = findKeyPose(robot, seq_a);
   const KeyPose* b = findKeyPose(robot, seq_b);
@@ -334,10 +308,8 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
   if (it != loop_factors_.end()) graph_.removeFactor(it->second);
   loop_factors_[key] = graph_.addFactor(
       relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, false);
-  r.full_solve = true;
-  if (cfg_.spread_loops && a->seq < b->seq) spreadLoop(*a, *b, T_a_b);
-  r.solve = solveAll(cfg_.loop_iterations, cfg_.full_function_tolerance);
-  guard(r);
+  if (cfg_.spread_loops && seq_a < seq_b) pending_spreads_.push_back({robot, seq_a, seq_b, T_a_b});
+  requestFull(cfg_.loop_iterations, r);
   r.accepted = true;
   r.update_ms = msSince(t0);
   return r;

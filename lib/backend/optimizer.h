@@ -2,8 +2,14 @@
 // The back-end of one robot: validates key-pose bundles (its own and, once an inter-robot
 // transform is known, its peers'), associates their objects with landmarks, grows the factor
 // graph and keeps it optimized incrementally (local solves per key pose, full solves on loop
-// closures and periodically). Everything is in the host robot's frame.
+// closures, merges and periodically). Everything is in the host robot's frame.
+// Full solves run on a snapshot of the graph; with background_solves that happens on one
+// worker thread, and the update that finds the solve finished takes its result in (the key
+// poses added meanwhile follow their robot's last solved pose, landmarks made meanwhile their
+// first observer), so no update waits for a full solve. Without it (the default: tests and
+// in-process benchmarks) each full solve runs inside the update that asks for it.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -18,6 +24,10 @@
 
 namespace slide {
 
+namespace backend {
+class SolveWorker;
+}
+
 struct TrajectoryPose {
   int seq = 0;
   std::int64_t utime = 0;
@@ -30,7 +40,7 @@ struct UpdateResult {
   std::string reason;       // why the input was rejected
   std::vector<std::string> warnings;       // objects dropped from an accepted bundle, and why
   std::vector<std::int64_t> landmark_ids;  // per input object: its landmark id, -1 if dropped
-  bool full_solve = false;
+  bool full_solve = false;  // a full solve's result entered the estimate in this update
   double update_ms = 0;     // wall time of the whole update
   SolveReport solve;
 };
@@ -58,8 +68,20 @@ class Optimizer {
   // A repeated (robot, seq_a, seq_b) replaces the earlier one. Refused when it is further from
   // the robot's odometry between the two key poses than the odometry envelope allows.
   UpdateResult addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b);
-  // Full solve to convergence over the whole graph (at most final_iterations).
-  SolveReport fullSolve();
+  // Full solve to convergence over the whole graph (at most final_iterations), in the calling
+  // thread (a background solve is cancelled first), then outliers, duplicates and the
+  // soundness guard. With max_seconds > 0 it stops after about that long (an iteration may
+  // overrun it) and never rebuilds the graph: if the estimate then leaves some robot's odometry
+  // envelope, the report says aborted and why (the stop path writes the earlier estimate).
+  SolveReport fullSolve(double max_seconds = 0);
+  // Takes a finished background solve into the estimate (updates do this first; call it when
+  // idle too). True when one was taken; `r` gets full_solve, its report and any warnings.
+  bool poll(UpdateResult* r = nullptr);
+  bool solving() const;  // a background solve is running
+  // Asks a running background solve to stop and forgets its result; returns at once.
+  void cancelSolve();
+  // Tests: runs on the worker thread before each background solve (e.g. to hold one).
+  void setSolveHook(std::function<void()> hook) { solve_hook_ = std::move(hook); }
 
   // Landmarks in the host frame (ids are the landmark ids), confirmed ones or all.
   std::vector<Object> landmarks(bool confirmed_only = true) const;
@@ -139,12 +161,22 @@ class Optimizer {
   // pose's variable and fills `touched` with the landmarks it observed. Sets `loop` when one
   // of them was last seen long ago.
   int insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector<int>& touched, bool& loop);
+  // Full solves (optimizer_solve.cpp). A full solve of `iterations` is due: it starts now, or
+  // once the running one is taken in. In the calling thread unless background_solves: then
+  // returns true, with `r` holding its result.
+  struct FullSolveJob;
+  bool requestFull(int iterations, UpdateResult& r);
+  void startPending(UpdateResult& r);
+  std::shared_ptr<FullSolveJob> makeJob(int iterations, double function_tolerance);
+  // The job's solution into the graph; false when it is stale (a rebuild) or was cancelled.
+  bool adopt(FullSolveJob& job, UpdateResult& r);
+  bool background() const { return cfg_.background_solves && !replaying_; }
+  void applyPendingSpreads();
   int addLandmark(const Object& world);
   void addObservation(int pose_var, const Pose& T_w_b, const Object& body_obj, Landmark& lm);
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
-  SolveReport solveAll(int max_iterations, double function_tolerance);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
   // the poses): same class, associable, never seen from the same key pose. Returns merges.
   int mergeDuplicates();
@@ -153,13 +185,16 @@ class Optimizer {
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
   // landmark (a wrong association made while the poses had drifted): each becomes a new
-  // landmark, which mergeDuplicates() may join to the right one. Returns how many.
-  int detachOutliers();
+  // landmark, which mergeDuplicates() may join to the right one. Returns how many. Residual
+  // norms come from `norms` (by factor id, as a solved snapshot gave them) where it has them.
+  int detachOutliers(const std::vector<double>* norms = nullptr);
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
   // Before the full solve of a new loop closure a-b: spreads its error along a robot's key
   // poses from a on (loop_spread.h) and moves each landmark with its least-moved observer.
   void spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b);
+  // Moves a landmark by C (host frame), as its observer moved.
+  void moveLandmark(const Landmark& lm, const Pose& C);
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
   // Soundness (optimizer_guard.cpp). The odometry envelope check of a robot's key poses
   // (indices into its list) i..j against T_i_j; the frame of a merged peer as the graph holds it.
@@ -198,6 +233,19 @@ class Optimizer {
   std::map<int, std::vector<Pose>> refused_;     // transforms whose merge was undone
   bool replaying_ = false;
   int unmerged_ = 0, rebuilds_ = 0;
+  // Full solves: iterations of the one due (0: none), loop closures to spread before it, the
+  // one running in the background, the worker, and the graph's generation (a rebuild makes a
+  // new one; a solve of an older one is dropped).
+  int pending_iterations_ = 0;
+  struct LoopToSpread {
+    int robot, seq_a, seq_b;
+    Pose T_a_b;
+  };
+  std::vector<LoopToSpread> pending_spreads_;
+  std::shared_ptr<FullSolveJob> running_;
+  std::unique_ptr<backend::SolveWorker> worker_;
+  std::function<void()> solve_hook_;
+  int epoch_ = 0;
 };
 
 }  // namespace slide

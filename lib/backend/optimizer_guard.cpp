@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "backend/optimizer.h"
+#include "backend/solve_worker.h"
 
 namespace slide {
 
@@ -79,7 +80,13 @@ void Optimizer::rebuildWithout(int peer, const std::optional<Pose>& T_host_peer)
   fresh.detached_ += detached_;
   fresh.unmerged_ = unmerged_;
   fresh.rebuilds_ = rebuilds_ + 1;
+  // The worker stays; a solve of the old graph still running is dropped (another epoch).
+  cancelSolve();
+  fresh.epoch_ = epoch_ + 1;
+  std::unique_ptr<backend::SolveWorker> worker = std::move(worker_);
+  fresh.solve_hook_ = solve_hook_;
   *this = std::move(fresh);
+  worker_ = std::move(worker);
 }
 
 void Optimizer::guard(UpdateResult& r) {

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/atomic_file.h"
 #include "io/io_error.h"
 
 namespace slide {
@@ -32,8 +33,7 @@ std::vector<StampedPose> readTum(const std::string& path) {
 }
 
 void writeTum(const std::string& path, const std::vector<StampedPose>& trajectory) {
-  std::ofstream out(path);
-  if (!out) throw IoError(path, "cannot write file");
+  std::ostringstream out;
   out << std::fixed;
   for (const StampedPose& p : trajectory) {
     const Eigen::Vector3d t = p.pose.translation();
@@ -41,7 +41,7 @@ void writeTum(const std::string& path, const std::vector<StampedPose>& trajector
     out << std::setprecision(6) << p.t << std::setprecision(9) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' '
         << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
   }
-  if (!out) throw IoError(path, "write failed");
+  writeFileAtomically(path, out.str());
 }
 
 }  // namespace slide

@@ -8,6 +8,7 @@
 namespace slide {
 
 std::vector<StampedPose> readTum(const std::string& path);
+// Written whole or not at all (io/atomic_file.h); throws IoError.
 void writeTum(const std::string& path, const std::vector<StampedPose>& trajectory);
 
 }  // namespace slide

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/atomic_file.h"
+
 namespace slide {
 
 namespace {
@@ -122,10 +124,7 @@ std::string formatObjectMapText(const ObjectMap& map, const ClassTable& classes)
 }
 
 void writeObjectMapText(const std::string& path, const ObjectMap& map, const ClassTable& classes) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path + ": cannot open for writing");
-  f << formatObjectMapText(map, classes);
-  if (!f) throw std::runtime_error(path + ": write error");
+  writeFileAtomically(path, formatObjectMapText(map, classes));
 }
 
 }  // namespace slide

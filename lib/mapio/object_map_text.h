@@ -29,6 +29,7 @@ Object objectFromCentre(int class_id, const Eigen::Vector3d& p, const Eigen::Vec
 
 // Writes `label x y z sx sy sz` per object (label: the class's first map label, else its id).
 // Throws std::runtime_error naming the file when it cannot be written.
+// Written whole or not at all (io/atomic_file.h); throws IoError.
 void writeObjectMapText(const std::string& path, const ObjectMap& map, const ClassTable& classes);
 std::string formatObjectMapText(const ObjectMap& map, const ClassTable& classes);
 

@@ -71,6 +71,11 @@ Scenario makeUrbanScenario(std::uint32_t seed = 2);
 // Forest: 400 x 400 m, 1000 key poses over 1430 m in two loops sharing a re-driven edge,
 // 860 trunks within 15 m of the path, range 15 m.
 Scenario makeForestScenario(std::uint32_t seed = 3);
+// A long forest mission: copies of the forest tile (its trunks and route) side by side, 400 m
+// apart in x, driven one after the other (each route's end is joined to the next one's start,
+// re-driving both tiles' southern edges), at the forest's key-pose spacing; cut to
+// `num_keyposes`. The first 1000 key poses drive the forest route.
+Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed = 3);
 // KITTI: the real LiDAR path of a sequence (poses file, KITTI camera layout) cut into
 // `num_robots` consecutive robots, key poses every `spacing` metres, observing the real pole
 // map (csv "x,y") as cylinders within 20 m. Throws IoError / std::runtime_error on bad files.

@@ -118,21 +118,57 @@ Scenario makeUrbanScenario(std::uint32_t seed) {
   return finish("urban", std::move(lms), pathAlongWaypoints(route, 300, 0.0), n, rng);
 }
 
-Scenario makeForestScenario(std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  // Loop A up the shared edge x = 200 and back round the west; loop B round the east and back
-  // down the shared edge: 2 x 715 m = 1430 m.
-  const double w = 150, h = 207.5, x0 = 200, y0 = 100;
-  const std::vector<Eigen::Vector2d> route = {{x0, y0},         {x0, y0 + h}, {x0 - w, y0 + h}, {x0 - w, y0}, {x0, y0},
-                                              {x0 + w, y0},     {x0 + w, y0 + h}, {x0, y0 + h},  {x0, y0}};
+namespace {
+// The forest's route: loop A up the shared edge x = 200 and back round the west; loop B round
+// the east and back down the shared edge: 2 x 715 m = 1430 m, starting and ending at (200, 100).
+std::vector<Eigen::Vector2d> forestRoute(double x_offset) {
+  const double w = 150, h = 207.5, x0 = 200 + x_offset, y0 = 100;
+  return {{x0, y0},     {x0, y0 + h},     {x0 - w, y0 + h}, {x0 - w, y0}, {x0, y0},
+          {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h},     {x0, y0}};
+}
+
+std::vector<Object> forestTrunks(std::mt19937& rng) {
   std::vector<Object> lms;
-  scatter(lms, 860, {0, 0}, {400, 400}, route, 2.0, 14.5, 2.5, rng,
+  scatter(lms, 860, {0, 0}, {400, 400}, forestRoute(0), 2.0, 14.5, 2.5, rng,
           [&](const Eigen::Vector2d& p, const Eigen::Vector2d&) {
             return trunk(71, p, uniform(rng, 0.1, 0.4), uniform(rng, 8.0, 15.0), rng);
           });
+  return lms;
+}
+}  // namespace
+
+Scenario makeForestScenario(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::vector<Object> lms = forestTrunks(rng);
   ScenarioNoise n;
   n.range = 15.0;
-  return finish("forest", std::move(lms), pathAlongWaypoints(route, 1000, 0.0), n, rng);
+  return finish("forest", std::move(lms), pathAlongWaypoints(forestRoute(0), 1000, 0.0), n, rng);
+}
+
+Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const std::vector<Object> tile = forestTrunks(rng);
+  const double spacing = 1430.0 / 999.0;  // the forest's key-pose spacing
+  const double tile_length = 1430.0 + 400.0;  // one route and the road to the next tile's start
+  const int tiles = std::max(1, static_cast<int>(std::ceil(num_keyposes * spacing / tile_length)) + 1);
+  std::vector<Eigen::Vector2d> route;
+  std::vector<Object> lms;
+  for (int t = 0; t < tiles; ++t) {
+    const std::vector<Eigen::Vector2d> r = forestRoute(400.0 * t);
+    route.insert(route.end(), r.begin(), r.end());
+    for (Object o : tile) {
+      std::get<Cylinder>(o.model).root.x() += 400.0 * t;
+      o.id = static_cast<std::int64_t>(lms.size());
+      lms.push_back(o);
+    }
+  }
+  double length = 0;
+  for (std::size_t i = 1; i < route.size(); ++i) length += (route[i] - route[i - 1]).norm();
+  std::vector<Pose> path = pathAlongWaypoints(route, static_cast<int>(std::lround(length / spacing)) + 1, 0.0);
+  path.resize(std::min<std::size_t>(path.size(), static_cast<std::size_t>(std::max(2, num_keyposes))));
+  ScenarioNoise n;
+  n.range = 15.0;
+  return finish("forest_chain", std::move(lms), path, n, rng);
 }
 
 }  // namespace slide

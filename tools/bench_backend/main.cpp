@@ -2,6 +2,8 @@
 // on the indoor, urban, forest and KITTI 05/07 scenarios (BENCHMARKS.md names).
 #include <spdlog/spdlog.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <iostream>
 #include <numeric>
@@ -17,6 +19,18 @@
 using namespace slide;
 
 namespace {
+double peakRssMb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+double processCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 struct Targets {
   std::optional<double> median, p99;
   std::optional<double> paper_ate;
@@ -76,6 +90,33 @@ void reportMapSizes(BenchReport& rep, const std::string& name, const std::vector
       " points (mean of the real SemanticKITTI HDL-64E scans) x 16 B";
   rep.add(name + ".map_compression", kb > 0 ? raw_mb * 1000.0 / kb : 0.0, "x", false).note = "raw scans / object maps";
 }
+// A long mission (makeForestChainScenario) at one size: the scale names of BENCHMARKS.md.
+void reportLong(BenchReport& rep, int keyposes, const ScenarioRunResult& r, bool background, double rate_hz) {
+  const std::string rate = std::to_string(static_cast<int>(rate_hz));
+  const std::string p = "backend." + std::to_string(keyposes) + ".";
+  const std::string n = std::to_string(r.update_ms.size()) + " updates, one run (forest tiles chained, " +
+                        (background ? "full solves in the background, key poses at <= " + rate + " Hz while one runs"
+                                    : "full solves inside updates") + ")";
+  rep.add(p + "update_ms.median", median(r.update_ms), "ms").note = n;
+  rep.add(p + "update_ms.p99", quantile(r.update_ms, 0.99), "ms").note = n;
+  rep.add(p + "update_ms.max", quantile(r.update_ms, 1.0), "ms", true, 50.0).note =
+      n + ", loop closures included; target: issue 21";
+  rep.add(p + "full_solves", r.full_solves, "").note = "full-solve results taken into the estimate during updates";
+  rep.add(p + "update_total_s", std::accumulate(r.update_ms.begin(), r.update_ms.end(), 0.0) / 1000.0, "s").note =
+      "wall time inside the updates";
+  rep.add(p + "update_cpu_total_s", std::accumulate(r.update_cpu_ms.begin(), r.update_cpu_ms.end(), 0.0) / 1000.0, "s")
+      .note = "CPU time of the updating thread";
+  rep.add(p + "process_cpu_s", processCpuSeconds(), "s").note =
+      "CPU time of every thread of the run (scenario simulation, updates, background solves, final solve)";
+  rep.add(p + "final_solve_ms", r.final_solve_ms, "ms").note = "full solve to convergence after the last update";
+  rep.add(p + "ate_m", r.ate_m, "m").note = "after the final solve";
+  rep.add(p + "live_ate_m", r.live_ate_m, "m").note = "the estimate after the last update, before the final solve";
+  rep.add(p + "odom_ate_m", r.odom_ate_m, "m");
+  rep.add(p + "ate_ratio", r.ate_m / std::max(1e-9, r.odom_ate_m), "", true, 0.15).note = "ATE / odometry ATE";
+  rep.add(p + "landmarks", r.landmarks, "", false).note = std::to_string(r.true_landmarks_seen) + " true ones seen";
+  rep.add(p + "loop_closures", r.loop_closures, "", false);
+  rep.add(p + "rss_mb", peakRssMb(), "MB").note = "peak resident set of the process";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,10 +130,31 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_path, "back-end parameters (YAML)");
   app.add_option("--data", data_dir, "folder of the shared real data (KITTI poses and poles)");
   app.add_option("--scenario", only, "run only these scenarios (indoor urban forest kitti05 kitti07)");
+  int long_keyposes = 0;
+  bool sync_solves = false;
+  double rate_hz = 10;
+  app.add_option("--keyposes", long_keyposes,
+                 "instead: one long mission of this many key poses (forest tiles chained), named backend.<N>.*; "
+                 "run one size per process (the figures include the peak RSS); full solves in the background "
+                 "as in the daemon");
+  app.add_option("--rate", rate_hz,
+                 "long mission: key poses arrive at most this often while a background solve runs (1.43 m apart: "
+                 "10 Hz is 14 m/s, faster than any of the team's robots)")
+      ->capture_default_str();
+  app.add_flag("--sync-solves", sync_solves, "long mission: full solves inside the updates (the other scenarios always are)");
   addCommonOptions(app, common);
   return runApp(app, common, argc, argv, [&]() {
-    const BackendConfig cfg = loadBackendConfig(config_path);
+    BackendConfig cfg = loadBackendConfig(config_path);
     BenchReport rep("backend");
+    if (long_keyposes > 0) {
+      cfg.background_solves = !sync_solves;
+      const Scenario s = makeForestChainScenario(long_keyposes);
+      spdlog::info("long mission: {} key poses, {} landmarks", s.robots[0].bundles.size(), s.landmarks.size());
+      reportLong(rep, long_keyposes, runScenario(s, cfg, false, rate_hz), cfg.background_solves, rate_hz);
+      rep.printTable(std::cout);
+      if (!json.empty()) rep.writeJson(json);
+      return 0;
+    }
     auto wanted = [&](const std::string& s) { return only.empty() || std::find(only.begin(), only.end(), s) != only.end(); };
     auto run = [&](const std::string& name, const Scenario& s, const Targets& t) {
       spdlog::info("scenario {}: {} robots, {} landmarks", name, s.robots.size(), s.landmarks.size());

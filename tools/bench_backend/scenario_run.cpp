@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <thread>
 
 #include "backend/optimizer.h"
 #include "eval/ate.h"
@@ -50,7 +51,7 @@ double landmarkError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch) {
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz) {
   ScenarioRunResult out;
   Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
   std::mt19937 rng(11);
@@ -62,9 +63,16 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   for (const auto& r : s.robots)
     for (const auto& lc : simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
   int objects = 0;
+  auto last_input = Clock::now();
+  auto pace = [&]() {
+    if (pace_hz > 0 && opt.solving())
+      std::this_thread::sleep_until(last_input + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / pace_hz)));
+    last_input = Clock::now();
+  };
   for (std::size_t k = 0; k < longest; ++k) {
     for (const ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
+      pace();
       const double c0 = cpuMs();
       const UpdateResult u = opt.addBundle(r.bundles[k]);
       const double cpu = cpuMs() - c0;
@@ -79,6 +87,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
       if (!opt.merged(r.id)) continue;
       for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
+        pace();
         const double c1 = cpuMs();
         const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
         out.update_cpu_ms.push_back(cpuMs() - c1);
@@ -100,6 +109,13 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
       out.update_ms.push_back(u.update_ms);
       out.full_solves += u.full_solve;
     }
+  }
+  {
+    std::map<int, std::vector<TrajectoryPose>> live;
+    for (int r : opt.robots()) live[r] = opt.trajectory(r);
+    Pairs pairs;
+    collect(s, live, pairs);
+    out.live_ate_m = absoluteTrajectoryError(pairs.est, pairs.ref, Alignment::Se3).rmse;
   }
   const auto t0 = Clock::now();
   const double c0 = cpuMs();

@@ -16,12 +16,13 @@ struct ScenarioRunResult {
   double batch_ms = 0, batch_cpu_ms = 0;
   double incremental_cost = 0, batch_cost = 0;
   double ate_m = 0, odom_ate_m = 0, batch_ate_m = 0;
+  double live_ate_m = 0;  // the estimate as published after the last update, before the final solve
   double landmark_rmse_m = 0;
   int landmarks = 0;
   int true_landmarks_seen = 0;
   int full_solves = 0;
-  int loop_closures = 0;
-  double wrong_association_fraction = 0;  // detections not of their landmark's majority object  // intra-robot closures given (simulated loop closer)
+  int loop_closures = 0;  // intra-robot closures given (simulated loop closer)
+  double wrong_association_fraction = 0;  // detections not of their landmark's majority object
   int keyposes = 0;
   double objects_per_keypose = 0;
   int rejected = 0;
@@ -30,6 +31,8 @@ struct ScenarioRunResult {
 // Multi-robot scenarios: the host is robots[0]; bundles are interleaved round-robin, each
 // peer's transform arrives half-way (with 0.3 m / 1 deg error) and is refined at
 // three quarters (0.05 m / 0.2 deg).
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch = true);
+// pace_hz > 0: while a background full solve runs, inputs arrive at most this often (the
+// robot's key-pose rate; otherwise they come as fast as the optimizer takes them).
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0);
 
 }  // namespace slide

@@ -1,0 +1,173 @@
+// Full solves of the optimizer: on a snapshot of the graph, in the calling thread or on the
+// background worker, and how a solution made while the graph grew is taken in.
+#include <chrono>
+#include <unordered_map>
+
+#include "backend/optimizer.h"
+#include "backend/pose_block.h"
+#include "backend/solve_worker.h"
+
+namespace slide {
+
+// One full solve: the snapshot it works on, and what taking its solution in needs to know of
+// the graph as it was then (each robot's last key pose).
+struct Optimizer::FullSolveJob {
+  FactorGraph::Snapshot snapshot;
+  FactorGraph::FullSolveOptions options;
+  bool update_path = true;  // solved during updates: outliers, duplicates and guard follow it
+  int epoch = 0;
+  struct RobotEnd {
+    int robot;
+    std::size_t count;  // key poses of the robot then
+    int var;            // the last one's variable
+  };
+  std::vector<RobotEnd> ends;
+  std::vector<double> residual_norms;
+  SolveReport report;
+
+  void run(const std::atomic<bool>* cancel) {
+    options.cancel = cancel;
+    report = FactorGraph::solveSnapshot(snapshot, options, update_path ? &residual_norms : nullptr);
+  }
+};
+
+bool Optimizer::solving() const { return running_ || (worker_ && worker_->busy()); }
+
+void Optimizer::cancelSolve() {
+  if (!running_) return;
+  worker_->cancel();
+  running_.reset();
+}
+
+bool Optimizer::requestFull(int iterations, UpdateResult& r) {
+  pending_iterations_ = std::max(pending_iterations_, iterations);
+  const bool inline_solve = !background();
+  startPending(r);
+  return inline_solve;
+}
+
+void Optimizer::applyPendingSpreads() {
+  for (const LoopToSpread& l : pending_spreads_) {
+    const KeyPose* a = findKeyPose(l.robot, l.seq_a);
+    const KeyPose* b = findKeyPose(l.robot, l.seq_b);
+    if (a && b) spreadLoop(*a, *b, l.T_a_b);
+  }
+  pending_spreads_.clear();
+}
+
+std::shared_ptr<Optimizer::FullSolveJob> Optimizer::makeJob(int iterations, double function_tolerance) {
+  applyPendingSpreads();
+  auto job = std::make_shared<FullSolveJob>();
+  job->snapshot = graph_.snapshot();
+  job->options.max_iterations = iterations;
+  job->options.function_tolerance = function_tolerance;
+  job->options.num_threads = cfg_.num_threads;
+  job->options.trust_region_radius = cfg_.full_trust_region_radius;
+  job->update_path = iterations < cfg_.final_iterations;
+  job->epoch = epoch_;
+  for (const auto& [id, robot] : robots_)
+    if (!robot.keyposes.empty()) {
+      const KeyPose& last = keyposes_[robot.keyposes.back()];
+      job->ends.push_back({id, robot.keyposes.size(), last.var});
+    }
+  full_pending_ = false;
+  last_full_step_ = step_;
+  return job;
+}
+
+void Optimizer::startPending(UpdateResult& r) {
+  if (pending_iterations_ == 0 || solving()) return;
+  std::shared_ptr<FullSolveJob> job = makeJob(pending_iterations_, cfg_.full_function_tolerance);
+  pending_iterations_ = 0;
+  if (!background()) {
+    job->run(nullptr);
+    adopt(*job, r);
+    return;
+  }
+  if (!worker_) worker_ = std::make_unique<backend::SolveWorker>();
+  const auto task = [job, hook = solve_hook_](const std::atomic<bool>& cancel) {
+    if (hook) hook();
+    job->run(&cancel);
+  };
+  if (worker_->start(task)) running_ = job;
+}
+
+bool Optimizer::poll(UpdateResult* out) {
+  if (!running_ || worker_->busy()) return false;
+  const std::shared_ptr<FullSolveJob> job = std::move(running_);
+  UpdateResult local;
+  UpdateResult& r = out ? *out : local;
+  const bool taken = adopt(*job, r);
+  startPending(r);  // a loop closure or merge that came while it ran
+  return taken;
+}
+
+bool Optimizer::adopt(FullSolveJob& job, UpdateResult& r) {
+  if (job.epoch != epoch_ || job.report.aborted) return false;
+  const FactorGraph::Snapshot& s = job.snapshot;
+  // Key poses added meanwhile keep their pose relative to their robot's last key pose of the
+  // snapshot as it is now (local solves have moved it since), and follow it to its solution;
+  // landmarks made meanwhile follow their first observer.
+  std::vector<Pose> anchors;
+  for (const FullSolveJob::RobotEnd& e : job.ends) anchors.push_back(poseOf(e.var));
+  for (std::size_t v = 0; v < s.values.size(); ++v)
+    if (!s.removed[v] && !graph_.removedVariable(static_cast<int>(v))) graph_.setValue(static_cast<int>(v), s.values[v].data());
+  std::unordered_map<int, Pose> moved;
+  for (std::size_t i = 0; i < job.ends.size(); ++i) {
+    const FullSolveJob::RobotEnd& e = job.ends[i];
+    const std::vector<int>& list = robots_[e.robot].keyposes;
+    if (list.size() <= e.count) continue;
+    const Pose C = poseOf(e.var) * anchors[i].inverse();
+    for (std::size_t k = e.count; k < list.size(); ++k) {
+      const int var = keyposes_[list[k]].var;
+      const PoseBlock block = toPoseBlock(C * poseOf(var));
+      graph_.setValue(var, block.data());
+      moved.emplace(var, C);
+    }
+  }
+  if (!moved.empty())
+    for (const Landmark& lm : landmarks_) {
+      if (!lm.alive || lm.seen.empty() || lm.var < static_cast<int>(s.values.size())) continue;
+      const auto it = moved.find(lm.seen.front().pose_var);
+      if (it != moved.end()) moveLandmark(lm, it->second);
+    }
+  afterSolve({}, true);
+  if (job.update_path && detachOutliers(&job.residual_norms) + mergeDuplicates() > 0) afterSolve({}, true);
+  r.full_solve = true;
+  r.solve = job.report;
+  if (job.update_path) guard(r);
+  return true;
+}
+
+SolveReport Optimizer::fullSolve(double max_seconds) {
+  cancelSolve();
+  pending_iterations_ = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto left = [&]() {
+    return max_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  UpdateResult r;
+  SolveReport s;
+  for (int round = 0; round < 4; ++round) {
+    if (round > 0 && (detachOutliers() + mergeDuplicates() == 0 || (max_seconds > 0 && left() <= 0))) break;
+    std::shared_ptr<FullSolveJob> job = makeJob(cfg_.final_iterations, cfg_.final_function_tolerance);
+    if (max_seconds > 0) job->options.max_seconds = std::max(1e-3, left());
+    job->run(nullptr);
+    adopt(*job, r);
+    s = job->report;
+  }
+  if (max_seconds > 0) {
+    std::string why;
+    if (cfg_.guard_estimate && robotOutsideEnvelope(&why) >= 0) {
+      s.aborted = true;
+      s.message = "estimate outside the odometry envelope: " + why;
+    }
+    return s;
+  }
+  const int before = unmerged_;
+  guard(r);
+  if (unmerged_ != before) return fullSolve();
+  return s;
+}
+
+}  // namespace slide
