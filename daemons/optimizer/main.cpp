@@ -2,6 +2,7 @@
 // loop closures and inter-robot transforms in; object map, trajectories and status out.
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <csignal>
 #include <lcm/lcm-cpp.hpp>
 
@@ -14,6 +15,7 @@ using namespace slide;
 
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
+std::atomic<bool> g_abort_solves{false};  // lock-free: set from the signal handler
 volatile std::sig_atomic_t g_write = 0;
 
 struct Receiver {
@@ -34,7 +36,7 @@ int main(int argc, char** argv) {
   std::string journal_path, out_dir;
   int publish_every = 1;
   double write_period = 10;
-  bool sync_solves = false;
+  bool background_solves = false;
   OptimizerChannels ch;
   app.add_option("--robot", robot, "this robot's id")->capture_default_str();
   app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
@@ -45,7 +47,9 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "write TUM trajectories and the object map here: periodically, on SIGUSR1 and at exit");
   app.add_option("--write-period", write_period, "seconds between writes of the outputs (0: only on SIGUSR1 and at exit)")
       ->capture_default_str();
-  app.add_flag("--sync-solves", sync_solves, "full solves inside the updates that ask for them, not on a worker thread");
+  app.add_flag("--background-solves", background_solves,
+               "full solves on a worker thread, off the update path (experimental: at 4,000 key poses the estimate "
+               "drifts; see BENCHMARKS.md)");
   app.add_option("--publish-every", publish_every, "publish map and trajectories every N updates (and on full solves)")
       ->capture_default_str();
   app.add_option("--bundle-channel", ch.bundle)->capture_default_str();
@@ -58,7 +62,7 @@ int main(int argc, char** argv) {
   return runApp(app, common, argc, argv, [&]() {
     if (url.empty()) url = slide::robotBusUrl(robot);
     BackendConfig cfg = loadBackendConfig(config_path);
-    cfg.background_solves = !sync_solves;
+    cfg.background_solves = background_solves;
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
@@ -68,8 +72,11 @@ int main(int argc, char** argv) {
                        },
                        publish_every);
     node.setOutputs(out_dir, write_period);
-    std::signal(SIGINT, [](int) { g_stop = 1; });
-    std::signal(SIGTERM, [](int) { g_stop = 1; });
+    // Asked to stop, the daemon writes its outputs at once: a full solve running inside an
+    // update (the journal's replay, or without --background-solves) is aborted.
+    node.optimizer().setStopFlag(&g_abort_solves);
+    std::signal(SIGINT, [](int) { g_stop = 1, g_abort_solves.store(true); });
+    std::signal(SIGTERM, [](int) { g_stop = 1, g_abort_solves.store(true); });
     std::signal(SIGUSR1, [](int) { g_write = 1; });
     if (!journal_path.empty()) {
       node.openJournal(journal_path);

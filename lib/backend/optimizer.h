@@ -8,6 +8,7 @@
 // poses added meanwhile follow their robot's last solved pose, landmarks made meanwhile their
 // first observer), so no update waits for a full solve. Without it (the default: tests and
 // in-process benchmarks) each full solve runs inside the update that asks for it.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -82,6 +83,10 @@ class Optimizer {
   void cancelSolve();
   // Tests: runs on the worker thread before each background solve (e.g. to hold one).
   void setSolveHook(std::function<void()> hook) { solve_hook_ = std::move(hook); }
+  // A flag that, once set (e.g. by a daemon's signal handler), aborts every full solve run
+  // inside an update at its next iteration: the estimate stays as it was before that solve.
+  // fullSolve() does not look at it.
+  void setStopFlag(const std::atomic<bool>* stop) { stop_flag_ = stop; }
 
   // Landmarks in the host frame (ids are the landmark ids), confirmed ones or all.
   std::vector<Object> landmarks(bool confirmed_only = true) const;
@@ -245,6 +250,7 @@ class Optimizer {
   std::shared_ptr<FullSolveJob> running_;
   std::unique_ptr<backend::SolveWorker> worker_;
   std::function<void()> solve_hook_;
+  const std::atomic<bool>* stop_flag_ = nullptr;
   int epoch_ = 0;
 };
 

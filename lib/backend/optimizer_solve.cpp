@@ -80,7 +80,7 @@ void Optimizer::startPending(UpdateResult& r) {
   std::shared_ptr<FullSolveJob> job = makeJob(pending_iterations_, cfg_.full_function_tolerance);
   pending_iterations_ = 0;
   if (!background()) {
-    job->run(nullptr);
+    job->run(stop_flag_);
     adopt(*job, r);
     return;
   }

@@ -186,8 +186,8 @@ TEST(OptimizerDaemon, PublishesMapAndTrajectoryOverLcm) {
   std::filesystem::remove_all(dir);
 }
 
-// 2000 key poses: a full solve to convergence takes several seconds here, and background
-// solves run through the replay; the outputs must not wait for any of them.
+// 2000 key poses: a full solve to convergence takes several seconds here, and full solves run
+// inside the replay's updates; asked to stop, the daemon aborts them and must not wait.
 TEST(OptimizerDaemon, StopDuringALongMissionWritesTheOutputsWithinTwoSeconds) {
   RUN_IN_NAMESPACE();
   const auto dir = freshDir("slide_daemon_stop");

@@ -266,14 +266,18 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
             // Cuboids: this box and the estimates near the same object, against the true box.
             auto describe = [](const Object& o) {
               char buf[160];
-              const auto* b = std::get_if<Cuboid>(&o.model);
-              if (!b) return std::string();
-              std::snprintf(buf, sizeof buf, "(%.1f, %.1f) yaw %.0f deg dims %.1f x %.1f, %d observations", o.position().x(),
-                            o.position().y(), yawOf(b->pose.linear()) * 180 / M_PI, b->dims.x(), b->dims.y(), o.num_observations);
+              if (const auto* b = std::get_if<Cuboid>(&o.model))
+                std::snprintf(buf, sizeof buf, "(%.1f, %.1f) yaw %.0f deg dims %.1f x %.1f, %d observations", o.position().x(),
+                              o.position().y(), yawOf(b->pose.linear()) * 180 / M_PI, b->dims.x(), b->dims.y(), o.num_observations);
+              else if (const auto* c = std::get_if<Cylinder>(&o.model))
+                std::snprintf(buf, sizeof buf, "(%.2f, %.2f) radius %.2f, z %.1f to %.1f, %d observations", o.position().x(),
+                              o.position().y(), c->radius, c->root.z(), c->root.z() + c->length, o.num_observations);
+              else
+                return std::string();
               return std::string(buf);
             };
-            if (near && std::holds_alternative<Cuboid>(E[i]->model)) {
-              std::printf("    this box %s; true box %s\n", describe(*E[i]).c_str(), describe(near->object).c_str());
+            if (near && !std::holds_alternative<Ellipsoid>(E[i]->model)) {
+              std::printf("    this estimate %s; truth %s\n", describe(*E[i]).c_str(), describe(near->object).c_str());
               for (std::size_t j = 0; j < E.size(); ++j)
                 if (j != i && (E[j]->position() - near->object.position()).head<2>().norm() < 4.0)
                   std::printf("    other estimate %s\n", describe(*E[j]).c_str());
