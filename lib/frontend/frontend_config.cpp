@@ -215,6 +215,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
+    opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
   }
   if (root.has("keypose")) {
     const ConfigNode c = root.child("keypose");

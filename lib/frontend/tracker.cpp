@@ -163,10 +163,44 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.class_id = o.class_id;
     apply(tracks_.emplace(t.id, t).first->second, o);
   }
+  mergeColumnTracks();
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (!matched.count(it->first)) ++it->second.missed;
     if (it->second.missed > params_.max_missed) it = tracks_.erase(it);
     else ++it;
+  }
+}
+
+void Tracker::mergeColumnTracks() {
+  if (params_.column_merge_distance <= 0) return;
+  for (auto a = tracks_.begin(); a != tracks_.end(); ++a) {
+    if (classes_.at(a->second.class_id).shape != Shape::Cylinder) continue;
+    for (auto b = std::next(a); b != tracks_.end();) {
+      Track& older = a->second;
+      Track& younger = b->second;
+      if (classes_.at(younger.class_id).shape != Shape::Cylinder ||
+          centroidDistance(Shape::Cylinder, older.last_centroid, younger.last_centroid) > params_.column_merge_distance) {
+        ++b;
+        continue;
+      }
+      // The older track (lower id) takes the younger one's observations and votes.
+      older.hits += younger.hits;
+      older.confidence_sum += younger.confidence_sum;
+      for (const auto& [c, v] : younger.class_votes) older.class_votes[c] += v;
+      older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
+                                        [](const auto& x, const auto& y) { return x.second < y.second; })->first;
+      if (younger.missed < older.missed) older.missed = younger.missed, older.last_centroid = younger.last_centroid;
+      for (std::size_t i = 0; i < younger.observations.size(); ++i) {
+        older.observations.push_back(std::move(younger.observations[i]));
+        older.viewpoints.push_back(younger.viewpoints[i]);
+      }
+      while (static_cast<int>(older.observations.size()) > params_.max_observations) {
+        older.observations.pop_front();
+        older.viewpoints.pop_front();
+      }
+      older.moving = older.moving || younger.moving;
+      b = tracks_.erase(b);
+    }
   }
 }
 

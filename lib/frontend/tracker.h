@@ -24,6 +24,7 @@ struct TrackerParams {
   int max_points_per_observation = 1500;
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
+  double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
 };
 
 struct Track {
@@ -58,6 +59,9 @@ class Tracker {
 
  private:
   bool exceedsClassSize(const Track& t) const;
+  // Two column tracks whose last centroids are within column_merge_distance follow one trunk
+  // or pole (its instances alternated between them, or it was split in a frame): merged.
+  void mergeColumnTracks();
 
   ClassTable classes_;
   TrackerParams params_;

@@ -156,6 +156,33 @@ TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
   EXPECT_EQ(tracker.tracks().begin()->second.hits, 5);
 }
 
+// A trunk seen as two instances in one frame (its halves either side of an occluder) starts a
+// second track, which follows the same trunk: the two are merged. A second trunk 0.6 m away
+// keeps its own track.
+TEST(Tracker, TwoTracksOfOneTrunkAreMergedANeighbourIsNot) {
+  const ClassTable classes = ClassTable::loadDefault();
+  auto column = [](float x, float y, float z0) {
+    Instance inst;
+    inst.class_id = 71;
+    for (int i = 0; i < 30; ++i) inst.points.emplace_back(x + 0.005f * (i % 3), y, z0 + 0.05f * i);
+    return inst;
+  };
+  for (double merge : {0.25, 0.0}) {
+    TrackerParams p;
+    p.column_merge_distance = merge;
+    Tracker tracker(classes, p, {});
+    InputIssues issues;
+    for (int k = 0; k < 6; ++k) {
+      FrameInstances f;
+      f.instances = {column(5, 0, 0.3f), column(5.6f, 0, 0.3f)};
+      if (k == 2) f.instances.push_back(column(5.1f, 0, 2.5f));  // upper half of the first trunk, apart
+      tracker.update(f, issues);
+    }
+    ASSERT_EQ(tracker.tracks().size(), merge > 0 ? 2u : 3u) << merge;
+    if (merge > 0) EXPECT_EQ(tracker.tracks().begin()->second.hits, 7) << "the piece's observation is kept";
+  }
+}
+
 TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
   // The near side of a car (4.4 m long along x, 1.8 m wide, centre (10, 5.9)) seen from the
   // aisle at y = 0; the fit is asked for from a body pose past it, on the car's far side
