@@ -42,4 +42,8 @@ class FramePerception {
   int robot_;
 };
 
+// The perception for `source` (the emulator's parameters read from `detection_config` when
+// emulated), once the log says what goes on the bus (an oracle run loudly).
+FramePerception openPerception(DetectionSource source, const std::string& detection_config, int robot);
+
 }  // namespace slide
