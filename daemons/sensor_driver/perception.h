@@ -8,8 +8,8 @@
 #include <string>
 
 #include "io/robot_dataset.h"
-#include "sim/detection_emulator.h"
-#include "sim/rgbd_emulator.h"
+#include "emulator/detection_emulator.h"
+#include "emulator/rgbd_emulator.h"
 
 namespace slide {
 
