@@ -38,8 +38,6 @@ class LoopCloserNode {
   // Runs the checks due at `now_s` and publishes the closures the consensus filter confirms.
   void poll(double now_s);
 
-  const LoopCloserParams& params() const { return params_; }
-  const LoopCloserChannels& channels() const { return channels_; }
   const LoopCloser& closer() const { return closer_; }
   long published() const { return published_; }
   long droppedObjects() const { return dropped_objects_; }

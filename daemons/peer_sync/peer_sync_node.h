@@ -59,8 +59,6 @@ class PeerSyncDaemon {
   // Logs holdings, traffic and drops and publishes them on the status channel.
   void logStats(team::Micros now);
 
-  const PeerSyncChannels& channels() const { return channels_; }
-
  private:
   template <typename L>
   void onTeamMessage(const std::string& channel, const void* data, std::size_t size, team::Micros now);
