@@ -2,44 +2,30 @@
 // loop closures and inter-robot transforms in; object map, trajectories and status out.
 #include <spdlog/spdlog.h>
 
-#include <atomic>
-#include <csignal>
 #include <lcm/lcm-cpp.hpp>
 
 #include "app/app.h"
+#include "app/robot_bus.h"
+#include "app/stop_signal.h"
 #include "backend/backend_config.h"
 #include "msg/inbox.h"
 #include "optimizer_node.h"
 
 using namespace slide;
 
-namespace {
-volatile std::sig_atomic_t g_stop = 0;
-std::atomic<bool> g_abort_solves{false};  // lock-free: set from the signal handler
-volatile std::sig_atomic_t g_write = 0;
-
-struct Receiver {
-  OptimizerNode* node;
-  void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    node->handle(channel, rbuf->data, static_cast<int>(rbuf->data_size));
-  }
-};
-}  // namespace
-
 int main(int argc, char** argv) {
   CLI::App app{"Back-end optimizer: keeps the robot's factor graph of key poses and object landmarks "
                "optimized, merges peers once their transform is known, publishes map and trajectories"};
   CommonOptions common;
-  int robot = 0;
-  std::string url, config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
+  RobotBusOptions bus;
+  std::string config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   std::string journal_path, out_dir;
   int publish_every = 1;
   double write_period = 10;
   bool background_solves = false;
   OptimizerChannels ch;
-  app.add_option("--robot", robot, "this robot's id")->capture_default_str();
-  app.add_option("--lcm-url", url, "robot bus (default udpm://239.255.76.67:<7667+robot>?ttl=0&recv_buf_size=4194304)");
+  addRobotBusOptions(app, bus);
   app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
   app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
   app.add_option("--journal", journal_path,
@@ -60,41 +46,31 @@ int main(int argc, char** argv) {
   app.add_option("--status-channel", ch.status)->capture_default_str();
   addCommonOptions(app, common);
   return runApp(app, common, argc, argv, [&]() {
-    if (url.empty()) url = slide::robotBusUrl(robot);
+    const std::string url = bus.resolve();
     BackendConfig cfg = loadBackendConfig(config_path);
     cfg.background_solves = background_solves;
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
-    OptimizerNode node(cfg, classes, robot, ch,
-                       [&](const std::string& c, const std::vector<uint8_t>& b) {
-                         lcm.publish(c, b.data(), static_cast<unsigned>(b.size()));
-                       },
-                       publish_every);
+    OptimizerNode node(cfg, classes, bus.robot, ch, msg::lcmPublisher(lcm), publish_every);
     node.setOutputs(out_dir, write_period);
-    // Asked to stop, the daemon writes its outputs at once: a full solve running inside an
-    // update (the journal's replay, or without --background-solves) is aborted.
-    node.optimizer().setStopFlag(&g_abort_solves);
-    std::signal(SIGINT, [](int) { g_stop = 1, g_abort_solves.store(true); });
-    std::signal(SIGTERM, [](int) { g_stop = 1, g_abort_solves.store(true); });
-    std::signal(SIGUSR1, [](int) { g_write = 1; });
+    node.optimizer().setStopFlag(stopFlag());  // a stop aborts a solve running inside an update
+    installStopHandlers();
+    installWriteHandler();
     if (!journal_path.empty()) {
       node.openJournal(journal_path);
       node.publishAll();
     }
-    Receiver rx{&node};
     msg::Inbox inbox(lcm);
-    for (const std::string& c : {ch.bundle, ch.peer_bundle, ch.loop_closure}) inbox.subscribeRaw(c, &Receiver::onMessage, &rx);
+    for (const std::string& input : {ch.bundle, ch.peer_bundle, ch.loop_closure})
+      inbox.subscribeBytes(input, [&](auto& c, auto* d, auto n) { node.handle(c, d, static_cast<int>(n)); });
     node.setBusDrops([&inbox]() { return inbox.dropped(); });
-    spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", robot, url, ch.bundle, ch.peer_bundle,
+    spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", bus.robot, url, ch.bundle, ch.peer_bundle,
                  ch.loop_closure, ch.object_map, ch.trajectory, ch.status);
-    while (!g_stop) {
-      if (lcm.handleTimeout(100) < 0 && !g_stop) throw std::runtime_error("LCM receive failed on " + url);
+    while (!stopRequested()) {
+      if (lcm.handleTimeout(100) < 0 && !stopRequested()) throw std::runtime_error("LCM receive failed on " + url);
       node.poll();
-      if (g_write) {
-        g_write = 0;
-        node.writeOutputs();
-      }
+      if (takeWriteRequest()) node.writeOutputs();
     }
     node.stop();
     const Optimizer& o = node.optimizer();

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "app/clock.h"
 #include "bundle_messages.h"
 #include "io/tum_trajectory.h"
 #include "mapio/object_map_text.h"
@@ -34,13 +35,6 @@ void checkJournalFile(const std::string& path) {
                              path + " still reads an LCM log");
 }
 
-template <typename M>
-std::vector<uint8_t> encode(const M& m) {
-  std::vector<uint8_t> buf(m.getEncodedSize());
-  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
-  return buf;
-}
-
 void logResult(const UpdateResult& r, const std::string& what) {
   for (const auto& w : r.warnings) spdlog::warn("{}", w);
   if (!r.accepted) spdlog::warn("rejected {}: {}", what, r.reason);
@@ -56,11 +50,6 @@ OptimizerNode::OptimizerNode(const BackendConfig& config, const ClassTable& clas
       publish_every_(std::max(1, publish_every)) {}
 
 OptimizerNode::~OptimizerNode() = default;
-
-std::int64_t OptimizerNode::now() const {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 std::vector<OptimizerNode::JournalInput> OptimizerNode::readJournal(const std::string& path,
                                                                    team::JournalRecovery* recovery) {
@@ -190,7 +179,7 @@ bool OptimizerNode::process(Input kind, const void* data, int size) {
 void OptimizerNode::publishStatus(const UpdateResult& r) {
   if (!publish_) return;
   optimizer_status_t s;
-  s.utime = now();
+  s.utime = wallMicros();
   s.robot = optimizer_.hostRobot();
   s.num_keyposes = optimizer_.numKeyPoses();
   s.num_landmarks = optimizer_.numLandmarks();
@@ -203,15 +192,15 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
   s.dropped_messages = static_cast<std::int32_t>(std::min<std::uint64_t>(dropped, INT32_MAX));
   s.unjournalled_inputs = unjournalled_;
   s.missing_keyposes = static_cast<std::int32_t>(std::min<std::int64_t>(optimizer_.missingKeyposes(), INT32_MAX));
-  publish_(channels_.status, encode(s));
+  publish_(channels_.status, msg::encodeLcm(s));
 }
 
 void OptimizerNode::publishAll() {
   if (!publish_) return;
-  const std::int64_t t = now();
+  const std::int64_t t = wallMicros();
   const int host = optimizer_.hostRobot();
-  publish_(channels_.object_map, encode(objectMapMsg(t, host, optimizer_.landmarks())));
-  for (int r : optimizer_.robots()) publish_(channels_.trajectory, encode(trajectoryMsg(t, r, host, optimizer_.trajectory(r))));
+  publish_(channels_.object_map, msg::encodeLcm(objectMapMsg(t, host, optimizer_.landmarks())));
+  for (int r : optimizer_.robots()) publish_(channels_.trajectory, msg::encodeLcm(trajectoryMsg(t, r, host, optimizer_.trajectory(r))));
 }
 
 void OptimizerNode::setOutputs(const std::string& dir, double period_s) {

@@ -8,7 +8,9 @@
 #include <memory>
 #include <string>
 
+#include "app/channels.h"
 #include "backend/optimizer.h"
+#include "msg/publisher.h"
 #include "slide/keypose_bundle_t.hpp"
 #include "slide/loop_closure_t.hpp"
 #include "team/journal.h"
@@ -16,18 +18,18 @@
 namespace slide {
 
 struct OptimizerChannels {
-  std::string bundle = "KEYPOSE_BUNDLE";
-  std::string peer_bundle = "PEER_BUNDLE";
-  std::string loop_closure = "LOOP_CLOSURE";
-  std::string object_map = "OBJECT_MAP";
-  std::string trajectory = "TRAJECTORY";
-  std::string status = "OPTIMIZER_STATUS";
+  std::string bundle = channels::kKeyPoseBundle;
+  std::string peer_bundle = channels::kPeerBundle;
+  std::string loop_closure = channels::kLoopClosure;
+  std::string object_map = channels::kObjectMap;
+  std::string trajectory = channels::kTrajectory;
+  std::string status = channels::kOptimizerStatus;
 };
 
 class OptimizerNode {
  public:
   // Publishes through `publish(channel, bytes)`; an empty function publishes nothing.
-  using Publisher = std::function<void(const std::string&, const std::vector<uint8_t>&)>;
+  using Publisher = msg::Publisher;
 
   OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot, OptimizerChannels channels,
                 Publisher publish, int publish_every = 1);
@@ -84,7 +86,6 @@ class OptimizerNode {
   bool process(Input kind, const void* data, int size);
   void journal(Input kind, const void* data, int size);
   void publishStatus(const UpdateResult& r);
-  std::int64_t now() const;
 
   Optimizer optimizer_;
   ClassTable classes_;

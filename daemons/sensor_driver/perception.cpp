@@ -1,5 +1,7 @@
 #include "perception.h"
 
+#include <spdlog/spdlog.h>
+
 #include <stdexcept>
 
 namespace slide {
@@ -38,6 +40,20 @@ std::optional<FramePerception::Masks> FramePerception::masks(std::optional<Insta
   }
   EmulatedMasks e = emulateRgbdDetections(*truth, depth, depth_scale, config_.rgbd, detectionSeed(config_.seed, robot_, frame));
   return Masks{std::move(e.masks), std::move(e.confidence)};
+}
+
+FramePerception openPerception(DetectionSource source, const std::string& detection_config, int robot) {
+  DetectionEmulatorConfig emulator;
+  if (source == DetectionSource::Emulated) emulator = loadDetectionEmulatorConfig(detection_config);
+  if (source == DetectionSource::Oracle)
+    spdlog::warn("ORACLE: publishing the dataset's GROUND-TRUTH labels / masks (--detections oracle); a real robot "
+                 "has none, so every figure from this run is an upper bound");
+  else if (source == DetectionSource::Emulated)
+    spdlog::info("detections: emulated from ground truth inside the driver ({}, seed {}); no ground truth is published",
+                 detection_config, emulator.seed);
+  else
+    spdlog::info("detections: none (raw data only; ground-truth labels / masks stay on disk)");
+  return FramePerception(source, emulator, robot);
 }
 
 }  // namespace slide

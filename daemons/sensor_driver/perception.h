@@ -8,8 +8,8 @@
 #include <string>
 
 #include "io/robot_dataset.h"
-#include "sim/detection_emulator.h"
-#include "sim/rgbd_emulator.h"
+#include "emulator/detection_emulator.h"
+#include "emulator/rgbd_emulator.h"
 
 namespace slide {
 
@@ -41,5 +41,9 @@ class FramePerception {
   DetectionEmulatorConfig config_;
   int robot_;
 };
+
+// The perception for `source` (the emulator's parameters read from `detection_config` when
+// emulated), once the log says what goes on the bus (an oracle run loudly).
+FramePerception openPerception(DetectionSource source, const std::string& detection_config, int robot);
 
 }  // namespace slide

@@ -38,10 +38,6 @@ int runApp(CLI::App& app, CommonOptions& opts, int argc, char** argv, const std:
   }
 }
 
-std::string robotBusUrl(int robot) {
-  return "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0&recv_buf_size=" + std::to_string(kRobotBusRecvBufBytes);
-}
-
 std::string persistentStateDir() {
   if (geteuid() == 0) return "/var/lib/slide";
   if (const char* x = std::getenv("XDG_STATE_HOME"); x && x[0] == '/') return std::string(x) + "/slide";

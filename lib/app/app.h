@@ -17,14 +17,6 @@ void addCommonOptions(CLI::App& app, CommonOptions& opts);
 // Applies the logging options: pattern "[time] [name] [level] message" on stderr.
 void setupLogging(const std::string& program, const CommonOptions& opts);
 
-// The robot bus of robot N when none is configured:
-// udpm://239.255.76.67:<7667+N>?ttl=0&recv_buf_size=4194304 (one port per robot, so robots on
-// one host do not see each other's raw data; ttl=0 keeps it on the host; the receive buffer
-// holds a burst of a few 400 KB scans, which the kernel's 208 KB default loses; the kernel caps
-// it at net.core.rmem_max and LCM warns when it does).
-constexpr int kRobotBusRecvBufBytes = 4194304;
-std::string robotBusUrl(int robot);
-
 // Where a daemon keeps state that must survive a reboot (journals, counters): /var/lib/slide
 // for root, else $XDG_STATE_HOME/slide, else $HOME/.local/state/slide. Never under /tmp.
 std::string persistentStateDir();

@@ -25,11 +25,20 @@ Inbox::~Inbox() {
     if (h) lcm_.unsubscribe(h);
 }
 
-void Inbox::add(const std::string& channel, std::unique_ptr<Sub> sub) {
+void Inbox::add(const std::string& channel, Deliver deliver) {
+  auto sub = std::make_unique<Sub>();
+  sub->deliver = std::move(deliver);
   sub->inbox = this;
   sub->channel = channel;
   handles_.push_back(lcm_.subscribe(channel, &Sub::onRaw, sub.get()));
   subs_.push_back(std::move(sub));
+}
+
+void Inbox::subscribeBytes(const std::string& channel, BytesHandler handler) {
+  add(channel, [handler = std::move(handler)](const lcm::ReceiveBuffer* rb, const std::string& ch) {
+    handler(ch, rb->data, rb->data_size);
+    return true;
+  });
 }
 
 void Inbox::unsubscribe(const std::string& channel) {
@@ -91,6 +100,13 @@ std::string Inbox::summary() const {
         line += (line.empty() ? "" : ", ") + std::to_string(s->drops[r]) + " " + inboxDropName(static_cast<InboxDrop>(r));
     if (!line.empty()) out += (out.empty() ? "" : "; ") + s->channel + ": " + line;
   }
+  return out;
+}
+
+std::vector<std::string> summaries(std::initializer_list<const Inbox*> inboxes) {
+  std::vector<std::string> out;
+  for (const Inbox* inbox : inboxes)
+    if (inbox->dropped()) out.push_back(inbox->summary());
   return out;
 }
 

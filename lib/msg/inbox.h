@@ -5,12 +5,14 @@
 // field can make them throw, allocate more than the datagram holds or read past it. An
 // exception out of a handler is caught too. Whatever fails is dropped, counted per channel
 // and reason, and logged (the first at once, then a summary at most every `log_period_s`).
-// Replaces LCM's typed `lcm.subscribe(channel, &Node::onX, &node)` in every daemon.
+// Replaces LCM's `lcm.subscribe(...)` in every daemon.
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,18 +36,31 @@ class Inbox {
   template <class Msg, class Node>
   void subscribe(const std::string& channel,
                  void (Node::*handler)(const lcm::ReceiveBuffer*, const std::string&, const Msg*), Node* node) {
-    add(channel, std::make_unique<Typed<Msg, Node>>(handler, node));
+    add(channel, [handler, node](const lcm::ReceiveBuffer* rb, const std::string& ch) {
+          Msg m;
+          if (!decodes(rb, m)) return false;
+          (node->*handler)(rb, ch, &m);
+          return true;
+        });
   }
-  // Raw: for a handler that decodes itself (with the hardened decoders) or checks the bytes
-  // first; the size cap and the exception guard still apply.
-  template <class Node>
-  void subscribeRaw(const std::string& channel, void (Node::*handler)(const lcm::ReceiveBuffer*, const std::string&),
-                    Node* node) {
-    add(channel, std::make_unique<Raw<Node>>(handler, node));
+  // Into functions, for a node that knows no LCM: `handler(channel, message)` gets the decoded
+  // message; a bytes handler gets the raw bytes (for a node that decodes itself, with the
+  // hardened decoders, or checks the bytes first) and reports what it finds malformed through
+  // countUndecodable or its own counts.
+  template <class Msg>
+  void subscribe(const std::string& channel, std::function<void(const std::string&, const Msg&)> handler) {
+    add(channel, [handler = std::move(handler)](const lcm::ReceiveBuffer* rb, const std::string& ch) {
+          Msg m;
+          if (!decodes(rb, m)) return false;
+          handler(ch, m);
+          return true;
+        });
   }
+  using BytesHandler = std::function<void(const std::string& channel, const void* data, std::size_t size)>;
+  void subscribeBytes(const std::string& channel, BytesHandler handler);
   // Ends every subscription to `channel` (its counts stay).
   void unsubscribe(const std::string& channel);
-  // A raw handler calls this for a message it found malformed, so that it is counted here.
+  // A bytes handler calls this for a message it found malformed, so that it is counted here.
   void countUndecodable(const std::string& channel, const std::string& why);
 
   std::uint64_t dropped() const;                      // all channels, all reasons
@@ -54,42 +69,22 @@ class Inbox {
   std::string summary() const;
 
  private:
+  // Hands a datagram to its handler; false when the message did not decode (counted as Undecodable).
+  using Deliver = std::function<bool(const lcm::ReceiveBuffer*, const std::string&)>;
   struct Sub {
-    virtual ~Sub() = default;
-    // Returns false when the message did not decode (counted as Undecodable).
-    virtual bool deliver(const lcm::ReceiveBuffer* rb, const std::string& channel) = 0;
+    Deliver deliver;
     Inbox* inbox = nullptr;
     std::string channel;
     std::uint64_t drops[static_cast<int>(InboxDrop::kCount)] = {};
     std::uint64_t logged = 0;  // drops already in a log line
     void onRaw(const lcm::ReceiveBuffer* rb, const std::string& ch) { inbox->receive(*this, rb, ch); }
   };
-  template <class Msg, class Node>
-  struct Typed : Sub {
-    using Handler = void (Node::*)(const lcm::ReceiveBuffer*, const std::string&, const Msg*);
-    Typed(Handler h, Node* n) : handler(h), node(n) {}
-    bool deliver(const lcm::ReceiveBuffer* rb, const std::string& ch) override {
-      Msg m;
-      if (m.decode(rb->data, 0, static_cast<int>(rb->data_size)) != static_cast<int>(rb->data_size)) return false;
-      (node->*handler)(rb, ch, &m);
-      return true;
-    }
-    Handler handler;
-    Node* node;
-  };
-  template <class Node>
-  struct Raw : Sub {
-    using Handler = void (Node::*)(const lcm::ReceiveBuffer*, const std::string&);
-    Raw(Handler h, Node* n) : handler(h), node(n) {}
-    bool deliver(const lcm::ReceiveBuffer* rb, const std::string& ch) override {
-      (node->*handler)(rb, ch);
-      return true;
-    }
-    Handler handler;
-    Node* node;
-  };
+  template <class Msg>
+  static bool decodes(const lcm::ReceiveBuffer* rb, Msg& m) {
+    return m.decode(rb->data, 0, static_cast<int>(rb->data_size)) == static_cast<int>(rb->data_size);
+  }
 
-  void add(const std::string& channel, std::unique_ptr<Sub> sub);
+  void add(const std::string& channel, Deliver deliver);
   void receive(Sub& sub, const lcm::ReceiveBuffer* rb, const std::string& channel);
   void drop(Sub& sub, InboxDrop reason, const std::string& detail);
 
@@ -100,5 +95,8 @@ class Inbox {
   std::vector<std::unique_ptr<Sub>> subs_;
   std::vector<lcm::Subscription*> handles_;
 };
+
+// The summary() of each of `inboxes` that dropped something.
+std::vector<std::string> summaries(std::initializer_list<const Inbox*> inboxes);
 
 }  // namespace slide::msg

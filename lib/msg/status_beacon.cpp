@@ -1,5 +1,6 @@
 #include "msg/status_beacon.h"
 
+#include "app/clock.h"
 #include "slide/daemon_status_t.hpp"
 
 namespace slide::msg {
@@ -16,7 +17,7 @@ void StatusBeacon::tick(std::int64_t published, std::int64_t dropped_messages, s
   if (!now && last_.time_since_epoch().count() != 0 && t - last_ < period_) return;
   last_ = t;
   daemon_status_t s;
-  s.utime = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  s.utime = wallMicros();
   s.robot = robot_;
   s.daemon = daemon_;
   s.published = published;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/fast_rng.h"
+#include "emulator/fast_rng.h"
 
 namespace slide {
 

@@ -7,7 +7,7 @@
 #include "backend/optimizer.h"
 #include "frontend/labelled_segmenter.h"
 #include "sim/dataset_writer.h"
-#include "sim/rgbd_emulator.h"
+#include "emulator/rgbd_emulator.h"
 #include "sim/lidar.h"
 #include "sim/ray_caster.h"
 #include "simmap/bundle_convert.h"

@@ -8,7 +8,7 @@
 
 #include "backend/backend_config.h"
 #include "frontend/frontend_config.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 #include "objects/class_table.h"
 #include "sim/scenario.h"
 #include "simmap/sensor_rig.h"

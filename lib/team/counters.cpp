@@ -1,21 +1,17 @@
 #include "team/counters.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include "app/clock.h"
+
 namespace slide::team {
 
-WallClock systemWallClock() {
-  return [] {
-    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-        .count();
-  };
-}
+WallClock systemWallClock() { return wallMicros; }
 
 CounterStore::CounterStore(std::string path, WallClock clock, std::int64_t max_ahead)
     : path_(std::move(path)), clock_(std::move(clock)), max_ahead_(max_ahead) {

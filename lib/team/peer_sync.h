@@ -10,6 +10,7 @@
 #include <set>
 #include <vector>
 
+#include "app/channels.h"
 #include "team/bandwidth.h"
 #include "team/bundle_pack.h"
 #include "team/bundle.h"
@@ -26,9 +27,9 @@
 namespace slide::team {
 
 struct TeamChannels {
-  std::string heartbeat = "TEAM_HEARTBEAT";
-  std::string chunk = "TEAM_CHUNK";
-  std::string ack = "TEAM_ACK";
+  std::string heartbeat = channels::kTeamHeartbeat;
+  std::string chunk = channels::kTeamChunk;
+  std::string ack = channels::kTeamAck;
 };
 
 struct TickOutput {

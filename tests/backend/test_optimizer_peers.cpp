@@ -75,6 +75,7 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
   OptimizerNode node(cfg, ClassTable::loadDefault(), 0, {},
                      [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
                        if (channel == "OPTIMIZER_STATUS") status.push_back(bytes);
+                       return true;
                      });
   const std::vector<RawMessage> msgs = slide::testing::twoRobotMessages();
   std::vector<KeyPoseBundle> peer;

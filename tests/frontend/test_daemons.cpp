@@ -19,6 +19,7 @@
 #include "frontend_msg/frontend_convert.h"
 #include "msg/convert.h"
 #include "slide/odometry_t.hpp"
+#include "drive_by.h"
 #include "synthetic_scene.h"
 
 extern char** environ;
@@ -94,14 +95,9 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
   const int frames = 24;
   int expected = 0;  // instance messages: one per usable scan
   for (int k = 0; k < frames; ++k) {
-    const Pose T = poseFromXyzYaw(0.4 * k, 0, 1.5, 0);
-    header_t h;
-    h.utime = 1000000 + k * 100000;
-    h.robot = 0;
-    h.seq = k;
-    odometry_t odom{};
-    odom.header = h;
-    odom.pose = toMsg(T);
+    const Pose T = slide::testing::driveByPose(k);
+    const header_t h = slide::testing::driveByHeader(k);
+    const odometry_t odom = slide::testing::driveByOdometry(k);
     lcm.publish("ODOM", &odom);
     if (k == 5) {  // bad input: an empty scan and one with non-finite points
       lidar_scan_t empty = scanToMsg(LabelledScan{}, h);

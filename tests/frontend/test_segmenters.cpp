@@ -14,7 +14,7 @@
 #include "frontend/geometric_segmenter.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/labelled_segmenter.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 #include "synthetic_scene.h"
 
 using namespace slide;

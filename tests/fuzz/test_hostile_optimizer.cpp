@@ -67,6 +67,7 @@ TEST(HostileOptimizer, AJournalOnAFullDiskIsAnAlarmInTheStatus) {
                        if (channel == "OPTIMIZER_STATUS" &&
                            st.decode(bytes.data(), 0, static_cast<int>(bytes.size())) == static_cast<int>(bytes.size()))
                          statuses.push_back(st);
+                       return true;
                      });
   node.openJournal(dir + "/optimizer.journal");  // every write fails with ENOSPC
   const auto msgs = slide::testing::twoRobotMessages();

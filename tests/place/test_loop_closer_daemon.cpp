@@ -9,11 +9,10 @@
 
 #include <chrono>
 #include <fstream>
-#include <random>
 
-#include "msg/convert.h"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
+#include "two_robot_maps.h"
 
 using namespace slide;
 
@@ -23,15 +22,6 @@ const char* kUrl = "udpm://239.255.76.123:7723?ttl=0";
 bool privateNetwork() {
   if (unshare(CLONE_NEWNET) != 0 && unshare(CLONE_NEWUSER | CLONE_NEWNET) != 0) return false;
   return std::system("ip link set lo up && ip route add 224.0.0.0/4 dev lo") == 0;
-}
-
-object_map_t mapMsg(int robot, const std::vector<Object>& objects) {
-  object_map_t m;
-  m.utime = 0;
-  m.robot = m.frame_robot = robot;
-  for (const Object& o : objects) m.objects.push_back(toMsg(o));
-  m.num_objects = static_cast<int32_t>(m.objects.size());
-  return m;
 }
 
 struct Collector {
@@ -60,22 +50,8 @@ TEST(LoopCloserDaemon, PublishesTheTransformBetweenTwoRobotsMaps) {
   Collector c;
   lcm.subscribe("LOOP_CLOSURE", &Collector::on, &c);
 
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(0, 40);
-  const int classes[] = {71, 10, 0, 1};
-  std::vector<Object> own, peer;
-  const Pose T_0_1 = poseFromXyzYaw(-15, 22, 0.5, -2.0);
-  for (int i = 0; i < 70; ++i) {
-    Object o;
-    o.id = i;
-    o.class_id = classes[i % 4];
-    o.model = Ellipsoid{{u(rng), u(rng), 0.5}, 0.3, 1.0};
-    own.push_back(o);
-    Object p = transformObject(T_0_1.inverse(), o);
-    p.id = 100 + i;
-    peer.push_back(p);
-  }
-  const object_map_t own_msg = mapMsg(0, own), peer_msg = mapMsg(1, peer);
+  const auto [own, peer] = slide::testing::twoRobotViews(poseFromXyzYaw(-15, 22, 0.5, -2.0));
+  const object_map_t own_msg = slide::testing::mapMsg(0, own), peer_msg = slide::testing::mapMsg(1, peer);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (c.got.empty() && std::chrono::steady_clock::now() < deadline) {
     lcm.publish("OBJECT_MAP", &own_msg);  // repeated: the daemon may still be starting

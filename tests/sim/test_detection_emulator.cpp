@@ -9,8 +9,8 @@
 #include <fstream>
 #include <map>
 
-#include "sim/detection_emulator.h"
-#include "sim/rgbd_emulator.h"
+#include "emulator/detection_emulator.h"
+#include "emulator/rgbd_emulator.h"
 
 using namespace slide;
 

@@ -16,6 +16,7 @@
 
 #include "io/kitti_scan.h"
 #include "io/rgbd_files.h"
+#include "sensor_driver_node.h"
 #include "sim/dataset_writer.h"
 #include "slide/lidar_scan_t.hpp"
 #include "slide/odometry_t.hpp"
@@ -48,26 +49,29 @@ struct LogSummary {
   double last_odom_x = 0;
 };
 
+// Counts one message of the driver's into `s`.
+void count(LogSummary& s, const std::string& channel, const void* data, int size) {
+  ++s.count[channel];
+  if (channel == "SENSOR_STATUS") {
+    stream_status_t m;
+    if (m.decode(data, 0, size) > 0) s.last_state = m.state, s.last_sent = m.frames_sent;
+  } else if (channel == "SCAN") {
+    lidar_scan_t m;
+    if (m.decode(data, 0, size) > 0) s.scan_points = m.num_points, s.scan_labelled = m.has_labels;
+  } else if (channel == "RGBD") {
+    rgbd_frame_t m;
+    if (m.decode(data, 0, size) > 0) s.rgbd_width = m.intrinsics.width, s.rgbd_instances = m.num_instances;
+  } else if (channel == "ODOM") {
+    odometry_t m;
+    if (m.decode(data, 0, size) > 0) s.last_odom_x = m.pose.position[0];
+  }
+}
+
 LogSummary readLog(const std::string& path) {
   LogSummary s;
   lcm::LogFile log(path, "r");
   if (!log.good()) return s;
-  while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    ++s.count[ev->channel];
-    if (ev->channel == "SENSOR_STATUS") {
-      stream_status_t m;
-      if (m.decode(ev->data, 0, ev->datalen) > 0) s.last_state = m.state, s.last_sent = m.frames_sent;
-    } else if (ev->channel == "SCAN") {
-      lidar_scan_t m;
-      if (m.decode(ev->data, 0, ev->datalen) > 0) s.scan_points = m.num_points, s.scan_labelled = m.has_labels;
-    } else if (ev->channel == "RGBD") {
-      rgbd_frame_t m;
-      if (m.decode(ev->data, 0, ev->datalen) > 0) s.rgbd_width = m.intrinsics.width, s.rgbd_instances = m.num_instances;
-    } else if (ev->channel == "ODOM") {
-      odometry_t m;
-      if (m.decode(ev->data, 0, ev->datalen) > 0) s.last_odom_x = m.pose.position[0];
-    }
-  }
+  while (const lcm::LogEvent* ev = log.readNextEvent()) count(s, ev->channel, ev->data, ev->datalen);
   return s;
 }
 
@@ -119,6 +123,41 @@ TEST(SensorDriver, LidarDatasetReachesLoggerAndLogReplays) {
     EXPECT_FALSE(s.scan_labelled);  // by default the driver publishes no labels
     EXPECT_NE(s.last_odom_x, 0.0);
   }
+  fs::remove_all(work);
+}
+
+// Without a bus or a process: the driver's node replays into a publisher given to it.
+TEST(SensorDriverNode, ReplaysIntoItsPublisherAndStopsWhenAsked) {
+  const fs::path work = fs::temp_directory_path() / ("slide_test_driver_node_" + std::to_string(::getpid()));
+  fs::remove_all(work);
+  writeSmallForest(work, 4);
+  const RobotDataset d = openRobotDataset((work / "data" / "robot0").string(), DatasetOptions{});
+  ReplayOptions opt;
+  opt.rate = 0;
+  opt.progress = false;
+  const FramePerception perception(DetectionSource::None, {}, opt.robot);
+  auto sinkInto = [](LogSummary& s) {
+    return MessageSink([&s](const std::string& channel, const std::vector<uint8_t>& b) {
+      count(s, channel, b.data(), static_cast<int>(b.size()));
+      return true;
+    }, "");
+  };
+  LogSummary s;
+  MessageSink sink = sinkInto(s);
+  StreamProgress progress;
+  EXPECT_EQ(replayDataset(d, opt, perception, sink, [] { return false; }, progress), 4);
+  EXPECT_EQ(s.count["SCAN"], 4);
+  EXPECT_EQ(s.count["ODOM"], 4);
+  EXPECT_EQ(s.last_state, stream_status_t::FINISHED);
+  EXPECT_EQ(s.last_sent, 4);
+  EXPECT_FALSE(s.scan_labelled);
+
+  LogSummary stopped;
+  MessageSink sink2 = sinkInto(stopped);
+  int polls = 0;
+  replayDataset(d, opt, perception, sink2, [&] { return ++polls > 2; }, progress);  // stopped early: no FINISHED
+  EXPECT_LT(stopped.count["SCAN"], 4);
+  EXPECT_NE(stopped.last_state, stream_status_t::FINISHED);
   fs::remove_all(work);
 }
 

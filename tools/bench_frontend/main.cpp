@@ -16,7 +16,7 @@
 #include "frontend/labelled_segmenter.h"
 #include "pcl_reference.h"
 #include "real_data.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 #include "world_eval.h"
 
 using namespace slide;

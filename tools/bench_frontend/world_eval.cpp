@@ -17,7 +17,7 @@
 #include "sim/ray_caster.h"
 #include "sim/rgbd_camera.h"
 #include "sim/dataset_writer.h"
-#include "sim/rgbd_emulator.h"
+#include "emulator/rgbd_emulator.h"
 #include "sim/scenario.h"
 #include "sim/semantic_labels.h"
 #include "simmap/sensor_rig.h"

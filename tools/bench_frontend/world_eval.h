@@ -17,7 +17,7 @@
 
 #include "frontend/frontend_config.h"
 #include "objects/class_table.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 
 namespace slide {
 

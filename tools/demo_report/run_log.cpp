@@ -3,6 +3,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "app/channels.h"
 #include "msg/convert.h"
 #include "slide/keypose_bundle_t.hpp"
 #include "slide/loop_closure_t.hpp"
@@ -30,13 +31,13 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
   bad = 0;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     const std::string& ch = ev->channel;
-    if (ch == "OBJECT_MAP") {
+    if (ch == channels::kObjectMap) {
       object_map_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot != robot) continue;
       out.map.clear();
       for (const object_t& o : m.objects) out.map.push_back(fromMsg(o));
-    } else if (ch == "TRAJECTORY") {
+    } else if (ch == channels::kTrajectory) {
       trajectory_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       LoggedTrajectory t{m.robot, m.frame_robot, {}, {}};
@@ -45,23 +46,23 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
         t.poses.push_back(fromMsg(m.poses[i]));
       }
       out.trajectories[m.robot] = t;
-    } else if (ch == "LOOP_CLOSURE") {
+    } else if (ch == channels::kLoopClosure) {
       loop_closure_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot_a != robot || m.robot_b == robot) continue;
       out.closures[m.robot_b] = {m.robot_a, m.robot_b, m.num_inliers, poseFromXyzYaw(m.x, m.y, m.z, m.yaw),
                                  m.method == loop_closure_t::SLIDEMATCH ? "slidematch" : "slidegraph"};
-    } else if (ch == "OPTIMIZER_STATUS") {
+    } else if (ch == channels::kOptimizerStatus) {
       optimizer_status_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       out.update_ms.push_back(m.update_ms);
-    } else if (ch == "SENSOR_STATUS") {
+    } else if (ch == channels::kSensorStatus) {
       stream_status_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot == robot) out.detections = m.detections;
-    } else if (ch == "KEYPOSE_BUNDLE") {
+    } else if (ch == channels::kKeyPoseBundle) {
       ++out.keypose_bundles;
-    } else if (ch == "PEER_BUNDLE") {
+    } else if (ch == channels::kPeerBundle) {
       ++out.peer_bundles;
     }
   }
@@ -75,15 +76,15 @@ TeamTraffic readTeamTraffic(const std::string& path, int robot) {
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     int sender = -1;
     bool ok = false;
-    if (ev->channel == "TEAM_HEARTBEAT") {
+    if (ev->channel == channels::kTeamHeartbeat) {
       sync_heartbeat_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;
-    } else if (ev->channel == "TEAM_CHUNK") {
+    } else if (ev->channel == channels::kTeamChunk) {
       sync_chunk_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;
-    } else if (ev->channel == "TEAM_ACK") {
+    } else if (ev->channel == channels::kTeamAck) {
       sync_ack_t m{};
       ok = decode(ev, m);
       if (ok) sender = m.sender;

@@ -1,12 +1,16 @@
 #pragma once
-// Replay of one robot's dataset: which frames, at what pace, and where the messages go.
+// The sensor driver's logic without the LCM loop: replay of one robot's dataset (which frames,
+// at what pace) into a sink, which publishes through an injected publisher and/or writes an LCM
+// log; the stream status (RUNNING, FINISHED, FAILED) goes the same way.
 #include <functional>
 #include <memory>
 #include <string>
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "app/channels.h"
 #include "io/robot_dataset.h"
+#include "msg/publisher.h"
 #include "perception.h"
 
 namespace slide {
@@ -17,26 +21,26 @@ struct ReplayOptions {
   int start_frame = 0;        // skip the first K frames ...
   double start_time = 0.0;    // ... or the first S seconds of data (whichever skips more)
   int max_frames = 0;         // > 0: stop after this many frames
-  std::string scan_channel = "SCAN", rgbd_channel = "RGBD", odom_channel = "ODOM", status_channel = "SENSOR_STATUS";
+  std::string scan_channel = channels::kScan, rgbd_channel = channels::kRgbd, odom_channel = channels::kOdom;
+  std::string status_channel = channels::kSensorStatus;
   bool progress = true;       // progress bar on stderr
   double max_gap_s = 10.0;    // a longer pause between two frames' times is replayed as this long
 };
 
-// Where encoded messages go: the bus and/or an LCM log.
+// Where encoded messages go: the bus (an empty publisher: none) and/or an LCM log (an empty
+// path: none). Throws IoError when the log cannot be opened.
 class MessageSink {
  public:
-  MessageSink(lcm::LCM* bus, const std::string& log_path);
+  MessageSink(msg::Publisher bus, const std::string& log_path);
   // data: an encoded message; dataset_utime stamps log events (the log keeps data time).
   void send(const std::string& channel, const std::vector<uint8_t>& data, int64_t dataset_utime);
   template <class Msg>
   void send(const std::string& channel, const Msg& msg, int64_t dataset_utime) {
-    std::vector<uint8_t> buf(static_cast<std::size_t>(msg.getEncodedSize()));
-    msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
-    send(channel, buf, dataset_utime);
+    send(channel, msg::encodeLcm(msg), dataset_utime);
   }
 
  private:
-  lcm::LCM* bus_;
+  msg::Publisher bus_;
   std::unique_ptr<lcm::LogFile> log_;
   int64_t log_origin_ = 0;  // wall-clock utime of the first log event
   int64_t first_utime_ = -1;
@@ -55,6 +59,13 @@ struct StreamProgress {
 // Sends a stream_status_t with `state` (RUNNING, FINISHED, FAILED) and, for FAILED, `reason`.
 void sendStatus(MessageSink& sink, const ReplayOptions& options, const StreamProgress& progress, int8_t state,
                 const std::string& reason = "");
+
+// Before the driver exits on an error: FAILED with `reason` on the status channel (bus and log),
+// opening the bus (when `publish`, at `url`) or the log first when the error came before them.
+// Never throws.
+void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<MessageSink>& sink, bool publish,
+                   const std::string& url, const std::string& log_path, const ReplayOptions& options,
+                   const StreamProgress& progress, const std::string& reason);
 
 // Replays frames [start, end) of `dataset` into `sink`, with the labels or masks `perception`
 // gives; returns frames sent. Publishes a RUNNING status (naming the detection source) about

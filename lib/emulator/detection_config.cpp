@@ -1,6 +1,6 @@
-// Loader of config/detections.yaml (sim/detection_emulator.h).
+// Loader of config/detections.yaml (emulator/detection_emulator.h).
 #include "config/config.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 
 namespace slide {
 

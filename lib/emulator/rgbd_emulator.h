@@ -1,12 +1,12 @@
 #pragma once
-// RGBD half of the detection emulator (parameters and behaviour: sim/detection_emulator.h):
+// RGBD half of the detection emulator (parameters and behaviour: emulator/detection_emulator.h):
 // YOLOv8-seg-class instance masks with confidences from a frame's ground-truth masks.
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "io/rgbd_files.h"
-#include "sim/detection_emulator.h"
+#include "emulator/detection_emulator.h"
 
 namespace slide {
 

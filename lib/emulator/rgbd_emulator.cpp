@@ -1,12 +1,12 @@
-// RGBD half of the detection emulator (sim/detection_emulator.h): YOLOv8-seg-class masks.
+// RGBD half of the detection emulator (emulator/detection_emulator.h): YOLOv8-seg-class masks.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
-#include "sim/rgbd_emulator.h"
-#include "sim/fast_rng.h"
+#include "emulator/rgbd_emulator.h"
+#include "emulator/fast_rng.h"
 
 namespace slide {
 

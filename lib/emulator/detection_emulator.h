@@ -104,6 +104,6 @@ uint64_t detectionSeed(uint64_t seed, int robot, int frame);
 // A scan without labels comes back without labels.
 LabelledScan emulateLidarLabels(const LabelledScan& truth, const LidarEmulatorParams& params, uint64_t seed);
 
-// The RGBD function, emulateRgbdDetections, is in sim/rgbd_emulator.h.
+// The RGBD function, emulateRgbdDetections, is in emulator/rgbd_emulator.h.
 
 }  // namespace slide

@@ -1,4 +1,4 @@
-#include "replay.h"
+#include "sensor_driver_node.h"
 
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "app/clock.h"
 #include "frame_messages.h"
 #include "io/io_error.h"
 #include "slide/stream_status_t.hpp"
@@ -14,11 +15,6 @@
 namespace slide {
 
 namespace {
-int64_t wallUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 void drawProgress(int done, int total, double data_t, double rate) {
   const int width = 30, filled = total > 0 ? width * done / total : width;
   std::fprintf(stderr, "\r[%.*s%*s] %d/%d frames  t=%.1f s  %s", filled, "##############################",
@@ -27,7 +23,7 @@ void drawProgress(int done, int total, double data_t, double rate) {
 }
 }  // namespace
 
-MessageSink::MessageSink(lcm::LCM* bus, const std::string& log_path) : bus_(bus) {
+MessageSink::MessageSink(msg::Publisher bus, const std::string& log_path) : bus_(std::move(bus)) {
   if (!log_path.empty()) {
     log_ = std::make_unique<lcm::LogFile>(log_path, "w");
     if (!log_->good()) throw IoError(log_path, "cannot open LCM log for writing");
@@ -35,10 +31,10 @@ MessageSink::MessageSink(lcm::LCM* bus, const std::string& log_path) : bus_(bus)
 }
 
 void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& data, int64_t dataset_utime) {
-  if (bus_ && bus_->publish(channel, data.data(), static_cast<unsigned>(data.size())) != 0)
+  if (bus_ && !bus_(channel, data))
     spdlog::warn("publishing on {} failed", channel);
   if (log_) {
-    if (first_utime_ < 0) first_utime_ = dataset_utime, log_origin_ = wallUtime();
+    if (first_utime_ < 0) first_utime_ = dataset_utime, log_origin_ = wallMicros();
     lcm::LogEvent ev;
     ev.eventnum = event_num_++;
     ev.timestamp = log_origin_ + (dataset_utime - first_utime_);
@@ -52,7 +48,7 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
 void sendStatus(MessageSink& sink, const ReplayOptions& o, const StreamProgress& p, int8_t state,
                 const std::string& reason) {
   stream_status_t s;
-  s.utime = wallUtime();
+  s.utime = wallMicros();
   s.robot = o.robot;
   s.state = state;
   s.frames_sent = p.sent;
@@ -155,6 +151,27 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
   if (unreadable > 0) spdlog::warn("{} frames could not be read and were dropped", unreadable);
   if (const std::string drops = d.reader->dropSummary(); !drops.empty()) spdlog::info("{}: {}", d.path, drops);
   return sent;
+}
+
+void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<MessageSink>& sink, bool publish,
+                   const std::string& url, const std::string& log_path, const ReplayOptions& opt,
+                   const StreamProgress& progress, const std::string& reason) {
+  try {
+    if (!sink) {
+      if (publish && !bus) {
+        auto b = std::make_unique<lcm::LCM>(url);
+        if (b->good()) bus = std::move(b);
+      }
+      try {
+        sink = std::make_unique<MessageSink>(msg::lcmPublisher(bus.get()), log_path);
+      } catch (const std::exception&) {  // the log is what failed: the bus alone
+        sink = std::make_unique<MessageSink>(msg::lcmPublisher(bus.get()), "");
+      }
+    }
+    sendStatus(*sink, opt, progress, stream_status_t::FAILED, reason);
+  } catch (const std::exception& e) {
+    spdlog::warn("could not publish the FAILED status on {}: {}", opt.status_channel, e.what());
+  }
 }
 
 }  // namespace slide

@@ -1,9 +1,9 @@
-// LiDAR half of the detection emulator (sim/detection_emulator.h): RangeNet++-class labels.
+// LiDAR half of the detection emulator (emulator/detection_emulator.h): RangeNet++-class labels.
 #include <cmath>
 #include <unordered_map>
 
-#include "sim/detection_emulator.h"
-#include "sim/fast_rng.h"
+#include "emulator/detection_emulator.h"
+#include "emulator/fast_rng.h"
 
 namespace slide {
 

@@ -1,0 +1,57 @@
+#pragma once
+// The segmenter daemon's logic without the LCM loop: LiDAR scans and RGBD frames wait for the
+// odometry around their time, then are segmented (labelled or geometric LiDAR mode, RGBD
+// masks) into per-frame object instances stamped with their odometry pose, published in
+// arrival order through an injected publisher. Bad frames (empty scans, unusable images,
+// frames whose odometry never comes) are skipped and counted, never published.
+#include <cstddef>
+#include <deque>
+#include <string>
+#include <variant>
+
+#include "frontend/frontend_config.h"
+#include "frontend/geometric_segmenter.h"
+#include "frontend/input_issues.h"
+#include "frontend/labelled_segmenter.h"
+#include "frontend/odometry_buffer.h"
+#include "msg/publisher.h"
+#include "slide/lidar_scan_t.hpp"
+#include "slide/odometry_t.hpp"
+#include "slide/rgbd_frame_t.hpp"
+
+namespace slide {
+
+class SegmenterNode {
+ public:
+  // `max_pending`: frames kept waiting for odometry (the oldest is dropped beyond it).
+  SegmenterNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
+                std::size_t max_pending, msg::Publisher publish);
+
+  void onScan(const lidar_scan_t& m);
+  void onRgbd(const rgbd_frame_t& m);
+  void onOdom(const odometry_t& m);
+  // Logs a summary of the skipped input when one is due at `now_s` (steady seconds).
+  void report(double now_s);
+  int published() const { return published_; }
+  const InputIssues& issues() const { return window_.total(); }
+
+ private:
+  using Frame = std::variant<lidar_scan_t, rgbd_frame_t>;
+  void process();
+
+  int robot_;
+  std::string out_channel_;
+  const ClassTable& classes_;
+  const FrontendConfig& cfg_;
+  LabelledSegmenter labelled_;
+  GeometricSegmenter geometric_;
+  std::size_t max_pending_;
+  msg::Publisher publish_;
+  OdometryBuffer odom_;
+  std::deque<Frame> pending_;
+  IssueWindow window_;
+  int seq_ = 0;
+  int published_ = 0;
+};
+
+}  // namespace slide

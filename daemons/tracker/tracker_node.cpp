@@ -1,0 +1,28 @@
+#include "tracker_node.h"
+
+#include <spdlog/spdlog.h>
+
+#include "frontend_msg/frontend_convert.h"
+
+namespace slide {
+
+TrackerNode::TrackerNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
+                         msg::Publisher publish)
+    : robot_(robot), out_channel_(std::move(out_channel)), bundler_(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose),
+      publish_(std::move(publish)) {}
+
+void TrackerNode::onInstances(const frame_instances_t& m) {
+  InputIssues issues;
+  if (m.header.robot != robot_) issues.count("instances of another robot");
+  else if (const auto b = bundler_.process(instancesFromMsg(m), issues)) {
+    publish_(out_channel_, msg::encodeLcm(bundleToMsg(*b, robot_)));
+    spdlog::debug("key pose {}: {} objects", b->seq, b->objects.size());
+  }
+  window_.add(issues);
+}
+
+void TrackerNode::report(double now_s) {
+  if (auto text = window_.due(now_s)) spdlog::warn("{}", *text);
+}
+
+}  // namespace slide

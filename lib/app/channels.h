@@ -1,0 +1,27 @@
+#pragma once
+// Channel names on the robot bus and the team bus: every daemon's defaults (options and config
+// keys) come from here, so that what one daemon sends is what the next one listens to.
+namespace slide::channels {
+
+// Robot bus: sensor driver -> segmenter -> tracker -> optimizer, loop closer and peer sync.
+inline constexpr char kScan[] = "SCAN";                   // lidar_scan_t
+inline constexpr char kRgbd[] = "RGBD";                   // rgbd_frame_t
+inline constexpr char kOdom[] = "ODOM";                   // odometry_t
+inline constexpr char kSensorStatus[] = "SENSOR_STATUS";  // stream_status_t
+inline constexpr char kInstances[] = "INSTANCES";         // frame_instances_t
+inline constexpr char kKeyPoseBundle[] = "KEYPOSE_BUNDLE";  // keypose_bundle_t, own
+inline constexpr char kPeerBundle[] = "PEER_BUNDLE";      // keypose_bundle_t, peers' (from peer sync)
+inline constexpr char kLoopClosure[] = "LOOP_CLOSURE";    // loop_closure_t
+inline constexpr char kObjectMap[] = "OBJECT_MAP";        // object_map_t, own
+inline constexpr char kPeerMap[] = "PEER_MAP";            // object_map_t, peers' (from peer sync)
+inline constexpr char kTrajectory[] = "TRAJECTORY";       // trajectory_t
+inline constexpr char kOptimizerStatus[] = "OPTIMIZER_STATUS";
+inline constexpr char kPeerSyncStatus[] = "PEER_SYNC_STATUS";
+inline constexpr char kDaemonStatus[] = "DAEMON_STATUS";  // daemon_status_t (segmenter, tracker, loop closer)
+
+// Team bus (peer sync only).
+inline constexpr char kTeamHeartbeat[] = "TEAM_HEARTBEAT";
+inline constexpr char kTeamChunk[] = "TEAM_CHUNK";
+inline constexpr char kTeamAck[] = "TEAM_ACK";
+
+}  // namespace slide::channels

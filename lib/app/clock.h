@@ -1,0 +1,14 @@
+#pragma once
+// The daemons' clocks, one function each: steady time in seconds (periods and timeouts) and in
+// microseconds (the peer-sync engine's time), both from an arbitrary origin; wall time in
+// microseconds since the Unix epoch (the utime stamped on messages, counters that must survive a
+// restart).
+#include <cstdint>
+
+namespace slide {
+
+double steadySeconds();
+std::int64_t steadyMicros();
+std::int64_t wallMicros();
+
+}  // namespace slide

@@ -1,0 +1,70 @@
+// The segmenter's and the tracker's nodes chained without a bus: odometry and labelled scans in,
+// per-frame instances out of the segmenter into the tracker, key-pose bundles out of the tracker
+// through the injected publishers. A scan waits for its odometry; bad input is skipped and
+// counted, never published.
+#include <gtest/gtest.h>
+
+#include "frontend/frontend_config.h"
+#include "drive_by.h"
+#include "frontend_msg/frontend_convert.h"
+#include "segmenter_node.h"
+#include "synthetic_scene.h"
+#include "tracker_node.h"
+
+using namespace slide;
+using namespace slide::testing;
+
+namespace {
+template <typename M>
+M decoded(const std::vector<uint8_t>& bytes) {
+  M m;
+  EXPECT_EQ(m.decode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
+  return m;
+}
+}  // namespace
+
+TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  std::vector<keypose_bundle_t> bundles;
+  TrackerNode tracker(0, "KEYPOSE_BUNDLE", classes, cfg, [&](const std::string& c, const std::vector<uint8_t>& b) {
+    EXPECT_EQ(c, "KEYPOSE_BUNDLE");
+    bundles.push_back(decoded<keypose_bundle_t>(b));
+    return true;
+  });
+  int instances = 0;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string& c, const std::vector<uint8_t>& b) {
+    EXPECT_EQ(c, "INSTANCES");
+    ++instances;
+    tracker.onInstances(decoded<frame_instances_t>(b));
+    return true;
+  });
+
+  const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {71, {12, -4, 0}, 0.35, 6.0}};
+  const int frames = 12;
+  for (int k = 0; k < frames; ++k) {
+    // The scan comes before the odometry at its time: it waits for it. Frame 5 is empty.
+    const LabelledScan scan = k == 5 ? LabelledScan{} : synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6);
+    segmenter.onScan(scanToMsg(scan, driveByHeader(k)));
+    if (k == 0) {
+      EXPECT_EQ(segmenter.published(), 0);
+    }
+    segmenter.onOdom(driveByOdometry(k));
+  }
+  segmenter.onOdom(driveByOdometry(frames));
+  EXPECT_EQ(instances, frames - 1);  // the empty scan gives none
+  EXPECT_EQ(segmenter.published(), frames - 1);
+  EXPECT_EQ(segmenter.issues().total(), 1);
+  ASSERT_GE(bundles.size(), 3u);  // ~4.4 m driven, a key pose per metre
+  for (std::size_t i = 0; i < bundles.size(); ++i) {
+    EXPECT_EQ(bundles[i].header.seq, static_cast<int>(i));
+    EXPECT_EQ(bundles[i].header.robot, 0);
+  }
+  EXPECT_EQ(tracker.bundles(), static_cast<int>(bundles.size()));
+
+  frame_instances_t other{};  // another robot's instances: skipped and counted
+  other.header.robot = 1;
+  tracker.onInstances(other);
+  EXPECT_EQ(tracker.issues().total(), 1);
+  EXPECT_EQ(tracker.bundles(), static_cast<int>(bundles.size()));
+}
