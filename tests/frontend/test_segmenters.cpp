@@ -74,7 +74,7 @@ TEST(GridClustering, MatchesPairwiseCellAdjacencyWithNegativeAndFarCoordinates) 
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   Cloud c;
   // Blobs around negative and positive coordinates, some touching only at cell corners.
-  for (const Eigen::Vector3f centre : {Eigen::Vector3f(-3.1f, -2.2f, -0.4f), Eigen::Vector3f(-2.5f, -1.6f, 0.2f),
+  for (const Eigen::Vector3f& centre : {Eigen::Vector3f(-3.1f, -2.2f, -0.4f), Eigen::Vector3f(-2.5f, -1.6f, 0.2f),
                                        Eigen::Vector3f(4.0f, 0.0f, 1.0f), Eigen::Vector3f(0.0f, 6.0f, -1.0f)})
     for (int i = 0; i < 40; ++i) c.push_back(centre + 0.25f * Eigen::Vector3f(u(rng), u(rng), u(rng)));
   for (int i = 0; i < 60; ++i) c.emplace_back(10 * u(rng), 10 * u(rng), 2 * u(rng));  // scattered singles

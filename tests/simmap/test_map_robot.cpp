@@ -22,7 +22,7 @@ int nearTrue(const std::vector<Object>& map, const Pose& T_world_odom, const Wor
 
 MappingSetup setup() {
   return {ClassTable::loadDefault(), loadDefaultFrontendConfig(),
-          loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), 3};
+          loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), 3, std::nullopt};  // ground-truth labels
 }
 }  // namespace
 
