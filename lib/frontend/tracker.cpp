@@ -163,7 +163,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.class_id = o.class_id;
     apply(tracks_.emplace(t.id, t).first->second, o);
   }
-  mergeColumnTracks();
+  mergeColumnTracks(matched);
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (!matched.count(it->first)) ++it->second.missed;
     if (it->second.missed > params_.max_missed) it = tracks_.erase(it);
@@ -171,7 +171,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 }
 
-void Tracker::mergeColumnTracks() {
+void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
   if (params_.column_merge_distance <= 0) return;
   for (auto a = tracks_.begin(); a != tracks_.end(); ++a) {
     if (classes_.at(a->second.class_id).shape != Shape::Cylinder) continue;
@@ -199,6 +199,7 @@ void Tracker::mergeColumnTracks() {
         older.viewpoints.pop_front();
       }
       older.moving = older.moving || younger.moving;
+      if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
       b = tracks_.erase(b);
     }
   }

@@ -60,8 +60,9 @@ class Tracker {
  private:
   bool exceedsClassSize(const Track& t) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
-  // or pole (its instances alternated between them, or it was split in a frame): merged.
-  void mergeColumnTracks();
+  // or pole (its instances alternated between them, or it was split in a frame): merged. A
+  // merged track counts as matched in this frame when either half was (`matched`).
+  void mergeColumnTracks(std::map<std::int64_t, bool>& matched);
 
   ClassTable classes_;
   TrackerParams params_;

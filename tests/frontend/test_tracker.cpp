@@ -179,7 +179,10 @@ TEST(Tracker, TwoTracksOfOneTrunkAreMergedANeighbourIsNot) {
       tracker.update(f, issues);
     }
     ASSERT_EQ(tracker.tracks().size(), merge > 0 ? 2u : 3u) << merge;
-    if (merge > 0) EXPECT_EQ(tracker.tracks().begin()->second.hits, 7) << "the piece's observation is kept";
+    if (merge > 0) {
+      EXPECT_EQ(tracker.tracks().begin()->second.hits, 7) << "the piece's observation is kept";
+      EXPECT_EQ(tracker.tracks().begin()->second.missed, 0);
+    }
   }
 }
 
