@@ -46,7 +46,12 @@ struct Ack {
 std::size_t encodedSize(const Heartbeat& m);
 std::size_t encodedSize(const Chunk& m);
 std::size_t encodedSize(const Ack& m);
-// Bytes LCM adds around a small message on UDP multicast: header, channel name and its NUL.
-inline std::size_t lcmPacketOverhead(const std::string& channel) { return 8 + channel.size() + 1; }
+// Bytes one LCM message of `payload` encoded bytes on `channel` puts on an IPv4 network, as
+// Linux's LCM sends it over UDP multicast: one datagram (8-byte LCM header, channel, NUL,
+// payload) while channel, NUL and payload fit 65,499 bytes, else fragments of at most 65,487
+// bytes behind a 20-byte header each (the channel in the first); every datagram then adds its
+// UDP header (8) and one IPv4 header (20) per IP fragment of at most `mtu` bytes. Link-layer
+// framing is not counted.
+std::size_t lcmWireBytes(const std::string& channel, std::size_t payload, std::size_t mtu = 1500);
 
 }  // namespace slide::team

@@ -188,7 +188,7 @@ bool PeerSyncNode::admit(std::int32_t sender, std::int64_t counter, bool mac_ok,
 void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   if (m.sender == cfg_.robot) return;
   if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m),
-             encodedSize(m) + lcmPacketOverhead(channels_.heartbeat)))
+             lcmWireBytes(channels_.heartbeat, encodedSize(m))))
     return;
   const bool was_in_reach = inReach(m.sender, now);
   Peer& p = peers_[m.sender];
@@ -217,7 +217,7 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
 
 void PeerSyncNode::receive(const Ack& m, Micros now) {
   if (m.sender == cfg_.robot) return;
-  if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), encodedSize(m) + lcmPacketOverhead(channels_.ack)))
+  if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), lcmWireBytes(channels_.ack, encodedSize(m))))
     return;
   Peer& p = peers_[m.sender];
   p.last_heard = now;
@@ -391,7 +391,7 @@ TickOutput PeerSyncNode::tick(Micros now) {
     h.counter = counters_.nextOwn();
     h.held = announced();
     auth_.sign(h);
-    const std::size_t bytes = encodedSize(h) + lcmPacketOverhead(channels_.heartbeat);
+    const std::size_t bytes = lcmWireBytes(channels_.heartbeat, encodedSize(h));
     limiter_.force(static_cast<double>(bytes), now);
     traffic_.sent(peersInReach(now), bytes);
     out.heartbeats.push_back(std::move(h));
@@ -434,7 +434,7 @@ TickOutput PeerSyncNode::tick(Micros now) {
     a.counter = counters_.nextOwn();
     a.acked = truncated(db_.held(), &ack_origins);
     auth_.sign(a);
-    const std::size_t bytes = encodedSize(a) + lcmPacketOverhead(channels_.ack);
+    const std::size_t bytes = lcmWireBytes(channels_.ack, encodedSize(a));
     limiter_.force(static_cast<double>(bytes), now);
     traffic_.sent(ack_to, bytes);
     out.acks.push_back(std::move(a));

@@ -126,7 +126,7 @@ class PeerSyncNode {
   // encoding is held (cached).
   std::optional<BundleContext> contextOf(std::int32_t origin, std::int32_t seq) const;
   Bytes sharedEncoding(std::int32_t seq, const Bytes& full);
-  std::size_t wireBytes(const Chunk& c) const { return encodedSize(c) + lcmPacketOverhead(channels_.chunk); }
+  std::size_t wireBytes(const Chunk& c) const { return lcmWireBytes(channels_.chunk, encodedSize(c)); }
 
   SyncConfig cfg_;
   TeamChannels channels_;

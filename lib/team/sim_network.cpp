@@ -28,9 +28,9 @@ void SimNetwork::makeNode(std::size_t i) {
 void SimNetwork::restart(std::size_t i) { makeNode(i); }
 
 std::size_t SimNetwork::wireBytes(const TeamMessage& m) const {
-  if (auto* h = std::get_if<Heartbeat>(&m)) return encodedSize(*h) + lcmPacketOverhead(channels_.heartbeat);
-  if (auto* c = std::get_if<Chunk>(&m)) return encodedSize(*c) + lcmPacketOverhead(channels_.chunk);
-  return encodedSize(std::get<Ack>(m)) + lcmPacketOverhead(channels_.ack);
+  if (auto* h = std::get_if<Heartbeat>(&m)) return lcmWireBytes(channels_.heartbeat, encodedSize(*h));
+  if (auto* c = std::get_if<Chunk>(&m)) return lcmWireBytes(channels_.chunk, encodedSize(*c));
+  return lcmWireBytes(channels_.ack, encodedSize(std::get<Ack>(m)));
 }
 
 void SimNetwork::transmit(std::size_t from, const TeamMessage& m) {

@@ -73,14 +73,14 @@ RunResult run(const TeamScenario& sc, const LinkPlan& plan, const std::string& s
   RunResult res;
   net.on_send = [&](std::size_t, const TeamMessage& m) {
     if (auto* c = std::get_if<Chunk>(&m)) {
-      const double b = static_cast<double>(encodedSize(*c) + lcmPacketOverhead(channels::kTeamChunk));
+      const double b = static_cast<double>(lcmWireBytes(channels::kTeamChunk, encodedSize(*c)));
       (c->kind == ChunkKind::Bundle ? res.traffic.bundle : res.traffic.map) += b;
       if (c->kind == ChunkKind::Bundle) ++res.bundle_chunks;
       if (c->kind == ChunkKind::Bundle) res.payload += c->data.size();
     } else if (auto* h = std::get_if<Heartbeat>(&m)) {
-      res.traffic.heartbeat += static_cast<double>(encodedSize(*h) + lcmPacketOverhead(channels::kTeamHeartbeat));
+      res.traffic.heartbeat += static_cast<double>(lcmWireBytes(channels::kTeamHeartbeat, encodedSize(*h)));
     } else {
-      res.traffic.ack += static_cast<double>(encodedSize(std::get<Ack>(m)) + lcmPacketOverhead(channels::kTeamAck));
+      res.traffic.ack += static_cast<double>(lcmWireBytes(channels::kTeamAck, encodedSize(std::get<Ack>(m))));
     }
   };
   const std::size_t n = sc.robots.size(), keyposes = sc.robots[0].bundles.size();

@@ -8,18 +8,22 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "app/app.h"
+#include "backend/backend_config.h"
 #include "bench/report.h"
 #include "bench/stats.h"
 #include "eval/ate.h"
 #include "eval/bandwidth.h"
+#include "eval/map_agreement.h"
 #include "eval/object_matching.h"
 #include "eval/time_association.h"
 #include "eval/transform_error.h"
 #include "objects/class_table.h"
 #include "plot/map_plot.h"
+#include "own_map.h"
 #include "run_log.h"
 #include "team_truth.h"
 
@@ -33,6 +37,7 @@ struct Options {
   std::vector<int> robots{0, 1, 2};
   double wall_s = NAN;
   std::string perception;  // what the run was started with (demo --perception)
+  std::string backend_config = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   double match_threshold = 1.0;
   double visible_range = 10.0;
 };
@@ -47,6 +52,7 @@ struct RobotFigures {
   // (at the peer's first key pose it holds) and the RMS position error of the peer's key poses
   // in this robot's frame, with no alignment.
   std::vector<std::pair<int, TransformError>> merged;
+  std::map<int, Pose> merged_frames;  // the optimizer's T_a_b per merged peer
   std::vector<std::pair<int, double>> peer_traj_rmse;
   double update_ms_median = NAN, update_ms_p99 = NAN;
   int keypose_bundles = 0, peer_bundles = 0;
@@ -162,7 +168,9 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     }
     // T_a_b as the optimizer holds it: the peer's first key pose in this robot's frame, composed
     // with the inverse of where the peer's own odometry put that key pose.
-    f.merged.emplace_back(b, transformError(in_odom.est.front() * in_odom.ref.front().inverse(), truth.T_a_b(a, b)));
+    const Pose T_a_b = in_odom.est.front() * in_odom.ref.front().inverse();
+    f.merged.emplace_back(b, transformError(T_a_b, truth.T_a_b(a, b)));
+    f.merged_frames[b] = T_a_b;
     double sq = 0;
     for (std::size_t i = 0; i < in_world.est.size(); ++i)
       sq += (rt.T_world_odom * in_world.est[i].translation() - in_world.ref[i].translation()).squaredNorm();
@@ -173,6 +181,36 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     f.update_ms_p99 = quantile(log.update_ms, 0.99);
   }
   return f;
+}
+
+// The paper-comparable inter-robot figures of one ordered pair (a hosts, b is the peer): the
+// transforms are judged against the best rigid alignment of the two robots' own maps (own_map.h)
+// over the landmarks both hold, not against the true frames; and the merged map's consistency,
+// the distance between the two robots' own landmarks of one real object once b's are placed in
+// a's frame by a's merged estimate of b.
+struct MapAgreement {
+  int a = 0, b = 0;
+  std::size_t shared = 0;
+  std::optional<TransformError> place_vs_maps, merged_vs_maps;
+  std::vector<double> merged_distances;
+};
+
+MapAgreement mapAgreement(int a, int b, const std::vector<Object>& own_a, const std::vector<Object>& own_b,
+                          const RobotRunLog& log_a, const RobotFigures& f, const TeamTruth& truth,
+                          const ObjectMatchOptions& mo) {
+  MapAgreement out{a, b, 0, std::nullopt, std::nullopt, {}};
+  const SharedLandmarks sh =
+      sharedLandmarks(own_a, truth.robot(a).T_world_odom, own_b, truth.robot(b).T_world_odom, truth.objects, mo);
+  out.shared = sh.in_a.size();
+  const std::optional<Pose> T_maps = mapAlignment(sh);  // b's map into a's frame
+  if (!T_maps) return out;
+  if (const auto it = log_a.closures.find(b); it != log_a.closures.end())
+    out.place_vs_maps = transformError(it->second.T_a_b, *T_maps);
+  if (const auto it = f.merged_frames.find(b); it != f.merged_frames.end()) {
+    out.merged_vs_maps = transformError(it->second, *T_maps);
+    out.merged_distances = landmarkDistances(sh, it->second);
+  }
+  return out;
 }
 
 void plotRobot(int a, const RobotRunLog& log, const TeamTruth& truth, const std::vector<Object>& visible,
@@ -222,6 +260,9 @@ int main(int argc, char** argv) {
                  "Perception mode the run was started with (label-free, emulated, oracle), stated in the report");
   app.add_option("--json", opts.json, "Write the figures as benchmark JSON (suite system)");
   app.add_option("--classes", opts.classes, "Class table")->capture_default_str();
+  app.add_option("--backend-config", opts.backend_config,
+                 "Back-end configuration for replaying each robot's own observations (its own map)")
+      ->capture_default_str();
   app.add_option("--match-threshold", opts.match_threshold, "Object match distance, metres")->capture_default_str();
   app.add_option("--visible-range", opts.visible_range,
                  "Ground-truth objects within this horizontal distance of a path count as observable")
@@ -234,11 +275,12 @@ int main(int argc, char** argv) {
     const std::vector<Object> visible = visibleObjects(truth, opts.visible_range);
 
     std::vector<RobotFigures> figs;
+    std::map<int, RobotRunLog> logs;
     std::map<int, std::string> detections;  // per robot, from its driver's SENSOR_STATUS
     for (int a : opts.robots) {
       const std::string path = opts.run_dir + "/logs/robot" + std::to_string(a) + ".lcmlog";
       int bad = 0;
-      const RobotRunLog log = readRobotLog(path, a, bad);
+      const RobotRunLog& log = logs[a] = readRobotLog(path, a, bad);
       if (bad) spdlog::warn("{}: {} messages failed to decode", path, bad);
       detections[a] = log.detections.empty() ? "unknown (no SENSOR_STATUS logged)" : log.detections;
       figs.push_back(evaluateRobot(a, log, truth, visible, opts));
@@ -247,7 +289,7 @@ int main(int argc, char** argv) {
       plotRobot(a, log, truth, visible, classes, base + "_oblique", View::oblique());
     }
 
-    std::int64_t team_bytes = 0, team_msgs = 0;
+    TeamTraffic traffic;
     for (int a : opts.robots) {
       const std::string team_log = opts.run_dir + "/logs/team" + std::to_string(a) + ".lcmlog";
       if (!fs::exists(team_log)) {
@@ -256,9 +298,9 @@ int main(int argc, char** argv) {
       }
       const TeamTraffic t = readTeamTraffic(team_log, a);
       if (t.undecodable) spdlog::warn("{}: {} team messages failed to decode", team_log, t.undecodable);
-      team_bytes += t.bytes;
-      team_msgs += t.messages;
+      traffic += t;
     }
+    const std::int64_t team_bytes = traffic.bytes();
     double metres = 0;
     for (const RobotTruth& r : truth.robots) metres += r.path_length_m;
     std::size_t max_landmarks = 0;
@@ -288,6 +330,34 @@ int main(int argc, char** argv) {
       recalls.push_back(f.objects.overall.recall);
     }
     const std::size_t pairs_possible = opts.robots.size() * (opts.robots.size() - 1);
+    ObjectMatchOptions mo;
+    mo.threshold = opts.match_threshold;
+    mo.planar = true;
+    std::map<int, std::vector<Object>> own_maps;
+    const BackendConfig backend = loadBackendConfig(opts.backend_config);
+    for (int a : opts.robots) {
+      const std::string journal = opts.run_dir + "/state/optimizer" + std::to_string(a) + ".journal";
+      if (!fs::exists(journal)) {
+        spdlog::warn("{}: missing, robot {}'s own map is unknown (no map-alignment figures for its pairs)", journal, a);
+        continue;
+      }
+      own_maps[a] = ownOnlyMap(journal, a, backend, classes);
+      spdlog::info("robot {}: own map of {} landmarks from {}", a, own_maps[a].size(), journal);
+    }
+    std::vector<MapAgreement> agreements;
+    std::vector<double> place_vs_maps_t, place_vs_maps_yaw, merged_vs_maps_t, consistency;
+    for (const RobotFigures& f : figs)
+      for (int b : opts.robots) {
+        if (b == f.robot || !own_maps.count(f.robot) || !own_maps.count(b)) continue;
+        const MapAgreement& g = agreements.emplace_back(
+            mapAgreement(f.robot, b, own_maps[f.robot], own_maps[b], logs[f.robot], f, truth, mo));
+        if (g.place_vs_maps) {
+          place_vs_maps_t.push_back(g.place_vs_maps->translation_m);
+          place_vs_maps_yaw.push_back(g.place_vs_maps->yaw_deg);
+        }
+        if (g.merged_vs_maps) merged_vs_maps_t.push_back(g.merged_vs_maps->translation_m);
+        consistency.insert(consistency.end(), g.merged_distances.begin(), g.merged_distances.end());
+      }
 
     // Perception: what the run asked for and what every driver says it published.
     bool oracle = opts.perception == "oracle";
@@ -306,6 +376,17 @@ int main(int argc, char** argv) {
     report.add("demo.inter_robot_trans_err_m", mean(trans_err), "m", true, 0.5, 0.54).note =
         "mean over " + std::to_string(pairs_found) + " of " + std::to_string(pairs_possible) + " ordered pairs found";
     report.add("demo.inter_robot_yaw_err_deg", mean(yaw_err), "deg", true, 2.0);
+    report.add("demo.inter_robot_vs_maps_trans_err_m", mean(place_vs_maps_t), "m", true, 0.15, 0.16).note =
+        "place recognition's transform against the best rigid alignment of the two robots' own maps (own "
+        "observations replayed from their journals) over the landmarks both hold (the paper's comparison; ground truth only pairs the landmarks), mean over " +
+        std::to_string(place_vs_maps_t.size()) + " ordered pairs";
+    report.add("demo.inter_robot_vs_maps_yaw_err_deg", mean(place_vs_maps_yaw), "deg", true);
+    report.add("demo.merged_vs_maps_trans_err_m", mean(merged_vs_maps_t), "m", true).note =
+        "the optimizer's merged frame against the same map alignment";
+    report.add("demo.merged_consistency_median_m", consistency.empty() ? NAN : median(consistency), "m", true).note =
+        "distance between two robots' own landmarks of one real object, the peer's placed by the host's merged frame (" +
+        std::to_string(consistency.size()) + " landmark pairs)";
+    report.add("demo.merged_consistency_p90_m", consistency.empty() ? NAN : quantile(consistency, 0.9), "m", true);
     report.add("demo.merged_trans_err_m", mean(merged_trans_err), "m", true).note =
         "the optimizer's estimate of each merged peer's frame, after the joint solve (" +
         std::to_string(merged_trans_err.size()) + " ordered pairs)";
@@ -322,7 +403,14 @@ int main(int argc, char** argv) {
     report.add("demo.precision", mean(precisions), "", false, 0.95).note = object_note;
     report.add("demo.recall", mean(recalls), "", false, 0.92).note = object_note;
     report.add("demo.f1", mean(f1s), "", false, 0.93).note = object_note;
-    report.add("demo.team_bytes", double(team_bytes), "bytes").note = std::to_string(team_msgs) + " team-bus messages";
+    report.add("demo.team_bytes", double(team_bytes), "bytes").note =
+        std::to_string(traffic.messages) + " team-bus messages; IPv4 bytes on the wire (LCM, UDP and IP headers included; " +
+        std::to_string(traffic.payload) + " bytes of LCM payload)";
+    const double all = std::max<double>(1.0, double(team_bytes));
+    report.add("demo.share.bundles", double(traffic.bundles) / all, "").note = "of the wire bytes: observation bundles";
+    report.add("demo.share.maps", double(traffic.maps) / all, "").note = "object maps";
+    report.add("demo.share.heartbeats", double(traffic.heartbeats) / all, "");
+    report.add("demo.share.acks", double(traffic.acks) / all, "");
     report.add("demo.bytes_per_landmark", bw.bytes_per_landmark, "bytes", true, 200.0, 1800.0);
     report.add("demo.bytes_per_metre", bw.bytes_per_metre, "bytes", true, 500.0, 1650.0);
     report.printTable(std::cout);
@@ -378,6 +466,21 @@ int main(int argc, char** argv) {
            << opt << " | " << rmse << " |\n";
       }
     if (pairs_found == 0) md << "| - | - | no transform found | |\n";
+    md << "\nThe same transforms against the best rigid alignment of the two robots' own maps (each robot's own "
+          "observations replayed from its optimizer journal) over the landmarks both hold (the paper's comparison; "
+          "the ground truth only pairs the landmarks), and the merged map's consistency: the distance between the "
+          "two robots' own landmarks of one real object, the peer's placed by the host's merged frame.\n\n"
+          "| robot | peer | landmarks both hold | place recognition vs maps: m / deg | optimizer vs maps: m / deg | "
+          "consistency median / p90 m |\n|---|---|---|---|---|---|\n";
+    auto err = [](const std::optional<TransformError>& e) {
+      return e ? num(e->translation_m) + " / " + num(e->yaw_deg, 2) : std::string("-");
+    };
+    for (const MapAgreement& g : agreements)
+      md << "| " << g.a << " | " << g.b << " | " << g.shared << " | " << err(g.place_vs_maps) << " | "
+         << err(g.merged_vs_maps) << " | "
+         << (g.merged_distances.empty() ? std::string("-")
+                                        : num(median(g.merged_distances)) + " / " + num(quantile(g.merged_distances, 0.9)))
+         << " |\n";
     md << "\n## Pictures\n\n";
     for (int a : opts.robots)
       md << "![robot" << a << "](robot" << a << "_top.png)\n![robot" << a << " oblique](robot" << a

@@ -5,6 +5,7 @@
 
 #include "app/channels.h"
 #include "msg/convert.h"
+#include "team/messages.h"
 #include "slide/keypose_bundle_t.hpp"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
@@ -69,32 +70,41 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
   return out;
 }
 
+TeamTraffic& TeamTraffic::operator+=(const TeamTraffic& o) {
+  bundles += o.bundles;
+  maps += o.maps;
+  heartbeats += o.heartbeats;
+  acks += o.acks;
+  payload += o.payload;
+  messages += o.messages;
+  undecodable += o.undecodable;
+  return *this;
+}
+
 TeamTraffic readTeamTraffic(const std::string& path, int robot) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw std::runtime_error(path + ": cannot open LCM log");
   TeamTraffic out;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     int sender = -1;
-    bool ok = false;
+    std::int64_t* kind = nullptr;
     if (ev->channel == channels::kTeamHeartbeat) {
       sync_heartbeat_t m{};
-      ok = decode(ev, m);
-      if (ok) sender = m.sender;
+      if (decode(ev, m)) sender = m.sender, kind = &out.heartbeats;
     } else if (ev->channel == channels::kTeamChunk) {
       sync_chunk_t m{};
-      ok = decode(ev, m);
-      if (ok) sender = m.sender;
+      if (decode(ev, m)) sender = m.sender, kind = m.kind == sync_chunk_t::MAP ? &out.maps : &out.bundles;
     } else if (ev->channel == channels::kTeamAck) {
       sync_ack_t m{};
-      ok = decode(ev, m);
-      if (ok) sender = m.sender;
+      if (decode(ev, m)) sender = m.sender, kind = &out.acks;
     } else {
       continue;
     }
-    if (!ok) {
+    if (!kind) {
       ++out.undecodable;
     } else if (sender == robot) {
-      out.bytes += ev->datalen;
+      *kind += static_cast<std::int64_t>(team::lcmWireBytes(ev->channel, static_cast<std::size_t>(ev->datalen)));
+      out.payload += ev->datalen;
       ++out.messages;
     }
   }

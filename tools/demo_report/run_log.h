@@ -37,11 +37,17 @@ struct RobotRunLog {
 // Reads one robot bus log; messages that fail to decode are counted in `bad` and skipped.
 RobotRunLog readRobotLog(const std::string& path, int robot, int& bad);
 
-// Team-bus traffic a robot sent, from the team-bus log recorded on its own host: bytes and
-// messages of TEAM_HEARTBEAT / TEAM_CHUNK / TEAM_ACK whose sender is `robot`, so that summing
-// the hosts' figures counts every message once, at its sender.
+// Team-bus traffic a robot sent, from the team-bus log recorded on its own host: messages of
+// TEAM_HEARTBEAT / TEAM_CHUNK / TEAM_ACK whose sender is `robot`, so that summing the hosts'
+// figures counts every message once, at its sender. Bytes are IPv4 bytes on the wire
+// (team::lcmWireBytes: LCM header, channel, payload, UDP and IP headers), split by what the
+// message carries.
 struct TeamTraffic {
-  std::int64_t bytes = 0, messages = 0, undecodable = 0;
+  std::int64_t bundles = 0, maps = 0, heartbeats = 0, acks = 0;  // wire bytes
+  std::int64_t payload = 0;                                     // LCM payload bytes only
+  std::int64_t messages = 0, undecodable = 0;
+  std::int64_t bytes() const { return bundles + maps + heartbeats + acks; }
+  TeamTraffic& operator+=(const TeamTraffic& o);
 };
 TeamTraffic readTeamTraffic(const std::string& path, int robot);
 
