@@ -8,9 +8,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "app/app.h"
 #include "backend/backend_config.h"
+#include "bench/stats.h"
 #include "eval/transform_error.h"
 #include "objects/class_table.h"
 #include "bundle_messages.h"
@@ -88,6 +90,58 @@ void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std
   std::printf("\n");
 }
 
+// Each own observation placed in the world by the true key pose, against the nearest true
+// object of its class within 2 m: the offset along the line of sight (positive: beyond the
+// object's centre) and across it, per class. Which classes' observations are biased, and by how
+// much, independently of the estimate.
+class ObservationErrors {
+ public:
+  explicit ObservationErrors(const ClassTable& classes) : classes_(classes) {}
+
+  void add(const KeyPoseBundle& b, const RobotTruth& truth, const std::vector<Object>& objects) {
+    const StampedPose* g = truthAt(truth, b.utime * 1e-6);
+    if (!g) return;
+    for (const Object& o : b.objects) {
+      const Eigen::Vector3d p = g->pose * o.position();
+      const Object* best = nullptr;
+      double best_d = 2.0;
+      for (const Object& t : objects)
+        if (t.class_id == o.class_id && (t.position() - p).head<2>().norm() < best_d) {
+          best_d = (t.position() - p).head<2>().norm();
+          best = &t;
+        }
+      Errors& e = errors_[o.class_id];
+      if (!best) {
+        ++e.unmatched;
+        continue;
+      }
+      const Eigen::Vector2d ray = (p - g->pose.translation()).head<2>().normalized();
+      const Eigen::Vector2d d = (p - best->position()).head<2>();
+      e.along.push_back(d.dot(ray));
+      e.across.push_back(std::abs(ray.x() * d.y() - ray.y() * d.x()));
+    }
+  }
+
+  void print() const {
+    for (const auto& [c, e] : errors_) {
+      const ClassInfo* info = classes_.find(c);
+      std::printf("observations of %s: %zu within 2 m of a true one (%d not): along the line of sight median %+.3f m "
+                  "(p10 %+.3f, p90 %+.3f), across median %.3f m\n",
+                  info ? info->name.c_str() : std::to_string(c).c_str(), e.along.size(), e.unmatched,
+                  e.along.empty() ? NAN : quantile(e.along, 0.5), e.along.empty() ? NAN : quantile(e.along, 0.1),
+                  e.along.empty() ? NAN : quantile(e.along, 0.9), e.across.empty() ? NAN : quantile(e.across, 0.5));
+    }
+  }
+
+ private:
+  struct Errors {
+    std::vector<double> along, across;
+    int unmatched = 0;
+  };
+  const ClassTable& classes_;
+  std::map<int, Errors> errors_;
+};
+
 struct JournalEvent {
   std::string channel;
   const void* data;
@@ -132,11 +186,16 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "Back-end configuration")->capture_default_str();
   app.add_option("--classes", classes_path, "Class table")->capture_default_str();
   app.add_option("--every", every, "Also print the state every this many bundles")->capture_default_str();
-  bool own_only = false;
+  bool own_only = false, observation_errors = false;
   app.add_flag("--own-only", own_only, "Replay only the host's own inputs (no peer bundles, no inter-robot transforms)");
+  app.add_flag("--observation-errors", observation_errors,
+               "Also print, per class, how far the host's own observations lie from their true objects (placed by the "
+               "true key poses) along and across the line of sight");
   return runApp(app, common, argc, argv, [&] {
     const TeamTruth truth = readTeamTruth(data, robots);
-    OptimizerNode node(loadBackendConfig(config), ClassTable::load(classes_path), robot, {}, {});
+    const ClassTable classes = ClassTable::load(classes_path);
+    OptimizerNode node(loadBackendConfig(config), classes, robot, {}, {});
+    ObservationErrors obs_errors(classes);
     const std::vector<OptimizerNode::JournalInput> inputs = readInputs(journal);
     std::map<std::pair<int, int>, Pose> odom_of;  // (robot, seq) -> odometry pose of the bundle
     int bundles = 0, index = 0;
@@ -181,6 +240,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> warnings;
         const KeyPoseBundle b = fromMsg(m, warnings);
         odom_of[{b.robot, b.seq}] = b.odom_pose;
+        if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
         node.handle(e->channel, e->data, e->datalen);
         if (++bundles % every == 0) {
           char prefix[64];
@@ -192,6 +252,7 @@ int main(int argc, char** argv) {
     node.optimizer().fullSolve();
     printState(node.optimizer(), truth, odom_of, "final (full solve):");
     std::printf("merges undone: %d, rebuilds: %d\n", node.optimizer().unmerged(), node.optimizer().rebuilds());
+    if (observation_errors) obs_errors.print();
     return 0;
   });
 }
