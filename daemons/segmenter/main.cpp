@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
     inbox.subscribe<lidar_scan_t>(scan_ch, [&](auto&, auto& m) { node.onScan(m); });
     inbox.subscribe<rgbd_frame_t>(rgbd_ch, [&](auto&, auto& m) { node.onRgbd(m); });
     inbox.subscribe<odometry_t>(odom_ch, [&](auto&, auto& m) { node.onOdom(m); });
+    // A segmenter more than a few seconds behind its sensor skips frames rather than queue MBs.
+    inbox.setQueueCapacity(scan_ch, 30);
+    inbox.setQueueCapacity(rgbd_ch, 30);
     installStopHandlers();
     spdlog::info("robot {}: {} + {} + {} -> {} on {} (lidar mode {})", robot, scan_ch, rgbd_ch, odom_ch, out_ch, url,
                  cfg.lidar_mode);

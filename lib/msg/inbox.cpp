@@ -30,8 +30,15 @@ void Inbox::add(const std::string& channel, Deliver deliver) {
   sub->deliver = std::move(deliver);
   sub->inbox = this;
   sub->channel = channel;
-  handles_.push_back(lcm_.subscribe(channel, &Sub::onRaw, sub.get()));
+  lcm::Subscription* handle = lcm_.subscribe(channel, &Sub::onRaw, sub.get());
+  if (handle) handle->setQueueCapacity(kDefaultQueueCapacity);
+  handles_.push_back(handle);
   subs_.push_back(std::move(sub));
+}
+
+void Inbox::setQueueCapacity(const std::string& channel, int capacity) {
+  for (std::size_t i = 0; i < subs_.size(); ++i)
+    if (subs_[i]->channel == channel && handles_[i]) handles_[i]->setQueueCapacity(capacity);
 }
 
 void Inbox::subscribeBytes(const std::string& channel, BytesHandler handler) {

@@ -6,6 +6,13 @@
 // exception out of a handler is caught too. Whatever fails is dropped, counted per channel
 // and reason, and logged (the first at once, then a summary at most every `log_period_s`).
 // Replaces LCM's `lcm.subscribe(...)` in every daemon.
+//
+// LCM queues at most 30 received messages per subscription between two handle() calls and
+// drops the rest without a word; a daemon busy for a while (a full solve, a burst of peer
+// bundles after a link came back) lost observations that way. Every subscription here queues
+// up to kDefaultQueueCapacity messages instead; a sensor stream whose frames may be skipped
+// when the daemon falls behind (a scan or an image of a few MB) sets a smaller capacity.
+
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
@@ -26,6 +33,9 @@ class Inbox {
  public:
   // Largest legitimate message on a slide bus: a full RGBD frame or LiDAR scan is a few MB.
   static constexpr std::size_t kDefaultMaxBytes = 64u << 20;
+  // Messages queued per subscription while the daemon is busy (bundles, maps and closures are
+  // a few KB: 10,000 hold a long link cut's burst of peer bundles in tens of MB).
+  static constexpr int kDefaultQueueCapacity = 10000;
 
   explicit Inbox(lcm::LCM& lcm, std::size_t max_bytes = kDefaultMaxBytes, double log_period_s = 10.0);
   ~Inbox();
@@ -60,6 +70,10 @@ class Inbox {
   void subscribeBytes(const std::string& channel, BytesHandler handler);
   // Ends every subscription to `channel` (its counts stay).
   void unsubscribe(const std::string& channel);
+  // At most `capacity` messages of `channel` wait for the daemon; older ones beyond it are
+  // dropped by LCM (for sensor frames a lagging daemon must skip). Applies to the channel's
+  // current subscriptions.
+  void setQueueCapacity(const std::string& channel, int capacity);
   // A bytes handler calls this for a message it found malformed, so that it is counted here.
   void countUndecodable(const std::string& channel, const std::string& why);
 
