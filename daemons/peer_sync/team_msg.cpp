@@ -87,6 +87,13 @@ sync_heartbeat_t toLcm(const Heartbeat& m) {
   o.counter = m.counter;
   o.held = toLcm(m.held);
   o.num_origins = static_cast<int16_t>(o.held.size());
+  for (const auto& [origin, version] : m.maps) {
+    map_version_t v;
+    v.origin = static_cast<int16_t>(origin);
+    v.version = version;
+    o.maps.push_back(v);
+  }
+  o.num_maps = static_cast<int16_t>(o.maps.size());
   setMac(o, m.mac);
   return o;
 }
@@ -123,12 +130,18 @@ std::optional<Heartbeat> fromLcm(const sync_heartbeat_t& m, std::string* why) {
   h.sender = m.sender;
   h.counter = m.counter;
   if (!fromLcm(m.held, &h.held, why)) return std::nullopt;
+  for (const map_version_t& v : m.maps) {
+    if (v.origin < 0) return *why = "map of robot " + std::to_string(v.origin), std::nullopt;
+    if (v.version < 1) return *why = "map version " + std::to_string(v.version) + " of robot " + std::to_string(v.origin), std::nullopt;
+    if (!h.maps.emplace(v.origin, v.version).second)
+      return *why = "robot " + std::to_string(v.origin) + "'s map listed twice", std::nullopt;
+  }
   copyMac(m, h.mac);
   return h;
 }
 
 std::optional<Chunk> fromLcm(const sync_chunk_t& m, std::string* why) {
-  if (m.kind != sync_chunk_t::BUNDLE && m.kind != sync_chunk_t::MAP)
+  if (m.kind != sync_chunk_t::BUNDLE && m.kind != sync_chunk_t::MAP && m.kind != sync_chunk_t::MAP_DELTA)
     return *why = "unknown chunk kind " + std::to_string(m.kind), std::nullopt;
   Chunk c;
   c.sender = m.sender;

@@ -10,6 +10,7 @@ namespace {
 
 constexpr std::uint8_t kBundleFormat = 3;  // 3: chained utime and step predicted from the previous ones
 constexpr std::uint8_t kMapFormat = 3;  // 3: positions in 5 cm, cuboid yaw in 8 bits
+constexpr std::uint8_t kMapDeltaFormat = 1;
 
 // Flags of a bundle header.
 constexpr std::uint8_t kFirst = 1;
@@ -267,6 +268,44 @@ std::optional<SharedMap> decodeMap(const Bytes& data, std::int32_t robot, std::i
   m.frame_robot = static_cast<std::int32_t>(frame);
   readObjects(r, &m.objects, ObjectListKind::Map);
   return finish(r, std::move(m), error);
+}
+
+Bytes encodeMapDelta(const MapDelta& d) {
+  ByteWriter w;
+  w.u8(kMapDeltaFormat);
+  w.svarint(d.base);
+  w.svarint(d.utime);
+  w.svarint(d.frame_robot);
+  w.varint(d.removed.size());
+  std::int64_t prev = 0;
+  for (std::int64_t id : d.removed) {  // ascending ids as differences
+    w.svarint(id - prev);
+    prev = id;
+  }
+  writeObjects(w, d.changed, ObjectListKind::Map);
+  return w.take();
+}
+
+std::optional<MapDelta> decodeMapDelta(const Bytes& data, std::string* error) {
+  ByteReader r(data);
+  MapDelta d;
+  const std::uint8_t format = r.u8();
+  if (r.ok() && format != kMapDeltaFormat) r.fail("unknown map delta format " + std::to_string(format));
+  const std::int64_t base = r.svarint(), utime = r.svarint(), frame = r.svarint();
+  if (r.ok() && (base < 1 || base > INT32_MAX)) r.fail("base version out of range");
+  if (r.ok() && (frame < INT32_MIN || frame > INT32_MAX)) r.fail("frame robot out of range");
+  d.base = static_cast<std::int32_t>(base);
+  d.utime = utime;
+  d.frame_robot = static_cast<std::int32_t>(frame);
+  const std::uint64_t n = r.varint();
+  if (r.ok() && n > data.size()) r.fail("removed count beyond the payload");
+  std::int64_t id = 0;
+  for (std::uint64_t i = 0; r.ok() && i < n; ++i) {
+    id += r.svarint();
+    d.removed.push_back(id);
+  }
+  readObjects(r, &d.changed, ObjectListKind::Map);
+  return finish(r, std::move(d), error);
 }
 
 }  // namespace slide::team

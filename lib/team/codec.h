@@ -71,4 +71,17 @@ bool chainedBundle(const Bytes& data);
 Bytes encodeMap(const SharedMap& m);
 std::optional<SharedMap> decodeMap(const Bytes& data, std::int32_t robot, std::int32_t version, std::string* error);
 
+// A map's changes against an earlier version of it that the receivers hold (`base`): the ids
+// of objects gone and the objects new or changed (written as in maps), with the new version's
+// utime and frame. map_sharing.h decides what changed.
+struct MapDelta {
+  std::int32_t base = 0;
+  std::int64_t utime = 0;
+  std::int32_t frame_robot = 0;
+  std::vector<std::int64_t> removed;
+  std::vector<Object> changed;
+};
+Bytes encodeMapDelta(const MapDelta& d);
+std::optional<MapDelta> decodeMapDelta(const Bytes& data, std::string* error);
+
 }  // namespace slide::team

@@ -21,6 +21,7 @@ enum class Drop : int {
   FutureCounter,   // counter beyond the local clock plus max_counter_ahead_s (not accepted, locks nobody out)
   Undeliverable,   // a held bundle that does not decode with its predecessor: skipped at delivery
   JournalWrite,    // not taken: the journal could not be written (a full disk); peers send it again
+  MapBaseMissing,  // map changes against a version not held (the next heartbeat says which is)
   kCount
 };
 
@@ -28,7 +29,7 @@ inline const char* dropName(Drop d) {
   static constexpr std::array<const char*, static_cast<int>(Drop::kCount)> names = {
       "unknown_sender", "bad_mac",  "replay",    "malformed", "unknown_origin", "wrong_origin",
       "seq_backwards",  "seq_jump", "duplicate", "stale",     "overflow",       "lost",
-      "future_counter", "undeliverable",  "journal_write"};
+      "future_counter", "undeliverable",  "journal_write", "map_base_missing"};
   return names[static_cast<int>(d)];
 }
 

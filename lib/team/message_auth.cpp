@@ -43,6 +43,11 @@ Bytes MessageAuth::canonical(const Heartbeat& m) {
   w.u32(static_cast<std::uint32_t>(m.sender));
   w.u64(static_cast<std::uint64_t>(m.counter));
   writeRanges(w, m.held);
+  w.u32(static_cast<std::uint32_t>(m.maps.size()));
+  for (const auto& [origin, version] : m.maps) {
+    w.u32(static_cast<std::uint32_t>(origin));
+    w.u32(static_cast<std::uint32_t>(version));
+  }
   return w.take();
 }
 

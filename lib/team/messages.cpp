@@ -13,7 +13,9 @@ std::size_t rangesSize(const OriginRanges& r) {
 }
 }  // namespace
 
-std::size_t encodedSize(const Heartbeat& m) { return kFingerprint + 2 + 8 + rangesSize(m.held) + 1 + m.mac.size(); }
+std::size_t encodedSize(const Heartbeat& m) {
+  return kFingerprint + 2 + 8 + rangesSize(m.held) + 2 + 6 * m.maps.size() + 1 + m.mac.size();
+}
 std::size_t encodedSize(const Chunk& m) { return kFingerprint + 2 + 2 + 8 + 1 + 2 + 4 + 2 + 2 + 2 + m.data.size() + 1 + m.mac.size(); }
 std::size_t encodedSize(const Ack& m) { return kFingerprint + 2 + 2 + 8 + rangesSize(m.acked) + 1 + m.mac.size(); }
 

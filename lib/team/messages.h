@@ -3,6 +3,7 @@
 // sync_heartbeat_t, sync_chunk_t and sync_ack_t), and their encoded sizes on the wire.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "team/byte_io.h"
@@ -16,10 +17,12 @@ struct Heartbeat {
   std::int32_t sender = 0;
   std::int64_t counter = 0;
   OriginRanges held;  // what the sender holds, per origin (its own bundles once sent)
+  std::map<std::int32_t, std::int32_t> maps;  // peers' map versions the sender holds, by robot
   Mac mac{};
 };
 
-enum class ChunkKind : std::int8_t { Bundle = 0, Map = 1 };
+// Map: a whole object map; MapDelta: its changes against a version the peers hold (codec.h).
+enum class ChunkKind : std::int8_t { Bundle = 0, Map = 1, MapDelta = 2 };
 
 struct Chunk {
   std::int32_t sender = 0;

@@ -30,7 +30,8 @@ PeerSyncNode::PeerSyncNode(SyncConfig cfg, const std::string& state_dir, Micros 
       reassembler_(cfg_.reassembly_bytes, secs(cfg_.reassembly_timeout_s)),
       limiter_(cfg_.rate_limit_bytes_per_s, cfg_.burst_bytes),
       traffic_(now),
-      next_heartbeat_(now) {
+      next_heartbeat_(now),
+      maps_(MapSharingParams{cfg_.map_delta_move_m}) {
   // What was shared of the journalled own bundles: the same stream through the same policy.
   // One that does not decode (a journal of another encoding version) is not shared, and counted.
   // Own bundles that came back from peers keep the tags they came with: never signed here.
@@ -104,9 +105,7 @@ std::vector<std::int32_t> PeerSyncNode::peersInReach(Micros now) const {
 }
 
 std::size_t PeerSyncNode::landmarks(std::int32_t robot) const {
-  if (robot == cfg_.robot) return own_map_ ? own_map_->objects.size() : 0;
-  auto it = peer_map_size_.find(robot);
-  return it == peer_map_size_.end() ? 0 : it->second;
+  return maps_.landmarks(robot);
 }
 
 std::vector<std::string> PeerSyncNode::trafficSummary(Micros now) const {
@@ -166,8 +165,7 @@ void PeerSyncNode::setOwnMap(SharedMap m, Micros now) {
   own_map_version_ = static_cast<std::int32_t>(
       std::clamp<std::int64_t>(std::max<std::int64_t>(secs_since, std::int64_t{own_map_version_} + 1), 1, INT32_MAX));
   m.version = own_map_version_;
-  own_map_data_ = encodeMap(m);
-  own_map_ = std::move(m);
+  maps_.setOwn(std::move(m));
 }
 
 // ---- team input ----
@@ -202,6 +200,8 @@ void PeerSyncNode::receive(const Heartbeat& m, Micros now) {
   p.last_heard = now;
   p.last_heartbeat = now;
   p.known = m.held;
+  const auto ours = m.maps.find(cfg_.robot);
+  p.our_map = ours == m.maps.end() ? 0 : ours->second;
   forgetKnown(p);
   // It holds something we lack (announced only once sent, so this is a loss or a relay to
   // come): our heartbeat should say so soon.
@@ -230,7 +230,7 @@ void PeerSyncNode::receive(const Chunk& m, Micros now) {
   if (!admit(m.sender, m.counter, inTeam(m.sender) && auth_.verify(m), wireBytes(m))) return;
   peers_[m.sender].last_heard = now;
   if (m.num_chunks < 1 || m.chunk_index < 0 || m.chunk_index >= m.num_chunks || m.data.size() > kMaxChunkBytes ||
-      m.seq < 0 || (m.kind != ChunkKind::Bundle && m.kind != ChunkKind::Map))
+      m.seq < 0 || (m.kind != ChunkKind::Bundle && m.kind != ChunkKind::Map && m.kind != ChunkKind::MapDelta))
     return drop(Drop::Malformed);
   if (m.kind == ChunkKind::Bundle) receiveBundleChunk(m, now);
   else receiveMapChunk(m, now);
@@ -331,18 +331,18 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle 
 
 void PeerSyncNode::receiveMapChunk(const Chunk& m, Micros now) {
   if (m.origin != m.sender) return drop(Drop::WrongOrigin);
-  auto it = peer_map_version_.find(m.origin);
-  if (it != peer_map_version_.end() && m.seq <= it->second) return drop(Drop::Stale);
+  const auto held = maps_.held();
+  if (const auto it = held.find(m.origin); it != held.end() && m.seq <= it->second) return drop(Drop::Stale);
   std::optional<Drop> refused;
   std::optional<Bytes> payload = reassembler_.add(m, now, &refused);
   if (refused) return drop(*refused);
   if (!payload) return;
-  std::string error;
-  auto map = decodeMap(*payload, m.origin, m.seq, &error);
-  if (!map) return drop(Drop::Malformed);
-  peer_map_version_[m.origin] = m.seq;
-  peer_map_size_[m.origin] = map->objects.size();
-  new_maps_[m.origin] = std::move(*map);
+  std::variant<SharedMap, Drop> got = maps_.receive(m.kind, m.origin, m.seq, *payload);
+  if (const Drop* d = std::get_if<Drop>(&got)) {
+    if (*d == Drop::MapBaseMissing) somethingNew();  // our next heartbeat tells which version we hold
+    return drop(*d);
+  }
+  new_maps_[m.origin] = std::move(std::get<SharedMap>(got));
 }
 
 void PeerSyncNode::forgetKnown(Peer& p) {
@@ -390,6 +390,7 @@ TickOutput PeerSyncNode::tick(Micros now) {
     h.sender = cfg_.robot;
     h.counter = counters_.nextOwn();
     h.held = announced();
+    h.maps = maps_.held();
     auth_.sign(h);
     const std::size_t bytes = lcmWireBytes(channels_.heartbeat, encodedSize(h));
     limiter_.force(static_cast<double>(bytes), now);
@@ -483,15 +484,22 @@ PeerSyncNode::SendResult PeerSyncNode::sendPayload(ChunkKind kind, std::int32_t 
 }
 
 void PeerSyncNode::sendMap(Micros now, TickOutput& out) {
-  if (!own_map_) return;
+  if (!maps_.own()) return;
   const auto reach = peersInReach(now);
   if (reach.empty()) return;
+  // What each peer in reach said it holds of our map (0: none, or not said yet).
+  std::vector<std::int32_t> held;
+  for (std::int32_t id : reach) held.push_back(peers_[id].our_map);
+  const bool everyone_current =
+      std::all_of(held.begin(), held.end(), [&](std::int32_t v) { return v == own_map_version_; });
   const bool changed = own_map_version_ != map_sent_version_;
   const Micros since = now - map_sent_at_;
-  if (!((changed && (map_sent_version_ == 0 || since >= secs(cfg_.map_period_s))) || since >= secs(cfg_.map_refresh_s)))
+  if (!((changed && (map_sent_version_ == 0 || since >= secs(cfg_.map_period_s))) ||
+        (!everyone_current && since >= secs(cfg_.map_refresh_s))))
     return;
-  if (sendPayload(ChunkKind::Map, -1, cfg_.robot, own_map_version_, own_map_data_, reach, now, out) != SendResult::Sent)
-    return;
+  const std::optional<MapSharing::Outgoing> o = maps_.next(held);
+  if (!o || sendPayload(o->kind, -1, cfg_.robot, o->version, o->payload, reach, now, out) != SendResult::Sent) return;
+  maps_.sent(*o);
   map_sent_version_ = own_map_version_;
   map_sent_at_ = now;
 }

@@ -18,6 +18,7 @@
 #include "team/drop_reason.h"
 #include "team/message_auth.h"
 #include "team/codec.h"
+#include "team/map_sharing.h"
 #include "team/observation_db.h"
 #include "team/observation_thinning.h"
 #include "team/rate_limiter.h"
@@ -100,6 +101,7 @@ class PeerSyncNode {
     bool ack_pending = false;
     Micros ack_due = 0;
     std::set<std::int32_t> ack_origins;
+    std::int32_t our_map = 0;  // version of our map its last heartbeat said it holds (0: none)
   };
 
   bool admit(std::int32_t sender, std::int64_t counter, bool mac_ok, std::size_t bytes);
@@ -148,14 +150,11 @@ class PeerSyncNode {
   bool news_ = false;  // since the last heartbeat
   Micros counters_saved_at_ = 0;
 
-  std::optional<SharedMap> own_map_;
-  Bytes own_map_data_;
+  MapSharing maps_;
   std::int32_t own_map_version_ = 0;
   std::int32_t map_sent_version_ = 0;
   Micros map_sent_at_ = 0;
-  std::map<std::int32_t, std::int32_t> peer_map_version_;  // latest received per robot
-  std::map<std::int32_t, std::size_t> peer_map_size_;
-  std::map<std::int32_t, SharedMap> new_maps_;
+  std::map<std::int32_t, SharedMap> new_maps_;  // received since the last takeMaps()
 };
 
 }  // namespace slide::team

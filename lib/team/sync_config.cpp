@@ -23,6 +23,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.peer_timeout_s = n.get<double>("peer_timeout_s", c.peer_timeout_s);
   c.map_period_s = n.get<double>("map_period_s", c.map_period_s);
   c.map_refresh_s = n.get<double>("map_refresh_s", c.map_refresh_s);
+  c.map_delta_move_m = n.get<double>("map_delta_move_m", c.map_delta_move_m);
   c.rate_limit_bytes_per_s = n.get<double>("rate_limit_bytes_per_s", c.rate_limit_bytes_per_s);
   c.burst_bytes = n.get<double>("burst_bytes", c.burst_bytes);
   c.max_chunk_bytes = n.get<unsigned>("max_chunk_bytes", static_cast<unsigned>(c.max_chunk_bytes));
@@ -54,6 +55,7 @@ void SyncConfig::validate() const {
   positive(peer_timeout_s, "peer_timeout_s");
   positive(map_period_s, "map_period_s");
   positive(map_refresh_s, "map_refresh_s");
+  positive(map_delta_move_m, "map_delta_move_m");
   positive(rate_limit_bytes_per_s, "rate_limit_bytes_per_s");
   positive(burst_bytes, "burst_bytes");
   positive(reassembly_timeout_s, "reassembly_timeout_s");

@@ -26,7 +26,8 @@ struct SyncConfig {
   double relay_delay_s = 10.0;       // a third robot's bundle is relayed once a peer lacked it this long
   double peer_timeout_s = 40.0;      // a peer is in reach while heard within this
   double map_period_s = 90.0;        // own map sent at most this often when it changed
-  double map_refresh_s = 120.0;      // and again this often when unchanged
+  double map_refresh_s = 120.0;      // and again this often while a peer in reach lacks it
+  double map_delta_move_m = 0.1;     // map changes: an object moved or resized by more is sent again
   double rate_limit_bytes_per_s = 20000;
   double burst_bytes = 8000;
   std::size_t max_chunk_bytes = 1024;       // payload bytes per chunk

@@ -3,9 +3,11 @@
 // per-origin order, identical to what its origin recorded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "team/bundle_pack.h"
+#include "team/codec.h"
 #include "team/sim_network.h"
 #include "team_test_util.h"
 
@@ -428,6 +430,53 @@ TEST(PeerSyncSim, MapsAreSharedAndNewestWins) {
   EXPECT_EQ(maps[0].objects.size(), 400u);
   EXPECT_EQ(run.net().node(2).landmarks(kIds[0]), 400u);
   EXPECT_TRUE(run.net().node(2).takeMaps().empty());
+}
+
+// A map that keeps changing a little: after the first whole map, peers get the changes against
+// the version their heartbeats say they hold, under loss, and end with the latest version.
+TEST(PeerSyncSim, MapChangesGoOutAgainstTheVersionPeersHold) {
+  Scenario s;
+  s.bundles = 2;
+  s.loss = 0.2;
+  SimRun run(s, "map_changes");
+  std::mt19937 rng(11);
+  std::size_t whole = 0, changes = 0, whole_bytes = 0, change_bytes = 0;
+  run.net().on_send = [&](std::size_t from, const TeamMessage& m) {
+    const auto* c = std::get_if<Chunk>(&m);
+    if (!c || from != 0) return;
+    if (c->kind == ChunkKind::Map) ++whole, whole_bytes += c->data.size();
+    if (c->kind == ChunkKind::MapDelta) ++changes, change_bytes += c->data.size();
+  };
+  SharedMap m;
+  m.frame_robot = kIds[0];
+  for (int i = 0; i < 200; ++i) m.objects.push_back(randomObject(rng, i));
+  std::uniform_int_distribution<int> pick(0, 199);
+  for (int round = 0; round < 8; ++round) {
+    for (int k = 0; k < 5; ++k) {  // a few landmarks move, one is new
+      Object& o = m.objects[static_cast<std::size_t>(pick(rng))];
+      o = randomObject(rng, o.id);
+    }
+    m.objects.push_back(randomObject(rng, 1000 + round));
+    run.net().node(0).setOwnMap(m, run.net().now());
+    run.net().run(200 * kSecond);  // longer than map_period_s (defaults: 90 s)
+  }
+  run.net().node(0).setOwnMap(m, run.net().now());  // unchanged content, a new version
+  run.converge(10 * kSecond);
+  run.net().run(300 * kSecond);  // lost sends are repeated at map_refresh_s
+  for (std::size_t i : {std::size_t{1}, std::size_t{2}}) {
+    std::vector<SharedMap> maps = run.net().node(i).takeMaps();
+    ASSERT_FALSE(maps.empty()) << "robot " << kIds[i];
+    const SharedMap& got = maps.back();
+    ASSERT_EQ(got.objects.size(), m.objects.size()) << "robot " << kIds[i];
+    const std::optional<SharedMap> whole_now = decodeMap(encodeMap(m), kIds[0], got.version, nullptr);
+    for (const Object& o : whole_now->objects) {
+      const auto it = std::find_if(got.objects.begin(), got.objects.end(), [&](const Object& g) { return g.id == o.id; });
+      ASSERT_NE(it, got.objects.end()) << "robot " << kIds[i] << " lacks object " << o.id;
+      EXPECT_LE((it->position() - o.position()).norm(), 0.14) << "object " << o.id;
+    }
+  }
+  EXPECT_GE(changes, 5u);
+  EXPECT_LT(change_bytes / std::max<std::size_t>(1, changes), whole_bytes / std::max<std::size_t>(1, whole) / 4);
 }
 
 TEST(PeerSyncSim, ThinnedPayloadsAreReproducedAfterARestart) {

@@ -18,6 +18,7 @@ TEST(TeamMsg, RoundTripsKeepTheMacValidAndSizesMatchLcm) {
   h.held[1].insert(SeqRange{0, 10});
   h.held[1].insert(SeqRange{20, 30});
   h.held[3].insert(5);
+  h.maps = {{1, 1700}, {3, 12}};
   two.sign(h);
   const sync_heartbeat_t lh = toLcm(h);
   EXPECT_EQ(static_cast<std::size_t>(lh.getEncodedSize()), encodedSize(h));
@@ -25,6 +26,10 @@ TEST(TeamMsg, RoundTripsKeepTheMacValidAndSizesMatchLcm) {
   auto h2 = fromLcm(lh, &why);
   ASSERT_TRUE(h2) << why;
   EXPECT_TRUE(one.verify(*h2));
+  EXPECT_EQ(h2->maps, h.maps);
+  Heartbeat forged = *h2;
+  forged.maps[1] = 1701;  // the map versions are under the MAC too
+  EXPECT_FALSE(one.verify(forged));
 
   Chunk c;
   c.sender = 2;
@@ -70,6 +75,21 @@ TEST(TeamMsg, MalformedInputIsRefusedWithAReason) {
   h.held[0].ranges[1].first = 3;
   h.held[0].ranges[1].last = 2;
   EXPECT_FALSE(fromLcm(h, &why));
+  h.held[0].ranges[1].first = 11;  // valid again
+  h.held[0].ranges[1].last = 12;
+  map_version_t twice;
+  twice.origin = 3;
+  twice.version = 5;
+  h.maps = {twice, twice};
+  h.num_maps = 2;
+  EXPECT_FALSE(fromLcm(h, &why));
+  EXPECT_NE(why.find("listed twice"), std::string::npos);
+  h.maps.resize(1);
+  h.maps[0].version = 0;
+  h.num_maps = 1;
+  EXPECT_FALSE(fromLcm(h, &why));
+  h.maps[0].version = 5;
+  EXPECT_TRUE(fromLcm(h, &why)) << why;
   sync_chunk_t c{};
   c.kind = 7;
   EXPECT_FALSE(fromLcm(c, &why));
