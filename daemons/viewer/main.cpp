@@ -15,6 +15,7 @@
 #include "app/robot_bus.h"
 #include "app/stop_signal.h"
 #include "log_player.h"
+#include "objects/class_table.h"
 #include "msg/inbox.h"
 #include "viewer_node.h"
 #include "web_server.h"
@@ -54,6 +55,8 @@ int main(int argc, char** argv) {
   WebServerOptions web;
   web.web_root = std::string(SLIDE_SOURCE_DIR) + "/daemons/viewer/web";
   ViewerNodeParams params;
+  std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
+  app.add_option("--classes", classes_path, "Class table (names and colours of the legend)")->capture_default_str();
   app.add_option("--robot", robots, "Listen to robot N's bus at its default URL (repeat for several robots)");
   app.add_option("--bus", buses, "Listen to robot N's bus at URL: N=URL (repeatable)");
   app.add_option("--team-url", team_url, "Also listen to the team bus at this URL (links and traffic)");
@@ -82,6 +85,14 @@ int main(int argc, char** argv) {
       throw std::runtime_error("nothing to show: give --robot N, --bus N=URL or --replay RUN_DIR");
     if (!replay.empty() && (!robots.empty() || !buses.empty() || !team_url.empty()))
       throw std::runtime_error("--replay plays logs; it does not mix with --robot, --bus or --team-url");
+
+    nlohmann::json classes = nlohmann::json::object();
+    const ClassTable table = ClassTable::load(classes_path);
+    for (int id : table.ids()) {
+      const ClassInfo& c = table.at(id);
+      classes[std::to_string(id)] = {{"name", c.name}, {"shape", shapeName(c.shape)},
+                                     {"color", {c.color[0], c.color[1], c.color[2]}}};
+    }
 
     std::mutex mutex;  // the scene, the node and the player
     viewer::Scene scene;
@@ -131,6 +142,7 @@ int main(int argc, char** argv) {
       const bool changed = c.epoch != scene.epoch() || c.version != scene.version();
       if (!changed && now - c.last_status_s < 1.0) return "";
       nlohmann::json out = scene.delta(c.epoch, c.version);
+      if (out["reset"].get<bool>()) out["classes"] = classes;
       if (now - c.last_status_s >= 1.0 || changed) {
         nlohmann::json status = {{"mode", player ? (follow ? "follow" : "replay") : "live"},
                                  {"received", node.received()},

@@ -81,7 +81,7 @@ bool ViewerNode::onRobotBus(int view, const std::string& channel, const void* da
 }
 
 bool ViewerNode::onObjectMap(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  object_map_t m;
+  object_map_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.robot != view || m.frame_robot != view) return drop(ch, "not this robot's own map");
   if (m.num_objects > params_.max_objects) return drop(ch, "too many objects");
@@ -104,7 +104,7 @@ bool ViewerNode::onObjectMap(int view, const std::string& ch, const void* data, 
 }
 
 bool ViewerNode::onTrajectory(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  trajectory_t m;
+  trajectory_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.frame_robot != view) return drop(ch, "in another robot's frame");
   std::vector<Eigen::Vector3d> positions;
@@ -135,7 +135,7 @@ void ViewerNode::updateCorrection(RobotMemory& mem) {
 }
 
 bool ViewerNode::onKeyposeBundle(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  keypose_bundle_t m;
+  keypose_bundle_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's bundle");
   if (!finiteMsgPose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
@@ -150,7 +150,7 @@ bool ViewerNode::onKeyposeBundle(int view, const std::string& ch, const void* da
 }
 
 bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  frame_instances_t m;
+  frame_instances_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's instances");
   if (m.num_instances > params_.max_instances) return drop(ch, "too many instances");
@@ -174,7 +174,7 @@ bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, 
 }
 
 bool ViewerNode::onLoopClosure(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  loop_closure_t m;
+  loop_closure_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   for (double v : {m.x, m.y, m.z, m.yaw, m.score})
     if (!std::isfinite(v)) return drop(ch, "non-finite transform");
@@ -193,7 +193,7 @@ bool ViewerNode::onLoopClosure(int view, const std::string& ch, const void* data
 }
 
 bool ViewerNode::onOptimizerStatus(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  optimizer_status_t m;
+  optimizer_status_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.robot != view) return drop(ch, "another robot's status");
   if (!std::isfinite(m.update_ms)) return drop(ch, "non-finite update time");
@@ -206,7 +206,7 @@ bool ViewerNode::onOptimizerStatus(int view, const std::string& ch, const void* 
 }
 
 bool ViewerNode::onSensorStatus(int view, const std::string& ch, const void* data, std::size_t size, double t) {
-  stream_status_t m;
+  stream_status_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.robot != view) return drop(ch, "another robot's status");
   viewer::SensorView s;
@@ -225,15 +225,15 @@ bool ViewerNode::onSensorStatus(int view, const std::string& ch, const void* dat
 bool ViewerNode::onTeamBus(int listener, const std::string& channel, const void* data, std::size_t size, double t) {
   int sender = -1;
   if (channel == ch_.team_heartbeat) {
-    sync_heartbeat_t m;
+    sync_heartbeat_t m{};
     if (!decodeExact(data, size, m)) return drop(channel, "undecodable");
     sender = m.sender;
   } else if (channel == ch_.team_chunk) {
-    sync_chunk_t m;
+    sync_chunk_t m{};
     if (!decodeExact(data, size, m)) return drop(channel, "undecodable");
     sender = m.sender;
   } else if (channel == ch_.team_ack) {
-    sync_ack_t m;
+    sync_ack_t m{};
     if (!decodeExact(data, size, m)) return drop(channel, "undecodable");
     sender = m.sender;
   } else {
