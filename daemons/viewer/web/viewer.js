@@ -139,7 +139,8 @@ function setInstances(v, inst) {
   v.group.add(v.instances);
 }
 
-const ringMaterial = new THREE.MeshBasicMaterial({ color: 0xff40ff, wireframe: true });
+const ringMaterial = new THREE.MeshBasicMaterial({ color: 0xff40ff, side: THREE.DoubleSide });
+const ringGeometry = new THREE.RingGeometry(0.85, 1.0, 32);  // flat on the ground (the x-y plane)
 function drawRings(v) {
   v.rings.clear();
   for (const lc of v.loops.slice(-3)) {
@@ -147,11 +148,13 @@ function drawRings(v) {
     for (const id of ids) {
       const m = v.objects.get(id);
       if (!m) continue;
-      const ring = new THREE.Mesh(geo.sphere, ringMaterial);
+      const ring = new THREE.Mesh(ringGeometry, ringMaterial);
       const box = new THREE.Box3().setFromObject(m);
+      const size = box.getSize(new THREE.Vector3());
       box.getCenter(ring.position);
-      const r = Math.max(box.getSize(new THREE.Vector3()).length() / 2 + 0.3, 0.8);
-      ring.scale.set(r, r, r);
+      ring.position.z = box.min.z + 0.05;
+      const r = Math.max(Math.hypot(size.x, size.y) / 2 + 0.4, 0.8);
+      ring.scale.set(r, r, 1);
       v.rings.add(ring);
     }
   }
@@ -181,10 +184,28 @@ function apply(msg) {
   if (msg.status) state.status = msg.status;
   buildRobots();
   showPanels();
+  if (!state.fitted) state.fitted = fit();
   summarise();
 }
 
+// Frames the selected view's map and trajectories (once when it first has any, and on 'fit').
+function fit() {
+  const v = state.views.get(state.selected);
+  if (!v) return false;
+  const box = new THREE.Box3();
+  for (const m of v.objects.values()) box.expandByObject(m);
+  for (const line of v.trajectories.values()) box.expandByObject(line);
+  if (box.isEmpty()) return false;
+  const centre = box.getCenter(new THREE.Vector3());
+  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 10);
+  const dir = camera.position.clone().sub(controls.target).normalize();
+  controls.target.copy(centre);
+  camera.position.copy(centre).addScaledVector(dir, radius * 1.8);
+  return true;
+}
+
 function select(id) {
+  state.fitted = state.selected === id && state.fitted;
   state.selected = id;
   for (const v of state.views.values()) v.group.visible = v.id === id;
   buildRobots();
@@ -273,9 +294,10 @@ window.slideScreenOf = (x, y, z) => {
 };
 
 // Camera: orbit (free), top (from above, north up), follow (keeps its offset to the robot).
-document.querySelectorAll('#camera button').forEach((b) => b.onclick = () => {
+$('fit').onclick = () => fit();
+document.querySelectorAll('#camera button[data-mode]').forEach((b) => b.onclick = () => {
   state.camMode = b.dataset.mode;
-  document.querySelectorAll('#camera button').forEach((o) => o.className = o === b ? 'on' : '');
+  document.querySelectorAll('#camera button[data-mode]').forEach((o) => o.className = o === b ? 'on' : '');
   controls.enableRotate = state.camMode !== 'top';
   if (state.camMode === 'top') {
     const d = camera.position.distanceTo(controls.target);
