@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
   app.add_option("--web-root", web.web_root, "Folder with the page (index.html, viewer.js, node_modules/three)")
       ->capture_default_str();
   app.add_option("--max-clients", web.max_clients, "Browsers at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("--request-timeout-ms", web.request_timeout_ms,
+                 "A request not complete, or a browser not reading, for this long is dropped")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 600000));
   app.add_option("--period", web.period_s, "Seconds between updates to a browser")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 10.0));

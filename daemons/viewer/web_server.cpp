@@ -151,11 +151,16 @@ void WebServer::senderLoop(Client& c) {
       spdlog::error("viewer update failed: {}", e.what());
     }
     if (!out.empty()) {
+      const auto t0 = std::chrono::steady_clock::now();
       mg_lock_connection(c.conn);
       const int n = mg_websocket_write(c.conn, MG_WEBSOCKET_OPCODE_TEXT, out.data(), out.size());
       mg_unlock_connection(c.conn);
       if (n <= 0) {
-        spdlog::info("a browser stopped reading (send failed or timed out); it is dropped");
+        const double blocked = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (blocked * 1000.0 >= 0.9 * opts_.request_timeout_ms)
+          spdlog::warn("a browser stopped reading: a send timed out after {:.1f} s; it is dropped", blocked);
+        else
+          spdlog::info("a browser went away (send failed)");
         break;
       }
       std::lock_guard<std::mutex> lock(mutex_);
