@@ -46,11 +46,18 @@ std::vector<LogSource> logSourcesOf(const std::string& path) {
 LogPlayer::LogPlayer(std::vector<LogSource> sources, ViewerNode& node, viewer::Scene& scene, bool follow, double wall)
     : sources_(std::move(sources)), node_(node), scene_(scene), follow_(follow), clock_(0, 0, follow, wall) {
   for (const LogSource& s : sources_) readers_.push_back(std::make_unique<LcmLogReader>(s.path));
-  readMore();
-  if (!events_.empty()) clock_ = viewer::ReplayClock(events_.front().t, events_.back().t, follow, wall);
+  readMore(wall);
 }
 
-std::size_t LogPlayer::readMore() {
+void LogPlayer::addSources(const std::vector<LogSource>& sources) {
+  for (const LogSource& s : sources) {
+    if (std::any_of(sources_.begin(), sources_.end(), [&s](const LogSource& o) { return o.path == s.path; })) continue;
+    readers_.push_back(std::make_unique<LcmLogReader>(s.path));
+    sources_.push_back(s);
+  }
+}
+
+std::size_t LogPlayer::readMore(double wall) {
   std::vector<Event> fresh;
   for (std::size_t i = 0; i < readers_.size(); ++i) {
     const bool team = sources_[i].team;
@@ -73,6 +80,10 @@ std::size_t LogPlayer::readMore() {
   }
   std::stable_sort(events_.begin() + static_cast<long>(next_), events_.end(),
                    [](const Event& a, const Event& b) { return a.t < b.t; });
+  if (!events_.empty() && !timed_) {
+    clock_ = viewer::ReplayClock(events_.front().t, events_.back().t, follow_, wall);
+    timed_ = true;
+  }
   if (!events_.empty()) clock_.extend(events_.back().t);
   return fresh.size();
 }

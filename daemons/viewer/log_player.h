@@ -33,7 +33,9 @@ class LogPlayer {
   LogPlayer(std::vector<LogSource> sources, ViewerNode& node, viewer::Scene& scene, bool follow, double wall);
 
   // Reads what was appended since (follow mode); returns the number of new events.
-  std::size_t readMore();
+  std::size_t readMore(double wall);
+  // Adds the logs of `sources` not played yet (a run folder whose loggers started late).
+  void addSources(const std::vector<LogSource>& sources);
   // Feeds the node every event up to the clock's position at `wall` (resetting first when the
   // clock went back) and ticks the scene there.
   void advance(double wall);
@@ -59,6 +61,7 @@ class LogPlayer {
   std::vector<Event> events_;  // by time
   std::size_t next_ = 0;       // events_[0, next_) are in the scene
   double applied_ = -1e300;    // log time the scene is at
+  bool timed_ = false;         // the clock spans the events (there were any)
   viewer::ReplayClock clock_;
 };
 

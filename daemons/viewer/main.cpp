@@ -103,10 +103,21 @@ int main(int argc, char** argv) {
     ViewerNode node(scene, params);
     std::unique_ptr<LogPlayer> player;
     std::vector<Bus> bus_list;
+    std::vector<std::string> follow_dirs;  // run folders whose logs may appear later
     if (!replay.empty()) {
       std::vector<LogSource> sources;
-      for (const std::string& r : replay)
+      for (const std::string& r : replay) {
+        if (follow && std::filesystem::is_directory(r)) {
+          follow_dirs.push_back(r);
+          try {
+            for (const LogSource& s : logSourcesOf(r)) sources.push_back(s);
+          } catch (const std::runtime_error& e) {
+            spdlog::info("{}; waiting for its logs", e.what());
+          }
+          continue;
+        }
         for (const LogSource& s : logSourcesOf(r)) sources.push_back(s);
+      }
       player = std::make_unique<LogPlayer>(sources, node, scene, follow, wallSeconds());
       spdlog::info("replaying {} logs ({} events the viewer draws){}", sources.size(), player->events(),
                    follow ? ", following them as they grow" : "");
@@ -202,7 +213,13 @@ int main(int argc, char** argv) {
         const double now = steadySeconds();
         std::lock_guard<std::mutex> lock(mutex);
         if (follow && now - last_read >= 0.5) {
-          player->readMore();
+          for (const std::string& d : follow_dirs) {
+            try {
+              player->addSources(logSourcesOf(d));
+            } catch (const std::runtime_error&) {  // no logs there yet
+            }
+          }
+          player->readMore(wallSeconds());
           last_read = now;
         }
         player->advance(wallSeconds());
