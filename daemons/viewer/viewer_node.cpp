@@ -30,17 +30,6 @@ bool decodeExact(const void* data, std::size_t size, M& m) {
   }
 }
 
-bool finiteMsgPose(const pose3_t& m) {
-  double qn = 0;
-  for (double v : m.position)
-    if (!std::isfinite(v)) return false;
-  for (double v : m.orientation) {
-    if (!std::isfinite(v)) return false;
-    qn += v * v;
-  }
-  return qn > 0.5 && qn < 2.0;  // a unit quaternion up to rounding; anything else is garbage
-}
-
 std::string cut(const std::string& s, std::size_t n) { return s.size() <= n ? s : s.substr(0, n) + "..."; }
 }  // namespace
 
@@ -110,7 +99,7 @@ bool ViewerNode::onTrajectory(int view, const std::string& ch, const void* data,
   std::vector<Eigen::Vector3d> positions;
   std::map<int, Pose> optimized;
   for (int i = 0; i < m.num_poses; ++i) {
-    if (!finiteMsgPose(m.poses[i])) return drop(ch, "non-finite or absurd pose");
+    if (!usablePose(m.poses[i])) return drop(ch, "non-finite or absurd pose");
     const Pose T = fromMsg(m.poses[i]);
     if (!finitePose(T)) return drop(ch, "non-finite or absurd pose");
     positions.push_back(T.translation());
@@ -138,7 +127,7 @@ bool ViewerNode::onKeyposeBundle(int view, const std::string& ch, const void* da
   keypose_bundle_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's bundle");
-  if (!finiteMsgPose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
+  if (!usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
   const Pose T_odom_body = fromMsg(m.odom_pose);
   if (!finitePose(T_odom_body)) return drop(ch, "non-finite or absurd pose");
   RobotMemory& mem = memory_[view];
@@ -154,7 +143,7 @@ bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, 
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's instances");
   if (m.num_instances > params_.max_instances) return drop(ch, "too many instances");
-  if (!finiteMsgPose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
+  if (!usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
   const Pose T_frame_body = memory_[view].correction * fromMsg(m.odom_pose);
   if (!finitePose(T_frame_body)) return drop(ch, "non-finite or absurd pose");
   std::vector<viewer::InstanceView> raw;

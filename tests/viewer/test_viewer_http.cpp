@@ -15,29 +15,6 @@ using namespace slide::viewer_test;
 namespace fs = std::filesystem;
 
 namespace {
-const std::string kUpgrade =
-    "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-    "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
-
-// A WebSocket client: the handshake done, or fd -1.
-int openSocket(int port, int rcvbuf = 0) {
-  const int fd = connectLocal(port, rcvbuf);
-  if (fd < 0) return -1;
-  sendAll(fd, kUpgrade);
-  char buf[512];
-  pollfd p{fd, POLLIN, 0};
-  if (poll(&p, 1, 3000) <= 0) {
-    close(fd);
-    return -1;
-  }
-  const ssize_t n = recv(fd, buf, 12, 0);  // "HTTP/1.1 101" only: the frames stay in the socket
-  if (n < 12 || std::string(buf, 12) != "HTTP/1.1 101") {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 // `n` objects in a row, shifted by `dx` (so that every map is all new).
 object_map_t bigMap(int n, double dx) {
   std::vector<Object> objs;
