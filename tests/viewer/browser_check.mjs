@@ -3,7 +3,8 @@
 // 1. opens the page, waits for robot 0's scene (car, trunk, bush; its trajectory and robot 1's;
 //    key pose, instances, loop closure, team link), takes OUT_DIR/viewer.png and checks pixel
 //    colours where the car (red) and the trunk (green) project;
-// 2. writes OUT_DIR/phase1 and waits for a fourth object (a pole the test then appends to the log).
+// 2. writes OUT_DIR/phase1 and waits for a fourth object (a pole the test then appends to the log);
+// 3. pauses, seeks to the log's start (an empty map) and goes back to live (four objects).
 // Prints one line per step; exits non-zero naming what was missing.
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -52,7 +53,7 @@ try {
       const [px, py] = window.slideScreenOf(x, y, z);
       return Array.from(ctx.getImageData(Math.round(px), Math.round(py), 1, 1).data.slice(0, 3));
     };
-    return { car: at(10, 5, 1.2), trunk: at(20, -5, 4.0), empty: at(-30, 40, 0.0) };
+    return { car: at(10, 5, 1.2), trunk: at(20, -5, 4.0) };
   });
   console.log('pixels', JSON.stringify(sample));
   const [r, g, b] = sample.car;
@@ -68,6 +69,24 @@ try {
   }
   console.log('update after load: drawn');
   await page.screenshot({ path: `${out}/viewer_after.png` });
+  // Replay controls: pause, jump to the log's start (nothing drawn yet there), then back to live.
+  await page.click('#play');
+  await page.waitForFunction(() => window.slideScene.status.replay.paused, null, { timeout: 10000, polling: 100 });
+  await page.evaluate(() => {
+    const s = document.getElementById('slider');
+    s.value = 0;
+    s.dispatchEvent(new Event('change'));
+  });
+  try {
+    await page.waitForFunction(() => window.slideScene.views[0] && window.slideScene.views[0].objects === 0 &&
+      window.slideScene.status.replay.position === window.slideScene.status.replay.start, null, { timeout: 10000, polling: 100 });
+  } catch (e) {
+    throw new Error(`seeking to the start did not clear the map: ${JSON.stringify(await page.evaluate(() => [window.slideScene.views[0], window.slideScene.status]))}`);
+  }
+  await page.click('#live');
+  await page.waitForFunction(() => window.slideScene.views[0] && window.slideScene.views[0].objects === 4 &&
+    window.slideScene.status.replay.live, null, { timeout: 10000, polling: 100 });
+  console.log('replay controls: pause, seek to start, live');
   if (errors.length) throw new Error(`page errors: ${errors.join(' | ')}`);
 } catch (e) {
   failed = e;

@@ -2,7 +2,8 @@
 // the page's npm packages) against slide-viewer following a recorded log of robot 0's bus and
 // its team bus. The page must draw the map's shapes, both trajectories, the key pose, instances,
 // the loop closure and the team link, show the car red and the trunk green where they project,
-// and then draw a pole the test appends to the log after the page loaded. No Chromium, no node
+// then draw a pole the test appends to the log after the page loaded, and obey its replay
+// controls (pause, a seek back to the start, live). No Chromium, no node
 // or no playwright-core is a failure naming what to install, never a skip.
 #include <gtest/gtest.h>
 
@@ -69,6 +70,7 @@ TEST(ViewerBrowser, PageDrawsTheSceneAndALaterMessage) {
   EXPECT_TRUE(phase1) << "the page never showed the recorded scene:\n" << out.str();
   EXPECT_EQ(rc, 0) << out.str();
   EXPECT_NE(out.str().find("update after load: drawn"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("replay controls: pause, seek to start, live"), std::string::npos) << out.str();
   EXPECT_TRUE(fs::exists(dir / "viewer.png"));
   EXPECT_TRUE(viewer.alive());
   EXPECT_EQ(viewer.stop(), 0);
