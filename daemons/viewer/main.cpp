@@ -146,6 +146,8 @@ int main(int argc, char** argv) {
             if (!ok) bp->inbox->countUndecodable(channel, node.dropSummary());
           });
         }
+        // Only the newest scan's instances are drawn: a viewer that falls behind skips old ones.
+        if (!b.team) b.inbox->setQueueCapacity(ch.instances, 10);
         spdlog::info("listening to {} on {}", b.team ? "the team bus" : "robot " + std::to_string(b.robot) + "'s bus",
                      b.url);
       }
