@@ -242,6 +242,10 @@ function buildLegend() {
   }));
 }
 
+function rateText(bytesPerS) {
+  return bytesPerS < 1024 ? `${Math.round(bytesPerS)} B/s` : `${(bytesPerS / 1024).toFixed(1)} KB/s`;
+}
+
 function showPanels() {
   const v = state.views.get(state.selected);
   const o = v && v.optimizer;
@@ -253,7 +257,7 @@ function showPanels() {
   $('sensor-bar').style.width = s && s.total ? `${Math.min(100, 100 * s.sent / s.total)}%` : '0';
   const team = state.team[state.selected] || state.team[-1];
   $('team').textContent = team ? `linked: ${team.linked.length ? team.linked.map((r) => 'robot ' + r).join(', ') : 'none'}; ` +
-    `${(team.bytes_per_s / 1024).toFixed(1)} KB/s heard` : '–';
+    `${rateText(team.bytes_per_s)} on its team bus` : '–';
   $('loops').replaceChildren(...(v ? v.loops.slice().reverse() : []).map((lc) => {
     const d = document.createElement('div');
     d.textContent = `${lc.a === lc.b ? 'intra' : 'inter'} r${lc.a}←r${lc.b} ${lc.method}: ${lc.inliers_a.length} inliers, ` +
@@ -263,7 +267,7 @@ function showPanels() {
   if (v && !v.loops.length) $('loops').textContent = 'none yet';
   const st = state.status;
   const rate = state.rate.length > 1 ? (state.rate.at(-1)[1] - state.rate[0][1]) / Math.max(1, state.rate.at(-1)[0] - state.rate[0][0]) : 0;
-  $('traffic').textContent = st ? `${st.mode}; bus messages ${st.received}, dropped ${st.dropped}; to this page ${(rate / 1024).toFixed(1)} KB/s` : '';
+  $('traffic').textContent = st ? `${st.mode}; bus messages ${st.received}, dropped ${st.dropped}; to this page ${rateText(rate)}` : '';
   const r = st && st.replay;
   $('replay').hidden = !r;
   if (r) {
