@@ -18,6 +18,10 @@ add_library(slide_lcmtypes INTERFACE)
 add_dependencies(slide_lcmtypes slide_lcmtypes_gen)
 target_include_directories(slide_lcmtypes INTERFACE ${SLIDE_LCM_CPP_DIR})
 target_link_libraries(slide_lcmtypes INTERFACE PkgConfig::LCM)
+# LCM 1.3.1's coretypes encode a double through an int64_t pointer: under GCC's strict aliasing
+# (-O2 and up) a value stored just before encode() can be sent as the old one (a NaN or 12.5
+# assigned to a zeroed message encodes as 0). Every target that includes the types turns it off.
+target_compile_options(slide_lcmtypes INTERFACE -fno-strict-aliasing)
 
 find_file(LCM_JAR lcm.jar PATHS /usr/share/java /usr/local/share/java)
 if(Java_JAVAC_EXECUTABLE AND LCM_JAR)

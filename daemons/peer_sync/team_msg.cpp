@@ -68,16 +68,6 @@ bool saneObject(const Object& o) {
   return o.position().cwiseAbs().maxCoeff() <= kMaxCoordinate && o.extent().cwiseAbs().maxCoeff() <= kMaxObjectSize;
 }
 
-bool finitePose(const pose3_t& p) {
-  double qn = 0;
-  for (double v : p.position)
-    if (!std::isfinite(v)) return false;
-  for (double v : p.orientation) {
-    if (!std::isfinite(v)) return false;
-    qn += v * v;
-  }
-  return qn > 0.25;
-}
 
 }  // namespace
 
@@ -182,7 +172,7 @@ keypose_bundle_t toLcm(const Bundle& b) {
 
 std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
   const std::string who = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq);
-  if (!finitePose(m.odom_pose) || !finitePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
+  if (!usablePose(m.odom_pose) || !usablePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
       !withinFrame(m.relative_odom.position))
     return *why = who + ": invalid odom_pose or relative_odom (non-finite, or beyond " +
                   std::to_string(kMaxCoordinate) + " m)",

@@ -1,5 +1,6 @@
 #include "msg/convert.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace slide {
@@ -29,6 +30,17 @@ pose3_t toMsg(const Pose& T) {
 Pose fromMsg(const pose3_t& m) {
   return poseFromPositionQuaternion(vec(m.position),
                                     Eigen::Quaterniond(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]));
+}
+
+bool usablePose(const pose3_t& m) {
+  double qn = 0;
+  for (double v : m.position)
+    if (!std::isfinite(v)) return false;
+  for (double v : m.orientation) {
+    if (!std::isfinite(v)) return false;
+    qn += v * v;
+  }
+  return qn > 0.25;
 }
 
 object_t toMsg(const Object& o) {

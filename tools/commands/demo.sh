@@ -6,7 +6,7 @@ demo_usage() {
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
                     [--overlap F] [--rate R] [--settle SEC] [--out DIR]
                     [--perception label-free|emulated|oracle] [--data SIM_DIR]
-                    [--sensors lidar,rgbd,...] [--aerial-robots IDS]
+                    [--sensors lidar,rgbd,...] [--aerial-robots IDS] [--view-port P | --no-view]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -24,6 +24,10 @@ ground-truth labels reach the robots: an upper bound, and the report says so).
 --sensors gives each robot its sensor (a mixed team, e.g. lidar,rgbd,rgbd; default all lidar);
 an RGBD robot in a label-free run takes the detection emulator's masks, as it would a detector's.
 --aerial-robots lists the robots that fly (e.g. 2), the others drive.
+While the team runs, slide-viewer follows the run's logs and serves the live map at
+http://127.0.0.1:<view-port>/ (default 8080; over SSH: ssh -L 8080:127.0.0.1:8080 <this host>);
+the report gets its pictures of each robot's view. --no-view runs without it. Afterwards
+./slide view RUN_DIR replays the run in the browser.
 Defaults: --world forest --robots 3 --seed 1 --distance 150 --overlap 0.6 --rate 1 --settle 25
           --out runs/demo-<time> --perception label-free
 USAGE
@@ -31,7 +35,7 @@ USAGE
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse= sensors="" aerial=""
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse= sensors="" aerial="" view_port=8080
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
@@ -46,6 +50,8 @@ main() {
       --data) reuse=$2; shift 2 ;;
       --sensors) sensors=$2; shift 2 ;;
       --aerial-robots) aerial=$2; shift 2 ;;
+      --view-port) view_port=$2; shift 2 ;;
+      --no-view) view_port=""; shift ;;
       *) die "demo: unknown option '$1' (see ./slide demo --help)" ;;
     esac
   done
@@ -82,15 +88,45 @@ main() {
   local duration=$((mission + settle))
   team_run_write_config "$out" "$data" "$robots" "$rate" "$perception"
   [[ "$perception" != oracle ]] || log "ORACLE run: ground-truth labels reach the robots; its figures are an upper bound"
+  local viewer_pid=""
+  if [[ -n "$view_port" ]]; then
+    # On the host network: it follows the logs the robots' loggers write inside their namespaces.
+    slide-viewer --replay "$out" --follow --port "$view_port" > "$out/viewer.log" 2>&1 &
+    viewer_pid=$!
+    sleep 1
+    if kill -0 "$viewer_pid" 2> /dev/null; then
+      log "watch it live: http://127.0.0.1:$view_port/  (from another machine: ssh -L $view_port:127.0.0.1:$view_port $(hostname))"
+    else
+      log "the viewer did not start (port $view_port taken? see $out/viewer.log); the demo goes on without it"
+      viewer_pid=""
+    fi
+  fi
   log "2/3 running the team: $frames frames per robot, ~${mission}s of data at ${rate}x, then ${settle}s to settle"
   "$SLIDE_ROOT/slide" netlab --hosts "$robots" --config "$out/team.pmd" \
     --schedule "$(team_run_schedule "$robots" "$mission")" --duration "$duration" --wait-timeout 60 \
-    > "$out/netlab.log" 2>&1 || die "demo: the team run failed; see $out/netlab.log"
+    > "$out/netlab.log" 2>&1 || { [[ -z "$viewer_pid" ]] || kill "$viewer_pid"; die "demo: the team run failed; see $out/netlab.log"; }
+  local shots=""
+  if [[ -n "$viewer_pid" ]]; then
+    mkdir -p "$out/report"
+    shots=$(node "$SLIDE_ROOT/daemons/viewer/web/screenshot.mjs" "http://127.0.0.1:$view_port/" "$out/report/viewer" 30 \
+      2>> "$out/viewer.log") || log "no viewer pictures (see $out/viewer.log)"
+    kill "$viewer_pid" 2> /dev/null || true
+    wait "$viewer_pid" 2> /dev/null || true
+  fi
 
   log "3/3 evaluating against ground truth"
   local ids
   ids=$(seq -s, 0 $((robots - 1)))
   slide-demo-report --run "$out" --data "$data" --robots "$ids" --wall-s $((SECONDS - t0)) --perception "$perception" ||
     die "demo: evaluation failed"
-  log "report: $out/report/report.md (pictures beside it)"
+  if [[ -n "$shots" ]]; then
+    {
+      echo
+      echo "## Live viewer"
+      echo "Each robot's view at the end of the run (slide-viewer; replay with \`./slide view $out\`)."
+      local f
+      for f in $shots; do echo; echo "![$(basename "$f" .png)]($(basename "$f"))"; done
+    } >> "$out/report/report.md"
+  fi
+  log "report: $out/report/report.md (pictures beside it); replay in the browser: ./slide view $out"
 }

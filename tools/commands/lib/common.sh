@@ -20,7 +20,10 @@ SLIDE_PACKAGES=(
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   pluginlib-dev librcpputils-dev libament-index-cpp-dev libpcl-dev
   python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs python3-geometry-msgs
+  libcivetweb-dev nodejs chromium
 )
+# libcivetweb-dev: slide-viewer's HTTP and WebSocket server; nodejs (and npm, below): the viewer
+# page's three.js and its browser test's playwright-core; chromium: that browser test.
 
 missing_packages() {
   local p status
@@ -41,6 +44,22 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# The viewer page's npm packages (daemons/viewer/web/package-lock.json: three, and playwright-core
+# for its browser test), installed when missing or older than the lock file. Debian's nodejs
+# comes without npm, which is a package of its own (other nodejs builds bring it).
+install_web_packages() {
+  local web="$SLIDE_ROOT/daemons/viewer/web"
+  [[ -f "$web/node_modules/.package-lock.json" && "$web/node_modules/.package-lock.json" -nt "$web/package-lock.json" ]] && return 0
+  if ! command -v npm > /dev/null; then
+    local sudo=""
+    [[ $(id -u) -eq 0 ]] || sudo="sudo"
+    log "installing npm (Debian package) for the viewer page's three.js"
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends npm > /dev/null
+  fi
+  log "installing the viewer page's npm packages in $web"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error > /dev/null) || die "npm ci in $web failed"
+}
+
 build_project() {
   if [[ ! -f "$SLIDE_BUILD/CMakeCache.txt" ]]; then
     cmake -S "$SLIDE_ROOT" -B "$SLIDE_BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -51,5 +70,6 @@ build_project() {
 # ensure_built: install what is missing and bring the build up to date (cheap when current).
 ensure_built() {
   install_packages
+  install_web_packages
   build_project
 }
