@@ -68,3 +68,43 @@ TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
   EXPECT_EQ(tracker.issues().total(), 1);
   EXPECT_EQ(tracker.bundles(), static_cast<int>(bundles.size()));
 }
+
+// lidar_mode learned: the model (the fixture tests/data/models/range3: points nearer than 9 m
+// are "car", farther than 11 m "vegetation") labels the points; the labelled segmenter makes
+// the car cluster one car instance, vegetation no object. The scan's own labels are ignored.
+TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
+  const ClassTable classes = ClassTable::loadDefault();
+  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  cfg.lidar_mode = "learned";
+  cfg.learned = LearnedLidarParams{};
+  cfg.learned.model = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/range3.yaml";
+  cfg.learned.width = 512;
+  std::vector<frame_instances_t> out;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
+    out.push_back(decoded<frame_instances_t>(b));
+    return true;
+  });
+  LabelledScan scan;
+  for (int i = 0; i < 20; ++i)      // a car-sized block of returns 5 m ahead ...
+    for (int j = 0; j < 15; ++j) scan.xyz.emplace_back(5.0f + 0.1f * (i % 3), -1.0f + 0.1f * i, -1.2f + 0.1f * j);
+  for (int i = 0; i < 200; ++i)     // ... and a hedge 15 m to the left
+    scan.xyz.emplace_back(0.05f * i - 5, 15.0f, -1.0f + 0.01f * (i % 100));
+  scan.intensity.assign(scan.size(), 0.5f);
+  scan.semantic.assign(scan.size(), 71);  // labels on the bus (oracle): not used in learned mode
+  scan.instance.assign(scan.size(), 0);
+  segmenter.onScan(scanToMsg(scan, driveByHeader(0)));
+  segmenter.onOdom(driveByOdometry(0));
+  segmenter.onOdom(driveByOdometry(1));
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 1u);
+  EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
+  EXPECT_EQ(out[0].instances[0].num_points, 300);
+
+  cfg.learned.model = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/missing.yaml";
+  try {
+    SegmenterNode bad(0, "INSTANCES", classes, cfg, 50, [](const std::string&, const std::vector<uint8_t>&) { return true; });
+    FAIL() << "a missing model must fail at start";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.onnx: no such model file"), std::string::npos) << e.what();
+  }
+}

@@ -120,4 +120,21 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
   return r;
 }
 
+std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const PointLabeler& labeler, int runs, LabelIou& iou) {
+  const LabelledScan truth = readLabelledScan(bin_path);
+  if (!truth.hasLabels()) throw std::runtime_error(bin_path + ": no labels beside the scan");
+  LabelledScan scan;
+  scan.xyz = truth.xyz;
+  scan.intensity = truth.intensity;
+  std::vector<double> ms;
+  for (int run = 0; run < runs; ++run) {
+    LabelledScan s = scan;
+    const double c0 = threadCpuMs();
+    labeler.label(s);
+    ms.push_back(threadCpuMs() - c0);
+    if (run + 1 == runs) iou.add(truth.semantic, s.semantic);
+  }
+  return ms;
+}
+
 }  // namespace slide
