@@ -86,19 +86,16 @@ std::vector<YoloInstance> decodeYoloSeg(const cv::Mat& out0, const cv::Mat& out1
   const std::vector<Candidate> kept = suppress(std::move(cand), p.nms_iou, std::max(0, p.max_detections));
 
   const int mh = out1.size[2], mw = out1.size[3];
-  const cv::Mat protos(32, mh * mw, CV_32F, const_cast<float*>(out1.ptr<float>()));
+  const float* protos = out1.ptr<float>();
+  const std::size_t plane = static_cast<std::size_t>(mh) * mw;
+  // Image pixel centre -> prototype coordinate (pixel centres at integers), one bilinear step
+  // through the letterbox: the two resizes of the description fused.
+  const double sx = double(mw) / p.input_width, sy = double(mh) / p.input_height;
+  auto protoX = [&](int u) { return ((u + 0.5) * lb.scale + lb.pad_x) * sx - 0.5; };
+  auto protoY = [&](int v) { return ((v + 0.5) * lb.scale + lb.pad_y) * sy - 0.5; };
   const cv::Rect image_rect(0, 0, image_w, image_h);
   std::vector<YoloInstance> out;
   for (const auto& k : kept) {
-    cv::Mat coeff(1, 32, CV_32F);
-    for (int j = 0; j < 32; ++j) coeff.at<float>(0, j) = at(4 + classes + j, k.anchor);
-    const cv::Mat logit = cv::Mat(coeff * protos).reshape(1, mh);
-    cv::Mat prob, input_size, image_size;
-    cv::exp(-logit, prob);
-    prob = 1.0 / (1.0 + prob);
-    cv::resize(prob, input_size, cv::Size(p.input_width, p.input_height), 0, 0, cv::INTER_LINEAR);
-    const cv::Rect inner = cv::Rect(lb.pad_x, lb.pad_y, lb.width, lb.height) & cv::Rect(0, 0, p.input_width, p.input_height);
-    cv::resize(input_size(inner), image_size, cv::Size(image_w, image_h), 0, 0, cv::INTER_LINEAR);
     YoloInstance inst;
     inst.model_class = k.cls;
     inst.score = k.score;
@@ -111,13 +108,68 @@ std::vector<YoloInstance> decodeYoloSeg(const cv::Mat& out0, const cv::Mat& out1
                                    cv::Point(static_cast<int>(std::ceil(b.x + b.width - 0.5)),
                                              static_cast<int>(std::ceil(b.y + b.height - 0.5)))) &
                           image_rect;
-    if (crop.area() > 0) {
-      cv::Mat inside = image_size(crop) > p.mask_threshold;
-      inside.copyTo(inst.mask(crop));
+    if (crop.area() <= 0) {
+      out.push_back(std::move(inst));
+      continue;
+    }
+    // Sigmoid of the coefficients . prototypes over the prototype pixels the crop reads.
+    auto clampX = [&](double x) { return std::clamp(static_cast<int>(std::floor(x)), 0, mw - 1); };
+    auto clampY = [&](double y) { return std::clamp(static_cast<int>(std::floor(y)), 0, mh - 1); };
+    const int x0 = clampX(protoX(crop.x)), x1 = std::min(mw - 1, clampX(protoX(crop.x + crop.width - 1)) + 1);
+    const int y0 = clampY(protoY(crop.y)), y1 = std::min(mh - 1, clampY(protoY(crop.y + crop.height - 1)) + 1);
+    const int pw = x1 - x0 + 1;
+    std::vector<float> prob(static_cast<std::size_t>(pw) * (y1 - y0 + 1), 0.0f);
+    for (int j = 0; j < 32; ++j) {
+      const float c = at(4 + classes + j, k.anchor);
+      const float* pj = protos + j * plane;
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) prob[(y - y0) * pw + (x - x0)] += c * pj[y * mw + x];
+    }
+    for (float& v : prob) v = 1.0f / (1.0f + std::exp(-v));
+    // Bilinear weights per crop column (border replicated, as cv::resize).
+    std::vector<int> cx0(crop.width), cx1(crop.width);
+    std::vector<float> wx(crop.width);
+    for (int i = 0; i < crop.width; ++i) {
+      const double x = std::clamp(protoX(crop.x + i), 0.0, double(mw - 1));
+      cx0[i] = static_cast<int>(std::floor(x)), cx1[i] = std::min(cx0[i] + 1, mw - 1);
+      wx[i] = static_cast<float>(x - cx0[i]);
+      cx0[i] -= x0, cx1[i] -= x0;
+    }
+    for (int r = 0; r < crop.height; ++r) {
+      const double y = std::clamp(protoY(crop.y + r), 0.0, double(mh - 1));
+      const int ya = static_cast<int>(std::floor(y)), yb = std::min(ya + 1, mh - 1);
+      const float wy = static_cast<float>(y - ya);
+      const float* ra = prob.data() + (ya - y0) * pw;
+      const float* rb = prob.data() + (yb - y0) * pw;
+      std::uint8_t* m = inst.mask.ptr<std::uint8_t>(crop.y + r) + crop.x;
+      for (int i = 0; i < crop.width; ++i) {
+        const float top = ra[cx0[i]] + wx[i] * (ra[cx1[i]] - ra[cx0[i]]);
+        const float bottom = rb[cx0[i]] + wx[i] * (rb[cx1[i]] - rb[cx0[i]]);
+        if (top + wy * (bottom - top) > p.mask_threshold) m[i] = 255;
+      }
     }
     out.push_back(std::move(inst));
   }
   return out;
+}
+
+void paintInstances(const std::vector<YoloInstance>& instances, const std::vector<int>& class_of_model, RgbdFrame& f) {
+  const int w = f.intrinsics.width, h = f.intrinsics.height;
+  if (f.mask.size() != static_cast<std::size_t>(std::max(0, w)) * std::max(0, h)) f.mask.assign(std::size_t(std::max(0, w)) * std::max(0, h), 0);
+  for (const auto& inst : instances) {  // by descending score: earlier masks keep their pixels
+    if (inst.model_class < 0 || inst.model_class >= static_cast<int>(class_of_model.size())) continue;
+    const int ours = class_of_model[inst.model_class];
+    if (ours < 0 || inst.mask.rows != h || inst.mask.cols != w || f.instance_class.size() >= 65535) continue;
+    f.instance_class.push_back(ours);
+    f.instance_confidence.push_back(inst.score);
+    const auto id = static_cast<std::uint16_t>(f.instance_class.size());
+    for (int v = 0; v < h; ++v) {
+      const std::uint8_t* m = inst.mask.ptr<std::uint8_t>(v);
+      std::uint16_t* out = f.mask.data() + static_cast<std::size_t>(v) * w;
+      for (int u = 0; u < w; ++u)
+        if (m[u] && out[u] == 0) out[u] = id;
+    }
+  }
 }
 
 }  // namespace slide

@@ -7,11 +7,14 @@
 // The input is the colour image letterboxed: scaled by s = min(in_w / w, in_h / h), centred,
 // padded. Decoding: anchors whose best class scores at least score_threshold, greedy NMS per
 // class (IoU above nms_iou suppresses the lower score), at most max_detections; each mask is
-// sigmoid(coefficients . prototypes), resized bilinearly to the input, cut to the letterboxed
-// image, resized bilinearly to the image, thresholded (> mask_threshold) and cropped to its box.
+// sigmoid(coefficients . prototypes) sampled bilinearly at each image pixel's centre mapped
+// through the letterbox into the prototypes (one resize from prototype to image, the border
+// replicated), thresholded (> mask_threshold), within the box only.
 #include <vector>
 
 #include <opencv2/core.hpp>
+
+#include "frontend/rgbd_segmenter.h"
 
 namespace slide {
 
@@ -45,6 +48,12 @@ struct YoloInstance {
 // [1, 4 + classes + 32, anchors] or output1 not [1, 32, mh, mw] (float).
 std::vector<YoloInstance> decodeYoloSeg(const cv::Mat& output0, const cv::Mat& output1, int classes, const Letterbox& lb,
                                         int image_width, int image_height, const YoloSegParams& params);
+
+// Appends the instances whose model class maps to one of ours (class_of_model[k] >= 0) to
+// the frame: instance_class, instance_confidence, and their pixels in frame.mask (id = index
+// + 1) where no earlier (higher-scoring) instance holds them. Masks not of the frame's size
+// are skipped.
+void paintInstances(const std::vector<YoloInstance>& instances, const std::vector<int>& class_of_model, RgbdFrame& frame);
 
 // Intersection over union of two boxes (0 for empty ones).
 double boxIou(const cv::Rect2d& a, const cv::Rect2d& b);

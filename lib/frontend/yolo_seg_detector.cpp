@@ -103,20 +103,8 @@ void YoloSegDetector::detect(RgbdFrame& f) const {
   const cv::Mat bgr(h, w, CV_8UC3, f.color.data());
   const Letterbox lb = letterboxOf(w, h, p.input_width, p.input_height);
   const auto [out0, out1] = run(net_->net, net_->outputs, letterboxImage(bgr, lb, p.input_width, p.input_height), config_);
-  const auto instances = decodeYoloSeg(out0, out1, static_cast<int>(config_.class_of_model.size()), lb, w, h, p);
-  for (const auto& inst : instances) {  // by descending score: earlier masks keep their pixels
-    const int ours = config_.class_of_model[inst.model_class];
-    if (ours < 0) continue;
-    f.instance_class.push_back(ours);
-    f.instance_confidence.push_back(inst.score);
-    const auto id = static_cast<std::uint16_t>(f.instance_class.size());
-    for (int v = 0; v < h; ++v) {
-      const std::uint8_t* m = inst.mask.ptr<std::uint8_t>(v);
-      std::uint16_t* out = f.mask.data() + static_cast<std::size_t>(v) * w;
-      for (int u = 0; u < w; ++u)
-        if (m[u] && out[u] == 0) out[u] = id;
-    }
-  }
+  paintInstances(decodeYoloSeg(out0, out1, static_cast<int>(config_.class_of_model.size()), lb, w, h, p),
+                 config_.class_of_model, f);
 }
 
 }  // namespace slide

@@ -11,6 +11,7 @@
 #include "frontend/geometric_segmenter.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/xyz_cloud.h"
+#include "bench/stats.h"
 #include "io/kitti_scan.h"
 #include "eval/labelled_scan_score.h"
 
@@ -57,16 +58,6 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
   }
   return r;
 }
-
-namespace {
-// CPU time of the calling thread: one core's work, unaffected by other processes on the machine.
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-}  // namespace
 
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
                                   const ClassTable& classes, const FrontendConfig& cfg, int runs) {
