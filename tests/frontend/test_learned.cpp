@@ -190,7 +190,8 @@ TEST(RangeNetLabeler, FrontEndConfigOverridesTheProjection) {
 // The project's own model (config/models/slide_range_net, trained on simulated seeds 11-14)
 // through the default config (the simulated robots' OS1-64 projection) on held-out scans of
 // seed 1: it must tell ground, cars, trunks and vegetation apart well beyond chance. The
-// bounds sit under the measured figures (config/models/README.md) with a margin.
+// bounds sit under the figures measured here (ground 0.92, car 0.90, trunk 0.65, vegetation
+// 0.63 for the model of 2026-12-02) with a margin; a retrained model must clear them too.
 TEST(ProjectRangeModel, LabelsHeldOutSimulatedScans) {
   const FrontendConfig cfg = loadDefaultFrontendConfig();
   const auto labeler = RangeNetLabeler::fromParams(cfg.learned);
@@ -209,6 +210,6 @@ TEST(ProjectRangeModel, LabelsHeldOutSimulatedScans) {
     labeler->label(scan);
     iou.add(truth.semantic, scan.semantic);
   }
-  for (const auto& [group, bound] : std::map<std::string, double>{{"ground", 0.8}, {"car", 0.4}, {"trunk", 0.3}, {"vegetation", 0.4}})
-    EXPECT_GT(iou.iou(group).value_or(0), bound) << group;
+  for (const auto& [group, bound] : std::map<std::string, double>{{"ground", 0.8}, {"car", 0.7}, {"trunk", 0.5}, {"vegetation", 0.5}})
+    EXPECT_GT(iou.iou(group).value_or(0), bound) << group << " " << iou.iou(group).value_or(0);
 }

@@ -120,9 +120,9 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   for (const auto& mode : spec.modes) {
     Runner r;
     r.mode = r.result.mode = mode;
+    if (mode == "learned") r.labeler = RangeNetLabeler::fromParams(cfg.learned);
     if (mode == "emulated" || mode == "oracle" || mode == "learned")
       r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
-    if (mode == "learned") r.labeler = RangeNetLabeler::fromParams(cfg.learned);
     else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
     else if (mode != "rgbd" && mode != "rgbd.oracle") throw std::invalid_argument("unknown mode '" + mode + "'");
     r.bundler = std::make_unique<KeyposeBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);

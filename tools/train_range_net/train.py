@@ -267,8 +267,8 @@ def main():
     torch.onnx.export(net, torch.zeros(1, 4, HEIGHT, WIDTH), onnx_path, opset_version=11,
                       input_names=["range_image"], output_names=["logits"])
     with open(os.path.join(args.out, "slide_range_net.yaml"), "w") as f:
-        f.write("# The project's range-image segmentation model (tools/train_range_net/train.py; see README.md\n")
-        f.write(f"# there). {params} parameters, trained {step} steps of {args.batch} crops 64 x {CROP}, seed {args.seed}.\n")
+        f.write("# The project's range-image segmentation model (tools/train_range_net/train.py; how it was made and its\n")
+        f.write(f"# held-out figures: README.md beside this file). {params} parameters, trained {step} steps of {args.batch} crops 64 x {CROP}, seed {args.seed}.\n")
         f.write("model: slide_range_net.onnx\n")
         f.write(f"projection: {{height: {HEIGHT}, width: {WIDTH}, fov_up_deg: 3.0, fov_down_deg: -25.0}}  # HDL-64E; trained on OS1-64 (16.6 / -16.6) too\n")
         f.write("channels: [range, x, y, z]\n")
