@@ -1,7 +1,5 @@
 #include "bench/stats.h"
 
-#include <ctime>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,12 +19,6 @@ double quantile(std::vector<double> v, double q) {
 double mean(const std::vector<double>& v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   return std::accumulate(v.begin(), v.end(), 0.0) / v.size();
-}
-
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 }  // namespace slide

@@ -1,5 +1,5 @@
 #pragma once
-// Order statistics for timing figures, and the clock they are taken with.
+// Order statistics for timing figures.
 #include <vector>
 
 namespace slide {
@@ -8,7 +8,5 @@ namespace slide {
 double quantile(std::vector<double> values, double q);
 inline double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 double mean(const std::vector<double>& v);
-// CPU time of the calling thread in ms: one core's work, unaffected by other processes.
-double threadCpuMs();
 
 }  // namespace slide
