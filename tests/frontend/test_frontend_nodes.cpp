@@ -108,3 +108,34 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
     EXPECT_NE(std::string(e.what()).find("missing.onnx: no such model file"), std::string::npos) << e.what();
   }
 }
+
+// segmenter.rgbd.detector: the segmenter takes the masks from the colour image through the
+// YOLOv8-seg model (the fixture tests/data/models/yolo_seg: one "car" box, columns 16-47 and
+// rows 0-15 of a 64 x 32 image), not from the frame, and back-projects them with the depth.
+TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
+  const ClassTable classes = ClassTable::loadDefault();
+  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/yolo_seg.yaml";
+  cfg.rgbd.erode_px = 0;
+  std::vector<frame_instances_t> out;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
+    out.push_back(decoded<frame_instances_t>(b));
+    return true;
+  });
+  rgbd_frame_t m{};
+  m.header = driveByHeader(0);
+  m.intrinsics = {64, 32, 40.0, 40.0, 32.0, 16.0, 0.001};
+  m.color.assign(64 * 32 * 3, 80);
+  m.color_size = static_cast<int>(m.color.size());
+  for (int i = 0; i < 64 * 32; ++i) m.depth.push_back(0xd0), m.depth.push_back(0x07);  // 2000 mm
+  m.depth_size = static_cast<int>(m.depth.size());
+  m.mask_size = 0;  // no masks on the bus
+  m.num_instances = 0;
+  segmenter.onRgbd(m);
+  segmenter.onOdom(driveByOdometry(0));
+  segmenter.onOdom(driveByOdometry(1));
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 1u);
+  EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
+  EXPECT_EQ(out[0].instances[0].num_points, 32 * 16);
+}
