@@ -17,7 +17,7 @@
 using namespace slide;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Segmenter daemon: LiDAR scans (labelled or geometric mode) and RGBD frames (instance masks) "
+  CLI::App app{"Segmenter daemon: LiDAR scans (labelled, geometric or learned mode) and RGBD frames (instance masks) "
                "to per-frame object instances stamped with their odometry pose"};
   CommonOptions common;
   addCommonOptions(app, common);
@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
   addRobotBusOptions(app, bus);
   app.add_option("--config", config_file, "Front-end YAML")->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML")->capture_default_str();
-  app.add_option("--mode", mode, "LiDAR mode, overrides the config: auto | labelled | geometric")
-      ->check(CLI::IsMember({"auto", "labelled", "geometric"}));
+  app.add_option("--mode", mode, "LiDAR mode, overrides the config: auto | labelled | geometric | learned")
+      ->check(CLI::IsMember({"auto", "labelled", "geometric", "learned"}));
   app.add_option("--scan-channel", scan_ch, "LiDAR scans in")->capture_default_str();
   app.add_option("--rgbd-channel", rgbd_ch, "RGBD frames in")->capture_default_str();
   app.add_option("--odom-channel", odom_ch, "Odometry in")->capture_default_str();

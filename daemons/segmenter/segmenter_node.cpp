@@ -17,7 +17,12 @@ SegmenterNode::SegmenterNode(int robot, std::string out_channel, const ClassTabl
                              std::size_t max_pending, msg::Publisher publish)
     : robot_(robot), out_channel_(std::move(out_channel)), classes_(classes), cfg_(cfg),
       labelled_(classes, cfg.labelled), geometric_(classes, cfg.geometric), max_pending_(max_pending),
-      publish_(std::move(publish)) {}
+      publish_(std::move(publish)) {
+  if (cfg.lidar_mode == "learned")
+    learned_ = std::make_unique<LearnedLidarSegmenter>(RangeNetLabeler::fromParams(cfg.learned),
+                                                       std::make_shared<LabelledSegmenter>(classes, cfg.labelled));
+  if (!cfg.rgbd_detector.empty()) detector_ = std::make_unique<YoloSegDetector>(loadYoloSegConfig(cfg.rgbd_detector, classes));
+}
 
 void SegmenterNode::onScan(const lidar_scan_t& m) {
   pending_.emplace_back(m);
@@ -59,10 +64,12 @@ void SegmenterNode::process() {
     if (const auto* scan = std::get_if<lidar_scan_t>(&pending_.front())) {
       const LabelledScan s = scanFromMsg(*scan, issues);
       const bool labelled = cfg_.lidar_mode == "labelled" || (cfg_.lidar_mode == "auto" && s.hasLabels());
+      const LidarSegmenter& seg = learned_ ? *learned_ : labelled ? static_cast<const LidarSegmenter&>(labelled_) : geometric_;
       usable = s.size() > 0;
       if (!usable) issues.count("empty scan");
-      else out.instances = labelled ? labelled_.segment(s, issues) : geometric_.segment(s, issues);
+      else out.instances = seg.segment(s, issues);
     } else if (auto frame = rgbdFromMsg(std::get<rgbd_frame_t>(pending_.front()), issues)) {
+      if (detector_) detector_->detect(*frame);
       out.instances = segmentRgbd(*frame, classes_, cfg_.rgbd, issues);
     } else {
       usable = false;

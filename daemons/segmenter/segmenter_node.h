@@ -1,11 +1,12 @@
 #pragma once
 // The segmenter daemon's logic without the LCM loop: LiDAR scans and RGBD frames wait for the
-// odometry around their time, then are segmented (labelled or geometric LiDAR mode, RGBD
-// masks) into per-frame object instances stamped with their odometry pose, published in
+// odometry around their time, then are segmented (labelled, geometric or learned LiDAR mode,
+// RGBD masks) into per-frame object instances stamped with their odometry pose, published in
 // arrival order through an injected publisher. Bad frames (empty scans, unusable images,
 // frames whose odometry never comes) are skipped and counted, never published.
 #include <cstddef>
 #include <deque>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -14,6 +15,7 @@
 #include "frontend/input_issues.h"
 #include "frontend/labelled_segmenter.h"
 #include "frontend/odometry_buffer.h"
+#include "frontend/yolo_seg_detector.h"
 #include "msg/publisher.h"
 #include "slide/lidar_scan_t.hpp"
 #include "slide/odometry_t.hpp"
@@ -23,7 +25,9 @@ namespace slide {
 
 class SegmenterNode {
  public:
-  // `max_pending`: frames kept waiting for odometry (the oldest is dropped beyond it).
+  // `max_pending`: frames kept waiting for odometry (the oldest is dropped beyond it). In
+  // learned mode (and with an RGBD detector) the model is loaded here: a missing, unreadable or
+  // wrongly shaped model throws (the message names the file and what was expected).
   SegmenterNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
                 std::size_t max_pending, msg::Publisher publish);
 
@@ -45,6 +49,8 @@ class SegmenterNode {
   const FrontendConfig& cfg_;
   LabelledSegmenter labelled_;
   GeometricSegmenter geometric_;
+  std::unique_ptr<LidarSegmenter> learned_;  // lidar_mode learned only
+  std::unique_ptr<YoloSegDetector> detector_;  // rgbd.detector set only: masks from the colour image
   std::size_t max_pending_;
   msg::Publisher publish_;
   OdometryBuffer odom_;

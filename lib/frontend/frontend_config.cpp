@@ -1,5 +1,6 @@
 #include "frontend/frontend_config.h"
 
+#include <filesystem>
 #include <limits>
 
 #include "config/config.h"
@@ -7,6 +8,12 @@
 namespace slide {
 
 namespace {
+// A path in the config, relative to the config file's folder unless absolute.
+std::string pathNextTo(const ConfigNode& n, const std::string& key, const std::string& config_path) {
+  const std::filesystem::path p = n.get<std::string>(key);
+  return p.is_absolute() ? p.string() : (std::filesystem::path(config_path).parent_path() / p).string();
+}
+
 // Reads key into `v` when present; checks lo <= v <= hi (the bounds keep every loop over
 // the value within the physical or algorithmic range it is meant for).
 template <typename T>
@@ -168,8 +175,25 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     const ConfigNode s = root.child("segmenter");
     if (s.has("lidar_mode")) {
       cfg.lidar_mode = s.get<std::string>("lidar_mode");
-      if (cfg.lidar_mode != "auto" && cfg.lidar_mode != "labelled" && cfg.lidar_mode != "geometric")
-        s.fail("lidar_mode", "expected one of auto, labelled, geometric, got '" + cfg.lidar_mode + "'");
+      if (cfg.lidar_mode != "auto" && cfg.lidar_mode != "labelled" && cfg.lidar_mode != "geometric" &&
+          cfg.lidar_mode != "learned")
+        s.fail("lidar_mode", "expected one of auto, labelled, geometric, learned, got '" + cfg.lidar_mode + "'");
+    }
+    if (s.has("learned")) {
+      const ConfigNode c = s.child("learned");
+      auto& p = cfg.learned;
+      if (c.has("model")) p.model = pathNextTo(c, "model", path);
+      opt(c, "min_confidence", p.min_confidence, 0.0, 1.0);
+      auto optional = [&](const char* key, auto& v, double lo, double hi) {
+        if (!c.has(key)) return;
+        typename std::decay_t<decltype(v)>::value_type x{};
+        opt(c, key, x, decltype(x)(lo), decltype(x)(hi));
+        v = x;
+      };
+      optional("height", p.height, 1, 4096);
+      optional("width", p.width, 1, 65536);
+      optional("fov_up_deg", p.fov_up_deg, -90, 90);
+      optional("fov_down_deg", p.fov_down_deg, -90, 90);
     }
     if (s.has("labelled")) {
       const ConfigNode c = s.child("labelled");
@@ -201,6 +225,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "stride", p.stride, 1);
       opt(c, "erode_px", p.erode_px, 0);
       opt(c, "min_points", p.min_points, 1);
+      if (c.has("detector")) cfg.rgbd_detector = c.get<std::string>("detector").empty() ? "" : pathNextTo(c, "detector", path);
     }
   }
   if (root.has("fit")) loadFit(root.child("fit"), cfg.fit);

@@ -7,6 +7,7 @@
 #include "frontend/geometric_segmenter.h"
 #include "frontend/keypose.h"
 #include "frontend/labelled_segmenter.h"
+#include "frontend/range_net_labeler.h"
 #include "frontend/rgbd_segmenter.h"
 #include "frontend/shape_fit.h"
 #include "frontend/tracker.h"
@@ -14,10 +15,14 @@
 namespace slide {
 
 struct FrontendConfig {
-  std::string lidar_mode = "auto";  // auto (labelled when the scan has labels) | labelled | geometric
+  // auto (labelled when the scan has labels) | labelled | geometric | learned (a range-image
+  // model labels the points, the labelled segmenter clusters them)
+  std::string lidar_mode = "auto";
   LabelledSegmenterParams labelled;
+  LearnedLidarParams learned;  // model path resolved against the config file's folder
   GeometricSegmenterParams geometric;
   RgbdSegmenterParams rgbd;
+  std::string rgbd_detector;  // YOLOv8-seg model YAML (yolo_seg_detector.h); empty: the frames' own masks
   FitParams fit;
   TrackerParams tracker;
   KeyposeParams keypose;

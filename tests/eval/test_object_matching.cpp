@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "eval/bandwidth.h"
+#include "eval/label_iou.h"
 #include "eval/object_matching.h"
 #include "eval/stage_timing.h"
 
@@ -92,4 +93,21 @@ TEST(StageTiming, MedianAndP99) {
   EXPECT_DOUBLE_EQ(t[1].p99, 100.0);  // 1 + 0.99 * 100
   EXPECT_DOUBLE_EQ(t[1].max, 101.0);
   EXPECT_EQ(t[1].count, 101u);
+}
+
+// Point IoU per label group: tp / (tp + fp + fn), labels outside every group count for none.
+TEST(LabelIou, CountsTruePositivesFalsePositivesAndMissesPerGroup) {
+  LabelIou iou;
+  //          truth:  car car  car  trunk pole sign road terrain veg  50 (no group)
+  iou.add({10, 252, 10, 71, 80, 81, 40, 72, 70, 50}, {10, 10, 71, 71, 81, 0, 72, 40, 50, 70});
+  EXPECT_EQ(iou.counts("car"), (std::array<long, 3>{2, 0, 1}));
+  EXPECT_DOUBLE_EQ(*iou.iou("car"), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(*iou.iou("trunk"), 1.0 / 2.0);   // one hit, one car called trunk
+  EXPECT_DOUBLE_EQ(*iou.iou("pole"), 1.0 / 2.0);    // sign called pole counts; sign missed
+  EXPECT_DOUBLE_EQ(*iou.iou("ground"), 1.0);        // road and terrain are one group
+  EXPECT_DOUBLE_EQ(*iou.iou("vegetation"), 0.0);    // missed once, predicted once on a building
+  EXPECT_THROW(iou.add({10}, {}), std::invalid_argument);
+  LabelIou other({{"a", {1}}});
+  EXPECT_FALSE(other.iou("a").has_value());
+  EXPECT_THROW(LabelIou({{"a", {1}}, {"b", {1}}}), std::invalid_argument);
 }

@@ -11,6 +11,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <limits>
 #include <map>
@@ -159,4 +161,53 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
     for (const auto& s : scene) best = std::min(best, (world.head<2>() - s.center.head<2>()).norm());
     EXPECT_LT(best, obj.class_id == 10 ? 1.0 : 0.3) << "object " << obj.id << " of class " << obj.class_id;
   }
+}
+
+// lidar_mode learned on the bus: the segmenter runs the project's model (config/frontend.yaml)
+// on every scan and answers each with its instances; the scans' own labels are not used.
+TEST(FrontendDaemons, LearnedModeAnswersEveryScan) {
+  ASSERT_EQ(unshare(CLONE_NEWNET), 0) << "unshare(CLONE_NEWNET) failed (tests run as root)";
+  ASSERT_EQ(std::system("ip link set lo up && ip route add 224.0.0.0/4 dev lo"), 0);
+  const std::string bin = std::string(SLIDE_BINARY_DIR) + "/bin/";
+  Daemon seg{spawn(bin + "slide-segmenter", {"--robot", "0", "--lcm-url", kUrl, "--log-level", "warn", "--mode", "learned"})};
+  ASSERT_GT(seg.pid, 0);
+  lcm::LCM lcm(kUrl);
+  ASSERT_TRUE(lcm.good());
+  Collector got;
+  lcm.subscribe("INSTANCES", &Collector::onInstances, &got);
+  pump(lcm, 1.5);  // the daemon loads its model and subscribes
+  const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {10, {9, 5, 0}, 0, 0, 0.1}};
+  const int frames = 4;
+  for (int k = 0; k < frames; ++k) {
+    const odometry_t odom = slide::testing::driveByOdometry(k);
+    lcm.publish("ODOM", &odom);
+    const lidar_scan_t m = scanToMsg(synth::syntheticScan(scene, slide::testing::driveByPose(k), 0.08, k + 1, 0.01, 0.6),
+                                     slide::testing::driveByHeader(k));
+    lcm.publish("SCAN", &m);
+    for (int i = 0; i < 250 && got.instances < k; ++i) pump(lcm, 0.02);
+  }
+  const odometry_t last = slide::testing::driveByOdometry(frames);
+  lcm.publish("ODOM", &last);
+  for (int i = 0; i < 250 && got.instances < frames; ++i) pump(lcm, 0.02);
+  EXPECT_EQ(got.instances, frames);
+  EXPECT_TRUE(alive(seg.pid)) << "segmenter died";
+  EXPECT_TRUE(seg.stop()) << "segmenter did not exit cleanly";
+}
+
+// A missing model stops the daemon at start, naming the file.
+TEST(FrontendDaemons, LearnedModeWithoutItsModelFailsAtStart) {
+  ASSERT_EQ(unshare(CLONE_NEWNET), 0) << "unshare(CLONE_NEWNET) failed (tests run as root)";
+  ASSERT_EQ(std::system("ip link set lo up && ip route add 224.0.0.0/4 dev lo"), 0);
+  const std::string config = ::testing::TempDir() + "/frontend_no_model.yaml";
+  std::ofstream(config) << "segmenter:\n  lidar_mode: learned\n  learned:\n    model: models/nowhere.yaml\n";
+  const std::string cmd = std::string(SLIDE_BINARY_DIR) + "/bin/slide-segmenter --config " + config + " --lcm-url '" + kUrl +
+                          "' 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  EXPECT_NE(status, 0);
+  EXPECT_NE(out.find("nowhere.yaml"), std::string::npos) << out;
 }

@@ -68,3 +68,74 @@ TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
   EXPECT_EQ(tracker.issues().total(), 1);
   EXPECT_EQ(tracker.bundles(), static_cast<int>(bundles.size()));
 }
+
+// lidar_mode learned: the model (the fixture tests/data/models/range3: points nearer than 9 m
+// are "car", farther than 11 m "vegetation") labels the points; the labelled segmenter makes
+// the car cluster one car instance, vegetation no object. The scan's own labels are ignored.
+TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
+  const ClassTable classes = ClassTable::loadDefault();
+  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  cfg.lidar_mode = "learned";
+  cfg.learned = LearnedLidarParams{};
+  cfg.learned.model = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/range3.yaml";
+  cfg.learned.width = 512;
+  std::vector<frame_instances_t> out;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
+    out.push_back(decoded<frame_instances_t>(b));
+    return true;
+  });
+  LabelledScan scan;
+  for (int i = 0; i < 20; ++i)      // a car-sized block of returns 5 m ahead ...
+    for (int j = 0; j < 15; ++j) scan.xyz.emplace_back(5.0f + 0.1f * (i % 3), -1.0f + 0.1f * i, -1.2f + 0.1f * j);
+  for (int i = 0; i < 200; ++i)     // ... and a hedge 15 m to the left
+    scan.xyz.emplace_back(0.05f * i - 5, 15.0f, -1.0f + 0.01f * (i % 100));
+  scan.intensity.assign(scan.size(), 0.5f);
+  scan.semantic.assign(scan.size(), 71);  // labels on the bus (oracle): not used in learned mode
+  scan.instance.assign(scan.size(), 0);
+  segmenter.onScan(scanToMsg(scan, driveByHeader(0)));
+  segmenter.onOdom(driveByOdometry(0));
+  segmenter.onOdom(driveByOdometry(1));
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 1u);
+  EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
+  EXPECT_EQ(out[0].instances[0].num_points, 300);
+
+  cfg.learned.model = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/missing.yaml";
+  try {
+    SegmenterNode bad(0, "INSTANCES", classes, cfg, 50, [](const std::string&, const std::vector<uint8_t>&) { return true; });
+    FAIL() << "a missing model must fail at start";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.onnx: no such model file"), std::string::npos) << e.what();
+  }
+}
+
+// segmenter.rgbd.detector: the segmenter takes the masks from the colour image through the
+// YOLOv8-seg model (the fixture tests/data/models/yolo_seg: one "car" box, columns 16-47 and
+// rows 0-15 of a 64 x 32 image), not from the frame, and back-projects them with the depth.
+TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
+  const ClassTable classes = ClassTable::loadDefault();
+  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/yolo_seg.yaml";
+  cfg.rgbd.erode_px = 0;
+  std::vector<frame_instances_t> out;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
+    out.push_back(decoded<frame_instances_t>(b));
+    return true;
+  });
+  rgbd_frame_t m{};
+  m.header = driveByHeader(0);
+  m.intrinsics = {64, 32, 40.0, 40.0, 32.0, 16.0, 0.001};
+  m.color.assign(64 * 32 * 3, 80);
+  m.color_size = static_cast<int>(m.color.size());
+  for (int i = 0; i < 64 * 32; ++i) m.depth.push_back(0xd0), m.depth.push_back(0x07);  // 2000 mm
+  m.depth_size = static_cast<int>(m.depth.size());
+  m.mask_size = 0;  // no masks on the bus
+  m.num_instances = 0;
+  segmenter.onRgbd(m);
+  segmenter.onOdom(driveByOdometry(0));
+  segmenter.onOdom(driveByOdometry(1));
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 1u);
+  EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
+  EXPECT_EQ(out[0].instances[0].num_points, 32 * 16);
+}

@@ -58,15 +58,11 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
   return r;
 }
 
-namespace {
-// CPU time of the calling thread: one core's work, unaffected by other processes on the machine.
-double threadCpuMs() {
+double benchThreadCpuMs() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
-
-}  // namespace
 
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
                                   const ClassTable& classes, const FrontendConfig& cfg, int runs) {
@@ -77,14 +73,14 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
   std::vector<Object> objects;
   for (int run = 0; run < runs; ++run) {
     InputIssues issues;
-    const double c0 = threadCpuMs();
+    const double c0 = benchThreadCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const auto instances = segmenter.segment(scan, issues);
     std::vector<Object> fitted;
     for (const auto& inst : instances)
       if (auto o = fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) fitted.push_back(*o);
     r.segment_fit_wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    r.segment_fit_ms.push_back(threadCpuMs() - c0);
+    r.segment_fit_ms.push_back(benchThreadCpuMs() - c0);
     objects = std::move(fitted);
   }
   r.score = scoreScanAgainstLabels(scan, objects, classes);
@@ -118,6 +114,23 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
     }
   }
   return r;
+}
+
+std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const PointLabeler& labeler, int runs, LabelIou& iou) {
+  const LabelledScan truth = readLabelledScan(bin_path);
+  if (!truth.hasLabels()) throw std::runtime_error(bin_path + ": no labels beside the scan");
+  LabelledScan scan;
+  scan.xyz = truth.xyz;
+  scan.intensity = truth.intensity;
+  std::vector<double> ms;
+  for (int run = 0; run < runs; ++run) {
+    LabelledScan s = scan;
+    const double c0 = benchThreadCpuMs();
+    labeler.label(s);
+    ms.push_back(benchThreadCpuMs() - c0);
+    if (run + 1 == runs) iou.add(truth.semantic, s.semantic);
+  }
+  return ms;
 }
 
 }  // namespace slide

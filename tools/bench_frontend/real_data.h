@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frontend/frontend_config.h"
+#include "eval/label_iou.h"
 #include "eval/labelled_scan_score.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -46,5 +47,17 @@ struct KittiScanResult {
 // objects of the last run against the scan's labels.
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
                                   const ClassTable& classes, const FrontendConfig& cfg, int runs);
+
+}  // namespace slide
+
+namespace slide {
+
+// CPU time of the calling thread in ms: one core's work, unaffected by other processes.
+double benchThreadCpuMs();
+
+// Runs `labeler` `runs` times on the scan, timing each (thread CPU: projection, inference,
+// back-projection), and adds its last labels, scored with the scan's SemanticKITTI labels, to
+// `iou`. Returns the times in ms.
+std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const PointLabeler& labeler, int runs, LabelIou& iou);
 
 }  // namespace slide

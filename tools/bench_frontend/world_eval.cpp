@@ -11,7 +11,9 @@
 #include "assignment/hungarian.h"
 #include "backend/data_association.h"
 #include "frontend/keypose.h"
+#include "eval/label_iou.h"
 #include "frontend/labelled_segmenter.h"
+#include "frontend/range_net_labeler.h"
 #include "frontend/rgbd_segmenter.h"
 #include "sim/lidar.h"
 #include "sim/ray_caster.h"
@@ -27,7 +29,7 @@ namespace slide {
 namespace {
 // Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
 bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
-  if (mode == "emulated" || mode == "oracle") return !c.semantickitti.empty();
+  if (mode == "emulated" || mode == "oracle" || mode == "learned") return !c.semantickitti.empty();
   if (mode == "geometric")  // trunks and poles are scored apart: a trunk called a pole is wrong
     return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class ||
            (cfg.geometric.emit_other && c.id == cfg.geometric.other_class);
@@ -92,6 +94,8 @@ void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const Class
 struct Runner {
   std::string mode;
   std::unique_ptr<LidarSegmenter> lidar;
+  std::shared_ptr<const PointLabeler> labeler;  // learned mode: labels the points for `lidar`
+  LabelIou label_iou;                           // learned mode: its labels against the truth
   std::unique_ptr<KeyposeBundler> bundler;
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
   std::vector<std::map<int, double>> votes;  // class votes per landmark
@@ -116,7 +120,9 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   for (const auto& mode : spec.modes) {
     Runner r;
     r.mode = r.result.mode = mode;
-    if (mode == "emulated" || mode == "oracle") r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
+    if (mode == "learned") r.labeler = RangeNetLabeler::fromParams(cfg.learned);
+    if (mode == "emulated" || mode == "oracle" || mode == "learned")
+      r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
     else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
     else if (mode != "rgbd" && mode != "rgbd.oracle") throw std::invalid_argument("unknown mode '" + mode + "'");
     r.bundler = std::make_unique<KeyposeBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
@@ -177,7 +183,12 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       fi.odom_pose = robot.odometry[k];
       if (r.mode == "rgbd") fi.instances = segmentRgbd(emulated_frame, classes, cfg.rgbd, issues);
       else if (r.mode == "rgbd.oracle") fi.instances = segmentRgbd(frame, classes, cfg.rgbd, issues);
-      else fi.instances = r.lidar->segment(r.mode == "oracle" ? scan : r.mode == "emulated" ? emulated : unlabelled, issues);
+      else if (r.labeler) {
+        LabelledScan labelled = unlabelled;
+        r.labeler->label(labelled);
+        r.label_iou.add(scan.semantic, labelled.semantic);
+        fi.instances = r.lidar->segment(labelled, issues);
+      } else fi.instances = r.lidar->segment(r.mode == "oracle" ? scan : r.mode == "emulated" ? emulated : unlabelled, issues);
       const auto bundle = r.bundler->process(fi, issues);
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
@@ -321,6 +332,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       m.ground_truth += static_cast<int>(G.size());
       m.matched += matched;
     }
+    for (const std::string& g : r.labeler ? r.label_iou.groups() : std::vector<std::string>{})
+      if (const auto v = r.label_iou.iou(g)) m.iou[g] = *v;
     if (r.mode == "emulated")
       for (const auto& [c, n] : iou_counts)
         if (const ClassInfo* info = classes.find(c); info && n[0] + n[2] > 0)  // classes the world holds

@@ -10,7 +10,9 @@
 //
 // Modes: geometric (no labels), emulated (the detection emulator's labels, no instance ids,
 // into the labelled segmenter), oracle (the simulator's ground-truth labels: an upper bound),
-// rgbd (emulated instance masks), rgbd.oracle (ground-truth masks: an upper bound).
+// rgbd (emulated instance masks), rgbd.oracle (ground-truth masks: an upper bound), learned
+// (the range-image model of cfg.learned labels the points, the labelled segmenter clusters
+// them; no ground truth on its path, which scores its point IoU only).
 #include <map>
 #include <string>
 #include <vector>
@@ -41,7 +43,7 @@ struct ModeResult {
   int duplicates = 0;        // unmatched estimates within the association distance of a matched object
   int false_objects = 0;     // other unmatched estimates
   int ignored = 0;           // estimates of real objects below the visibility criterion (not scored)
-  std::map<std::string, double> iou;  // emulated modes: per-class point IoU of the emulated labels
+  std::map<std::string, double> iou;  // emulated and learned modes: per-class point IoU of their labels
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
   std::vector<double> frame_ms;                         // segmentation + tracking per frame

@@ -13,6 +13,7 @@
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/labelled_segmenter.h"
+#include "frontend/range_net_labeler.h"
 #include "frontend/xyz_cloud.h"
 #include "io/io_error.h"
 #include "io/kitti_scan.h"
@@ -128,11 +129,18 @@ int main(int argc, char** argv) {
   addCommonOptions(app, common);
   std::string scan_path, labels_path, mode = "geometric", plot_path, json_path, config_file, classes_file;
   bool explain = false;
+  std::vector<double> sensor_fov;
   app.add_option("scan", scan_path, "Scan file: .bin (KITTI float32 x y z i), .pcd, or text")->required();
   app.add_option("--labels", labels_path, "SemanticKITTI .label file of the scan: score the objects against it");
-  app.add_option("--mode", mode, "geometric (label-free) or labelled (segments the labels; needs --labels)")
-      ->check(CLI::IsMember({"geometric", "labelled"}))
+  app.add_option("--mode", mode,
+                 "geometric (label-free), learned (the range-image model of the config's segmenter.learned labels the "
+                 "points) or labelled (segments the labels; needs --labels)")
+      ->check(CLI::IsMember({"geometric", "learned", "labelled"}))
       ->capture_default_str();
+  app.add_option("--sensor-fov", sensor_fov,
+                 "Learned mode: the scan's vertical field of view UP DOWN in degrees, overriding the config "
+                 "(KITTI's HDL-64E: 3 -25; Ouster OS1-64: 16.6 -16.6)")
+      ->expected(2);
   app.add_option("--plot", plot_path, "Draw the points and objects, top view (.png or .svg)");
   app.add_option("--json", json_path, "Also write the JSON to this file");
   app.add_option("--config", config_file, "Front-end YAML (default: config/frontend.yaml)");
@@ -149,7 +157,13 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--mode labelled needs --labels");
     }
     LabelledScan input = scan;
-    if (mode == "geometric") input.semantic.clear(), input.instance.clear();  // the segmenter never sees labels
+    if (mode != "labelled") input.semantic.clear(), input.instance.clear();  // the segmenter never sees labels
+    LearnedLidarParams learned_params = cfg.learned;
+    if (!sensor_fov.empty()) learned_params.fov_up_deg = sensor_fov[0], learned_params.fov_down_deg = sensor_fov[1];
+    const std::optional<LearnedLidarSegmenter> learned =
+        mode == "learned" ? std::optional<LearnedLidarSegmenter>(std::in_place, RangeNetLabeler::fromParams(learned_params),
+                                                                 std::make_shared<LabelledSegmenter>(classes, cfg.labelled))
+                          : std::nullopt;
 
     InputIssues issues;
     std::vector<ColumnRejection> rejected;
@@ -157,6 +171,8 @@ int main(int argc, char** argv) {
     std::vector<Instance> instances;
     if (mode == "geometric") {
       instances = GeometricSegmenter(classes, cfg.geometric).segment(input, issues, explain ? &rejected : nullptr);
+    } else if (learned) {
+      instances = learned->segment(input, issues);
     } else {
       instances = LabelledSegmenter(classes, cfg.labelled).segment(input, issues);
     }

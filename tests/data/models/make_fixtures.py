@@ -1,0 +1,76 @@
+#!/usr/bin/python3
+"""Writes the small ONNX fixtures of tests/frontend/test_learned.cpp (Debian's python3-onnx).
+
+Run by hand when a fixture changes: /usr/bin/python3 tests/data/models/make_fixtures.py
+The files are committed; the build does not run this script.
+
+range3.onnx: input [1, 2, 4, 8] (range, z normalised), output [1, 3, 4, 8] from a 1x1
+  convolution with known weights: class 0 scores 0.5, class 1 scores +range, class 2 -range.
+  So a pixel is class 1 when its normalised range exceeds 0.5, class 2 below -0.5, else 0.
+range2.onnx: the same input, only 2 output classes (a wrongly shaped model for a 3-class config).
+yolo_seg.onnx: a YOLOv8-seg-shaped model, input [1, 3, 32, 32], outputs output0 [1, 38, 16]
+  (2 classes) and output1 [1, 32, 8, 8] that do not depend on the image (zero-weight
+  convolutions, known biases): every anchor is the box (cx 16, cy 12, w 16, h 8) of class 1
+  with score 0.9, mask coefficient 0 = 1, prototype 0 = 2 everywhere (mask inside the box).
+yolo_seg_37.onnx: the same with output0 [1, 37, 16] (a wrongly shaped model for 2 classes).
+"""
+import os
+
+import numpy as np
+import onnx
+from onnx import TensorProto, helper, numpy_helper
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def save(model, name):
+    onnx.checker.check_model(model)
+    onnx.save(model, os.path.join(HERE, name))
+
+
+def make_range(classes, name):
+    w = np.zeros((classes, 2, 1, 1), dtype=np.float32)
+    b = np.zeros(classes, dtype=np.float32)
+    b[0] = 0.5
+    w[1, 0] = 1.0
+    if classes > 2:
+        w[2, 0] = -1.0
+    conv = helper.make_node("Conv", ["range_image", "w", "b"], ["logits"], kernel_shape=[1, 1])
+    graph = helper.make_graph(
+        [conv], "range_fixture",
+        [helper.make_tensor_value_info("range_image", TensorProto.FLOAT, [1, 2, 4, 8])],
+        [helper.make_tensor_value_info("logits", TensorProto.FLOAT, [1, classes, 4, 8])],
+        [numpy_helper.from_array(w, "w"), numpy_helper.from_array(b, "b")])
+    save(helper.make_model(graph, opset_imports=[helper.make_opsetid("", 11)], producer_name="slide-fixture"), name)
+
+
+def make_yolo(rows, name):
+    bias0 = np.zeros(rows, dtype=np.float32)
+    bias0[:4] = [16, 12, 16, 8]
+    bias0[4:6] = [0.1, 0.9]
+    if rows >= 38:
+        bias0[6] = 1.0
+    bias1 = np.zeros(32, dtype=np.float32)
+    bias1[0] = 2.0
+    inits = [numpy_helper.from_array(np.zeros((rows, 3, 1, 1), np.float32), "w0"), numpy_helper.from_array(bias0, "b0"),
+             numpy_helper.from_array(np.zeros((32, 3, 1, 1), np.float32), "w1"), numpy_helper.from_array(bias1, "b1"),
+             numpy_helper.from_array(np.array([1, rows, 16], np.int64), "shape0")]
+    nodes = [helper.make_node("MaxPool", ["images"], ["pool8"], kernel_shape=[8, 8], strides=[8, 8]),
+             helper.make_node("Conv", ["pool8", "w0", "b0"], ["grid0"], kernel_shape=[1, 1]),
+             helper.make_node("Reshape", ["grid0", "shape0"], ["output0"]),
+             helper.make_node("MaxPool", ["images"], ["pool4"], kernel_shape=[4, 4], strides=[4, 4]),
+             helper.make_node("Conv", ["pool4", "w1", "b1"], ["output1"], kernel_shape=[1, 1])]
+    graph = helper.make_graph(
+        nodes, "yolo_seg_fixture", [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, 32, 32])],
+        [helper.make_tensor_value_info("output0", TensorProto.FLOAT, [1, rows, 16]),
+         helper.make_tensor_value_info("output1", TensorProto.FLOAT, [1, 32, 8, 8])], inits)
+    save(helper.make_model(graph, opset_imports=[helper.make_opsetid("", 11)], producer_name="slide-fixture"), name)
+
+
+if __name__ == "__main__":
+    make_yolo(38, "yolo_seg.onnx")
+    make_yolo(37, "yolo_seg_37.onnx")
+    make_range(3, "range3.onnx")
+    make_range(2, "range2.onnx")
+    with open(os.path.join(HERE, "corrupt.onnx"), "wb") as f:
+        f.write(b"this is not a protobuf model\n" * 4)
