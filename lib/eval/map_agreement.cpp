@@ -1,5 +1,6 @@
 #include "eval/map_agreement.h"
 
+#include <cmath>
 #include <map>
 
 #include "eval/alignment.h"
@@ -35,13 +36,24 @@ SharedLandmarks sharedLandmarks(const std::vector<Object>& map_a, const Pose& T_
 
 std::optional<Pose> mapAlignment(const SharedLandmarks& shared) {
   if (shared.in_a.size() < 3) return std::nullopt;
-  return align(shared.in_b, shared.in_a, Alignment::Se3).T;
+  auto flat = [](std::vector<Eigen::Vector3d> v) {
+    for (Eigen::Vector3d& p : v) p.z() = 0;
+    return v;
+  };
+  return align(flat(shared.in_b), flat(shared.in_a), Alignment::Yaw4Dof).T;
 }
 
 std::vector<double> landmarkDistances(const SharedLandmarks& shared, const Pose& T_a_b) {
   std::vector<double> out;
-  for (std::size_t k = 0; k < shared.in_a.size(); ++k) out.push_back((T_a_b * shared.in_b[k] - shared.in_a[k]).norm());
+  for (std::size_t k = 0; k < shared.in_a.size(); ++k)
+    out.push_back((T_a_b * shared.in_b[k] - shared.in_a[k]).head<2>().norm());
   return out;
+}
+
+HorizontalError horizontalError(const Pose& estimate, const Pose& reference) {
+  const double yaw = xyzYawOf(estimate)[3] - xyzYawOf(reference)[3];
+  return {(estimate.translation() - reference.translation()).head<2>().norm(),
+          std::abs(wrapAngle(yaw)) * 180.0 / M_PI};
 }
 
 }  // namespace slide

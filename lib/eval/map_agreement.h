@@ -20,10 +20,19 @@ struct SharedLandmarks {
 SharedLandmarks sharedLandmarks(const std::vector<Object>& map_a, const Pose& T_world_a, const std::vector<Object>& map_b,
                                 const Pose& T_world_b, const std::vector<Object>& truth, const ObjectMatchOptions& mo);
 
-// T_a_b with in_a ≈ T_a_b * in_b in the least-squares sense; none below 3 shared landmarks.
+// T_a_b with in_a ≈ T_a_b * in_b in the least-squares sense over the landmarks' horizontal
+// positions (x, y and yaw; z of the result 0): heights of landmark centres are not comparable
+// between robots (a trunk's centre is the middle of whatever part of it a robot saw). None below
+// 3 shared landmarks.
 std::optional<Pose> mapAlignment(const SharedLandmarks& shared);
 
-// |T_a_b * in_b - in_a| per shared landmark.
+// Horizontal distance |T_a_b * in_b - in_a| (x, y) per shared landmark.
 std::vector<double> landmarkDistances(const SharedLandmarks& shared, const Pose& T_a_b);
+
+// Horizontal translation (x, y) and yaw difference of `estimate` from `reference`.
+struct HorizontalError {
+  double translation_m = 0, yaw_deg = 0;
+};
+HorizontalError horizontalError(const Pose& estimate, const Pose& reference);
 
 }  // namespace slide

@@ -1,7 +1,6 @@
 #include <gtest/gtest.h>
 
 #include "eval/map_agreement.h"
-#include "eval/transform_error.h"
 
 using namespace slide;
 
@@ -32,9 +31,16 @@ TEST(MapAgreement, AlignsOverTheObjectsBothMapsHold) {
   ASSERT_EQ(sh.in_a.size(), 3u);
   const std::optional<Pose> T = mapAlignment(sh);
   ASSERT_TRUE(T);
-  const TransformError e = transformError(*T, T_w_a.inverse() * T_w_b);
+  const HorizontalError e = horizontalError(*T, T_w_a.inverse() * T_w_b);
   EXPECT_LT(e.translation_m, 0.2);
   EXPECT_GT(e.translation_m, 0.01);  // the 0.2 m offset pulls the alignment a little
+  EXPECT_LT(e.yaw_deg, 2.0);
+  // Heights do not count: robot b's landmarks 1 m higher give the same horizontal alignment.
+  SharedLandmarks higher = sh;
+  for (Eigen::Vector3d& p : higher.in_b) p.z() += 1.0;
+  const std::optional<Pose> T2 = mapAlignment(higher);
+  ASSERT_TRUE(T2);
+  EXPECT_NEAR(horizontalError(*T2, *T).translation_m, 0.0, 1e-9);
   const std::vector<double> d = landmarkDistances(sh, T_w_a.inverse() * T_w_b);
   ASSERT_EQ(d.size(), 3u);
   EXPECT_NEAR(d[0], 0.2, 1e-9);  // the true transform shows the offset in full

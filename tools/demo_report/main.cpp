@@ -191,7 +191,7 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
 struct MapAgreement {
   int a = 0, b = 0;
   std::size_t shared = 0;
-  std::optional<TransformError> place_vs_maps, merged_vs_maps;
+  std::optional<HorizontalError> place_vs_maps, merged_vs_maps;
   std::vector<double> merged_distances;
 };
 
@@ -205,9 +205,9 @@ MapAgreement mapAgreement(int a, int b, const std::vector<Object>& own_a, const 
   const std::optional<Pose> T_maps = mapAlignment(sh);  // b's map into a's frame
   if (!T_maps) return out;
   if (const auto it = log_a.closures.find(b); it != log_a.closures.end())
-    out.place_vs_maps = transformError(it->second.T_a_b, *T_maps);
+    out.place_vs_maps = horizontalError(it->second.T_a_b, *T_maps);
   if (const auto it = f.merged_frames.find(b); it != f.merged_frames.end()) {
-    out.merged_vs_maps = transformError(it->second, *T_maps);
+    out.merged_vs_maps = horizontalError(it->second, *T_maps);
     out.merged_distances = landmarkDistances(sh, it->second);
   }
   return out;
@@ -377,14 +377,14 @@ int main(int argc, char** argv) {
         "mean over " + std::to_string(pairs_found) + " of " + std::to_string(pairs_possible) + " ordered pairs found";
     report.add("demo.inter_robot_yaw_err_deg", mean(yaw_err), "deg", true, 2.0);
     report.add("demo.inter_robot_vs_maps_trans_err_m", mean(place_vs_maps_t), "m", true, 0.15, 0.16).note =
-        "place recognition's transform against the best rigid alignment of the two robots' own maps (own "
+        "place recognition's transform, horizontally (x, y), against the best rigid alignment (x, y, yaw) of the two robots' own maps (own "
         "observations replayed from their journals) over the landmarks both hold (the paper's comparison; ground truth only pairs the landmarks), mean over " +
         std::to_string(place_vs_maps_t.size()) + " ordered pairs";
     report.add("demo.inter_robot_vs_maps_yaw_err_deg", mean(place_vs_maps_yaw), "deg", true);
     report.add("demo.merged_vs_maps_trans_err_m", mean(merged_vs_maps_t), "m", true).note =
         "the optimizer's merged frame against the same map alignment";
     report.add("demo.merged_consistency_median_m", consistency.empty() ? NAN : median(consistency), "m", true).note =
-        "distance between two robots' own landmarks of one real object, the peer's placed by the host's merged frame (" +
+        "horizontal distance between two robots' own landmarks of one real object, the peer's placed by the host's merged frame (" +
         std::to_string(consistency.size()) + " landmark pairs)";
     report.add("demo.merged_consistency_p90_m", consistency.empty() ? NAN : quantile(consistency, 0.9), "m", true);
     report.add("demo.merged_trans_err_m", mean(merged_trans_err), "m", true).note =
@@ -466,13 +466,13 @@ int main(int argc, char** argv) {
            << opt << " | " << rmse << " |\n";
       }
     if (pairs_found == 0) md << "| - | - | no transform found | |\n";
-    md << "\nThe same transforms against the best rigid alignment of the two robots' own maps (each robot's own "
+    md << "\nThe same transforms, horizontally (x, y and yaw; landmark heights are not comparable between robots), against the best rigid alignment of the two robots' own maps (each robot's own "
           "observations replayed from its optimizer journal) over the landmarks both hold (the paper's comparison; "
-          "the ground truth only pairs the landmarks), and the merged map's consistency: the distance between the "
+          "the ground truth only pairs the landmarks), and the merged map's consistency: the horizontal distance between the "
           "two robots' own landmarks of one real object, the peer's placed by the host's merged frame.\n\n"
           "| robot | peer | landmarks both hold | place recognition vs maps: m / deg | optimizer vs maps: m / deg | "
           "consistency median / p90 m |\n|---|---|---|---|---|---|\n";
-    auto err = [](const std::optional<TransformError>& e) {
+    auto err = [](const std::optional<HorizontalError>& e) {
       return e ? num(e->translation_m) + " / " + num(e->yaw_deg, 2) : std::string("-");
     };
     for (const MapAgreement& g : agreements)
