@@ -223,6 +223,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
     f.truth_rms.push_back(t.rms);
     if (!r.found) {
       ++f.missed;
+      f.miss_notes.push_back(fmt::format("{} shared: {}", t.shared, r.reason));
       continue;
     }
     const Error e = t.ok ? errorAt(r.T_a_b, t) : Error{1e9, 1e9};
@@ -371,6 +372,7 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
         rep.add(prefix + "recall", double(f.correct) / f.overlapping, "", false, headline ? std::optional<double>(0.9) : std::nullopt)
             .note = fmt::format("{} correct of {} overlapping pairs ({} missed, {} wrong); {}", f.correct, f.overlapping,
                                 f.missed, f.wrong, describe(c.condition));
+        if (f.missed) rep.add(prefix + "missed", f.missed, "", true).note = joined(f.miss_notes);
         rep.add(prefix + "wrong", f.wrong, "", true, 0.0).note =
             f.wrong ? joined(f.wrong_notes) : "found but more than 1 m (at the shared objects' centroid) or 2 deg off";
         rep.add(prefix + "trans_err_m", f.trans_err.empty() ? nan : median(f.trans_err), "m").note =

@@ -58,6 +58,7 @@ struct RealisticFigures {
   std::vector<double> trans_err, yaw_err, cpu_ms;  // errors of correct results; CPU of every query
   std::vector<double> objects_a, objects_b, shared_fraction, truth_rms;
   std::vector<std::string> wrong_notes;  // what each wrong / false-positive transform was
+  std::vector<std::string> miss_notes;   // why each overlapping pair gave no transform
 };
 RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config);
 
