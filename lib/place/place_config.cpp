@@ -13,13 +13,17 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
   if (root.has("verify")) {
     const ConfigNode n = root.child("verify");
     n.read("match_radius", v.match_radius);
+    n.read("match_height", v.match_height);
     n.read("size_tolerance", v.size_tolerance);
     n.read("min_inliers", v.min_inliers);
     n.read("min_inlier_ratio", v.min_inlier_ratio);
     n.read("significance", v.significance);
     n.read("robust_scale", v.robust_scale);
     n.read("rounds", v.rounds);
+    n.read("rival_separation", v.rival_separation);
+    n.read("rival_ratio", v.rival_ratio);
     n.requirePositive("match_radius", v.match_radius);
+    n.requirePositive("match_height", v.match_height);
     n.requirePositive("robust_scale", v.robust_scale);
   }
   c.slidegraph.verify = c.slidematch.verify = v;

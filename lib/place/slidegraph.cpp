@@ -162,6 +162,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   std::vector<char> active(assoc.size(), 1);
   const bool small = a.size() <= params.small_map && b.size() <= params.small_map;
   PlaceResult first, best;
+  std::vector<PlaceResult> tried;
   for (int h = 0; h < std::max(1, params.hypotheses); ++h) {
     if (h > 0 && out_of_time()) {  // a verified transform stands; otherwise no result
       if (best.found) break;
@@ -189,11 +190,14 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
       trial.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
     }
     stage("verify");
+    tried.push_back(trial);
     // Large maps: the first accepted set wins. Small maps (cheap): every hypothesis is
     // verified and the one with most inliers wins, as a small alias can pass the test too.
+    // Either way it must stand against the other alignments verified (ambiguity test).
     if (trial.found && (!small || h + 1 >= std::max(1, params.hypotheses))) {
       if (best.found && best.inliers.size() >= trial.inliers.size()) break;
       res = std::move(trial);
+      standsAgainstRival(rivalInliers(res, tried, b, params.verify), params.verify, res);
       return finish();
     }
     if (trial.found && (!best.found || trial.inliers.size() > best.inliers.size())) best = trial;
@@ -206,6 +210,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   first.clipper_edges = res.clipper_edges;
   first.clipper_peak_bytes = res.clipper_peak_bytes;
   res = std::move(first);
+  if (res.found) standsAgainstRival(rivalInliers(res, tried, b, params.verify), params.verify, res);
   return finish();
 }
 

@@ -173,10 +173,11 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     res.reason = "no class-consistent match at any searched transform";
     return finish();
   }
-  // Verify the refined candidates best first; the first accepted wins (in aliased scenes the
-  // highest grid score can belong to a wrong alignment that the acceptance test rejects).
+  // Verify every refined candidate: the accepted one with most inliers wins (in aliased scenes the
+  // highest grid score can belong to a wrong alignment that the acceptance test rejects), and it
+  // must stand against the strongest other alignment (ambiguity test).
   const LandmarkIndex index_a(a_in);
-  PlaceResult first;
+  std::vector<PlaceResult> trials;
   for (std::size_t k = 0; k < refined.size(); ++k) {
     const Candidate& best = refined[k];
     // Back to the maps' own frames; z from the matched pairs (median height offset).
@@ -196,14 +197,19 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     PlaceResult trial = res;
     trial.score = best.score;
     refineAndDecide(a_in, index_a, b_in, T, params.verify, trial);
-    if (trial.found) {
-      res = std::move(trial);
-      return finish();
-    }
-    if (k == 0) first = std::move(trial);
+    trials.push_back(std::move(trial));
   }
-  res = std::move(first);
-  if (res.budget_exhausted)
+  if (trials.empty()) {
+    res.reason = "no candidate with a height reference";
+    return finish();
+  }
+  std::size_t pick = 0;  // the accepted trial with most inliers, else the first (best grid score)
+  for (std::size_t k = 0; k < trials.size(); ++k)
+    if (trials[k].found && (!trials[pick].found || trials[k].inliers.size() > trials[pick].inliers.size())) pick = k;
+  const std::size_t rival = rivalInliers(trials[pick], trials, b_in, params.verify);
+  res = std::move(trials[pick]);
+  standsAgainstRival(rival, params.verify, res);
+  if (!res.found && res.budget_exhausted)
     res.reason += " (time budget ran out after " + std::to_string(visited) + " of " + std::to_string(n_yaw) + " yaws)";
   return finish();
 }

@@ -15,10 +15,15 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
     std::size_t ia, ib;
   };
   std::vector<Cand> cands;
+  const double reach = std::hypot(params.match_radius, params.match_height);  // the box's corner
   for (std::size_t j = 0; j < b.size(); ++j) {
     const Eigen::Vector3d q = T_a_b * b[j].p;
-    for (std::size_t i : index_a.radius(q, params.match_radius, b[j].class_id))
-      if (sizesAgree(a[i].size, b[j].size, params.size_tolerance)) cands.push_back({(a[i].p - q).norm(), i, j});
+    for (std::size_t i : index_a.radius(q, reach, b[j].class_id)) {
+      const double d = (a[i].p - q).head<2>().norm();
+      if (d <= params.match_radius && std::abs(a[i].p.z() - q.z()) <= params.match_height &&
+          sizesAgree(a[i].size, b[j].size, params.size_tolerance))
+        cands.push_back({d, i, j});
+    }
   }
   std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
     return x.d < y.d || (x.d == y.d && (x.ia < y.ia || (x.ia == y.ia && x.ib < y.ib)));
@@ -103,6 +108,38 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
     return;
   }
   out.reason = buf;
+}
+
+std::size_t rivalInliers(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
+                         const std::vector<Landmark>& b, const VerifyParams& params) {
+  std::vector<std::pair<std::size_t, std::size_t>> mine;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const LandmarkMatch& m : best.inliers) {
+    mine.emplace_back(m.a, m.b);
+    c += b[m.b].p / static_cast<double>(best.inliers.size());
+  }
+  std::sort(mine.begin(), mine.end());
+  const double yaw = yawOf(best.T_a_b.linear());
+  std::size_t rival = 0;
+  for (const PlaceResult& h : hypotheses) {
+    std::size_t common = 0;
+    for (const LandmarkMatch& m : h.inliers) common += std::binary_search(mine.begin(), mine.end(), std::pair{m.a, m.b});
+    const bool elsewhere = (h.T_a_b * c - best.T_a_b * c).head<2>().norm() > params.rival_separation ||
+                           std::abs(wrapAngle(yawOf(h.T_a_b.linear()) - yaw)) > 5.0 * M_PI / 180.0;
+    if (2 * common < h.inliers.size() && elsewhere) rival = std::max(rival, h.inliers.size());
+  }
+  return rival;
+}
+
+bool standsAgainstRival(std::size_t rival, const VerifyParams& params, PlaceResult& best) {
+  if (!best.found || static_cast<double>(best.inliers.size()) >= params.rival_ratio * static_cast<double>(rival))
+    return best.found;
+  best.found = false;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "ambiguous: best hypothesis has %zu inliers, another alignment %zu", best.inliers.size(),
+                rival);
+  best.reason = buf;
+  return false;
 }
 
 }  // namespace slide

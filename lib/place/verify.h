@@ -7,17 +7,25 @@
 namespace slide {
 
 struct VerifyParams {
-  double match_radius = 0.6;       // metres (3-D) between a landmark of A and one of B moved by T
+  // A landmark of A and one of B moved by T match when their horizontal distance is within
+  // match_radius and their heights differ by at most match_height: heights are the least
+  // certain coordinate of a map (terrain under a trunk's foot, vertical drift, how much of an
+  // object was seen), and the chance of a match is counted over the horizontal disc.
+  double match_radius = 0.6;       // metres, horizontal
+  double match_height = 1.0;       // metres, vertical
   double size_tolerance = 1.0;     // metres, see sizesAgree()
   std::size_t min_inliers = 5;     // fewer matches never make a transform
   double min_inlier_ratio = 0.3;   // of B's landmarks that land where A has landmarks
   double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
+  double rival_separation = 3.0;   // metres: another alignment this far off is a rival (ambiguity test)...
+  double rival_ratio = 2.0;        // ...and the answer needs this many times its inliers
 };
 
-// One-to-one matches (greedy by distance) of B's landmarks, moved by T_a_b, to A's landmarks of
-// the same class within match_radius whose sizes agree.
+// One-to-one matches (greedy by horizontal distance) of B's landmarks, moved by T_a_b, to A's
+// landmarks of the same class within match_radius horizontally and match_height vertically
+// whose sizes agree.
 std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const LandmarkIndex& index_a,
                                          const std::vector<Landmark>& b, const Pose& T_a_b,
                                          const VerifyParams& params);
@@ -35,5 +43,16 @@ Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, 
 // out.found, T_a_b, inliers, residual_rms, chance_inliers and reason.
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
                      const Pose& hypothesis, const VerifyParams& params, PlaceResult& out);
+
+// Ambiguity: the most inliers among `hypotheses` that are another alignment than `best`: they
+// share fewer than half of their matches with it and move the centroid of best's inliers in B
+// by more than params.rival_separation (or turn B by more than 5 degrees against it); a variant of
+// the same alignment (a bent map aligned on another part of the overlap) is no rival. 0: none.
+std::size_t rivalInliers(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
+                         const std::vector<Landmark>& b, const VerifyParams& params);
+// A scene that aligns nearly as well another way (rooms furnished alike, a street grid) gives no
+// transform: best needs rival_ratio times the rival's inliers. Clears best.found and sets the
+// reason when it falls short; true when best stands.
+bool standsAgainstRival(std::size_t rival, const VerifyParams& params, PlaceResult& best);
 
 }  // namespace slide
