@@ -233,9 +233,9 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
       f.yaw_err.push_back(e.yaw_deg);
     } else {
       ++f.wrong;
-      f.wrong_notes.push_back(fmt::format("{} m / {:.2f} deg off ({} inliers, chance {:.1f}, {} shared, {})", e.trans_m,
-                                          e.yaw_deg, r.inliers.size(), r.chance_inliers, t.shared,
-                                          p.opposite ? "opposite" : "same way"));
+      f.wrong_notes.push_back(fmt::format("{:.2f} m / {:.2f} deg off ({} inliers, chance {:.1f}, {} shared, the truth's own "
+                                          "fit {:.2f} m rms, {})", e.trans_m, e.yaw_deg, r.inliers.size(), r.chance_inliers,
+                                          t.shared, t.rms, p.opposite ? "opposite" : "same way"));
     }
   }
   return f;
