@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "place/map_perturb.h"
+#include "place/slidegraph.h"
+#include "place/slidematch.h"
+#include "place/verify.h"
+
+using namespace slide;
+
+namespace {
+Landmark at(double x, double y, double z, int cls = 71, std::size_t index = 0) {
+  Landmark l;
+  l.p = {x, y, z};
+  l.class_id = cls;
+  l.size = {0.4, 0.4, 2.0};
+  l.index = index;
+  return l;
+}
+
+PlaceResult withInliers(const Pose& T, std::vector<std::pair<std::size_t, std::size_t>> pairs) {
+  PlaceResult r;
+  r.found = true;
+  r.T_a_b = T;
+  for (const auto& [a, b] : pairs) r.inliers.push_back({a, b});
+  return r;
+}
+}  // namespace
+
+TEST(Verify, MatchesAreGatedHorizontallyAndVerticallyApart) {
+  const std::vector<Landmark> a{at(0, 0, 0), at(10, 0, 0), at(20, 0, 0)};
+  const LandmarkIndex index(a);
+  const std::vector<Landmark> b{at(0.5, 0, 0.8),   // 0.94 m apart in 3-D: a match (0.5 m across, 0.8 m up)
+                                at(10.1, 0, 1.2),  // 1.2 m higher: no match
+                                at(20.7, 0, 0)};   // 0.7 m across: no match
+  const VerifyParams p;  // 0.6 m horizontal, 1.0 m vertical
+  const std::vector<LandmarkMatch> m = guidedMatches(a, index, b, Pose::Identity(), p);
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_EQ(m[0].a, 0u);
+  EXPECT_EQ(m[0].b, 0u);
+}
+
+TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
+  std::vector<Landmark> b;
+  for (int i = 0; i < 10; ++i) b.push_back(at(i, 0, 0));
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < 10; ++i) pairs.emplace_back(i, i);
+  const PlaceResult best = withInliers(Pose::Identity(), pairs);
+  const VerifyParams p;
+  // The same alignment found again, and a variant 1 m off sharing none of the matches: no rival.
+  const PlaceResult same = withInliers(Pose::Identity(), pairs);
+  std::vector<std::pair<std::size_t, std::size_t>> other;
+  for (std::size_t i = 0; i < 6; ++i) other.emplace_back(100 + i, i);
+  const PlaceResult near = withInliers(poseFromXyzYaw(1.0, 0, 0, 0), other);
+  EXPECT_EQ(rivalInliers(best, {best, same, near}, b, p), 0u);
+  // 10 m off, or turned by 10 degrees about the matches' centroid: rivals.
+  const PlaceResult far = withInliers(poseFromXyzYaw(10.0, 0, 0, 0), other);
+  EXPECT_EQ(rivalInliers(best, {best, far}, b, p), 6u);
+  const Pose turn = poseFromXyzYaw(4.5, 0, 0, 0) * poseFromXyzYaw(0, 0, 0, 10 * M_PI / 180) * poseFromXyzYaw(-4.5, 0, 0, 0);
+  EXPECT_EQ(rivalInliers(best, {best, withInliers(turn, other)}, b, p), 6u);
+
+  PlaceResult stands = best;
+  EXPECT_TRUE(standsAgainstRival(5, p, stands));  // 10 >= 2 x 5
+  EXPECT_TRUE(stands.found);
+  PlaceResult falls = best;
+  EXPECT_FALSE(standsAgainstRival(6, p, falls));
+  EXPECT_FALSE(falls.found);
+  EXPECT_NE(falls.reason.find("ambiguous"), std::string::npos);
+}
+
+// Two rooms furnished alike: B saw one of them; either would fit, so no transform may be given.
+TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 8);
+  std::vector<Landmark> room;
+  const int classes[] = {1, 1, 2, 3};
+  for (int i = 0; i < 24; ++i) room.push_back(at(u(rng), u(rng), 0.5, classes[i % 4]));
+  std::vector<Landmark> a;
+  for (double dx : {0.0, 20.0})
+    for (Landmark l : room) {
+      l.p.x() += dx;
+      l.index = a.size();
+      a.push_back(l);
+    }
+  const Pose truth = poseFromXyzYaw(3.0, -2.0, 0.1, 0.7);
+  std::vector<Landmark> first_room(a.begin(), a.begin() + 24);
+  const std::vector<Landmark> b = perturbedCopy(first_room, truth, PerturbParams{0.03, 0.0, 0.0}, rng);
+  const PlaceResult m = slideMatch(a, b, SlideMatchParams{});
+  EXPECT_FALSE(m.found) << transformError(m.T_a_b, truth).trans_m;
+  EXPECT_NE(m.reason.find("ambiguous"), std::string::npos) << m.reason;
+  const PlaceResult g = slideGraph(a, b, SlideGraphParams{});
+  EXPECT_FALSE(g.found) << transformError(g.T_a_b, truth).trans_m;
+  // With most of the other room rearranged, the room B saw stands out: a transform, the right one.
+  for (std::size_t k = 24; k < 42; ++k) a[k].p += Eigen::Vector3d(k % 2 ? 2.5 : -2.0, k % 3 ? 1.5 : -2.5, 0);
+  const PlaceResult m2 = slideMatch(a, b, SlideMatchParams{});
+  ASSERT_TRUE(m2.found) << m2.reason;
+  EXPECT_LT(transformError(m2.T_a_b, truth).trans_m, 0.2);
+}
