@@ -29,6 +29,7 @@ struct PlaceResult {
   double residual_rms = 0;     // metres, over the inliers after refinement
   double score = 0;            // method-specific: SlideMatch grid score, SlideGraph clique size
   double chance_inliers = 0;   // inliers expected by chance at this overlap (acceptance test)
+  std::size_t covered = 0;     // B's landmarks that land where A has landmarks (acceptance test)
   double ms = 0;               // wall time of the query
   double cpu_ms = 0;           // CPU time of the calling thread during the query
   std::vector<std::pair<std::string, double>> stage_cpu_ms;  // CPU ms per stage, in order

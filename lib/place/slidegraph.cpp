@@ -197,7 +197,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
     if (trial.found && (!small || h + 1 >= std::max(1, params.hypotheses))) {
       if (best.found && best.inliers.size() >= trial.inliers.size()) break;
       res = std::move(trial);
-      standsAgainstRival(rivalInliers(res, tried, b, params.verify), params.verify, res);
+      standsAgainstRival(rivalOf(res, tried, b, params.verify), params.verify, res);
       return finish();
     }
     if (trial.found && (!best.found || trial.inliers.size() > best.inliers.size())) best = trial;
@@ -210,7 +210,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   first.clipper_edges = res.clipper_edges;
   first.clipper_peak_bytes = res.clipper_peak_bytes;
   res = std::move(first);
-  if (res.found) standsAgainstRival(rivalInliers(res, tried, b, params.verify), params.verify, res);
+  if (res.found) standsAgainstRival(rivalOf(res, tried, b, params.verify), params.verify, res);
   return finish();
 }
 

@@ -173,7 +173,7 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     res.reason = "no class-consistent match at any searched transform";
     return finish();
   }
-  // Verify every refined candidate: the accepted one with most inliers wins (in aliased scenes the
+  // Verify every refined candidate: the strongest accepted one wins (in aliased scenes the
   // highest grid score can belong to a wrong alignment that the acceptance test rejects), and it
   // must stand against the strongest other alignment (ambiguity test).
   const LandmarkIndex index_a(a_in);
@@ -203,12 +203,12 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     res.reason = "no candidate with a height reference";
     return finish();
   }
-  std::size_t pick = 0;  // the accepted trial with most inliers, else the first (best grid score)
+  std::size_t pick = 0;  // the strongest accepted trial, else the first (best grid score)
   for (std::size_t k = 0; k < trials.size(); ++k)
-    if (trials[k].found && (!trials[pick].found || trials[k].inliers.size() > trials[pick].inliers.size())) pick = k;
-  const std::size_t rival = rivalInliers(trials[pick], trials, b_in, params.verify);
-  res = std::move(trials[pick]);
-  standsAgainstRival(rival, params.verify, res);
+    if (trials[k].found && (!trials[pick].found || strengthOf(trials[k]) > strengthOf(trials[pick]))) pick = k;
+  PlaceResult chosen = trials[pick];
+  standsAgainstRival(rivalOf(chosen, trials, b_in, params.verify), params.verify, chosen);
+  res = std::move(chosen);
   if (!res.found && res.budget_exhausted)
     res.reason += " (time budget ran out after " + std::to_string(visited) + " of " + std::to_string(n_yaw) + " yaws)";
   return finish();

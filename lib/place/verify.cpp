@@ -91,6 +91,7 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.residual_rms = rms;
   const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
   out.chance_inliers = ov.chance;
+  out.covered = ov.covered;
   const double n = static_cast<double>(matches.size());
   char buf[256];
   if (matches.size() < params.min_inliers) {
@@ -110,8 +111,13 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.reason = buf;
 }
 
-std::size_t rivalInliers(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
-                         const std::vector<Landmark>& b, const VerifyParams& params) {
+double strengthOf(const PlaceResult& r) {
+  const double n = static_cast<double>(r.inliers.size());
+  return n * n / static_cast<double>(std::max<std::size_t>(1, r.covered));
+}
+
+const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
+                           const std::vector<Landmark>& b, const VerifyParams& params) {
   std::vector<std::pair<std::size_t, std::size_t>> mine;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const LandmarkMatch& m : best.inliers) {
@@ -120,24 +126,24 @@ std::size_t rivalInliers(const PlaceResult& best, const std::vector<PlaceResult>
   }
   std::sort(mine.begin(), mine.end());
   const double yaw = yawOf(best.T_a_b.linear());
-  std::size_t rival = 0;
+  const PlaceResult* rival = nullptr;
   for (const PlaceResult& h : hypotheses) {
+    if (!h.found) continue;
     std::size_t common = 0;
     for (const LandmarkMatch& m : h.inliers) common += std::binary_search(mine.begin(), mine.end(), std::pair{m.a, m.b});
     const bool elsewhere = (h.T_a_b * c - best.T_a_b * c).head<2>().norm() > params.rival_separation ||
                            std::abs(wrapAngle(yawOf(h.T_a_b.linear()) - yaw)) > 5.0 * M_PI / 180.0;
-    if (2 * common < h.inliers.size() && elsewhere) rival = std::max(rival, h.inliers.size());
+    if (2 * common < h.inliers.size() && elsewhere && (!rival || strengthOf(h) > strengthOf(*rival))) rival = &h;
   }
   return rival;
 }
 
-bool standsAgainstRival(std::size_t rival, const VerifyParams& params, PlaceResult& best) {
-  if (!best.found || static_cast<double>(best.inliers.size()) >= params.rival_ratio * static_cast<double>(rival))
-    return best.found;
+bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best) {
+  if (!best.found || !rival || strengthOf(best) >= params.rival_ratio * strengthOf(*rival)) return best.found;
   best.found = false;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "ambiguous: best hypothesis has %zu inliers, another alignment %zu", best.inliers.size(),
-                rival);
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "ambiguous: best hypothesis matches %zu of %zu covered landmarks, another alignment %zu of %zu",
+                best.inliers.size(), best.covered, rival->inliers.size(), rival->covered);
   best.reason = buf;
   return false;
 }

@@ -15,12 +15,12 @@ struct VerifyParams {
   double match_height = 1.0;       // metres, vertical
   double size_tolerance = 1.0;     // metres, see sizesAgree()
   std::size_t min_inliers = 5;     // fewer matches never make a transform
-  double min_inlier_ratio = 0.3;   // of B's landmarks that land where A has landmarks
+  double min_inlier_ratio = 0.2;   // of B's landmarks that land where A has landmarks
   double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
   double rival_separation = 3.0;   // metres: another alignment this far off is a rival (ambiguity test)...
-  double rival_ratio = 2.0;        // ...and the answer needs this many times its inliers
+  double rival_ratio = 2.0;        // ...and the answer needs this many times its strength
 };
 
 // One-to-one matches (greedy by horizontal distance) of B's landmarks, moved by T_a_b, to A's
@@ -44,15 +44,20 @@ Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, 
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
                      const Pose& hypothesis, const VerifyParams& params, PlaceResult& out);
 
-// Ambiguity: the most inliers among `hypotheses` that are another alignment than `best`: they
-// share fewer than half of their matches with it and move the centroid of best's inliers in B
-// by more than params.rival_separation (or turn B by more than 5 degrees against it); a variant of
-// the same alignment (a bent map aligned on another part of the overlap) is no rival. 0: none.
-std::size_t rivalInliers(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
-                         const std::vector<Landmark>& b, const VerifyParams& params);
-// A scene that aligns nearly as well another way (rooms furnished alike, a street grid) gives no
-// transform: best needs rival_ratio times the rival's inliers. Clears best.found and sets the
-// reason when it falls short; true when best stands.
-bool standsAgainstRival(std::size_t rival, const VerifyParams& params, PlaceResult& best);
+// How well a hypothesis explains B where it overlaps A: inliers times the inlier fraction of the
+// covered landmarks (n^2 / covered). An alignment that matches as many landmarks only by laying B
+// over much more of A (a street grid shifted by a block) is weaker.
+double strengthOf(const PlaceResult& r);
+// Ambiguity: the strongest of the accepted `hypotheses` (found) that are another alignment than
+// `best`: they share fewer than half of their matches with it and move the centroid of best's
+// inliers in B by more than params.rival_separation (or turn B by more than 5 degrees against
+// it); a variant of the same alignment (a bent map aligned on another part of the overlap) is no
+// rival. Null when there is none.
+const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
+                           const std::vector<Landmark>& b, const VerifyParams& params);
+// A scene that aligns nearly as well another way (rooms furnished alike) gives no transform: best
+// needs rival_ratio times the rival's strength. Clears best.found and sets the reason when it
+// falls short; true when best stands (or has no rival).
+bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best);
 
 }  // namespace slide

@@ -41,30 +41,44 @@ TEST(Verify, MatchesAreGatedHorizontallyAndVerticallyApart) {
   EXPECT_EQ(m[0].b, 0u);
 }
 
-TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
+TEST(Verify, ARivalIsAnotherAcceptedAlignmentElsewhere) {
   std::vector<Landmark> b;
   for (int i = 0; i < 10; ++i) b.push_back(at(i, 0, 0));
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < 10; ++i) pairs.emplace_back(i, i);
-  const PlaceResult best = withInliers(Pose::Identity(), pairs);
+  PlaceResult best = withInliers(Pose::Identity(), pairs);
+  best.covered = 10;
   const VerifyParams p;
   // The same alignment found again, and a variant 1 m off sharing none of the matches: no rival.
-  const PlaceResult same = withInliers(Pose::Identity(), pairs);
+  const PlaceResult same = best;
   std::vector<std::pair<std::size_t, std::size_t>> other;
   for (std::size_t i = 0; i < 6; ++i) other.emplace_back(100 + i, i);
-  const PlaceResult near = withInliers(poseFromXyzYaw(1.0, 0, 0, 0), other);
-  EXPECT_EQ(rivalInliers(best, {best, same, near}, b, p), 0u);
-  // 10 m off, or turned by 10 degrees about the matches' centroid: rivals.
-  const PlaceResult far = withInliers(poseFromXyzYaw(10.0, 0, 0, 0), other);
-  EXPECT_EQ(rivalInliers(best, {best, far}, b, p), 6u);
-  const Pose turn = poseFromXyzYaw(4.5, 0, 0, 0) * poseFromXyzYaw(0, 0, 0, 10 * M_PI / 180) * poseFromXyzYaw(-4.5, 0, 0, 0);
-  EXPECT_EQ(rivalInliers(best, {best, withInliers(turn, other)}, b, p), 6u);
+  PlaceResult near = withInliers(poseFromXyzYaw(1.0, 0, 0, 0), other);
+  near.covered = 8;
+  EXPECT_EQ(rivalOf(best, {best, same, near}, b, p), nullptr);
+  // 10 m off, or turned by 10 degrees about the matches' centroid: rivals, when accepted.
+  PlaceResult far = near;
+  far.T_a_b = poseFromXyzYaw(10.0, 0, 0, 0);
+  const std::vector<PlaceResult> with_far{best, far};
+  ASSERT_NE(rivalOf(best, with_far, b, p), nullptr);
+  EXPECT_EQ(rivalOf(best, with_far, b, p)->inliers.size(), 6u);
+  PlaceResult rejected = far;
+  rejected.found = false;
+  EXPECT_EQ(rivalOf(best, {best, rejected}, b, p), nullptr);
+  PlaceResult turned = near;
+  turned.T_a_b = poseFromXyzYaw(4.5, 0, 0, 0) * poseFromXyzYaw(0, 0, 0, 10 * M_PI / 180) * poseFromXyzYaw(-4.5, 0, 0, 0);
+  EXPECT_NE(rivalOf(best, {best, turned}, b, p), nullptr);
 
+  // Strength: inliers times the inlier fraction of the covered landmarks.
+  EXPECT_DOUBLE_EQ(strengthOf(best), 10.0);
+  EXPECT_DOUBLE_EQ(strengthOf(far), 4.5);
   PlaceResult stands = best;
-  EXPECT_TRUE(standsAgainstRival(5, p, stands));  // 10 >= 2 x 5
-  EXPECT_TRUE(stands.found);
+  EXPECT_TRUE(standsAgainstRival(&far, p, stands));  // 10 >= 2 x 4.5
+  EXPECT_TRUE(standsAgainstRival(nullptr, p, stands));
   PlaceResult falls = best;
-  EXPECT_FALSE(standsAgainstRival(6, p, falls));
+  PlaceResult strong = far;
+  strong.covered = 6;  // 6 of 6: strength 6
+  EXPECT_FALSE(standsAgainstRival(&strong, p, falls));
   EXPECT_FALSE(falls.found);
   EXPECT_NE(falls.reason.find("ambiguous"), std::string::npos);
 }

@@ -207,6 +207,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
   for (const MapPair& p : pairs) {
     const PlaceResult r = recognizePlace(method, p.a.lms, p.b.lms, config);
     f.cpu_ms.push_back(r.cpu_ms);
+    f.peak_bytes = std::max(f.peak_bytes, r.clipper_peak_bytes);
     f.objects_a.push_back(static_cast<double>(p.a.lms.size()));
     f.objects_b.push_back(static_cast<double>(p.b.lms.size()));
     if (!p.overlapping) {
@@ -391,6 +392,9 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
           fmt::format("thread CPU time, median of one query per pair ({} pairs), maps {:.0f} x {:.0f} objects (median)",
                       f.cpu_ms.size(), median(f.objects_a), median(f.objects_b));
       rep.add(prefix + "ms.max", *std::max_element(f.cpu_ms.begin(), f.cpu_ms.end()), "ms").note = "thread CPU time, slowest pair";
+      if (m == PlaceMethod::SlideGraph)
+        rep.add(prefix + "clipper_peak_mb", f.peak_bytes / 1e6, "MB").note =
+            "largest consistency graph + solver vectors of any query (associations capped at max_associations)";
       table += fmt::format("| {} | {} | {} | {:.0f} x {:.0f} | {} | {} | {} | {} | {} | {} | {:.1f} / {:.1f} |\n", c.world,
                            c.condition.name, methodName(m), median(f.objects_a), median(f.objects_b),
                            f.shared_fraction.empty() ? "-" : fmt::format("{:.2f}", median(f.shared_fraction)),

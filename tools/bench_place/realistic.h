@@ -57,6 +57,7 @@ struct RealisticFigures {
   int overlapping = 0, correct = 0, wrong = 0, missed = 0, disjoint = 0, false_positives = 0;
   std::vector<double> trans_err, yaw_err, cpu_ms;  // errors of correct results; CPU of every query
   std::vector<double> objects_a, objects_b, shared_fraction, truth_rms;
+  std::size_t peak_bytes = 0;  // SlideGraph: largest consistency graph of any query
   std::vector<std::string> wrong_notes;  // what each wrong / false-positive transform was
   std::vector<std::string> miss_notes;   // why each overlapping pair gave no transform
 };
