@@ -128,7 +128,6 @@ const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResul
   const double yaw = yawOf(best.T_a_b.linear());
   const PlaceResult* rival = nullptr;
   for (const PlaceResult& h : hypotheses) {
-    if (!h.found) continue;
     std::size_t common = 0;
     for (const LandmarkMatch& m : h.inliers) common += std::binary_search(mine.begin(), mine.end(), std::pair{m.a, m.b});
     const bool elsewhere = (h.T_a_b * c - best.T_a_b * c).head<2>().norm() > params.rival_separation ||

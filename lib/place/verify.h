@@ -48,8 +48,8 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
 // covered landmarks (n^2 / covered). An alignment that matches as many landmarks only by laying B
 // over much more of A (a street grid shifted by a block) is weaker.
 double strengthOf(const PlaceResult& r);
-// Ambiguity: the strongest of the accepted `hypotheses` (found) that are another alignment than
-// `best`: they share fewer than half of their matches with it and move the centroid of best's
+// Ambiguity: the strongest of the verified `hypotheses` (accepted or not) that are another
+// alignment than `best`: they share fewer than half of their matches with it and move the centroid of best's
 // inliers in B by more than params.rival_separation (or turn B by more than 5 degrees against
 // it); a variant of the same alignment (a bent map aligned on another part of the overlap) is no
 // rival. Null when there is none.
