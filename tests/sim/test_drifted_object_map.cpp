@@ -31,16 +31,12 @@ std::vector<Landmark> scatter(int n, double w, double h, unsigned seed) {
   return out;
 }
 
+// No drift, noise, misses, false objects or confusion.
 MapErrorParams exact() {
   MapErrorParams p;
-  p.yaw_drift_deg_per_100m = 0;
-  p.scale_error = 0;
-  p.vertical_drift_per_100m = 0;
-  p.position_sigma = 0;
-  p.size_sigma = 0;
-  p.missed = 0;
-  p.spurious = 0;
-  p.confusion = 0;
+  p.yaw_drift_deg_per_100m = p.scale_error = p.vertical_drift_per_100m = 0;
+  p.position_sigma = p.size_sigma = 0;
+  p.missed = p.spurious = p.confusion = 0;
   return p;
 }
 
