@@ -106,6 +106,12 @@ Error errorAt(const Pose& estimate, const SharedTruth& t) {
           std::abs(wrapAngle(yawOf(estimate.linear()) - yawOf(t.T_a_b.linear()))) * 180.0 / M_PI};
 }
 bool withinTolerance(const Error& e) { return e.trans_m <= 1.0 && e.yaw_deg <= 2.0; }
+// "X m / Y deg off", or that the maps share too few objects for a truth (any transform is wrong).
+std::string offBy(const Pose& estimate, const SharedTruth& t) {
+  if (!t.ok) return fmt::format("given while the maps share {} objects", t.shared);
+  const Error e = errorAt(estimate, t);
+  return fmt::format("{:.2f} m / {:.2f} deg off", e.trans_m, e.yaw_deg);
+}
 
 std::size_t trueObjects(const std::vector<Landmark>& lms) {
   return static_cast<std::size_t>(
@@ -227,16 +233,16 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
       f.miss_notes.push_back(fmt::format("{} shared: {}", t.shared, r.reason));
       continue;
     }
-    const Error e = t.ok ? errorAt(r.T_a_b, t) : Error{1e9, 1e9};
+    const Error e = t.ok ? errorAt(r.T_a_b, t) : Error{};
     if (t.ok && withinTolerance(e)) {
       ++f.correct;
       f.trans_err.push_back(e.trans_m);
       f.yaw_err.push_back(e.yaw_deg);
     } else {
       ++f.wrong;
-      f.wrong_notes.push_back(fmt::format("{:.2f} m / {:.2f} deg off ({} inliers, chance {:.1f}, {} shared, the truth's own "
-                                          "fit {:.2f} m rms, {})", e.trans_m, e.yaw_deg, r.inliers.size(), r.chance_inliers,
-                                          t.shared, t.rms, p.opposite ? "opposite" : "same way"));
+      f.wrong_notes.push_back(fmt::format("{} ({} inliers, chance {:.1f}, {} shared, the truth's own fit {:.2f} m rms, {})",
+                                          offBy(r.T_a_b, t), r.inliers.size(), r.chance_inliers, t.shared, t.rms,
+                                          p.opposite ? "opposite" : "same way"));
     }
   }
   return f;
@@ -276,9 +282,8 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, PlaceMethod met
         published_correct = true;
       } else if (!published_wrong) {
         published_wrong = true;
-        const Error e = t.ok ? errorAt(u.T, t) : Error{1e9, 1e9};
-        f.wrong_notes.push_back(fmt::format("{}published {:.2f} m / {:.2f} deg off after {} detections at {:.0f} m",
-                                            p.overlapping ? "" : "disjoint pair: ", e.trans_m, e.yaw_deg, fed, s));
+        f.wrong_notes.push_back(fmt::format("{}published, {}, after {} detections at {:.0f} m",
+                                            p.overlapping ? "" : "disjoint pair: ", offBy(u.T, t), fed, s));
       }
     }
     if (p.overlapping) {
