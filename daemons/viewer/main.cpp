@@ -7,18 +7,15 @@
 
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <regex>
 
 #include "app/app.h"
 #include "app/clock.h"
 #include "app/robot_bus.h"
 #include "app/stop_signal.h"
-#include "log_player.h"
 #include "objects/class_table.h"
 #include "msg/inbox.h"
-#include "viewer_node.h"
-#include "web_server.h"
+#include "viewer_session.h"
 
 using namespace slide;
 
@@ -40,6 +37,26 @@ std::pair<int, std::string> robotUrl(const std::string& s) {
 }
 
 double wallSeconds() { return static_cast<double>(wallMicros()) * 1e-6; }
+
+// Opens bus `b` and feeds the channels the viewer draws into `session`.
+void subscribe(Bus& b, ViewerSession& session) {
+  b.lcm = std::make_unique<lcm::LCM>(b.url);
+  if (!b.lcm->good()) throw std::runtime_error("cannot open LCM at '" + b.url + "'");
+  b.inbox = std::make_unique<msg::Inbox>(*b.lcm);
+  const ViewerChannels ch;
+  const std::vector<std::string> channels =
+      b.team ? std::vector<std::string>{ch.team_heartbeat, ch.team_chunk, ch.team_ack}
+             : std::vector<std::string>{ch.object_map,   ch.trajectory,       ch.keypose_bundle, ch.instances,
+                                        ch.loop_closure, ch.optimizer_status, ch.sensor_status};
+  for (const std::string& c : channels)
+    b.inbox->subscribeBytes(c, [&session, bp = &b](const std::string& channel, const void* data, std::size_t size) {
+      if (!session.onBus(bp->team, bp->robot, channel, data, size, wallSeconds()))
+        bp->inbox->countUndecodable(channel, session.dropSummary());
+    });
+  // Only the newest scan's instances are drawn: a viewer that falls behind skips old ones.
+  if (!b.team) b.inbox->setQueueCapacity(ch.instances, 10);
+  spdlog::info("listening to {} on {}", b.team ? "the team bus" : "robot " + std::to_string(b.robot) + "'s bus", b.url);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -98,29 +115,10 @@ int main(int argc, char** argv) {
                                      {"color", {c.color[0], c.color[1], c.color[2]}}};
     }
 
-    std::mutex mutex;  // the scene, the node and the player
-    viewer::Scene scene;
-    ViewerNode node(scene, params);
-    std::unique_ptr<LogPlayer> player;
+    ViewerSession session(std::move(classes), params);
     std::vector<Bus> bus_list;
-    std::vector<std::string> follow_dirs;  // run folders whose logs may appear later
     if (!replay.empty()) {
-      std::vector<LogSource> sources;
-      for (const std::string& r : replay) {
-        if (follow && std::filesystem::is_directory(r)) {
-          follow_dirs.push_back(r);
-          try {
-            for (const LogSource& s : logSourcesOf(r)) sources.push_back(s);
-          } catch (const std::runtime_error& e) {
-            spdlog::info("{}; waiting for its logs", e.what());
-          }
-          continue;
-        }
-        for (const LogSource& s : logSourcesOf(r)) sources.push_back(s);
-      }
-      player = std::make_unique<LogPlayer>(sources, node, scene, follow, wallSeconds());
-      spdlog::info("replaying {} logs ({} events the viewer draws){}", sources.size(), player->events(),
-                   follow ? ", following them as they grow" : "");
+      session.startReplay(replay, follow, wallSeconds());
     } else {
       for (int r : robots) bus_list.push_back({false, r, robotBusUrl(r), nullptr, nullptr});
       for (const std::string& b : buses) {
@@ -128,128 +126,37 @@ int main(int argc, char** argv) {
         bus_list.push_back({false, r, url, nullptr, nullptr});
       }
       if (!team_url.empty()) bus_list.push_back({true, -1, team_url, nullptr, nullptr});
-      const ViewerChannels ch;
-      for (Bus& b : bus_list) {
-        b.lcm = std::make_unique<lcm::LCM>(b.url);
-        if (!b.lcm->good()) throw std::runtime_error("cannot open LCM at '" + b.url + "'");
-        b.inbox = std::make_unique<msg::Inbox>(*b.lcm);
-        const std::vector<std::string> channels =
-            b.team ? std::vector<std::string>{ch.team_heartbeat, ch.team_chunk, ch.team_ack}
-                   : std::vector<std::string>{ch.object_map, ch.trajectory,       ch.keypose_bundle, ch.instances,
-                                              ch.loop_closure, ch.optimizer_status, ch.sensor_status};
-        for (const std::string& c : channels) {
-          Bus* bp = &b;
-          b.inbox->subscribeBytes(c, [&, bp](const std::string& channel, const void* data, std::size_t size) {
-            std::lock_guard<std::mutex> lock(mutex);
-            const bool ok = bp->team ? node.onTeamBus(bp->robot, channel, data, size, wallSeconds())
-                                     : node.onRobotBus(bp->robot, channel, data, size, wallSeconds());
-            if (!ok) bp->inbox->countUndecodable(channel, node.dropSummary());
-          });
-        }
-        // Only the newest scan's instances are drawn: a viewer that falls behind skips old ones.
-        if (!b.team) b.inbox->setQueueCapacity(ch.instances, 10);
-        spdlog::info("listening to {} on {}", b.team ? "the team bus" : "robot " + std::to_string(b.robot) + "'s bus",
-                     b.url);
-      }
+      for (Bus& b : bus_list) subscribe(b, session);
     }
-
-    auto update = [&](ClientCursor& c) -> std::string {
-      std::lock_guard<std::mutex> lock(mutex);
-      const double now = steadySeconds();
-      const bool changed = c.epoch != scene.epoch() || c.version != scene.version();
-      if (!changed && now - c.last_status_s < 1.0) return "";
-      nlohmann::json out = scene.delta(c.epoch, c.version);
-      if (out["reset"].get<bool>()) out["classes"] = classes;
-      if (now - c.last_status_s >= 1.0 || changed) {
-        nlohmann::json status = {{"mode", player ? (follow ? "follow" : "replay") : "live"},
-                                 {"received", node.received()},
-                                 {"dropped", node.dropped()},
-                                 {"dropped_objects", node.droppedObjects()}};
-        if (player) status["replay"] = player->clock().status(wallSeconds());
-        out["status"] = std::move(status);
-        c.last_status_s = now;
-      }
-      c.epoch = scene.epoch();
-      c.version = scene.version();
-      return out.dump();
-    };
-    auto control = [&](const std::string& text) -> bool {
-      const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-      if (!player || !j.is_object() || !j.contains("cmd") || !j["cmd"].is_string()) return false;
-      const std::string cmd = j["cmd"];
-      const double value = j.contains("value") && j["value"].is_number() ? j["value"].get<double>() : NAN;
-      std::lock_guard<std::mutex> lock(mutex);
-      viewer::ReplayClock& clock = player->clock();
-      const double wall = wallSeconds();
-      if (cmd == "pause") clock.pause(wall);
-      else if (cmd == "play") clock.play(wall);
-      else if (cmd == "live") clock.goLive();
-      else if (cmd == "speed" && std::isfinite(value)) clock.setSpeed(value, wall);
-      else if (cmd == "seek" && std::isfinite(value)) clock.seek(value, wall);
-      else return false;
-      return true;
-    };
     std::unique_ptr<WebServer> server;
-    auto stats = [&]() -> std::string {
-      const WebServerStats s = server->stats();
-      std::lock_guard<std::mutex> lock(mutex);
-      nlohmann::json j = {{"bytes_sent", s.bytes_sent},     {"messages_sent", s.messages_sent},
-                          {"clients", s.clients_now},       {"clients_total", s.clients_total},
-                          {"clients_refused", s.clients_refused}, {"controls", s.controls},
-                          {"controls_refused", s.controls_refused}, {"received", node.received()},
-                          {"dropped", node.dropped()},      {"drops", node.dropSummary()},
-                          {"scene_version", scene.version()}};
-      return j.dump();
-    };
-    server = std::make_unique<WebServer>(web, update, control, stats);
+    server = std::make_unique<WebServer>(
+        web, [&](ClientCursor& c) { return session.update(c, steadySeconds(), wallSeconds()); },
+        [&](const std::string& text) { return session.control(text, wallSeconds()); },
+        [&]() { return session.stats(server->stats()); });
     installStopHandlers();
     spdlog::info("viewer at {} (over SSH: ssh -L {}:127.0.0.1:{} <robot>, then open http://127.0.0.1:{}/)", server->url(),
                  web.port, web.port, web.port);
 
-    double last_report = steadySeconds(), last_read = last_report;
+    double last_report = steadySeconds();
     std::uint64_t last_bytes = 0;
     std::vector<pollfd> fds;
     for (Bus& b : bus_list) fds.push_back({b.lcm->getFileno(), POLLIN, 0});
     while (!stopRequested()) {
-      if (player) {
-        const double now = steadySeconds();
-        std::lock_guard<std::mutex> lock(mutex);
-        if (follow && now - last_read >= 0.5) {
-          for (const std::string& d : follow_dirs) {
-            try {
-              player->addSources(logSourcesOf(d));
-            } catch (const std::runtime_error&) {  // no logs there yet
-            }
-          }
-          player->readMore(wallSeconds());
-          last_read = now;
-        }
-        player->advance(wallSeconds());
-      } else {
-        std::lock_guard<std::mutex> lock(mutex);
-        scene.tick(wallSeconds());
-      }
-      if (fds.empty()) {
-        poll(nullptr, 0, 50);
-      } else {
-        for (pollfd& p : fds) p.revents = 0;
-        if (poll(fds.data(), fds.size(), 50) < 0 && !stopRequested()) throw std::runtime_error("poll on the buses failed");
-        for (std::size_t i = 0; i < fds.size(); ++i)
-          if (fds[i].revents & POLLIN) bus_list[i].lcm->handle();
-      }
+      session.step(steadySeconds(), wallSeconds());
+      for (pollfd& p : fds) p.revents = 0;
+      if (poll(fds.data(), fds.size(), 50) < 0 && !stopRequested()) throw std::runtime_error("poll on the buses failed");
+      for (std::size_t i = 0; i < fds.size(); ++i)
+        if (fds[i].revents & POLLIN) bus_list[i].lcm->handle();
       const double now = steadySeconds();
       if (now - last_report >= 10.0) {
-        const WebServerStats s = server->stats();
-        std::lock_guard<std::mutex> lock(mutex);
-        spdlog::info("{} browsers, {:.1f} KB/s to them; {} messages drawn, {} dropped{}{}", s.clients_now,
-                     static_cast<double>(s.bytes_sent - last_bytes) / 1024.0 / (now - last_report), node.received(),
-                     node.dropped(), node.dropped() ? ": " : "", node.dropSummary());
-        last_bytes = s.bytes_sent;
+        const WebServerStats st = server->stats();
+        spdlog::info("{} browsers, {:.1f} KB/s to them; {}", st.clients_now,
+                     static_cast<double>(st.bytes_sent - last_bytes) / 1024.0 / (now - last_report), session.summary());
+        last_bytes = st.bytes_sent;
         last_report = now;
       }
     }
-    spdlog::info("stopping; {} bytes sent to browsers; dropped: {}", server->stats().bytes_sent,
-                 node.dropped() ? node.dropSummary() : "none");
+    spdlog::info("stopping; {} bytes sent to browsers; {}", server->stats().bytes_sent, session.summary());
     server.reset();
     return 0;
   });
