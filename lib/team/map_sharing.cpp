@@ -115,8 +115,8 @@ void MapSharing::sent(const Outgoing& o) {
 
 std::variant<SharedMap, Drop> MapSharing::receive(ChunkKind kind, std::int32_t origin, std::int32_t version,
                                                   const Bytes& payload) {
+  if (version <= heldVersion(origin)) return Drop::Stale;
   Versions& held = received_[origin];
-  if (!held.empty() && version <= held.back().version) return Drop::Stale;
   std::string error;
   SharedMap m;
   if (kind == ChunkKind::Map) {
@@ -140,6 +140,11 @@ std::map<std::int32_t, std::int32_t> MapSharing::held() const {
   for (const auto& [origin, v] : received_)
     if (!v.empty()) out[origin] = v.back().version;
   return out;
+}
+
+std::int32_t MapSharing::heldVersion(std::int32_t robot) const {
+  const auto it = received_.find(robot);
+  return it == received_.end() || it->second.empty() ? 0 : it->second.back().version;
 }
 
 std::size_t MapSharing::landmarks(std::int32_t robot) const {

@@ -53,8 +53,9 @@ class MapSharing {
   // why nothing changed (Stale: not newer than the one held; MapBaseMissing: changes against a
   // version not kept here; Malformed: undecodable or inconsistent).
   std::variant<SharedMap, Drop> receive(ChunkKind kind, std::int32_t origin, std::int32_t version, const Bytes& payload);
-  // Latest version held per robot (for heartbeats).
+  // Latest version held per robot (for heartbeats), and of one robot (0: none).
   std::map<std::int32_t, std::int32_t> held() const;
+  std::int32_t heldVersion(std::int32_t robot) const;
   // Objects in the latest map of `robot` (own or received).
   std::size_t landmarks(std::int32_t robot) const;
 

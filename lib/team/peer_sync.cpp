@@ -331,8 +331,7 @@ void PeerSyncNode::receiveBundle(const Chunk& m, std::int32_t seq, PackedBundle 
 
 void PeerSyncNode::receiveMapChunk(const Chunk& m, Micros now) {
   if (m.origin != m.sender) return drop(Drop::WrongOrigin);
-  const auto held = maps_.held();
-  if (const auto it = held.find(m.origin); it != held.end() && m.seq <= it->second) return drop(Drop::Stale);
+  if (m.seq <= maps_.heldVersion(m.origin)) return drop(Drop::Stale);  // before it takes reassembly space
   std::optional<Drop> refused;
   std::optional<Bytes> payload = reassembler_.add(m, now, &refused);
   if (refused) return drop(*refused);
