@@ -79,14 +79,18 @@ int WebServer::onStats(mg_connection* conn, void* self) {
   return 200;
 }
 
-int WebServer::onConnect(const mg_connection*, void* self) {
+int WebServer::onConnect(const mg_connection* conn, void* self) {
   auto* s = static_cast<WebServer*>(self);
+  const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(s->mutex_);
-  if (static_cast<int>(s->clients_.size()) >= s->opts_.max_clients) {
+  for (auto it = s->admitting_.begin(); it != s->admitting_.end();)
+    it = now - it->second > std::chrono::milliseconds(s->opts_.request_timeout_ms) ? s->admitting_.erase(it) : std::next(it);
+  if (static_cast<int>(s->clients_.size() + s->admitting_.size()) >= s->opts_.max_clients) {
     ++s->stats_.clients_refused;
     spdlog::warn("refused a browser: already {} (--max-clients)", s->opts_.max_clients);
     return 1;
   }
+  s->admitting_[conn] = now;
   return 0;
 }
 
@@ -96,6 +100,7 @@ void WebServer::onReady(mg_connection* conn, void* self) {
   c->conn = conn;
   {
     std::lock_guard<std::mutex> lock(s->mutex_);
+    s->admitting_.erase(conn);
     s->clients_.push_back(c);
     ++s->stats_.clients_total;
     s->stats_.clients_now = s->clients_.size();
@@ -121,6 +126,8 @@ void WebServer::onClose(const mg_connection* conn, void* self) {
   auto* s = static_cast<WebServer*>(self);
   auto* raw = static_cast<Client*>(mg_get_user_connection_data(conn));
   if (!raw) {  // refused or closed before it was ready
+    std::lock_guard<std::mutex> lock(s->mutex_);
+    s->admitting_.erase(conn);
     return;
   }
   std::shared_ptr<Client> c;

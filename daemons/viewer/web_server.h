@@ -9,8 +9,10 @@
 // are civetweb's to answer and close. Text frames from the browser (control commands, at most
 // 4 KB) go to `control`.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -74,6 +76,10 @@ class WebServer {
   mg_context* ctx_ = nullptr;
   mutable std::mutex mutex_;
   std::vector<std::shared_ptr<Client>> clients_;
+  // Browsers admitted by onConnect whose handshake has not reached onReady yet: they hold a
+  // slot, so that browsers connecting at once cannot all pass the max_clients check. A slot whose
+  // handshake never completes is given back after request_timeout_ms.
+  std::map<const mg_connection*, std::chrono::steady_clock::time_point> admitting_;
   WebServerStats stats_;
 };
 
