@@ -159,17 +159,10 @@ Trajectory followRoute(const std::vector<Eigen::Vector2d>& polyline, const Terra
   std::vector<double> s(smooth.size(), 0.0);
   for (std::size_t i = 1; i < smooth.size(); ++i) s[i] = s[i - 1] + (smooth[i] - smooth[i - 1]).norm();
   const double step = m.speed / m.rate;
+  const double max_turn = m.max_yaw_rate > 0 ? m.max_yaw_rate / m.rate : std::numeric_limits<double>::infinity();
   const double total = std::min(max_length, s.back());
-  std::size_t j = 0;
-  for (int k = 0;; ++k) {
-    const double sk = k * step;
-    if (sk > total + 1e-9 || (max_frames > 0 && k >= max_frames)) break;
-    while (j + 2 < s.size() && s[j + 1] < sk) ++j;
-    const double a = s[j + 1] > s[j] ? std::clamp((sk - s[j]) / (s[j + 1] - s[j]), 0.0, 1.0) : 0.0;
-    const Eigen::Vector2d p = smooth[j] + a * (smooth[j + 1] - smooth[j]);
-    const std::size_t i0 = j > 5 ? j - 5 : 0, i1 = std::min(smooth.size() - 1, j + 6);
-    const Eigen::Vector2d dir = smooth[i1] - smooth[i0];
-    const double yaw = std::atan2(dir.y(), dir.x());
+  auto full = [&] { return max_frames > 0 && static_cast<int>(traj.size()) >= max_frames; };
+  auto emit = [&](const Eigen::Vector2d& p, double sk, double yaw) {
     const double ground = terrain.height(p.x(), p.y());
     double z, roll = 0, pitch = 0;
     if (m.aerial) {
@@ -180,8 +173,32 @@ Trajectory followRoute(const std::vector<Eigen::Vector2d>& polyline, const Terra
       pitch = -std::atan(grad.dot(Eigen::Vector2d(std::cos(yaw), std::sin(yaw))));
       roll = std::atan(grad.dot(Eigen::Vector2d(-std::sin(yaw), std::cos(yaw))));
     }
-    traj.times.push_back(t0 + k / m.rate);
+    traj.times.push_back(t0 + static_cast<double>(traj.size()) / m.rate);
     traj.poses.push_back(poseFromXyzRpy({p.x(), p.y(), z}, roll, pitch, yaw));
+  };
+  std::size_t j = 0;
+  Eigen::Vector2d last_p;
+  double last_yaw = 0, last_s = 0;
+  for (int k = 0;; ++k) {
+    const double sk = k * step;
+    if (sk > total + 1e-9 || full()) break;
+    while (j + 2 < s.size() && s[j + 1] < sk) ++j;
+    const double a = s[j + 1] > s[j] ? std::clamp((sk - s[j]) / (s[j + 1] - s[j]), 0.0, 1.0) : 0.0;
+    const Eigen::Vector2d p = smooth[j] + a * (smooth[j + 1] - smooth[j]);
+    const std::size_t i0 = j > 5 ? j - 5 : 0, i1 = std::min(smooth.size() - 1, j + 6);
+    const Eigen::Vector2d dir = smooth[i1] - smooth[i0];
+    const double yaw = std::atan2(dir.y(), dir.x());
+    if (k > 0) {  // turn in place where the path turns too fast
+      double d = std::remainder(yaw - last_yaw, 2 * M_PI);
+      while (std::abs(d) > max_turn && !full()) {
+        last_yaw += std::copysign(max_turn, d);
+        emit(last_p, last_s, last_yaw);
+        d = std::remainder(yaw - last_yaw, 2 * M_PI);
+      }
+      if (full()) break;
+    }
+    emit(p, sk, yaw);
+    last_p = p, last_yaw = yaw, last_s = sk;
   }
   return traj;
 }

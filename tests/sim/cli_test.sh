@@ -42,3 +42,10 @@ printf 'sensor_driver:\n  rate: fast\n' > "$OUT/bad.yaml"
 if "$BIN/slide-sensor-driver" "$OUT/indoor/robot0" --no-publish --config "$OUT/bad.yaml" --log "$OUT/x.lcm" 2>"$OUT/err"; then fail "bad config accepted"; fi
 grep -q "rate" "$OUT/err" || fail "config error does not name the key"
 echo "cli ok"
+# ./slide demo refuses a run folder that holds an earlier run (its optimizers would resume that
+# run's journals), naming it; the refusal comes before anything is simulated or started.
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+mkdir -p "$OUT/run/state"
+if SLIDE_NO_BUILD=1 "$ROOT/slide" demo --out "$OUT/run" --data "$OUT/indoor" --no-view 2>"$OUT/err"; then fail "demo reused an earlier run"; fi
+grep -q "holds an earlier run" "$OUT/err" || fail "demo: no message naming the earlier run"
+[[ ! -e "$OUT/run/data" ]] || fail "demo started before refusing"

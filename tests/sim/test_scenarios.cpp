@@ -8,6 +8,7 @@
 #include "sim/dataset_writer.h"
 #include "sim/indoor_world.h"
 #include "sim/kitti_world.h"
+#include "sim/robot_path.h"
 #include "sim/urban_world.h"
 
 using namespace slide;
@@ -228,4 +229,31 @@ TEST(Scenario, OverlapSharesTheRoutes) {
   const double none = shared(0.0), most = shared(0.8);
   EXPECT_GT(most, 0.5);
   EXPECT_GT(most, none + 0.2);
+}
+
+TEST(RobotPath, ARouteThatDoublesBackTurnsInPlaceAtTheYawRateLimit) {
+  // 20 m east, then back west along the same street: the smoothed path reverses within a few
+  // frames, which a robot cannot do; it stops and turns in place instead.
+  const Terrain flat = unevenTerrain(0.0, 1);
+  MotionParams m;
+  m.rate = 5;
+  const Trajectory t = followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
+  ASSERT_GT(t.size(), 100u);
+  double max_turn = 0, turned_in_place = 0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const Pose d = t.poses[i - 1].inverse() * t.poses[i];
+    const double turn = Eigen::AngleAxisd(d.linear()).angle();
+    max_turn = std::max(max_turn, turn);
+    if (d.translation().norm() < 1e-9) turned_in_place += turn;
+    EXPECT_NEAR(t.times[i] - t.times[i - 1], 1.0 / m.rate, 1e-9);
+  }
+  EXPECT_LE(max_turn, m.max_yaw_rate / m.rate + 1e-9);
+  EXPECT_GT(turned_in_place, 2.0) << "the half-turn was not made in place";
+  // Limit off: the old behaviour, a reversal within a few frames.
+  m.max_yaw_rate = 0;
+  const Trajectory fast = followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
+  double fast_max = 0;
+  for (std::size_t i = 1; i < fast.size(); ++i)
+    fast_max = std::max(fast_max, Eigen::AngleAxisd((fast.poses[i - 1].inverse() * fast.poses[i]).linear()).angle());
+  EXPECT_GT(fast_max, 0.5);
 }

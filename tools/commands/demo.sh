@@ -6,7 +6,7 @@ demo_usage() {
 usage: ./slide demo [--world forest|urban|indoor] [--robots N] [--seed S] [--distance M]
                     [--overlap F] [--rate R] [--settle SEC] [--out DIR]
                     [--perception label-free|emulated|oracle] [--data SIM_DIR]
-                    [--sensors lidar,rgbd,...] [--aerial-robots IDS] [--view-port P | --no-view]
+                    [--sensors lidar,rgbd,...] [--aerial-robots IDS] [--view-port P | --no-view] [--force]
 Simulates a team mission (default: 3 robots, forest, each in its own unknown odometry frame),
 then runs every robot's daemons (sensor driver, segmenter, tracker, optimizer, loop closer,
 peer sync) under its own slide-deputy in its own network namespace (./slide netlab), driven by
@@ -28,6 +28,8 @@ While the team runs, slide-viewer follows the run's logs and serves the live map
 http://127.0.0.1:<view-port>/ (default 8080; over SSH: ssh -L 8080:127.0.0.1:8080 <this host>);
 the report gets its pictures of each robot's view. --no-view runs without it. Afterwards
 ./slide view RUN_DIR replays the run in the browser.
+An --out folder that holds an earlier run (state/ or logs/) is refused: its daemons would resume
+the earlier run's journals. --force deletes that run's state, logs, outputs and report first.
 Defaults: --world forest --robots 3 --seed 1 --distance 150 --overlap 0.6 --rate 1 --settle 25
           --out runs/demo-<time> --perception label-free
 USAGE
@@ -35,7 +37,7 @@ USAGE
 
 main() {
   if wants_help "$@"; then demo_usage; return 0; fi
-  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse= sensors="" aerial="" view_port=8080
+  local world=forest robots=3 seed=1 distance=150 overlap=0.6 rate=1 settle=25 out="" perception=label-free reuse= sensors="" aerial="" view_port=8080 force=
   while [[ $# -gt 0 ]]; do
     case "$1" in
       --world) world=$2; shift 2 ;;
@@ -52,6 +54,7 @@ main() {
       --aerial-robots) aerial=$2; shift 2 ;;
       --view-port) view_port=$2; shift 2 ;;
       --no-view) view_port=""; shift ;;
+      --force) force=1; shift ;;
       *) die "demo: unknown option '$1' (see ./slide demo --help)" ;;
     esac
   done
@@ -60,6 +63,10 @@ main() {
   [[ $(id -u) -eq 0 ]] || die "demo needs root: it runs each robot in its own network namespace"
   [[ -n "${SLIDE_NO_BUILD:-}" ]] || ensure_built
   out=${out:-$SLIDE_ROOT/runs/demo-$(date +%Y%m%d-%H%M%S)}
+  if [[ -d "$out/state" || -d "$out/logs" ]]; then
+    [[ -n "$force" ]] || die "demo: $out holds an earlier run (state/, logs/): its optimizers would resume that run's journals; choose another --out, or --force to delete that run first"
+    rm -rf "$out/state" "$out/logs" "$out/out" "$out/report" "$out/config" "$out/keys" "$out/team.pmd" "$out/netlab.log" "$out/viewer.log"
+  fi
   mkdir -p "$out"
   out=$(cd "$out" && pwd)
   local data="$out/data" t0=$SECONDS
