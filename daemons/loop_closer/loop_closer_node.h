@@ -15,7 +15,7 @@
 namespace slide {
 
 struct LoopCloserChannels {
-  std::string own_map = channels::kObjectMap;
+  std::string own_map = channels::kOwnMap;
   std::string peer_maps = channels::kPeerMap;
   std::string trajectory = channels::kTrajectory;
   std::string loop_closures = channels::kLoopClosure;

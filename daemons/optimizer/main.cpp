@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("--peer-bundle-channel", ch.peer_bundle)->capture_default_str();
   app.add_option("--loop-closure-channel", ch.loop_closure)->capture_default_str();
   app.add_option("--object-map-channel", ch.object_map)->capture_default_str();
+  app.add_option("--own-map-channel", ch.own_map)->capture_default_str();
   app.add_option("--trajectory-channel", ch.trajectory)->capture_default_str();
   app.add_option("--status-channel", ch.status)->capture_default_str();
   addCommonOptions(app, common);

@@ -200,6 +200,7 @@ void OptimizerNode::publishAll() {
   const std::int64_t t = wallMicros();
   const int host = optimizer_.hostRobot();
   publish_(channels_.object_map, msg::encodeLcm(objectMapMsg(t, host, optimizer_.landmarks())));
+  publish_(channels_.own_map, msg::encodeLcm(objectMapMsg(t, host, optimizer_.ownLandmarks())));
   for (int r : optimizer_.robots()) publish_(channels_.trajectory, msg::encodeLcm(trajectoryMsg(t, r, host, optimizer_.trajectory(r))));
 }
 

@@ -22,6 +22,7 @@ struct OptimizerChannels {
   std::string peer_bundle = channels::kPeerBundle;
   std::string loop_closure = channels::kLoopClosure;
   std::string object_map = channels::kObjectMap;
+  std::string own_map = channels::kOwnMap;
   std::string trajectory = channels::kTrajectory;
   std::string status = channels::kOptimizerStatus;
 };

@@ -19,7 +19,7 @@ namespace slide {
 
 struct PeerSyncChannels {
   std::string own_bundle = channels::kKeyPoseBundle;  // robot bus, in
-  std::string own_map = channels::kObjectMap;         // robot bus, in
+  std::string own_map = channels::kOwnMap;         // robot bus, in
   std::string peer_bundle = channels::kPeerBundle;    // robot bus, out
   std::string peer_map = channels::kPeerMap;          // robot bus, out
   std::string status = channels::kPeerSyncStatus;     // robot bus, out

@@ -322,6 +322,23 @@ std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
   return out;
 }
 
+std::vector<Object> Optimizer::ownLandmarks() const {
+  std::vector<Object> out;
+  const auto host = robots_.find(host_);
+  if (host == robots_.end()) return out;
+  std::vector<int> own_vars;
+  for (int k : host->second.keyposes) own_vars.push_back(keyposes_[k].var);
+  std::sort(own_vars.begin(), own_vars.end());
+  for (const Landmark& lm : landmarks_) {
+    if (!lm.alive) continue;
+    const auto own = std::count_if(lm.seen.begin(), lm.seen.end(), [&](const Observation& o) {
+      return std::binary_search(own_vars.begin(), own_vars.end(), o.pose_var);
+    });
+    if (own >= cfg_.min_observations) out.push_back(landmarkObject(lm));
+  }
+  return out;
+}
+
 int Optimizer::numLandmarks(bool confirmed_only) const {
   int n = 0;
   for (const Landmark& lm : landmarks_) n += lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations);

@@ -90,6 +90,11 @@ class Optimizer {
 
   // Landmarks in the host frame (ids are the landmark ids), confirmed ones or all.
   std::vector<Object> landmarks(bool confirmed_only = true) const;
+  // The host's own map: landmarks it observed itself at least min_observations times, placed by
+  // the joint estimate. Place recognition and the team take this map, not landmarks(): a
+  // merged peer's landmarks in it would match the peer's own map at the transform they were
+  // merged through, and each refinement would confirm (and drift with) the last one.
+  std::vector<Object> ownLandmarks() const;
   std::vector<int> robots() const;  // the host and every merged peer, ascending
   std::vector<TrajectoryPose> trajectory(int robot) const;
   bool merged(int robot) const;

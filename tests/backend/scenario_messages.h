@@ -2,6 +2,7 @@
 // LCM input messages for the optimizer node made from a two-robot indoor scenario: robot 0's
 // bundles, robot 1's (peer) bundles interleaved, the inter-robot transform half-way and an
 // intra-robot loop closure near the end.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,16 +24,18 @@ std::vector<uint8_t> encodeMsg(const M& m) {
   return buf;
 }
 
-inline std::vector<RawMessage> twoRobotMessages() {
+// Robot 0 drives the indoor scenario's poses [0, a_end), robot 1 [b_begin, b_end).
+inline std::vector<RawMessage> twoRobotMessages(int a_end = 80, int b_begin = 50, int b_end = 130) {
   Scenario s = makeIndoorScenario(6);
   const std::vector<Pose> path = s.robots[0].truth;
   std::mt19937 rng(3);
-  const ScenarioRobot a = simulateRobot(0, {path.begin(), path.begin() + 80}, s.landmarks, s.noise, rng);
-  const ScenarioRobot b = simulateRobot(1, {path.begin() + 50, path.begin() + 130}, s.landmarks, s.noise, rng, 7000000);
+  const ScenarioRobot a = simulateRobot(0, {path.begin(), path.begin() + a_end}, s.landmarks, s.noise, rng);
+  const ScenarioRobot b =
+      simulateRobot(1, {path.begin() + b_begin, path.begin() + b_end}, s.landmarks, s.noise, rng, 7000000);
   std::vector<RawMessage> out;
-  for (std::size_t k = 0; k < a.bundles.size(); ++k) {
-    out.push_back({"KEYPOSE_BUNDLE", encodeMsg(toMsg(a.bundles[k]))});
-    out.push_back({"PEER_BUNDLE", encodeMsg(toMsg(b.bundles[k]))});
+  for (std::size_t k = 0; k < std::max(a.bundles.size(), b.bundles.size()); ++k) {
+    if (k < a.bundles.size()) out.push_back({"KEYPOSE_BUNDLE", encodeMsg(toMsg(a.bundles[k]))});
+    if (k < b.bundles.size()) out.push_back({"PEER_BUNDLE", encodeMsg(toMsg(b.bundles[k]))});
     if (k == 40) {
       const Pose T = a.truth[0].inverse() * b.truth[0];
       loop_closure_t lc{};
@@ -45,7 +48,7 @@ inline std::vector<RawMessage> twoRobotMessages() {
       lc.num_inliers = 0;
       out.push_back({"LOOP_CLOSURE", encodeMsg(lc)});
     }
-    if (k == 70) {
+    if (k == 70 && a.truth.size() > 70) {
       const Pose T = a.truth[5].inverse() * a.truth[70];
       loop_closure_t lc{};
       lc.robot_a = lc.robot_b = 0;

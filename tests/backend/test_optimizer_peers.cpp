@@ -4,8 +4,11 @@
 // number of peers and of bundles held per peer is bounded, and what is refused is counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 
+#include "msg/convert.h"
 #include "optimizer_node.h"
 #include "scenario_messages.h"
 #include "slide/optimizer_status_t.hpp"
@@ -101,4 +104,36 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
   optimizer_status_t s;
   ASSERT_GE(s.decode(status.back().data(), 0, static_cast<int>(status.back().size())), 0);
   EXPECT_EQ(s.rejected_inputs, 790);
+}
+
+TEST(OptimizerPeers, OwnMapHoldsOnlyLandmarksTheRobotObservedItself) {
+  // Robot 0 drives a third of the room, robot 1 on around it: after the merge the merged map
+  // holds robot 1's landmarks too, the own map (place recognition's and the team's input) only
+  // robot 0's.
+  std::map<std::string, object_map_t> last;
+  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {},
+                     [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
+                       object_map_t m;
+                       if (m.decode(bytes.data(), 0, static_cast<int>(bytes.size())) >= 0) last[channel] = m;
+                       return true;
+                     });
+  OptimizerNode alone(BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
+  for (const auto& m : slide::testing::twoRobotMessages(45, 25, 130)) {
+    feed(node, m);
+    if (m.channel == "KEYPOSE_BUNDLE") feed(alone, m);
+  }
+  ASSERT_TRUE(node.optimizer().merged(1));
+  const object_map_t& merged = last.at("OBJECT_MAP");
+  const object_map_t& own = last.at("OWN_MAP");
+  const std::vector<Object> truth_own = alone.optimizer().landmarks();
+  EXPECT_GT(merged.num_objects, own.num_objects + 5) << "robot 1's own stretch adds landmarks to the merged map";
+  EXPECT_NEAR(own.num_objects, static_cast<int>(truth_own.size()), 3);
+  // Every own-map landmark is one robot 0 maps on its own (same class, within 0.5 m).
+  for (const object_t& o : own.objects) {
+    const Object mine = fromMsg(o);
+    const bool found = std::any_of(truth_own.begin(), truth_own.end(), [&](const Object& t) {
+      return t.class_id == mine.class_id && (t.position() - mine.position()).norm() < 0.5;
+    });
+    EXPECT_TRUE(found) << "own map landmark " << o.id << " is not one robot 0 observed";
+  }
 }

@@ -295,6 +295,7 @@ TEST(SLIDE_FUZZ_SUITE, EveryDaemonSurvivesHostileMessagesOnEveryInputAndKeepsSer
       {&bus, "PEER_BUNDLE", encode(bundle(1, 1))},
       {&bus, "LOOP_CLOSURE", encode(loopClosure(0))},
       {&bus, "OBJECT_MAP", encode(objectMap(0))},
+      {&bus, "OWN_MAP", encode(objectMap(0))},
       {&bus, "PEER_MAP", encode(objectMap(1))},
       {&bus, "TRAJECTORY", encode(trajectory(0))},
       {&team, "TEAM_HEARTBEAT", encode(heartbeat(1))},

@@ -54,7 +54,7 @@ TEST(LoopCloserDaemon, PublishesTheTransformBetweenTwoRobotsMaps) {
   const object_map_t own_msg = slide::testing::mapMsg(0, own), peer_msg = slide::testing::mapMsg(1, peer);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (c.got.empty() && std::chrono::steady_clock::now() < deadline) {
-    lcm.publish("OBJECT_MAP", &own_msg);  // repeated: the daemon may still be starting
+    lcm.publish("OWN_MAP", &own_msg);  // repeated: the daemon may still be starting
     lcm.publish("PEER_MAP", &peer_msg);
     lcm.handleTimeout(300);
   }

@@ -40,7 +40,7 @@ inline std::string writeTestConfig(const std::string& dir, const std::string& te
                          "robot_url: \"udpm://239.255.76.67:7667?ttl=0\"\n"
                          "team_url: \"" << team_url << "\"\n"
                          "state_dir: \"" << dir << "\"\n"
-                         "channels: {own_bundle: KEYPOSE_BUNDLE, own_map: OBJECT_MAP, peer_bundle: PEER_BUNDLE,\n"
+                         "channels: {own_bundle: KEYPOSE_BUNDLE, own_map: OWN_MAP, peer_bundle: PEER_BUNDLE,\n"
                          "           peer_map: PEER_MAP, heartbeat: TEAM_HEARTBEAT, chunk: TEAM_CHUNK, ack: TEAM_ACK}\n"
                          "tick_period_s: 0.02\nstats_period_s: 3\nheartbeat_period_s: 0.3\nack_delay_s: 0.05\n"
                          "resend_timeout_s: 0.6\nrelay_delay_s: 0.6\npeer_timeout_s: 2.0\nbundle_hold_s: 0.3\n"
