@@ -13,7 +13,7 @@ std::vector<Landmark> landmarksOf(const ObjectMap& map) {
     // A column (trunk, pole) is placed at its foot: where it meets the ground is seen alike by
     // every robot, while its midpoint follows how high each one saw it (range, occlusion).
     const auto* c = std::get_if<Cylinder>(&o.model);
-    out.push_back({c ? c->root : o.position(), o.extent(), o.class_id, i});
+    out.push_back({c ? c->root : o.position(), o.extent(), o.class_id, i, o.shape()});
   }
   return out;
 }
@@ -34,6 +34,28 @@ bool sizesAgree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol) 
   if (a.isZero() || b.isZero()) return true;
   const Eigen::Vector3d bs(b.y(), b.x(), b.z());
   return std::min((a - b).norm(), (a - bs).norm()) <= tol;
+}
+
+double sharedClassShare(const std::vector<Landmark>& a, const std::vector<Landmark>& b) {
+  auto classes = [](const std::vector<Landmark>& l) {
+    std::vector<int> c;
+    for (const Landmark& x : l) c.push_back(x.class_id);
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    return c;
+  };
+  auto share = [](const std::vector<Landmark>& l, const std::vector<int>& other) {
+    if (l.empty()) return 1.0;
+    const auto n = std::count_if(l.begin(), l.end(),
+                                 [&](const Landmark& x) { return std::binary_search(other.begin(), other.end(), x.class_id); });
+    return static_cast<double>(n) / static_cast<double>(l.size());
+  };
+  return std::min(share(a, classes(b)), share(b, classes(a)));
+}
+
+std::vector<Landmark> byShapeFamily(std::vector<Landmark> lms) {
+  for (Landmark& l : lms) l.class_id = -1 - static_cast<int>(l.shape);
+  return lms;
 }
 
 Eigen::Vector3d centroidOf(const std::vector<Landmark>& lms) {

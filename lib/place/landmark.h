@@ -14,6 +14,7 @@ struct Landmark {
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // bounding-box extents; zero = unknown
   int class_id = 0;
   std::size_t index = 0;  // position in the source ObjectMap
+  Shape shape = Shape::Ellipsoid;
 };
 
 // Landmarks of the finite objects of `map` (non-finite ones are left out), at their centres;
@@ -27,6 +28,14 @@ std::string unusableReason(const std::vector<Landmark>& lms, std::size_t min_cou
 // Sizes agree when either is unknown (all zero) or the extent difference norm is within tol;
 // for the horizontal extents the order does not matter (length and width may swap).
 bool sizesAgree(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double tol);
+
+// The share of landmarks whose class the other set also holds, the lower of the two sets'
+// shares (1 when both are empty).
+double sharedClassShare(const std::vector<Landmark>& a, const std::vector<Landmark>& b);
+
+// The landmarks with each class replaced by its shape family (negative ids: -1 cuboid, -2
+// cylinder, -3 ellipsoid), for robots whose detectors name different classes.
+std::vector<Landmark> byShapeFamily(std::vector<Landmark> lms);
 
 // Centroid of the positions (zero for an empty set).
 Eigen::Vector3d centroidOf(const std::vector<Landmark>& lms);

@@ -68,6 +68,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     if (c.slidematch.max_yaw_step_deg < c.slidematch.min_yaw_step_deg)
       n.fail("max_yaw_step_deg", "must be at least min_yaw_step_deg");
   }
+  root.read("min_shared_class_share", c.min_shared_class_share);
   root.rejectUnknownKeys();
   return c;
 }
@@ -82,6 +83,13 @@ PlaceMethod parsePlaceMethod(const std::string& name) {
 
 PlaceResult recognizePlace(PlaceMethod method, const std::vector<Landmark>& a, const std::vector<Landmark>& b,
                            const PlaceConfig& config) {
+  if (sharedClassShare(a, b) < config.min_shared_class_share) {
+    const std::vector<Landmark> sa = byShapeFamily(a), sb = byShapeFamily(b);
+    PlaceResult r = method == PlaceMethod::SlideGraph ? slideGraph(sa, sb, config.slidegraph)
+                                                      : slideMatch(sa, sb, config.slidematch);
+    r.by_shape = true;
+    return r;
+  }
   return method == PlaceMethod::SlideGraph ? slideGraph(a, b, config.slidegraph) : slideMatch(a, b, config.slidematch);
 }
 

@@ -161,3 +161,38 @@ TEST(SlideMatch, AHugeExtentCoarsensTheGridInsteadOfExhaustingMemory) {
     EXPECT_LT(transformError(r.T_a_b, c.truth).trans_m, 1.0);  // never a wrong transform
   }
 }
+
+TEST(PlaceRecognition, ALabelFreeMapMatchesALabelledOneByShapeFamily) {
+  // A real indoor map (chairs, tables, monitors from a detector) against a moved copy whose
+  // classes are all "other", as a label-free LiDAR robot names furniture: no class in common,
+  // so class-by-class matching cannot work; by shape family it finds the transform.
+  const ClassTable classes = ClassTable::loadDefault();
+  const std::vector<Landmark> a =
+      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/indoor/robot1.txt", classes).map);
+  ASSERT_GE(a.size(), 30u);
+  const Pose truth = poseFromXyzYaw(12.0, -4.0, 0.0, 1.1);
+  std::mt19937 rng(5);
+  std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.1}, rng);
+  for (Landmark& l : b) l.class_id = 0;
+  EXPECT_EQ(sharedClassShare(a, b), 0.0);
+  PlaceConfig config = loadDefaultPlaceConfig();
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    const PlaceResult r = recognizePlace(m, a, b, config);
+    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+    EXPECT_TRUE(r.by_shape);
+    const TransformError e = transformError(r.T_a_b, truth);
+    EXPECT_LT(e.trans_m, 0.1) << methodName(m);
+    EXPECT_LT(e.yaw_deg, 0.5) << methodName(m);
+    for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
+  }
+  // The same furniture scattered at random (same count, same room size) matches nothing.
+  std::uniform_real_distribution<double> ux(0, 8), uy(-5, 6);
+  for (Landmark& l : b) l.p = truth * Eigen::Vector3d(ux(rng), uy(rng), l.p.z());
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch})
+    EXPECT_FALSE(recognizePlace(m, a, b, config).found) << methodName(m);
+  // Class by class (share threshold 0) the two maps have nothing to match.
+  config.min_shared_class_share = 0.0;
+  b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.1}, rng);
+  for (Landmark& l : b) l.class_id = 0;
+  EXPECT_FALSE(recognizePlace(PlaceMethod::SlideGraph, a, b, config).found);
+}
