@@ -103,6 +103,7 @@ BackendConfig loadBackendConfig(const std::string& path) {
     c.guard_estimate = n.get<bool>("guard_estimate", c.guard_estimate);
     n.read("remerge_translation_m", c.remerge_translation_m);
     n.read("remerge_yaw_deg", c.remerge_yaw_deg);
+    n.read("refine_until_shared", c.refine_until_shared);
     n.rejectUnknownKeys();  // before the checks below, which read every key
     for (const auto& k : n.keys())
       if (k != "guard_estimate" && !(n.get<double>(k) > 0)) n.fail(k, "must be positive");

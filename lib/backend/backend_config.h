@@ -103,6 +103,8 @@ struct BackendConfig {
   // contradicts the merge: the peer is un-merged and merged again through it.
   double remerge_translation_m = 2.0;
   double remerge_yaw_deg = 5.0;
+  int refine_until_shared = 10;  // a merged peer's transform follows place recognition's refinements
+                                 // until it shares this many landmarks with the host
 };
 
 // Loads backend.yaml; every key is optional (defaults above); errors name file and key.

@@ -247,6 +247,11 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
   }
   inputs_.push_back({Input::Kind::Transform, {}, peer, 0, 0, T_host_peer});
   Robot& robot = robots_[peer];
+  if (robot.merged && sharedLandmarks(peer) >= cfg_.refine_until_shared) {
+    r.accepted = true;  // journalled; the graph already aligns the two robots
+    r.update_ms = msSince(t0);
+    return r;
+  }
   robot.T_host_robot = T_host_peer;
   if (!robot.merged) {
     robot.merged = true;
@@ -320,6 +325,24 @@ std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
   for (const Landmark& lm : landmarks_)
     if (lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations)) out.push_back(landmarkObject(lm));
   return out;
+}
+
+int Optimizer::sharedLandmarks(int peer) const {
+  std::map<int, int> robot_of_var;
+  for (const KeyPose& k : keyposes_) robot_of_var[k.var] = k.robot;
+  int n = 0;
+  for (const Landmark& lm : landmarks_) {
+    if (!lm.alive) continue;
+    bool host = false, other = false;
+    for (const Observation& o : lm.seen) {
+      const auto it = robot_of_var.find(o.pose_var);
+      if (it == robot_of_var.end()) continue;
+      host = host || it->second == host_;
+      other = other || it->second == peer;
+    }
+    n += host && other;
+  }
+  return n;
 }
 
 std::vector<Object> Optimizer::ownLandmarks() const {

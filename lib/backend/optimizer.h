@@ -60,7 +60,9 @@ class Optimizer {
   UpdateResult addBundle(const KeyPoseBundle& bundle);
   // T_host_peer maps the peer's frame into the host's. The first one merges the peer's held
   // bundles; later ones close to the transform it was merged through replace its anchor
-  // prior, never adding a second; one that contradicts it (remerge_* apart) un-merges the
+  // prior, never adding a second, while the peer shares fewer than refine_until_shared
+  // landmarks with the host (then the graph aligns the two and they change nothing); one that
+  // contradicts it (remerge_* apart) un-merges the
   // peer (its observations leave the graph, which is rebuilt from the recorded inputs) and
   // merges it again through the new transform. A merge after which some robot's trajectory
   // leaves its odometry envelope is undone and that transform refused from then on.
@@ -95,6 +97,8 @@ class Optimizer {
   // merged peer's landmarks in it would match the peer's own map at the transform they were
   // merged through, and each refinement would confirm (and drift with) the last one.
   std::vector<Object> ownLandmarks() const;
+  // Landmarks observed both by the host and by `peer`.
+  int sharedLandmarks(int peer) const;
   std::vector<int> robots() const;  // the host and every merged peer, ascending
   std::vector<TrajectoryPose> trajectory(int robot) const;
   bool merged(int robot) const;

@@ -245,3 +245,33 @@ TEST(BackendOptimizer, LoopClosureOutsideTheOdometryEnvelopeIsRefused) {
                              (s.robots[0].truth[0].inverse() * s.robots[0].truth[p.seq]).translation()).norm());
   EXPECT_LT(worst, 0.5);
 }
+
+TEST(BackendOptimizer, RefinementsStopMovingAPeerOnceSharedLandmarksAlignIt) {
+  // Place recognition keeps re-detecting a merged peer's transform from maps that already hold
+  // the merge; once the two robots share landmarks in the graph, such a refinement is the same
+  // observations counted twice, and it leaves the estimate alone. Before that it moves the anchor.
+  const Scenario s = twoRobotIndoor();
+  const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
+  const Pose off = truth * poseFromXyzYaw(0.8, -0.5, 0, 0.03);  // within the remerge limits
+  for (int until : {1000000, 10}) {
+    BackendConfig cfg;
+    cfg.refine_until_shared = until;
+    Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+    for (const auto& x : s.robots[0].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
+    for (const auto& x : s.robots[1].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
+    ASSERT_TRUE(opt.addRobotTransform(1, truth).accepted);
+    opt.fullSolve();
+    ASSERT_GE(opt.sharedLandmarks(1), 10);
+    const Pose before = opt.trajectory(1).front().pose;
+    const UpdateResult r = opt.addRobotTransform(1, off);
+    EXPECT_TRUE(r.accepted);
+    opt.fullSolve();
+    const double moved = (opt.trajectory(1).front().pose.translation() - before.translation()).norm();
+    if (until == 10) {
+      EXPECT_FALSE(r.full_solve);
+      EXPECT_LT(moved, 1e-3) << "a refinement moved a peer the shared landmarks already align";
+    } else {
+      EXPECT_TRUE(r.full_solve) << "with refinements always taken the anchor is replaced (the test's control)";
+    }
+  }
+}

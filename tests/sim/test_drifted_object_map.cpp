@@ -195,6 +195,9 @@ TEST(DriftedObjectMap, TheMapAtAMomentHoldsWhatWasPlacedBefore) {
   EXPECT_EQ(half.size(), expected);
   EXPECT_GT(half.size(), m.lms.size() / 3);
   EXPECT_LT(half.size(), 2 * m.lms.size() / 3);
-  for (const Landmark& l : half)
-    if (l.index != kSpuriousObject) EXPECT_LT(world[l.index].p.x(), 100 + p.range + 1e-9);
+  for (const Landmark& l : half) {
+    if (l.index != kSpuriousObject) {
+      EXPECT_LT(world[l.index].p.x(), 100 + p.range + 1e-9);
+    }
+  }
 }
