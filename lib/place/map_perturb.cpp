@@ -21,9 +21,4 @@ std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& 
   return out;
 }
 
-TransformError transformError(const Pose& estimate, const Pose& truth) {
-  const Pose d = truth.inverse() * estimate;
-  return {d.translation().norm(), std::abs(wrapAngle(yawOf(d.linear()))) * 180.0 / M_PI};
-}
-
 }  // namespace slide

@@ -1,6 +1,6 @@
 #pragma once
 // Test and benchmark helper: a copy of a landmark map as another robot would hold it — in its
-// own frame, with position noise and some objects missed — and the error of an estimate.
+// own frame, with position noise and some objects missed (errors of estimates: eval/transform_error.h).
 #include <random>
 
 #include "place/landmark.h"
@@ -17,12 +17,5 @@ struct PerturbParams {
 // keeps the `index` of the landmark it copies (ground truth for checking matches).
 std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& T_a_b, const PerturbParams& p,
                                     std::mt19937& rng);
-
-// Translation (metres) and yaw (degrees) differences between an estimate and the truth.
-struct TransformError {
-  double trans_m = 0;
-  double yaw_deg = 0;
-};
-TransformError transformError(const Pose& estimate, const Pose& truth);
 
 }  // namespace slide

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "eval/transform_error.h"
 #include "place/loop_closer.h"
 #include "place/map_perturb.h"
 
@@ -54,7 +55,7 @@ TEST(LoopCloser, InterRobotCheckIsStaggeredRepeatedOnChangeAndRefined) {
   EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Accepted);
   EXPECT_EQ(out[0].robot_a, 0);
   EXPECT_EQ(out[0].robot_b, 2);
-  EXPECT_LT(transformError(out[0].T_a_b, truth).trans_m, 0.05);
+  EXPECT_LT(transformError(out[0].T_a_b, truth).translation_m, 0.05);
   for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 1000);
   EXPECT_TRUE(lc.poll(8.0).empty());  // nothing changed: no re-check
   lc.setPeerMap(2, movedCopy(own, truth, 1000, 3), 8.0);
@@ -98,7 +99,7 @@ TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
   EXPECT_EQ(out[0].robot_a, out[0].robot_b);
   EXPECT_EQ(out[0].keypose_b, 61);
   EXPECT_LE(out[0].keypose_a, 61 - 30);
-  EXPECT_LT(transformError(out[0].T_a_b, drift).trans_m, 0.05);
+  EXPECT_LT(transformError(out[0].T_a_b, drift).translation_m, 0.05);
   for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 5000);
 }
 

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "eval/transform_error.h"
 #include "config/config.h"
 #include "mapio/object_map_text.h"
 #include "place/map_perturb.h"
@@ -51,7 +52,7 @@ TEST(SlideGraph, RecoversAMovedNoisyCopyWithDrops) {
   const PlaceResult r = slideGraph(c.a, c.b, SlideGraphParams{});
   ASSERT_TRUE(r.found) << r.reason;
   const TransformError e = transformError(r.T_a_b, c.truth);
-  EXPECT_LT(e.trans_m, 0.1);
+  EXPECT_LT(e.translation_m, 0.1);
   EXPECT_LT(e.yaw_deg, 0.2);
   EXPECT_GT(r.inliers.size(), 80u);
   for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);  // every inlier is right
@@ -62,7 +63,7 @@ TEST(SlideMatch, RecoversAMovedNoisyCopyWithDrops) {
   const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
   ASSERT_TRUE(r.found) << r.reason;
   const TransformError e = transformError(r.T_a_b, c.truth);
-  EXPECT_LT(e.trans_m, 0.1);
+  EXPECT_LT(e.translation_m, 0.1);
   EXPECT_LT(e.yaw_deg, 0.2);
   for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);
 }
@@ -125,7 +126,7 @@ TEST(PlaceRecognition, RealParkingMapAgainstAMovedCopy) {
     const PlaceResult r = recognizePlace(m, a, b, config);
     ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
     const TransformError e = transformError(r.T_a_b, truth);
-    EXPECT_LT(e.trans_m, 0.1) << methodName(m);
+    EXPECT_LT(e.translation_m, 0.1) << methodName(m);
     EXPECT_LT(e.yaw_deg, 0.2) << methodName(m);
     for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
   }
@@ -158,7 +159,7 @@ TEST(SlideMatch, AHugeExtentCoarsensTheGridInsteadOfExhaustingMemory) {
   const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
   EXPECT_TRUE(r.found || !r.reason.empty());
   if (r.found) {
-    EXPECT_LT(transformError(r.T_a_b, c.truth).trans_m, 1.0);  // never a wrong transform
+    EXPECT_LT(transformError(r.T_a_b, c.truth).translation_m, 1.0);  // never a wrong transform
   }
 }
 
@@ -181,7 +182,7 @@ TEST(PlaceRecognition, ALabelFreeMapMatchesALabelledOneByShapeFamily) {
     ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
     EXPECT_TRUE(r.by_shape);
     const TransformError e = transformError(r.T_a_b, truth);
-    EXPECT_LT(e.trans_m, 0.1) << methodName(m);
+    EXPECT_LT(e.translation_m, 0.1) << methodName(m);
     EXPECT_LT(e.yaw_deg, 0.5) << methodName(m);
     for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
   }

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "eval/transform_error.h"
 #include "place/map_perturb.h"
 #include "place/slidegraph.h"
 #include "place/slidematch.h"
@@ -101,13 +102,13 @@ TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
   std::vector<Landmark> first_room(a.begin(), a.begin() + 24);
   const std::vector<Landmark> b = perturbedCopy(first_room, truth, PerturbParams{0.03, 0.0, 0.0}, rng);
   const PlaceResult m = slideMatch(a, b, SlideMatchParams{});
-  EXPECT_FALSE(m.found) << transformError(m.T_a_b, truth).trans_m;
+  EXPECT_FALSE(m.found) << transformError(m.T_a_b, truth).translation_m;
   EXPECT_NE(m.reason.find("ambiguous"), std::string::npos) << m.reason;
   const PlaceResult g = slideGraph(a, b, SlideGraphParams{});
-  EXPECT_FALSE(g.found) << transformError(g.T_a_b, truth).trans_m;
+  EXPECT_FALSE(g.found) << transformError(g.T_a_b, truth).translation_m;
   // With most of the other room rearranged, the room B saw stands out: a transform, the right one.
   for (std::size_t k = 24; k < 42; ++k) a[k].p += Eigen::Vector3d(k % 2 ? 2.5 : -2.0, k % 3 ? 1.5 : -2.5, 0);
   const PlaceResult m2 = slideMatch(a, b, SlideMatchParams{});
   ASSERT_TRUE(m2.found) << m2.reason;
-  EXPECT_LT(transformError(m2.T_a_b, truth).trans_m, 0.2);
+  EXPECT_LT(transformError(m2.T_a_b, truth).translation_m, 0.2);
 }

@@ -1,3 +1,4 @@
+#include "eval/transform_error.h"
 #include "hetero.h"
 
 #include <algorithm>
@@ -99,7 +100,7 @@ HeteroMethod place(PlaceMethod m, const std::vector<Landmark>& a, const std::vec
   out.inliers = first.inliers.size();
   if (first.found) {
     const TransformError e = transformError(first.T_a_b, truth);
-    out.trans_err_m = e.trans_m;
+    out.trans_err_m = e.translation_m;
     out.yaw_err_deg = e.yaw_deg;
   }
   return out;

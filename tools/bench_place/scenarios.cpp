@@ -1,3 +1,4 @@
+#include "eval/transform_error.h"
 #include "scenarios.h"
 
 #include <cmath>
@@ -134,9 +135,9 @@ MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConf
       continue;
     }
     const TransformError e = transformError(first.T_a_b, truthBetween(c.a, c.b));
-    if (e.trans_m < 1.0 && e.yaw_deg < 2.0) {
+    if (e.translation_m < 1.0 && e.yaw_deg < 2.0) {
       ++f.correct;
-      f.trans_err.push_back(e.trans_m);
+      f.trans_err.push_back(e.translation_m);
       f.yaw_err.push_back(e.yaw_deg);
     } else {
       ++f.wrong;
@@ -209,7 +210,7 @@ AliasFigures aliasedRooms(unsigned seed, PlaceMethod method, const PlaceConfig& 
     ++f.raw_found;
     const auto wrong = [&](const Pose& T) {
       const TransformError e = transformError(T, truth);
-      return e.trans_m > 1.0 || e.yaw_deg > 2.0;
+      return e.translation_m > 1.0 || e.yaw_deg > 2.0;
     };
     f.raw_wrong += wrong(r.T_a_b);
     const ConsensusFilter::Update up = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
