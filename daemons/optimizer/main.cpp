@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   std::string journal_path, out_dir;
   int publish_every = 1;
-  double write_period = 10;
+  double write_period = 10, settle_after = 3;
   bool background_solves = false;
   OptimizerChannels ch;
   addRobotBusOptions(app, bus);
@@ -33,6 +33,10 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", out_dir, "write TUM trajectories and the object map here: periodically, on SIGUSR1 and at exit");
   app.add_option("--write-period", write_period, "seconds between writes of the outputs (0: only on SIGUSR1 and at exit)")
       ->capture_default_str();
+  app.add_option("--settle-after", settle_after,
+                 "seconds without input after which the estimate is solved to convergence once (0: never)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--background-solves", background_solves,
                "full solves on a worker thread, off the update path (experimental: at 4,000 key poses the estimate "
                "drifts; see BENCHMARKS.md)");
@@ -55,6 +59,7 @@ int main(int argc, char** argv) {
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
     OptimizerNode node(cfg, classes, bus.robot, ch, msg::lcmPublisher(lcm), publish_every);
     node.setOutputs(out_dir, write_period);
+    node.setSettle(settle_after);
     node.optimizer().setStopFlag(stopFlag());  // a stop aborts a solve running inside an update
     installStopHandlers();
     installWriteHandler();

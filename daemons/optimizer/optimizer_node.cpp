@@ -117,7 +117,10 @@ void OptimizerNode::handle(const std::string& channel, const void* data, int siz
   else if (channel == channels_.peer_bundle) kind = Input::PeerBundle;
   else if (channel == channels_.loop_closure) kind = Input::LoopClosure;
   else return;
-  if (process(kind, data, size)) journal(kind, data, size);
+  if (process(kind, data, size)) {
+    journal(kind, data, size);
+    last_input_ = std::chrono::steady_clock::now();
+  }
 }
 
 bool OptimizerNode::process(Input kind, const void* data, int size) {
@@ -236,6 +239,18 @@ void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
   if (optimizer_.poll(&r)) {
     ++updates_;
     logResult(r, "background solve");
+    publishAll();
+  }
+  if (settle_after_s_ > 0 && updates_ != settled_updates_ && optimizer_.numKeyPoses() > 0 && !optimizer_.solving() &&
+      now - last_input_ >= std::chrono::duration<double>(settle_after_s_)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SolveReport s = optimizer_.fullSolve();
+    ++updates_;
+    settled_updates_ = updates_;
+    spdlog::info("no input for {:.0f} s: settled the estimate ({} iterations, {:.0f} ms, cost {:.4g} -> {:.4g})",
+                 settle_after_s_, s.iterations,
+                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                 s.initial_cost, s.final_cost);
     publishAll();
   }
   if (write_period_s_ > 0 && updates_ != written_updates_ &&

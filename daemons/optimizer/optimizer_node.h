@@ -64,8 +64,14 @@ class OptimizerNode {
   // The current estimate to the outputs (no solve); false (logged) when a file cannot be written.
   bool writeOutputs();
   // Between messages: takes a finished background solve into the estimate (then publishes
-  // it) and writes the outputs when their period has passed.
+  // it), settles the estimate when no input came for the settle period, and writes the
+  // outputs when their period has passed.
   void poll(std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
+  // Full solves on the update path run one or two iterations each, so an estimate converges
+  // only while inputs keep coming. After `idle_s` seconds without an accepted input the estimate
+  // changed since, poll() runs one full solve to convergence (guarded) and publishes it
+  // (0: never).
+  void setSettle(double idle_s) { settle_after_s_ = idle_s; }
   // Asked to stop: cancels a running solve without waiting for it and writes the current
   // estimate at once; then refines it with a full solve of at most `budget_s` seconds (an
   // iteration may overrun it) and writes and publishes that unless it left an odometry envelope.
@@ -106,6 +112,9 @@ class OptimizerNode {
   double write_period_s_ = 0;
   std::chrono::steady_clock::time_point last_write_{};
   int written_updates_ = -1;  // updates_ when the outputs were last written
+  double settle_after_s_ = 0;
+  std::chrono::steady_clock::time_point last_input_ = std::chrono::steady_clock::now();
+  int settled_updates_ = 0;  // updates_ after the last settling solve
 };
 
 }  // namespace slide
