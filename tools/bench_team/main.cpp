@@ -25,6 +25,7 @@ constexpr Micros kSecond = 1000000;
 
 struct Traffic {
   double bundle = 0, map = 0, heartbeat = 0, ack = 0;
+  std::size_t heartbeats = 0, acks = 0;  // messages
 };
 
 struct RunResult {
@@ -79,8 +80,10 @@ RunResult run(const TeamScenario& sc, const LinkPlan& plan, const std::string& s
       if (c->kind == ChunkKind::Bundle) res.payload += c->data.size();
     } else if (auto* h = std::get_if<Heartbeat>(&m)) {
       res.traffic.heartbeat += static_cast<double>(lcmWireBytes(channels::kTeamHeartbeat, encodedSize(*h)));
+      ++res.traffic.heartbeats;
     } else {
       res.traffic.ack += static_cast<double>(lcmWireBytes(channels::kTeamAck, encodedSize(std::get<Ack>(m))));
+      ++res.traffic.acks;
     }
   };
   const std::size_t n = sc.robots.size(), keyposes = sc.robots[0].bundles.size();
@@ -186,6 +189,11 @@ void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, 
   rep.add(p + ".share.maps", r.traffic.map / r.bytes, "", true);
   rep.add(p + ".share.heartbeats", r.traffic.heartbeat / r.bytes, "", true);
   rep.add(p + ".share.acks", r.traffic.ack / r.bytes, "", true);
+  rep.add(p + ".heartbeat_bytes_mean",
+          r.traffic.heartbeat / static_cast<double>(std::max<std::size_t>(1, r.traffic.heartbeats)), "bytes", true)
+      .note = "wire bytes of one heartbeat (" + std::to_string(sc.robots.size()) + " robots)";
+  rep.add(p + ".ack_bytes_mean", r.traffic.ack / static_cast<double>(std::max<std::size_t>(1, r.traffic.acks)), "bytes",
+          true);
   rep.add(p + ".landmarks", static_cast<double>(sc.landmarks_seen), "", false);
   rep.add(p + ".metres", metres, "m", false);
   rep.add(p + ".objects_per_keypose", sc.mean_objects_per_keypose, "", false);
@@ -194,20 +202,22 @@ void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Team benchmark: bytes per landmark and per metre of the peer-sync protocol on simulated 3-robot "
-               "forest and urban runs, and delivery under 30% loss with links down half the time"};
+  CLI::App app{"Team benchmark: bytes per landmark and per metre of the peer-sync protocol on simulated forest and "
+               "urban team runs (3 robots unless --robots), and delivery under 30% loss with links down half the time"};
   CommonOptions common;
   addCommonOptions(app, common);
   std::string json;
   int keyposes = 200;
   std::uint64_t seed = 1;
+  int robots = 3;
   app.add_option("--json", json, "Write the results as JSON to this file");
+  app.add_option("--robots", robots, "Robots in the team")->capture_default_str()->check(CLI::Range(2, 16));
   app.add_option("--keyposes", keyposes, "Key poses per robot (1.4 m apart)")->capture_default_str()->check(CLI::Range(10, 100000));
   app.add_option("--seed", seed, "Random seed")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
     BenchReport rep("team");
     for (const std::string kind : {"forest", "urban"}) {
-      const TeamScenario sc = makeScenario(kind, 3, keyposes, seed);
+      const TeamScenario sc = makeScenario(kind, robots, keyposes, seed);
       spdlog::info("{}: {} landmarks seen, {:.1f} objects per key pose", kind, sc.landmarks_seen, sc.mean_objects_per_keypose);
       const RunResult r = run(sc, LinkPlan{}, "", seed);
       if (!r.converged) spdlog::warn("{}: lossless run did not deliver everything", kind);
@@ -215,7 +225,7 @@ int main(int argc, char** argv) {
     }
     // Lossy: 30% loss, duplicates, reordering, every link down half the time, every daemon
     // restarted once; compared with the lossless run of the same streams.
-    const TeamScenario sc = makeScenario("forest", 3, keyposes, seed + 1);
+    const TeamScenario sc = makeScenario("forest", robots, keyposes, seed + 1);
     const RunResult clean = run(sc, LinkPlan{}, "", seed);
     const std::string root = (std::filesystem::temp_directory_path() / ("slide_bench_team_" + std::to_string(::getpid()))).string();
     std::filesystem::remove_all(root);
