@@ -244,7 +244,7 @@ void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
   if (settle_after_s_ > 0 && updates_ != settled_updates_ && optimizer_.numKeyPoses() > 0 && !optimizer_.solving() &&
       now - last_input_ >= std::chrono::duration<double>(settle_after_s_)) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SolveReport s = optimizer_.fullSolve();
+    const SolveReport s = optimizer_.fullSolve(0, true);  // a stop request ends it
     ++updates_;
     settled_updates_ = updates_;
     spdlog::info("no input for {:.0f} s: settled the estimate ({} iterations, {:.0f} ms, cost {:.4g} -> {:.4g})",

@@ -76,7 +76,9 @@ class Optimizer {
   // soundness guard. With max_seconds > 0 it stops after about that long (an iteration may
   // overrun it) and never rebuilds the graph: if the estimate then leaves some robot's odometry
   // envelope, the report says aborted and why (the stop path writes the earlier estimate).
-  SolveReport fullSolve(double max_seconds = 0);
+  // With `interruptible`, the stop flag (setStopFlag) ends it at its next iteration and the
+  // estimate stays as it was.
+  SolveReport fullSolve(double max_seconds = 0, bool interruptible = false);
   // Takes a finished background solve into the estimate (updates do this first; call it when
   // idle too). True when one was taken; `r` gets full_solve, its report and any warnings.
   bool poll(UpdateResult* r = nullptr);

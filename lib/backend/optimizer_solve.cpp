@@ -139,7 +139,7 @@ bool Optimizer::adopt(FullSolveJob& job, UpdateResult& r) {
   return true;
 }
 
-SolveReport Optimizer::fullSolve(double max_seconds) {
+SolveReport Optimizer::fullSolve(double max_seconds, bool interruptible) {
   cancelSolve();
   pending_iterations_ = 0;
   const auto t0 = std::chrono::steady_clock::now();
@@ -152,9 +152,10 @@ SolveReport Optimizer::fullSolve(double max_seconds) {
     if (round > 0 && (detachOutliers() + mergeDuplicates() == 0 || (max_seconds > 0 && left() <= 0))) break;
     std::shared_ptr<FullSolveJob> job = makeJob(cfg_.final_iterations, cfg_.final_function_tolerance);
     if (max_seconds > 0) job->options.max_seconds = std::max(1e-3, left());
-    job->run(nullptr);
+    job->run(interruptible ? stop_flag_ : nullptr);
     adopt(*job, r);
     s = job->report;
+    if (s.aborted) return s;
   }
   if (max_seconds > 0) {
     std::string why;
@@ -166,7 +167,7 @@ SolveReport Optimizer::fullSolve(double max_seconds) {
   }
   const int before = unmerged_;
   guard(r);
-  if (unmerged_ != before) return fullSolve();
+  if (unmerged_ != before) return fullSolve(0, interruptible);
   return s;
 }
 
