@@ -20,6 +20,9 @@
 
 struct mg_context;
 struct mg_connection;
+namespace CLI {
+class App;
+}
 
 namespace slide {
 
@@ -32,6 +35,11 @@ struct WebServerOptions {
   int request_timeout_ms = 5000;  // idle or stalled connections end after this
   int max_request_bytes = 16384;  // request line and headers
 };
+
+// Adds --bind, --port, --web-root, --max-clients, --request-timeout-ms and --period to `app`.
+void addWebServerOptions(CLI::App& app, WebServerOptions& opts);
+// Throws naming what is missing when `web_root` has no index.html or no three.js (npm ci there).
+void checkWebRoot(const std::string& web_root);
 
 // Where a browser stands: the scene epoch and version it has, and when it last got a status.
 struct ClientCursor {
