@@ -156,7 +156,7 @@ bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, 
       if (p.size() == 3) v.points.emplace_back(p[0], p[1], p[2]);
     raw.push_back(std::move(v));
   }
-  std::vector<viewer::InstanceView> thin = viewer::thinInstances(raw, params_.max_instance_points);
+  std::vector<viewer::InstanceView> thin = viewer::thinInstances(std::move(raw), params_.max_instance_points);
   const Eigen::Isometry3f T = T_frame_body.cast<float>();
   for (auto& inst : thin)
     for (auto& p : inst.points) p = T * p;

@@ -21,7 +21,7 @@ struct ViewerChannels {
   std::string object_map = channels::kObjectMap;
   std::string trajectory = channels::kTrajectory;
   std::string keypose_bundle = channels::kKeyPoseBundle;
-  std::string instances = channels::kInstances;
+  std::string instances = channels::kInstancesPreview;  // the segmenter's thinned copy
   std::string loop_closure = channels::kLoopClosure;
   std::string optimizer_status = channels::kOptimizerStatus;
   std::string sensor_status = channels::kSensorStatus;
