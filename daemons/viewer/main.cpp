@@ -63,21 +63,19 @@ int main(int argc, char** argv) {
       if (!b.team) inbox.setQueueCapacity(ch.instances, 10);
       spdlog::info("listening to {} on {}", b.team ? "the team bus" : "robot " + std::to_string(b.robot) + "'s bus", b.url);
     }
-    std::unique_ptr<WebServer> server;
-    server = std::make_unique<WebServer>(
+    WebServer server(
         web, [&](ClientCursor& c) { return session.update(c, steadySeconds(), wallSeconds()); },
         [&](const std::string& text) { return session.control(text, wallSeconds()); },
-        [&]() { return session.stats(server->stats()); });
+        [&](const WebServerStats& s) { return session.stats(s); });
     installStopHandlers();
-    spdlog::info("viewer at {} (over SSH: ssh -L {}:127.0.0.1:{} <robot>, then open http://127.0.0.1:{}/)", server->url(),
+    spdlog::info("viewer at {} (over SSH: ssh -L {}:127.0.0.1:{} <robot>, then open http://127.0.0.1:{}/)", server.url(),
                  web.port, web.port, web.port);
     while (!stopRequested()) {
       session.step(steadySeconds(), wallSeconds());
       msg::handleAny(fds, 50000);
-      session.logTraffic(*server, steadySeconds());
+      session.logTraffic(server, steadySeconds());
     }
-    spdlog::info("stopping; {} bytes sent to browsers; {}", server->stats().bytes_sent, session.summary());
-    server.reset();
+    spdlog::info("stopping; {} bytes sent to browsers; {}", server.stats().bytes_sent, session.summary());
     return 0;
   });
 }

@@ -96,7 +96,7 @@ WebServerStats WebServer::stats() const {
 
 int WebServer::onStats(mg_connection* conn, void* self) {
   auto* s = static_cast<WebServer*>(self);
-  const std::string body = s->stats_body_ ? s->stats_body_() : "{}";
+  const std::string body = s->stats_body_ ? s->stats_body_(s->stats()) : "{}";
   mg_printf(conn,
             "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nCache-Control: no-store\r\nContent-Length: %zu\r\n"
             "Connection: close\r\n\r\n",

@@ -57,7 +57,7 @@ class WebServer {
   // What to send a browser at `cursor` (advanced by the callee); empty when nothing is due.
   using Update = std::function<std::string(ClientCursor& cursor)>;
   using Control = std::function<bool(const std::string& text)>;
-  using Stats = std::function<std::string()>;  // the body of GET /stats
+  using Stats = std::function<std::string(const WebServerStats& own)>;  // the body of GET /stats
 
   // Starts listening; throws std::runtime_error naming the address when it cannot.
   WebServer(WebServerOptions opts, Update update, Control control, Stats stats);
