@@ -1,6 +1,7 @@
 // slide-segmenter: SCAN (slide.lidar_scan_t) and RGBD (slide.rgbd_frame_t) in, per-frame
 // object instances with the odometry pose of the frame (slide.frame_instances_t) out on
-// INSTANCES. Frames wait for the ODOM messages around their time.
+// INSTANCES, and a thinned copy of two a second on INSTANCES_PREVIEW (for the viewer and the run
+// logs). Frames wait for the ODOM messages around their time.
 #include <spdlog/spdlog.h>
 
 #include <lcm/lcm-cpp.hpp>
@@ -36,6 +37,11 @@ int main(int argc, char** argv) {
   app.add_option("--rgbd-channel", rgbd_ch, "RGBD frames in")->capture_default_str();
   app.add_option("--odom-channel", odom_ch, "Odometry in")->capture_default_str();
   app.add_option("--instances-channel", out_ch, "Instances out")->capture_default_str();
+  SegmenterNode::Preview preview{channels::kInstancesPreview};
+  app.add_option("--preview-channel", preview.channel, "Thinned copy of the instances out, for the viewer ('': none)")
+      ->capture_default_str();
+  app.add_option("--preview-period", preview.period_s, "Seconds of frame time between two previews")->capture_default_str();
+  app.add_option("--preview-points", preview.max_points, "Points of a preview (thinned)")->capture_default_str();
   app.add_option("--status-channel", status_ch, "Counts out (daemon_status_t every 5 s)")->capture_default_str();
   app.add_option("--max-pending", max_pending, "Frames kept waiting for odometry")->capture_default_str();
   return runApp(app, common, argc, argv, [&]() {
@@ -47,6 +53,7 @@ int main(int argc, char** argv) {
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
     SegmenterNode node(robot, out_ch, classes, cfg, max_pending, msg::lcmPublisher(lcm));
+    node.setPreview(preview);
     msg::Inbox inbox(lcm);
     inbox.subscribe<lidar_scan_t>(scan_ch, [&](auto&, auto& m) { node.onScan(m); });
     inbox.subscribe<rgbd_frame_t>(rgbd_ch, [&](auto&, auto& m) { node.onRgbd(m); });

@@ -4,6 +4,7 @@
 
 #include "frontend_msg/frontend_convert.h"
 #include "msg/convert.h"
+#include "viewer/thin.h"
 
 namespace slide {
 
@@ -85,6 +86,13 @@ void SegmenterNode::process() {
     publish_(out_channel_, msg::encodeLcm(instancesToMsg(out, h)));
     ++published_;
     spdlog::debug("frame {}: {} instances", h.seq, out.instances.size());
+    const std::int64_t since = utime - last_preview_utime_;
+    if (!preview_.channel.empty() && (previews_ == 0 || since < 0 || since >= preview_.period_s * 1e6)) {
+      out.instances = viewer::thinInstances(std::move(out.instances), preview_.max_points);
+      publish_(preview_.channel, msg::encodeLcm(instancesToMsg(out, h)));
+      last_preview_utime_ = utime;
+      ++previews_;
+    }
     pending_.pop_front();
   }
   window_.add(issues);

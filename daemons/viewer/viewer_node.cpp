@@ -1,5 +1,6 @@
 #include "viewer_node.h"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 
@@ -37,12 +38,13 @@ ViewerNode::ViewerNode(viewer::Scene& scene, ViewerNodeParams params, ViewerChan
     : scene_(scene), params_(params), ch_(std::move(channels)) {}
 
 bool ViewerNode::wantsRobotChannel(const std::string& c) const {
-  return c == ch_.object_map || c == ch_.trajectory || c == ch_.keypose_bundle || c == ch_.instances ||
-         c == ch_.loop_closure || c == ch_.optimizer_status || c == ch_.sensor_status;
+  const std::vector<std::string> all = ch_.robotBus();
+  return std::find(all.begin(), all.end(), c) != all.end();
 }
 
 bool ViewerNode::wantsTeamChannel(const std::string& c) const {
-  return c == ch_.team_heartbeat || c == ch_.team_chunk || c == ch_.team_ack;
+  const std::vector<std::string> all = ch_.teamBus();
+  return std::find(all.begin(), all.end(), c) != all.end();
 }
 
 bool ViewerNode::drop(const std::string& channel, const std::string& reason) {
@@ -154,7 +156,7 @@ bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, 
       if (p.size() == 3) v.points.emplace_back(p[0], p[1], p[2]);
     raw.push_back(std::move(v));
   }
-  std::vector<viewer::InstanceView> thin = viewer::thinInstances(raw, params_.max_instance_points);
+  std::vector<viewer::InstanceView> thin = viewer::thinInstances(std::move(raw), params_.max_instance_points);
   const Eigen::Isometry3f T = T_frame_body.cast<float>();
   for (auto& inst : thin)
     for (auto& p : inst.points) p = T * p;

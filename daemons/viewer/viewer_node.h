@@ -9,6 +9,7 @@
 #include <deque>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "app/channels.h"
 #include "geometry/pose.h"
@@ -20,13 +21,19 @@ struct ViewerChannels {
   std::string object_map = channels::kObjectMap;
   std::string trajectory = channels::kTrajectory;
   std::string keypose_bundle = channels::kKeyPoseBundle;
-  std::string instances = channels::kInstances;
+  std::string instances = channels::kInstancesPreview;  // the segmenter's thinned copy
   std::string loop_closure = channels::kLoopClosure;
   std::string optimizer_status = channels::kOptimizerStatus;
   std::string sensor_status = channels::kSensorStatus;
   std::string team_heartbeat = channels::kTeamHeartbeat;
   std::string team_chunk = channels::kTeamChunk;
   std::string team_ack = channels::kTeamAck;
+
+  // What the viewer listens to on a robot bus, and on the team bus.
+  std::vector<std::string> robotBus() const {
+    return {object_map, trajectory, keypose_bundle, instances, loop_closure, optimizer_status, sensor_status};
+  }
+  std::vector<std::string> teamBus() const { return {team_heartbeat, team_chunk, team_ack}; }
 };
 
 struct ViewerNodeParams {

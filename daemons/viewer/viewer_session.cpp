@@ -4,9 +4,41 @@
 
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <stdexcept>
 
+#include "app/robot_bus.h"
+#include "objects/class_table.h"
+
 namespace slide {
+
+std::vector<ViewerBus> viewerBuses(const std::vector<int>& robots, const std::vector<std::string>& buses,
+                                   const std::string& team_url, bool replaying) {
+  if (!replaying && robots.empty() && buses.empty())
+    throw std::runtime_error("nothing to show: give --robot N, --bus N=URL or --replay RUN_DIR");
+  if (replaying && (!robots.empty() || !buses.empty() || !team_url.empty()))
+    throw std::runtime_error("--replay plays logs; it does not mix with --robot, --bus or --team-url");
+  std::vector<ViewerBus> out;
+  for (int r : robots) out.push_back({false, r, robotBusUrl(r)});
+  static const std::regex re(R"((\d{1,9})=(.+))");
+  for (const std::string& b : buses) {
+    std::smatch m;
+    if (!std::regex_match(b, m, re)) throw std::runtime_error("--bus '" + b + "': expected N=URL (robot N's bus)");
+    out.push_back({false, std::stoi(m[1]), m[2]});
+  }
+  if (!team_url.empty()) out.push_back({true, -1, team_url});
+  return out;
+}
+
+nlohmann::json viewerLegend(const ClassTable& table) {
+  nlohmann::json classes = nlohmann::json::object();
+  for (int id : table.ids()) {
+    const ClassInfo& c = table.at(id);
+    classes[std::to_string(id)] = {{"name", c.name}, {"shape", shapeName(c.shape)},
+                                   {"color", {c.color[0], c.color[1], c.color[2]}}};
+  }
+  return classes;
+}
 
 ViewerSession::ViewerSession(nlohmann::json classes, const ViewerNodeParams& params)
     : classes_(std::move(classes)), node_(scene_, params) {}
@@ -112,6 +144,16 @@ std::string ViewerSession::summary() {
   std::lock_guard<std::mutex> lock(mutex_);
   return std::to_string(node_.received()) + " messages drawn, " + std::to_string(node_.dropped()) + " dropped" +
          (node_.dropped() ? ": " + node_.dropSummary() : "");
+}
+
+void ViewerSession::logTraffic(const WebServer& server, double now) {
+  if (last_report_ < 0) last_report_ = now;
+  if (now - last_report_ < 10.0) return;
+  const WebServerStats s = server.stats();
+  spdlog::info("{} browsers, {:.1f} KB/s to them; {}", s.clients_now,
+               static_cast<double>(s.bytes_sent - last_bytes_) / 1024.0 / (now - last_report_), summary());
+  last_bytes_ = s.bytes_sent;
+  last_report_ = now;
 }
 
 }  // namespace slide

@@ -3,6 +3,7 @@
 // messages, and (replaying) the log player. The server's threads ask for each browser's next
 // update, replay controls and /stats; the daemon's loop feeds bus messages and steps the replay.
 // One mutex guards it all.
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -16,9 +17,28 @@
 
 namespace slide {
 
+class ClassTable;
+
+// One bus the viewer listens to: robot `robot`'s bus, or the team bus (robot -1: as this host
+// hears it).
+struct ViewerBus {
+  bool team = false;
+  int robot = -1;
+  std::string url;
+};
+
+// The buses of --robot N (at robotBusUrl(N)), --bus N=URL and --team-url, in that order; none
+// when replaying. Throws naming the option for a --bus that is not N=URL, when there is nothing
+// to show, or when `replaying` is mixed with buses.
+std::vector<ViewerBus> viewerBuses(const std::vector<int>& robots, const std::vector<std::string>& buses,
+                                   const std::string& team_url, bool replaying);
+
+// The page's legend: class id -> name, shape and colour, for every class of `table`.
+nlohmann::json viewerLegend(const ClassTable& table);
+
 class ViewerSession {
  public:
-  // `classes`: the legend (class id -> name, shape, colour), sent with every full copy.
+  // `classes`: the legend (viewerLegend), sent with every full copy.
   ViewerSession(nlohmann::json classes, const ViewerNodeParams& params);
 
   // Replays the logs named by `replay` (run folders, logs; log_player.h). With `follow`, keeps
@@ -42,6 +62,8 @@ class ViewerSession {
   void step(double now, double wall);
   // "N messages drawn, M dropped: ..." for the periodic log line.
   std::string summary();
+  // Every 10 s (steady `now`): logs the browsers of `server`, the rate sent to them and summary().
+  void logTraffic(const WebServer& server, double now);
 
  private:
   std::mutex mutex_;
@@ -52,6 +74,8 @@ class ViewerSession {
   bool follow_ = false;
   std::vector<std::string> follow_dirs_;  // run folders whose logs may appear later
   double last_read_ = 0;
+  double last_report_ = -1;  // steady s; < 0: not yet
+  std::uint64_t last_bytes_ = 0;
 };
 
 }  // namespace slide

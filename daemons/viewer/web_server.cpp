@@ -3,9 +3,11 @@
 #include <civetweb.h>
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
 
@@ -13,6 +15,30 @@ namespace slide {
 
 namespace {
 constexpr std::size_t kMaxControlBytes = 4096;
+}
+
+void addWebServerOptions(CLI::App& app, WebServerOptions& web) {
+  app.add_option("--bind", web.bind, "Address to serve on (127.0.0.1: this host only; tunnel with ssh -L)")
+      ->capture_default_str();
+  app.add_option("--port", web.port, "HTTP port")->capture_default_str()->check(CLI::Range(1, 65535));
+  app.add_option("--web-root", web.web_root, "Folder with the page (index.html, viewer.js, node_modules/three)")
+      ->capture_default_str();
+  app.add_option("--max-clients", web.max_clients, "Browsers at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("--request-timeout-ms", web.request_timeout_ms,
+                 "A request not complete, or a browser not reading, for this long is dropped")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 600000));
+  app.add_option("--period", web.period_s, "Seconds between updates to a browser")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 10.0));
+}
+
+void checkWebRoot(const std::string& web_root) {
+  const std::string three = web_root + "/node_modules/three/build/three.module.min.js";
+  if (!std::filesystem::exists(web_root + "/index.html"))
+    throw std::runtime_error("--web-root " + web_root + ": no index.html");
+  if (!std::filesystem::exists(three))
+    throw std::runtime_error(three + " missing: run ./slide setup (npm ci in " + web_root + ")");
 }
 
 struct WebServer::Client {
@@ -70,7 +96,7 @@ WebServerStats WebServer::stats() const {
 
 int WebServer::onStats(mg_connection* conn, void* self) {
   auto* s = static_cast<WebServer*>(self);
-  const std::string body = s->stats_body_ ? s->stats_body_() : "{}";
+  const std::string body = s->stats_body_ ? s->stats_body_(s->stats()) : "{}";
   mg_printf(conn,
             "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nCache-Control: no-store\r\nContent-Length: %zu\r\n"
             "Connection: close\r\n\r\n",

@@ -20,6 +20,9 @@
 
 struct mg_context;
 struct mg_connection;
+namespace CLI {
+class App;
+}
 
 namespace slide {
 
@@ -32,6 +35,11 @@ struct WebServerOptions {
   int request_timeout_ms = 5000;  // idle or stalled connections end after this
   int max_request_bytes = 16384;  // request line and headers
 };
+
+// Adds --bind, --port, --web-root, --max-clients, --request-timeout-ms and --period to `app`.
+void addWebServerOptions(CLI::App& app, WebServerOptions& opts);
+// Throws naming what is missing when `web_root` has no index.html or no three.js (npm ci there).
+void checkWebRoot(const std::string& web_root);
 
 // Where a browser stands: the scene epoch and version it has, and when it last got a status.
 struct ClientCursor {
@@ -49,7 +57,7 @@ class WebServer {
   // What to send a browser at `cursor` (advanced by the callee); empty when nothing is due.
   using Update = std::function<std::string(ClientCursor& cursor)>;
   using Control = std::function<bool(const std::string& text)>;
-  using Stats = std::function<std::string()>;  // the body of GET /stats
+  using Stats = std::function<std::string(const WebServerStats& own)>;  // the body of GET /stats
 
   // Starts listening; throws std::runtime_error naming the address when it cannot.
   WebServer(WebServerOptions opts, Update update, Control control, Stats stats);

@@ -9,6 +9,9 @@ inline constexpr char kRgbd[] = "RGBD";                   // rgbd_frame_t
 inline constexpr char kOdom[] = "ODOM";                   // odometry_t
 inline constexpr char kSensorStatus[] = "SENSOR_STATUS";  // stream_status_t
 inline constexpr char kInstances[] = "INSTANCES";         // frame_instances_t
+// frame_instances_t: a thinned copy of INSTANCES (at most 200 points, 2 frames a second), what
+// the viewer draws and the run logs keep.
+inline constexpr char kInstancesPreview[] = "INSTANCES_PREVIEW";
 inline constexpr char kKeyPoseBundle[] = "KEYPOSE_BUNDLE";  // keypose_bundle_t, own
 inline constexpr char kPeerBundle[] = "PEER_BUNDLE";      // keypose_bundle_t, peers' (from peer sync)
 inline constexpr char kLoopClosure[] = "LOOP_CLOSURE";    // loop_closure_t

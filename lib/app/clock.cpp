@@ -18,4 +18,6 @@ std::int64_t wallMicros() {
       .count();
 }
 
+double wallSeconds() { return static_cast<double>(wallMicros()) * 1e-6; }
+
 }  // namespace slide

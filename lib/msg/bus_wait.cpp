@@ -4,10 +4,11 @@
 
 #include <algorithm>
 #include <lcm/lcm-cpp.hpp>
+#include <vector>
 
 namespace slide::msg {
 
-void handleAny(std::initializer_list<lcm::LCM*> buses, std::int64_t timeout_us) {
+void handleAny(const std::vector<lcm::LCM*>& buses, std::int64_t timeout_us) {
   fd_set fds;
   FD_ZERO(&fds);
   int max_fd = -1;

@@ -48,19 +48,6 @@ bool sameTrajectory(const std::vector<double>& a, const std::vector<double>& b) 
   return true;
 }
 
-// Indices 0..n-1 thinned to at most `keep`, evenly, always with the last one.
-std::vector<std::size_t> evenIndices(std::size_t n, std::size_t keep) {
-  std::vector<std::size_t> idx;
-  if (n == 0 || keep == 0) return idx;
-  if (n <= keep) {
-    for (std::size_t i = 0; i < n; ++i) idx.push_back(i);
-    return idx;
-  }
-  for (std::size_t k = 0; k < keep; ++k) idx.push_back(k * (n - 1) / (keep - 1 ? keep - 1 : 1));
-  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
-  return idx;
-}
-
 nlohmann::json loopJson(const LoopView& lc) {
   return {{"a", lc.robot_a},      {"b", lc.robot_b},         {"ka", lc.keypose_a},
           {"kb", lc.keypose_b},   {"method", lc.method},     {"x", cm(lc.x)},
@@ -253,23 +240,16 @@ nlohmann::json Scene::delta(std::uint64_t epoch, std::uint64_t since) const {
   return out;
 }
 
-std::vector<InstanceView> thinInstances(const std::vector<InstanceView>& instances, std::size_t max_points) {
-  std::size_t total = 0;
-  for (const InstanceView& inst : instances) total += inst.points.size();
-  std::vector<InstanceView> out;
-  std::size_t used = 0;
-  for (const InstanceView& inst : instances) {
-    if (used >= max_points) break;  // more instances than points to spend: the first ones
-    std::size_t share = total <= max_points ? inst.points.size()
-                                            : std::max<std::size_t>(1, inst.points.size() * max_points / total);
-    share = std::min(share, max_points - used);
-    InstanceView thin{inst.class_id, {}};
-    for (std::size_t i : evenIndices(inst.points.size(), share))
-      if (inst.points[i].allFinite()) thin.points.push_back(inst.points[i]);
-    used += thin.points.size();
-    if (!thin.points.empty()) out.push_back(std::move(thin));
+std::vector<std::size_t> evenIndices(std::size_t n, std::size_t keep) {
+  std::vector<std::size_t> idx;
+  if (n == 0 || keep == 0) return idx;
+  if (n <= keep) {
+    for (std::size_t i = 0; i < n; ++i) idx.push_back(i);
+    return idx;
   }
-  return out;
+  for (std::size_t k = 0; k < keep; ++k) idx.push_back(k * (n - 1) / (keep - 1 ? keep - 1 : 1));
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  return idx;
 }
 
 }  // namespace slide::viewer

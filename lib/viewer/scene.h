@@ -20,6 +20,7 @@
 
 #include "geometry/pose.h"
 #include "objects/object.h"
+#include "viewer/thin.h"
 
 namespace slide::viewer {
 
@@ -129,9 +130,5 @@ class Scene {
   std::map<int, Listener> listeners_;
   std::vector<Tombstone> tombstones_;
 };
-
-// At most `max_points` points of a frame's instances, each instance keeping a share in
-// proportion to its size (at least one point), evenly strided; non-finite points are left out.
-std::vector<InstanceView> thinInstances(const std::vector<InstanceView>& instances, std::size_t max_points);
 
 }  // namespace slide::viewer

@@ -4,6 +4,8 @@
 // counted, never published.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "frontend/frontend_config.h"
 #include "drive_by.h"
 #include "frontend_msg/frontend_convert.h"
@@ -138,4 +140,46 @@ TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
   ASSERT_EQ(out[0].instances.size(), 1u);
   EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
   EXPECT_EQ(out[0].instances[0].num_points, 32 * 16);
+}
+
+// The preview (setPreview): a thinned copy of the published frames, at most one per period of
+// frame time and at most max_points points, each instance keeping its class and id; none
+// without a preview channel.
+TEST(FrontendNodes, PreviewIsAThinnedCopyOfAFrameEveryPeriod) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  std::map<int, frame_instances_t> full, preview;  // by seq
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string& c, const std::vector<uint8_t>& b) {
+    const auto m = decoded<frame_instances_t>(b);
+    (c == "INSTANCES" ? full : preview)[m.header.seq] = m;
+    EXPECT_TRUE(c == "INSTANCES" || c == "INSTANCES_PREVIEW") << c;
+    return true;
+  });
+  segmenter.setPreview({"INSTANCES_PREVIEW", 0.25, 40});
+  const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {71, {12, -4, 0}, 0.35, 6.0}};
+  for (int k = 0; k < 12; ++k) {  // frames 0.1 s apart
+    segmenter.onScan(scanToMsg(synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6), driveByHeader(k)));
+    segmenter.onOdom(driveByOdometry(k));
+  }
+  segmenter.onOdom(driveByOdometry(12));
+  ASSERT_EQ(full.size(), 12u);
+  std::vector<int> seqs;
+  for (const auto& [seq, m] : preview) seqs.push_back(seq);
+  EXPECT_EQ(seqs, (std::vector<int>{0, 3, 6, 9}));  // frame time 0, 0.3, 0.6, 0.9 s
+  EXPECT_EQ(segmenter.previews(), 4);
+  for (const auto& [seq, m] : preview) {
+    const frame_instances_t& f = full.at(seq);
+    int points = 0, full_points = 0;
+    for (const auto& i : m.instances) points += i.num_points;
+    for (const auto& i : f.instances) full_points += i.num_points;
+    EXPECT_GT(full_points, 40);
+    EXPECT_LE(points, 40);
+    EXPECT_GT(points, 0);
+    ASSERT_EQ(m.num_instances, f.num_instances);
+    for (int i = 0; i < m.num_instances; ++i) {
+      EXPECT_EQ(m.instances[i].class_id, f.instances[i].class_id);
+      EXPECT_EQ(m.instances[i].instance_id, f.instances[i].instance_id);
+    }
+    for (int a = 0; a < 3; ++a) EXPECT_DOUBLE_EQ(m.odom_pose.position[a], f.odom_pose.position[a]);
+  }
 }

@@ -1,33 +1,37 @@
-// Headless Chromium against a running slide-viewer (test_viewer_browser drives it):
-//   node browser_check.mjs URL OUT_DIR WEB_DIR   (WEB_DIR: daemons/viewer/web, whose node_modules it uses)
+// A real browser against a running slide-viewer (test_viewer_browser drives it):
+//   node browser_check.mjs BROWSER URL OUT_DIR   (BROWSER: chromium or firefox; launch_browser.mjs)
 // 1. opens the page, waits for robot 0's scene (car, trunk, bush; its trajectory and robot 1's;
 //    key pose, instances, loop closure, team link), takes OUT_DIR/viewer.png and checks pixel
 //    colours where the car (red) and the trunk (green) project;
 // 2. writes OUT_DIR/phase1 and waits for a fourth object (a pole the test then appends to the log);
-// 3. pauses, seeks to the log's start (an empty map) and goes back to live (four objects).
+// 3. pauses, seeks to the log's start (an empty map) and goes back to live (four objects);
+// 4. checks that the page asked for nothing but URL's own host (no CDN).
 // Prints one line per step; exits non-zero naming what was missing.
 import fs from 'node:fs';
-import { createRequire } from 'node:module';
+import { launchBrowser, openPage, sleep } from '../../daemons/viewer/web/launch_browser.mjs';
 
-const [url, out, webDir] = process.argv.slice(2);
-const { chromium } = createRequire(`${webDir}/package.json`)('playwright-core');
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
-if (!fs.existsSync(executablePath)) {
-  console.error(`no Chromium at ${executablePath} (install Debian's chromium: ./slide setup)`);
+const [browserName, url, out] = process.argv.slice(2);
+let session;
+try {
+  session = await launchBrowser(browserName);
+} catch (e) {
+  console.error(String(e.message || e));
   process.exit(2);
 }
-const browser = await chromium.launch({
-  executablePath, headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-    '--disable-component-update', '--disable-sync', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader'],
-});
+console.log('browser', await session.browser.version());
 let failed = null;
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
-  const errors = [];
+  const page = await openPage(session.browser, 1000, 700);
+  const errors = [], foreign = [], local = [];
   page.on('pageerror', (e) => errors.push(String(e)));
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  const host = new URL(url).host;  // the page itself, its scripts and its WebSocket
+  page.on('request', (r) => {
+    const u = new URL(r.url());
+    if (u.protocol === 'data:') return;
+    if (u.host === host) local.push(u.pathname);
+    else foreign.push(r.url());
+  });
   await page.goto(url);
   const want = (s) => {
     const v = s && s.views && s.views[0];
@@ -35,12 +39,12 @@ try {
       v.instances > 0 && v.loops === 1 && v.rings === 2 && s.team[0] && s.team[0].linked.includes(1);
   };
   try {
-    await page.waitForFunction(`(${want.toString()})(window.slideScene)`, null, { timeout: 60000, polling: 200 });
+    await page.waitForFunction(`(${want.toString()})(window.slideScene)`, { timeout: 60000, polling: 200 });
   } catch (e) {
     throw new Error(`scene not drawn: ${JSON.stringify(await page.evaluate(() => window.slideScene))}; errors: ${errors.join(' | ')}`);
   }
   console.log('scene', JSON.stringify(await page.evaluate(() => window.slideScene.views[0])));
-  await page.waitForTimeout(500);  // a few frames
+  await sleep(500);  // a few frames
   await page.screenshot({ path: `${out}/viewer.png` });
   const sample = await page.evaluate(() => {
     const c = document.getElementById('view');
@@ -63,7 +67,7 @@ try {
   fs.writeFileSync(`${out}/phase1`, 'ok\n');
   try {
     await page.waitForFunction(() => window.slideScene.views[0] && window.slideScene.views[0].objects === 4 &&
-      window.slideScene.views[0].classes[80] === 1, null, { timeout: 30000, polling: 200 });
+      window.slideScene.views[0].classes[80] === 1, { timeout: 30000, polling: 200 });
   } catch (e) {
     throw new Error(`the pole sent after load never appeared: ${JSON.stringify(await page.evaluate(() => window.slideScene.views[0]))}`);
   }
@@ -71,7 +75,7 @@ try {
   await page.screenshot({ path: `${out}/viewer_after.png` });
   // Replay controls: pause, jump to the log's start (nothing drawn yet there), then back to live.
   await page.click('#play');
-  await page.waitForFunction(() => window.slideScene.status.replay.paused, null, { timeout: 10000, polling: 100 });
+  await page.waitForFunction(() => window.slideScene.status.replay.paused, { timeout: 10000, polling: 100 });
   await page.evaluate(() => {
     const s = document.getElementById('slider');
     s.value = 0;
@@ -79,19 +83,23 @@ try {
   });
   try {
     await page.waitForFunction(() => window.slideScene.views[0] && window.slideScene.views[0].objects === 0 &&
-      window.slideScene.status.replay.position === window.slideScene.status.replay.start, null, { timeout: 10000, polling: 100 });
+      window.slideScene.status.replay.position === window.slideScene.status.replay.start, { timeout: 10000, polling: 100 });
   } catch (e) {
     throw new Error(`seeking to the start did not clear the map: ${JSON.stringify(await page.evaluate(() => [window.slideScene.views[0], window.slideScene.status]))}`);
   }
   await page.click('#live');
   await page.waitForFunction(() => window.slideScene.views[0] && window.slideScene.views[0].objects === 4 &&
-    window.slideScene.status.replay.live, null, { timeout: 10000, polling: 100 });
+    window.slideScene.status.replay.live, { timeout: 10000, polling: 100 });
   console.log('replay controls: pause, seek to start, live');
+  if (foreign.length) throw new Error(`the page asked for more than ${host}: ${foreign.join(' ')}`);
+  if (!local.includes('/node_modules/three/build/three.module.min.js'))
+    throw new Error(`the browser reported no request for three.js: ${local.join(' ')}`);
+  console.log(`offline: every request went to ${host} (${local.length}: ${local.join(' ')})`);
   if (errors.length) throw new Error(`page errors: ${errors.join(' | ')}`);
 } catch (e) {
   failed = e;
 } finally {
-  await browser.close();
+  await session.close();
 }
 if (failed) {
   console.error(String(failed.message || failed));

@@ -217,7 +217,7 @@ TEST(ViewerNode, DrawsARunsMessages) {
   EXPECT_TRUE(feed(node, 0, "TRAJECTORY", trajectoryMsg(0, 0, 20, 0, 0)));
   EXPECT_TRUE(feed(node, 0, "TRAJECTORY", trajectoryMsg(1, 0, 10, 0, 10)));
   EXPECT_TRUE(feed(node, 0, "KEYPOSE_BUNDLE", bundleMsg(0, 19, 38, 0)));
-  EXPECT_TRUE(feed(node, 0, "INSTANCES", instancesMsg(0, 1000)));
+  EXPECT_TRUE(feed(node, 0, "INSTANCES_PREVIEW", instancesMsg(0, 1000)));
   EXPECT_TRUE(feed(node, 0, "OBJECT_MAP", mapMsg(0, {car(1, 10, 5), trunk(2, 20, -5), bush(3, 30, 5)})));
   EXPECT_TRUE(feed(node, 0, "LOOP_CLOSURE", loopMsg(0, 1, {1, 2})));
   EXPECT_TRUE(feed(node, 0, "OPTIMIZER_STATUS", optimizerMsg(0, 3)));
@@ -255,7 +255,7 @@ TEST(ViewerNode, HostileMessagesAreDroppedAndCountedNeverThrown) {
   ViewerNode node(scene);
   // Truncated, padded and random bytes on every channel the viewer draws.
   const auto good = msg::encodeLcm(mapMsg(0, {car(1, 10, 5)}));
-  for (const char* ch : {"OBJECT_MAP", "TRAJECTORY", "KEYPOSE_BUNDLE", "INSTANCES", "LOOP_CLOSURE",
+  for (const char* ch : {"OBJECT_MAP", "TRAJECTORY", "KEYPOSE_BUNDLE", "INSTANCES_PREVIEW", "LOOP_CLOSURE",
                          "OPTIMIZER_STATUS", "SENSOR_STATUS"}) {
     EXPECT_FALSE(node.onRobotBus(0, ch, good.data(), good.size() / 2, 0)) << ch;
     std::vector<std::uint8_t> noise(4096);

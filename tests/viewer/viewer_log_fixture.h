@@ -169,7 +169,7 @@ inline void writeRobotRun(LogWriter& w, std::int64_t t0) {
   w.write("TRAJECTORY", trajectoryMsg(0, 0, 20, 0.0, 0.0), t0 + 100000);
   w.write("TRAJECTORY", trajectoryMsg(1, 0, 10, 0.0, 10.0), t0 + 150000);
   w.write("KEYPOSE_BUNDLE", bundleMsg(0, 19, 38.0, 0.0), t0 + 200000);
-  w.write("INSTANCES", instancesMsg(0, 1000), t0 + 250000);
+  w.write("INSTANCES_PREVIEW", instancesMsg(0, 1000), t0 + 250000);
   w.write("OBJECT_MAP", mapMsg(0, {car(1, 10, 5), trunk(2, 20, -5), bush(3, 30, 5)}), t0 + 300000);
   w.write("OPTIMIZER_STATUS", optimizerMsg(0, 3), t0 + 350000);
   w.write("LOOP_CLOSURE", loopMsg(0, 1, {1, 2}), t0 + 400000);

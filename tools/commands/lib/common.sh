@@ -20,10 +20,11 @@ SLIDE_PACKAGES=(
   librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
   pluginlib-dev librcpputils-dev libament-index-cpp-dev libpcl-dev
   python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs python3-geometry-msgs
-  libcivetweb-dev nodejs chromium
+  libcivetweb-dev nodejs chromium firefox-esr xvfb
 )
 # libcivetweb-dev: slide-viewer's HTTP and WebSocket server; nodejs (and npm, below): the viewer
-# page's three.js and its browser test's playwright-core; chromium: that browser test.
+# page's three.js and puppeteer-core, which drives chromium (the demo's pictures, a browser test)
+# and firefox-esr (a browser test; in a window on xvfb, as headless Firefox has no WebGL).
 
 missing_packages() {
   local p status
@@ -44,8 +45,8 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# The viewer page's npm packages (daemons/viewer/web/package-lock.json: three, and playwright-core
-# for its browser test), installed when missing or older than the lock file. Debian's nodejs
+# The viewer page's npm packages (daemons/viewer/web/package-lock.json: three, and puppeteer-core
+# for its pictures and browser tests), installed when missing or older than the lock file. Debian's nodejs
 # comes without npm, which is a package of its own (other nodejs builds bring it).
 install_web_packages() {
   local web="$SLIDE_ROOT/daemons/viewer/web"
