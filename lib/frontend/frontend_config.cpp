@@ -121,6 +121,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_length", p.min_length, 0.0);
     opt(c, "max_length", p.max_length, p.min_length);
     opt(c, "max_width", p.max_width, 0.0);
+    opt(c, "min_split_cell", p.min_split_cell, 0.02);
     opt(c, "max_roughness", p.max_roughness, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
@@ -202,6 +203,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
       opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
+      opt(c, "min_split_cell", cfg.labelled.min_split_cell, 1e-3);
       if (c.has("cluster_cell_by_class")) {
         const ConfigNode cells = c.child("cluster_cell_by_class");
         for (const std::string& name : cells.keys()) {
@@ -241,6 +243,9 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
+    opt(c, "drop_oversized", p.drop_oversized);
+    opt(c, "box_merge_width", p.box_merge_width, 0.0);
+    opt(c, "box_merge_growth", p.box_merge_growth, 0.0);
   }
   if (root.has("keypose")) {
     const ConfigNode c = root.child("keypose");

@@ -108,13 +108,25 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   if (low.empty()) return cars;
   std::vector<int> mark(cloud.size(), -1);
   int label = 0;
-  for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) {
+  // A cluster too long or wide for one car is re-clustered on finer cells (down to
+  // min_split_cell): cars parked side by side or back to back with gaps of a few decimetres
+  // join at `cell`; each part is then tested as a cluster of its own.
+  std::vector<std::pair<std::vector<int>, double>> todo;  // cluster, the cell it was clustered on
+  for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) todo.emplace_back(std::move(cl), kp.cell);
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    std::vector<int> cl = std::move(todo[k].first);
+    const double cell = todo[k].second;
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
-    if (f.length < kp.min_length || f.length > kp.max_length || f.width > kp.max_width) continue;
+    if (f.length > kp.max_length || f.width > kp.max_width) {
+      if (0.5 * cell >= kp.min_split_cell - 1e-9)
+        for (auto& part : clusterGrid(cloud, cl, {0.5 * cell, false, kp.min_points})) todo.emplace_back(std::move(part), 0.5 * cell);
+      continue;
+    }
+    if (f.length < kp.min_length) continue;
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
     for (int i : cl) taken[i] = 1;
     cars.push_back(std::move(cl));

@@ -25,6 +25,9 @@ struct CarParams {
   double max_bottom = 0.8;       // 5th percentile of height above ground
   double min_length = 1.2, max_length = 6.5;
   double max_width = 2.8;
+  // A cluster longer or wider than that is re-clustered on cells half as large, down to this
+  // cell (cars parked a few decimetres apart join at `cell`); cell or more: no splitting.
+  double min_split_cell = 0.15;
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <stdexcept>
+#include <opencv2/imgproc.hpp>
 
 namespace slide {
 
@@ -54,7 +55,30 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
     // bled labels in the middle stays one object.
     cp.planar = group == -1 || (group >= 0 && classes_.at(group).shape == Shape::Cylinder);
     if (const auto it = cell_of_class_.find(group); it != cell_of_class_.end()) cp.cell = it->second;
-    for (const auto& cluster : clusterGrid(scan.xyz, idx, cp)) {
+    std::vector<std::vector<int>> clusters = clusterGrid(scan.xyz, idx, cp);
+    if (group >= 0 && classes_.at(group).shape == Shape::Cuboid && params_.min_split_cell < cp.cell) {
+      // Boxes parked a few decimetres apart join at cp.cell: a cluster whose footprint is
+      // larger than the class is clustered again on cells half as large (down to min_split_cell).
+      const ClassInfo& info = classes_.at(group);
+      std::vector<std::vector<int>> kept;
+      std::vector<std::pair<std::vector<int>, double>> todo;
+      for (auto& c : clusters) todo.emplace_back(std::move(c), cp.cell);
+      for (std::size_t k = 0; k < todo.size(); ++k) {
+        auto [c, cell] = std::move(todo[k]);
+        std::vector<cv::Point2f> xy;
+        xy.reserve(c.size());
+        for (int i : c) xy.emplace_back(scan.xyz[i].x(), scan.xyz[i].y());
+        const cv::Size2f r = cv::minAreaRect(xy).size;
+        const bool oversized = std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y();
+        if (!oversized || 0.5 * cell < params_.min_split_cell - 1e-9) {
+          kept.push_back(std::move(c));
+          continue;
+        }
+        for (auto& part : clusterGrid(scan.xyz, c, {0.5 * cell, false, cp.min_points})) todo.emplace_back(std::move(part), 0.5 * cell);
+      }
+      clusters = std::move(kept);
+    }
+    for (const auto& cluster : clusters) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;
       for (int i : cluster) ++votes[class_of[i]];

@@ -29,6 +29,10 @@ struct LabelledSegmenterParams {
   // Cluster cell per class name, for classes whose objects stand closer together than
   // cluster.cell joins (chairs at a table, monitors side by side); others use cluster.cell.
   std::map<std::string, double> cluster_cell_by_class;
+  // A cluster of a cuboid class whose footprint exceeds the class's size_max is clustered
+  // again on cells half as large, down to this cell (cars parked a few decimetres apart join
+  // at cluster.cell); cluster.cell or more: off.
+  double min_split_cell = 0.15;
 };
 
 class LabelledSegmenter : public LidarSegmenter {

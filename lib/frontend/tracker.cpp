@@ -19,6 +19,36 @@ Cloud subsample(const Cloud& c, int max_points) {
   return out;
 }
 
+// Moves `younger`'s observations, votes and counts into `older` (the lower id).
+void absorb(Track& older, Track& younger, int max_observations) {
+  older.hits += younger.hits;
+  older.confidence_sum += younger.confidence_sum;
+  for (const auto& [c, v] : younger.class_votes) older.class_votes[c] += v;
+  older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
+                                    [](const auto& x, const auto& y) { return x.second < y.second; })->first;
+  if (younger.missed < older.missed) older.missed = younger.missed, older.last_centroid = younger.last_centroid;
+  for (std::size_t i = 0; i < younger.observations.size(); ++i) {
+    older.observations.push_back(std::move(younger.observations[i]));
+    older.viewpoints.push_back(younger.viewpoints[i]);
+  }
+  while (static_cast<int>(older.observations.size()) > max_observations) {
+    older.observations.pop_front();
+    older.viewpoints.pop_front();
+  }
+  older.moving = older.moving || younger.moving;
+}
+
+// Up to `max_points` of the track's accumulated points on the ground plane, evenly spread.
+void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Point2f>& out) {
+  std::size_t n = 0;
+  for (const auto& o : t.observations) n += o.size();
+  const std::size_t step = std::max<std::size_t>(1, n / std::max<std::size_t>(1, max_points));
+  std::size_t k = 0;
+  for (const auto& o : t.observations)
+    for (const auto& p : o)
+      if (k++ % step == 0) out.emplace_back(p.x(), p.y());
+}
+
 double centroidDistance(Shape shape, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // Cylinders are compared on the ground plane: the visible part of a trunk varies in height.
   return shape == Shape::Cylinder ? (a - b).head<2>().norm() : (a - b).norm();
@@ -45,15 +75,14 @@ Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
     : classes_(std::move(classes)), params_(params), fit_(fit) {}
 
 bool Tracker::exceedsClassSize(const Track& t) const {
-  const ClassInfo& info = classes_.at(t.class_id);
   std::vector<cv::Point2f> pts;
-  float zmin = 1e30f, zmax = -1e30f;
   for (const auto& o : t.observations)
-    for (const auto& p : o) {
-      pts.emplace_back(p.x(), p.y());
-      zmin = std::min(zmin, p.z());
-      zmax = std::max(zmax, p.z());
-    }
+    for (const auto& p : o) pts.emplace_back(p.x(), p.y());
+  return exceedsClassSize(pts, t.class_id);
+}
+
+bool Tracker::exceedsClassSize(const std::vector<cv::Point2f>& pts, int class_id) const {
+  const ClassInfo& info = classes_.at(class_id);
   if (pts.size() < 3) return false;
   const cv::RotatedRect r = cv::minAreaRect(pts);
   const double len = std::max(r.size.width, r.size.height), wid = std::min(r.size.width, r.size.height);
@@ -95,6 +124,17 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     }
     Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {},
           frame.odom_pose.translation()};
+    if (params_.drop_oversized) {
+      // Larger than the class on its own: several objects joined by the segmenter, not one
+      // (added to a track it would make the track look moving).
+      std::vector<cv::Point2f> xy;
+      xy.reserve(o.points.size());
+      for (const auto& p : o.points) xy.emplace_back(p.x(), p.y());
+      if (exceedsClassSize(xy, inst.class_id)) {
+        issues.count("instance larger than its class");
+        continue;
+      }
+    }
     o.centroid = centroidOf(o.points);
     by_class[inst.class_id].push_back(std::move(o));
   }
@@ -164,6 +204,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     apply(tracks_.emplace(t.id, t).first->second, o);
   }
   mergeColumnTracks(matched);
+  mergeBoxTracks(matched);
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (!matched.count(it->first)) ++it->second.missed;
     if (it->second.missed > params_.max_missed) it = tracks_.erase(it);
@@ -183,22 +224,51 @@ void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
         ++b;
         continue;
       }
-      // The older track (lower id) takes the younger one's observations and votes.
-      older.hits += younger.hits;
-      older.confidence_sum += younger.confidence_sum;
-      for (const auto& [c, v] : younger.class_votes) older.class_votes[c] += v;
-      older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
-                                        [](const auto& x, const auto& y) { return x.second < y.second; })->first;
-      if (younger.missed < older.missed) older.missed = younger.missed, older.last_centroid = younger.last_centroid;
-      for (std::size_t i = 0; i < younger.observations.size(); ++i) {
-        older.observations.push_back(std::move(younger.observations[i]));
-        older.viewpoints.push_back(younger.viewpoints[i]);
+      absorb(older, younger, params_.max_observations);  // the older track (lower id) takes the younger one
+      if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
+      b = tracks_.erase(b);
+    }
+  }
+}
+
+void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
+  if (params_.box_merge_width <= 0) return;
+  std::vector<cv::Point2f> pts;
+  for (auto a = tracks_.begin(); a != tracks_.end(); ++a) {
+    const ClassInfo& info = classes_.at(a->second.class_id);
+    if (info.shape != Shape::Cuboid || a->second.moving) continue;
+    for (auto b = std::next(a); b != tracks_.end();) {
+      Track& older = a->second;
+      Track& younger = b->second;
+      if (younger.class_id != older.class_id || younger.moving ||
+          (older.last_centroid - younger.last_centroid).head<2>().norm() > info.size_max.x()) {
+        ++b;
+        continue;
       }
-      while (static_cast<int>(older.observations.size()) > params_.max_observations) {
-        older.observations.pop_front();
-        older.viewpoints.pop_front();
+      pts.clear();
+      footprintSample(older, 300, pts);
+      const std::size_t n_older = pts.size();
+      footprintSample(younger, 300, pts);
+      const cv::RotatedRect rect = cv::minAreaRect(pts);
+      const double length = std::max(rect.size.width, rect.size.height);
+      bool merge = length <= info.size_max.x() && std::min(rect.size.width, rect.size.height) <= params_.box_merge_width;
+      if (merge) {  // one holds the other: along the joint footprint's length, no longer than the longer alone
+        cv::Point2f c[4];
+        rect.points(c);
+        cv::Point2f axis = cv::norm(c[1] - c[0]) >= cv::norm(c[2] - c[1]) ? c[1] - c[0] : c[2] - c[1];
+        axis *= 1.0f / std::max(1e-6f, static_cast<float>(cv::norm(axis)));
+        auto extent = [&](std::size_t from, std::size_t to) {
+          float lo = 1e30f, hi = -1e30f;
+          for (std::size_t k = from; k < to; ++k) lo = std::min(lo, pts[k].dot(axis)), hi = std::max(hi, pts[k].dot(axis));
+          return hi > lo ? double(hi - lo) : 0.0;
+        };
+        merge = length <= std::max(extent(0, n_older), extent(n_older, pts.size())) + params_.box_merge_growth;
       }
-      older.moving = older.moving || younger.moving;
+      if (!merge) {
+        ++b;
+        continue;
+      }
+      absorb(older, younger, params_.max_observations);
       if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
       b = tracks_.erase(b);
     }

@@ -8,6 +8,8 @@
 #include <map>
 #include <vector>
 
+#include <opencv2/core/types.hpp>
+
 #include "frontend/input_issues.h"
 #include "frontend/instance.h"
 #include "frontend/shape_fit.h"
@@ -25,6 +27,16 @@ struct TrackerParams {
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
+  // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several
+  // objects joined by the segmenter: dropped (counted), so it cannot make a track look moving.
+  bool drop_oversized = true;
+  // Cuboid tracks whose points together fit in one footprint this wide (and no longer than the
+  // class's size_max) are one object: merged (0: off). Below the gap of two cars side by side
+  // (1.8 m wide at 2.6 m pitch) plus a stripe of the next one.
+  double box_merge_width = 2.2;
+  // ... and whose joint footprint is at most this much longer than the longer of the two: one
+  // holds the other (two cars' end faces side by side, seen from an aisle, are not merged).
+  double box_merge_growth = 0.5;
 };
 
 struct Track {
@@ -59,10 +71,17 @@ class Tracker {
 
  private:
   bool exceedsClassSize(const Track& t) const;
+  bool exceedsClassSize(const std::vector<cv::Point2f>& xy, int class_id) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
   // or pole (its instances alternated between them, or it was split in a frame): merged. A
   // merged track counts as matched in this frame when either half was (`matched`).
   void mergeColumnTracks(std::map<std::int64_t, bool>& matched);
+  // Two static tracks of one cuboid class whose points together fit in one footprint no
+  // longer than the class's size_max, no wider than box_merge_width and no more than
+  // box_merge_growth longer than the longer track's own follow one object
+  // (a car's side seen at a grazing angle comes in stripes that start tracks of their own):
+  // merged into the older.
+  void mergeBoxTracks(std::map<std::int64_t, bool>& matched);
 
   ClassTable classes_;
   TrackerParams params_;

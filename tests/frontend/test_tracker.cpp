@@ -215,3 +215,79 @@ TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
   EXPECT_NEAR(world.x(), 10.0, 0.1);
   EXPECT_NEAR(world.y(), 5.9, 0.1) << "grown away from the aisle, not from the current pose";
 }
+
+namespace {
+// Car-labelled points on an axis-aligned vertical face from (x0, y0) to (x1, y1), z 0.1 to 1.5.
+void addFace(Instance& inst, double x0, double y0, double x1, double y1) {
+  const double len = std::hypot(x1 - x0, y1 - y0);
+  for (double s = 0; s <= len + 1e-9; s += 0.05)
+    for (double z = 0.1; z <= 1.5; z += 0.1)
+      inst.points.emplace_back(static_cast<float>(x0 + (x1 - x0) * s / len), static_cast<float>(y0 + (y1 - y0) * s / len),
+                               static_cast<float>(z));
+}
+
+Instance carInstance() {
+  Instance inst;
+  inst.class_id = 10;
+  inst.confidence = 1;
+  return inst;
+}
+}  // namespace
+
+// Car A (4.4 x 1.8 m, its length along y, x 9.1 to 10.9, nose at y = -2.8) is seen as an L (its
+// end face and the near part of its side) plus, 2 m on, a stripe of the side seen at a grazing
+// angle: two instances beyond the tracker's gate, two tracks, which follow one car and are
+// merged. Car B, parked beside A 0.6 m away, seen end-on, keeps its own track (A and B together
+// are too wide for one car).
+TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  for (double width : {cfg.tracker.box_merge_width, 0.0}) {
+    TrackerParams p = cfg.tracker;
+    p.box_merge_width = width;
+    Tracker tracker(classes, p, cfg.fit);
+    InputIssues issues;
+    for (int k = 0; k < 4; ++k) {
+      Instance a = carInstance(), stripe = carInstance(), b = carInstance();
+      addFace(a, 9.1, -2.8, 10.9, -2.8);
+      addFace(a, 9.1, -2.8, 9.1, -5.0);
+      addFace(stripe, 9.1, -5.0, 9.1, -5.4);
+      addFace(b, 11.5, -2.8, 13.3, -2.8);
+      FrameInstances f;
+      f.utime = k * 100000;
+      f.instances = {a, stripe, b};
+      tracker.update(f, issues);
+    }
+    ASSERT_EQ(tracker.tracks().size(), width > 0 ? 2u : 3u) << width;
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    ASSERT_EQ(objects.size(), 2u) << "the stripe alone is too short for a box";
+    for (const auto& o : objects)
+      EXPECT_EQ(o.num_observations, o.position().x() < 11 && width > 0 ? 8 : 4) << "the stripe's observations are kept";
+  }
+}
+
+// Two cars side by side joined into one instance (3.8 x 4.4 m: wider than any car) in one
+// frame: without the size check on single instances the car's track takes it and counts as
+// moving (no object); with it the instance is dropped and counted, the car stays.
+TEST(Tracker, AnInstanceLargerThanItsClassIsDroppedNotTakenAsMotion) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  for (bool drop : {true, false}) {
+    TrackerParams p = cfg.tracker;
+    p.drop_oversized = drop;
+    Tracker tracker(classes, p, cfg.fit);
+    InputIssues issues;
+    for (int k = 0; k < 5; ++k) {
+      Instance car = carInstance();
+      addFace(car, 9.1, -2.8, 10.9, -2.8);
+      addFace(car, 9.1, -2.8, 9.1, -7.2);
+      if (k == 2) addFace(car, 11.1, -2.8, 12.9, -2.8);  // the end of the neighbour beside it joined in
+      FrameInstances f;
+      f.utime = k * 100000;
+      f.instances = {car};
+      tracker.update(f, issues);
+    }
+    EXPECT_EQ(tracker.objectsInBody(Pose::Identity()).size(), drop ? 1u : 0u) << drop;
+    EXPECT_EQ(issues.total(), drop ? 1 : 0);
+  }
+}

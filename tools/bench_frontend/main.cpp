@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   int runs = 10;
   std::vector<std::string> worlds{"forest", "urban", "indoor"};
   double distance = 60.0, indoor_distance = 30.0, rate = 3.0;
+  bool diagnose = false;
   bool skip_real = false, skip_worlds = false, verbose = false, geometric_only = false, no_learned = false;
   app.add_option("--json", json, "Write the results as JSON (BENCHMARKS.md) to this file");
   app.add_option("--data-dir", data_dir, "Folder of the shared real data sets")->capture_default_str();
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   app.add_flag("--geometric-only", geometric_only, "Real scans: only the label-free mode");
   app.add_flag("--skip-worlds", skip_worlds, "Only the real data");
   app.add_flag("--verbose", verbose, "List every missed ground-truth object");
+  app.add_flag("--diagnose", diagnose, "Per-frame segmentation outcomes per class against the simulator's labels");
   app.add_flag("--no-learned", no_learned, "Leave out the learned LiDAR mode");
   return runApp(app, common, argc, argv, [&]() {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
@@ -95,6 +97,7 @@ int main(int argc, char** argv) {
         spec.rate = rate;
         spec.data_dir = data_dir;
         spec.verbose = verbose;
+        spec.diagnose = diagnose;
         spec.emulator = emulator;
         spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "rgbd.oracle", "emulated", "oracle"}
                                    : std::vector<std::string>{"geometric", "learned", "emulated", "oracle"};

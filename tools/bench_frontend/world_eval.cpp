@@ -23,6 +23,7 @@
 #include "sim/scenario.h"
 #include "sim/semantic_labels.h"
 #include "simmap/sensor_rig.h"
+#include "segment_diagnosis.h"
 
 namespace slide {
 
@@ -100,6 +101,8 @@ struct Runner {
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
   std::vector<std::map<int, double>> votes;  // class votes per landmark
   ModeResult result;
+  std::unique_ptr<SegmentDiagnosis> diagnosis;  // --diagnose, LiDAR modes
+  std::map<std::int64_t, std::pair<int, int>> moving_tracks;  // --diagnose: track -> (class, hits) of tracks taken as moving
 };
 }  // namespace
 
@@ -135,6 +138,12 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   const uint64_t emulator_seed = spec.emulator.seed ^ (spec.seed * 0x9e3779b97f4a7c15ULL);
   IouCounts iou_counts;
 
+  std::map<int, int> object_class;  // static objects, for --diagnose
+  for (const auto& g : sc.world.objects)
+    if (!g.moving()) object_class[static_cast<int>(g.object.id)] = g.object.class_id;
+  if (spec.diagnose)
+    for (auto& r : runners)
+      if (!isRgbd(r.mode)) r.diagnosis = std::make_unique<SegmentDiagnosis>(object_class, spec.min_points, spec.max_range);
   std::map<int, int> seen_lidar, seen_rgbd;
   std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
   std::unique_ptr<RayCaster> caster;
@@ -189,7 +198,11 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         r.label_iou.add(scan.semantic, labelled.semantic);
         fi.instances = r.lidar->segment(labelled, issues);
       } else fi.instances = r.lidar->segment(r.mode == "oracle" ? scan : r.mode == "emulated" ? emulated : unlabelled, issues);
+      if (r.diagnosis) r.diagnosis->addFrame(scan, fi.instances);
       const auto bundle = r.bundler->process(fi, issues);
+      if (r.diagnosis)
+        for (const auto& [id, t] : r.bundler->tracker().tracks())
+          if (t.moving) r.moving_tracks[id] = {t.class_id, t.hits};
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
       if (bundle)
@@ -201,6 +214,16 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   out.world = spec.world;
   out.frames = static_cast<int>(n);
   for (auto& r : runners) {
+    if (r.diagnosis) {
+      std::map<int, std::string> names;
+      for (int id : classes.ids()) names[id] = classes.at(id).name;
+      r.diagnosis->print(r.mode, names);
+      std::map<int, std::pair<int, int>> moving;  // class -> tracks, hits
+      for (const auto& [id, ch] : r.moving_tracks) ++moving[ch.first].first, moving[ch.first].second += ch.second;
+      for (const auto& [c, th] : moving)
+        std::printf("  diagnose %s: %d %s tracks taken as moving (%d observations)\n", r.mode.c_str(), th.first,
+                    names[c].c_str(), th.second);
+    }
     const auto& seen = isRgbd(r.mode) ? seen_rgbd : seen_lidar;
     std::map<int, std::vector<const Object*>> gt, est, unscored;  // by evaluation group
     for (const auto& g : sc.world.objects) {
@@ -302,6 +325,15 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
             std::printf("  missed %s %s id %ld at (%.1f, %.1f): seen in %d frames, max %d points, nearest estimate %.2f m\n",
                         r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
                         G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
+            for (const auto* e : E)  // the estimates near it (matched to a neighbour, or too far off)
+              if ((e->position() - G[j]->position()).head<2>().norm() < 4.0) {
+                const auto* b = std::get_if<Cuboid>(&e->model);
+                const auto* tb = std::get_if<Cuboid>(&G[j]->model);
+                if (b && tb)
+                  std::printf("    near estimate (%.1f, %.1f) yaw %.0f dims %.1f x %.1f, %d obs; truth yaw %.0f dims %.1f x %.1f\n",
+                              e->position().x(), e->position().y(), yawOf(b->pose.linear()) * 180 / M_PI, b->dims.x(),
+                              b->dims.y(), e->num_observations, yawOf(tb->pose.linear()) * 180 / M_PI, tb->dims.x(), tb->dims.y());
+              }
           }
       } else {
         m.false_objects += static_cast<int>(E.size());

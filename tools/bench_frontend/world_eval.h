@@ -35,6 +35,7 @@ struct WorldEvalSpec {
   double max_range = 40.0;   // ... within this horizontal range (metres) ...
   int min_frames = 3;        // ... in this many frames
   bool verbose = false;      // print every missed ground-truth object
+  bool diagnose = false;     // print per-frame segmentation outcomes per class (segment_diagnosis.h)
 };
 
 struct ModeResult {
