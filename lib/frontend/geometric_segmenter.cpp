@@ -93,6 +93,13 @@ double quantileOf(const std::vector<float>& values, const std::vector<int>& idx,
   return quantileInPlace(v, q);
 }
 
+// Longer side of the cluster's axis-aligned bounding box in x-y.
+double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
+  Eigen::Vector2f lo = Eigen::Vector2f::Constant(std::numeric_limits<float>::max()), hi = -lo;
+  for (int i : idx) lo = lo.cwiseMin(cloud[i].head<2>()), hi = hi.cwiseMax(cloud[i].head<2>());
+  return idx.empty() ? 0.0 : static_cast<double>((hi - lo).maxCoeff());
+}
+
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
@@ -108,9 +115,10 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   if (low.empty()) return cars;
   std::vector<int> mark(cloud.size(), -1);
   int label = 0;
-  // A cluster too long or wide for one car is re-clustered on finer cells (down to
-  // min_split_cell): cars parked side by side or back to back with gaps of a few decimetres
-  // join at `cell`; each part is then tested as a cluster of its own.
+  // A cluster too long or wide for one car, but no longer than max_split_length (a wall's or
+  // hedge's base is), is re-clustered on finer cells (down to min_split_cell): cars parked side
+  // by side or back to back with gaps of a few decimetres join at `cell`; each part is then
+  // tested as a cluster of its own.
   std::vector<std::pair<std::vector<int>, double>> todo;  // cluster, the cell it was clustered on
   for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) todo.emplace_back(std::move(cl), kp.cell);
   for (std::size_t k = 0; k < todo.size(); ++k) {
@@ -122,7 +130,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
     if (f.length > kp.max_length || f.width > kp.max_width) {
-      if (0.5 * cell >= kp.min_split_cell - 1e-9)
+      if (0.5 * cell >= kp.min_split_cell - 1e-9 && boxSide(cloud, cl) <= kp.max_split_length)
         for (auto& part : clusterGrid(cloud, cl, {0.5 * cell, false, kp.min_points})) todo.emplace_back(std::move(part), 0.5 * cell);
       continue;
     }

@@ -224,8 +224,8 @@ TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
 
 // Two cars parked side by side 0.4 m apart join on 0.3 m cells into one cluster wider than a
 // car; re-clustered on 0.15 m cells they are two, in both segmenters. With re-clustering off
-// (min_split_cell = cell) the labelled segmenter gives one instance, the geometric one none
-// (too wide for a car).
+// (min_split_cell = cell, or max_split_length shorter than the pair) the labelled segmenter
+// gives one instance, the geometric one none (too wide for a car).
 TEST(Segmenters, TwoCarsParkedCloseAreTwoCars) {
   const ClassTable classes = ClassTable::loadDefault();
   const FrontendConfig cfg = loadDefaultFrontendConfig();
@@ -250,4 +250,8 @@ TEST(Segmenters, TwoCarsParkedCloseAreTwoCars) {
       EXPECT_TRUE(nearest(geo, 10, {11.2, -5}, 1.2));
     }
   }
+  FrontendConfig c = cfg;  // a cluster longer than max_split_length (a wall's base) is left whole
+  c.geometric.car.max_split_length = 3.0;
+  InputIssues issues;
+  for (const auto& i : GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues)) EXPECT_NE(i.class_id, 10);
 }
