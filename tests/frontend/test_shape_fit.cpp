@@ -5,6 +5,7 @@
 
 #include "frontend/shape_fit.h"
 #include "frontend/xyz_cloud.h"
+#include "sim/ray_shapes.h"
 
 using namespace slide;
 
@@ -258,4 +259,37 @@ TEST(EllipsoidFit, APartlySeenBodyIsCompletedAwayFromTheViewpoint) {
   Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
   for (const auto& q : pts) lo = lo.cwiseMin(q.head<2>().cast<double>()), hi = hi.cwiseMax(q.head<2>().cast<double>());
   EXPECT_GT((0.5 * (lo + hi) - c).norm(), 0.1);
+}
+
+namespace {
+// The surface of an upright ellipsoid (horizontal radius r, height h, centre c) as a depth
+// camera at `eye` sees it: one point per ray on a grid of `step` radians in azimuth and
+// elevation, where the ray hits the body.
+Cloud visibleEllipsoidCloud(const Eigen::Vector3d& c, double r, double h, const Eigen::Vector3d& eye, double step = 0.004) {
+  const Eigen::Vector3d to = c - eye;
+  const double az0 = std::atan2(to.y(), to.x()), el0 = std::atan2(to.z(), to.head<2>().norm());
+  const double span = std::asin(std::min(0.99, std::max(r, 0.5 * h) / to.norm())) + 0.05;
+  Cloud out;
+  for (double az = az0 - span; az <= az0 + span; az += step)
+    for (double el = el0 - span; el <= el0 + span; el += step) {
+      const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      const double t = intersectRayEllipsoid(eye, d, c, Eigen::Vector3d(r, r, 0.5 * h));
+      if (std::isfinite(t)) out.push_back((eye + t * d).cast<float>());
+    }
+  return out;
+}
+}  // namespace
+
+TEST(EllipsoidFit, ProbeExact) {
+  const ClassTable classes = ClassTable::loadDefault();
+  struct Body { double r, h, z; };
+  for (const Body b : {Body{0.28, 0.9, 0.45}, Body{0.6, 0.75, 0.375}, Body{0.25, 0.4, 0.95}})
+    for (double dist : {1.5, 3.0, 5.0}) {
+      const Eigen::Vector3d eye(0, 0, 0.5), c(dist * std::cos(0.4), dist * std::sin(0.4), b.z);
+      const Cloud pts = visibleEllipsoidCloud(c, b.r, b.h, eye);
+      const auto e = fitEllipsoid(pts, {}, eye);
+      ASSERT_TRUE(e);
+      const Eigen::Vector2d ray = (c - eye).head<2>().normalized();
+      std::printf("r %.2f d %.1f: %zu pts along %+.3f radius %.3f\n", b.r, dist, pts.size(), (e->centroid - c).head<2>().dot(ray), e->radius);
+    }
 }
