@@ -32,7 +32,7 @@ SliceCentre sliceCentre(std::vector<double>& bearing, std::vector<double>& range
 }  // namespace
 
 std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, const Eigen::Vector3d& viewpoint,
-                                      std::string* why) {
+                                      double min_half_depth, std::string* why) {
   if (static_cast<int>(pts.size()) < p.min_points) {
     if (why) *why = "too few points (" + std::to_string(pts.size()) + ")";
     return std::nullopt;
@@ -50,7 +50,7 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
   // A partial view: the points are the side that faces the viewpoint, so their middle lies
   // short of the object's centre. Each horizontal slice of the points (a round body's slices
   // are circles about one vertical axis) gives the centre's bearing and distance from the
-  // viewpoint (sliceCentre); the median over the slices is the centre. Too few points per
+  // viewpoint (sliceCentre); the median over the widest slices is the centre. Too few points per
   // slice (a far LiDAR object): all points form one slice. Seen from within its own angular
   // width (the viewpoint amid the points): the box centre.
   const Eigen::Vector2d eye = viewpoint.head<2>();
@@ -83,7 +83,11 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
       if (c.sin_half_angle >= p.widest_fraction * widest)
         b.push_back(c.bearing), d.push_back(c.distance), s.push_back(c.sin_half_angle);
     if (quantileInPlace(s, 0.5) < p.max_sin_half_angle) {
-      const double beta = quantileInPlace(b, 0.5), dist = quantileInPlace(d, 0.5);
+      // An object cut by the image border or hidden in part behind a nearer one (a table
+      // behind its chairs) shows less than its width: its centre lies at least the class's
+      // typical half-depth behind its nearest points.
+      const double beta = quantileInPlace(b, 0.5);
+      const double dist = std::max(quantileInPlace(d, 0.5), quantileInPlace(all_range, p.low_percentile) + min_half_depth);
       centre = eye + dist * (std::cos(beta) * u + std::sin(beta) * v);
     }
   }

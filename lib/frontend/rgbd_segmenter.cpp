@@ -49,11 +49,11 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
         ++stray_ids;
         continue;
       }
+      const bool edge = p.erode_px > 0 && onMaskEdge(f.mask, K.width, K.height, u, v, p.erode_px);
       if (depth[i] == 0) {
-        ++missing_depth;
+        missing_depth += !edge;  // edge pixels often fall beyond the object: not counted
         continue;
       }
-      const bool edge = p.erode_px > 0 && onMaskEdge(f.mask, K.width, K.height, u, v, p.erode_px);
       (edge ? edges : pixels)[id - 1].push_back(static_cast<int>(i));
     }
   issues.count("zero depth in mask", missing_depth);

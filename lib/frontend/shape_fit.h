@@ -68,8 +68,11 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
 // The centroid is completed away from the viewpoint: each horizontal slice is taken as a circle
 // seen from the viewpoint (its nearest range and angular width give the centre's distance), so a
 // partly seen object is as deep as it is wide across the line of sight.
+// min_half_depth (metres): the centre lies at least this far behind the nearest points (the
+// class's typical half-depth: a view cut by the image border or by an occluder shows less than
+// the object's width).
 std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, const Eigen::Vector3d& viewpoint,
-                                      std::string* why = nullptr);
+                                      double min_half_depth = 0.0, std::string* why = nullptr);
 
 // The model of the object's class (ClassTable shape), with class size gates applied.
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,

@@ -192,8 +192,21 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       const auto bundle = r.bundler->process(fi, issues);
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
-      if (bundle)
+      if (bundle) {
         addToMap(*bundle, T_world_body, classes, r.landmarks, r.votes);
+        for (const Object& o : bundle->objects) {
+          const Eigen::Vector3d p = T_world_body * o.position();
+          const Object* best = nullptr;
+          double best_d = 2.0;
+          for (const auto& g : sc.world.objects)
+            if (g.object.class_id == o.class_id && (g.object.position() - p).head<2>().norm() < best_d)
+              best_d = (g.object.position() - p).head<2>().norm(), best = &g.object;
+          const ClassInfo* info = classes.find(o.class_id);
+          if (!best || !info) continue;
+          const Eigen::Vector2d ray = (p - T_world_body.translation()).head<2>().normalized();
+          r.result.along_ray[info->name].push_back((p - best->position()).head<2>().dot(ray));
+        }
+      }
     }
   }
 
