@@ -45,15 +45,16 @@ Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
     : classes_(std::move(classes)), params_(params), fit_(fit) {}
 
 bool Tracker::exceedsClassSize(const Track& t) const {
-  const ClassInfo& info = classes_.at(t.class_id);
+  std::vector<const Cloud*> clouds;
+  for (const auto& o : t.observations) clouds.push_back(&o);
+  return exceedsClassSize(t.class_id, clouds);
+}
+
+bool Tracker::exceedsClassSize(int class_id, const std::vector<const Cloud*>& clouds) const {
+  const ClassInfo& info = classes_.at(class_id);
   std::vector<cv::Point2f> pts;
-  float zmin = 1e30f, zmax = -1e30f;
-  for (const auto& o : t.observations)
-    for (const auto& p : o) {
-      pts.emplace_back(p.x(), p.y());
-      zmin = std::min(zmin, p.z());
-      zmax = std::max(zmax, p.z());
-    }
+  for (const Cloud* c : clouds)
+    for (const auto& p : *c) pts.emplace_back(p.x(), p.y());
   if (pts.size() < 3) return false;
   const cv::RotatedRect r = cv::minAreaRect(pts);
   const double len = std::max(r.size.width, r.size.height), wid = std::min(r.size.width, r.size.height);
@@ -95,6 +96,13 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     }
     Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {},
           frame.odom_pose.translation()};
+    // One instance wider than its class allows is a segmentation error (a mask spread over a
+    // wall seen at a grazing angle, two objects in one), not an object: were it added to a
+    // track, the track would be judged moving and never reported again.
+    if (exceedsClassSize(inst.class_id, {&o.points})) {
+      issues.count("instance larger than its class");
+      continue;
+    }
     o.centroid = centroidOf(o.points);
     by_class[inst.class_id].push_back(std::move(o));
   }
@@ -205,11 +213,12 @@ void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
   }
 }
 
-std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body) const {
+std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_since_report) const {
   std::vector<Object> out;
   const Pose T_body_odom = T_odom_body.inverse();
+  const int max_missed = std::max(params_.report_max_missed, frames_since_report - 1);
   for (const auto& [id, t] : tracks_) {
-    if (t.moving || t.hits < params_.min_age || t.missed > params_.report_max_missed) continue;
+    if (t.moving || t.hits < params_.min_age || t.missed > max_missed) continue;
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint());
