@@ -166,6 +166,11 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "low_percentile", p.low_percentile, 0.0);
     opt(c, "high_percentile", p.high_percentile, p.low_percentile);
     opt(c, "min_points", p.min_points, 1);
+    opt(c, "slice_height", p.slice_height, 0.01);
+    opt(c, "min_slice_points", p.min_slice_points, 3);
+    opt(c, "slice_percentile", p.slice_percentile, 0.0, 0.49);
+    opt(c, "widest_fraction", p.widest_fraction, 0.0, 1.0);
+    opt(c, "max_sin_half_angle", p.max_sin_half_angle, 0.1, 0.99);
   }
 }
 }  // namespace
@@ -227,6 +232,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "median_radius", p.median_radius, 0);
       opt(c, "stride", p.stride, 1);
       opt(c, "erode_px", p.erode_px, 0);
+      opt(c, "restore_edges", p.restore_edges);
       opt(c, "min_points", p.min_points, 1);
       if (c.has("detector")) cfg.rgbd_detector = c.get<std::string>("detector").empty() ? "" : pathNextTo(c, "detector", path);
     }

@@ -10,6 +10,7 @@ std::optional<KeyposeBundle> KeyposeBundler::process(const FrameInstances& frame
     return std::nullopt;
   }
   tracker_.update(frame, issues);
+  ++frames_since_key_;
   const Pose& T = frame.odom_pose;
   if (next_seq_ > 0) travelled_ += (T.translation() - last_frame_.translation()).norm();
   last_frame_ = T;
@@ -23,7 +24,10 @@ std::optional<KeyposeBundle> KeyposeBundler::process(const FrameInstances& frame
   b.odom_pose = T;
   b.relative_odom = b.seq == 0 ? Pose::Identity() : rel;
   for (int i = 0; i < 6; ++i) b.odom_sigma[i] = params_.sigma_min[i] + params_.sigma_per_m[i] * travelled_;
-  b.objects = tracker_.objectsInBody(T);
+  // Every track seen since the previous key pose: one confirmed in between and lost just
+  // before this key pose is no less an observation.
+  b.objects = tracker_.objectsInBody(T, b.seq == 0 ? 0 : frames_since_key_);
+  frames_since_key_ = 0;
   last_key_ = T;
   travelled_ = 0;
   return b;

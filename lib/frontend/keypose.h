@@ -41,6 +41,7 @@ class KeyposeBundler {
   Tracker tracker_;
   KeyposeParams params_;
   int next_seq_ = 0;
+  int frames_since_key_ = 0;  // frames since the previous key pose, this one included
   Pose last_key_ = Pose::Identity();
   Pose last_frame_ = Pose::Identity();
   double travelled_ = 0;  // path length since the last key pose

@@ -37,7 +37,7 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
   }
   const std::vector<std::uint16_t> depth = medianDepthWithinMasks(f.depth, f.mask, K.width, K.height, p.median_radius);
   const int num = static_cast<int>(f.instance_class.size());
-  std::vector<std::vector<int>> pixels(num);
+  std::vector<std::vector<int>> pixels(num), edges(num);
   long missing_depth = 0, stray_ids = 0;
   const int stride = std::max(1, p.stride);
   for (int v = 0; v < K.height; v += stride)
@@ -49,12 +49,12 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
         ++stray_ids;
         continue;
       }
-      if (p.erode_px > 0 && onMaskEdge(f.mask, K.width, K.height, u, v, p.erode_px)) continue;
+      const bool edge = p.erode_px > 0 && onMaskEdge(f.mask, K.width, K.height, u, v, p.erode_px);
       if (depth[i] == 0) {
-        ++missing_depth;
+        missing_depth += !edge;  // edge pixels often fall beyond the object: not counted
         continue;
       }
-      pixels[id - 1].push_back(static_cast<int>(i));
+      (edge ? edges : pixels)[id - 1].push_back(static_cast<int>(i));
     }
   issues.count("zero depth in mask", missing_depth);
   issues.count("mask id without instance", stray_ids);
@@ -76,13 +76,19 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
     inst.id = k + 1;
     inst.class_id = f.instance_class[k];
     inst.confidence = f.instance_confidence[k];
-    for (std::size_t j = 0; j < pixels[k].size(); ++j) {
-      const double z = d[j];
-      if (z < lo || z > hi) continue;
-      const int u = pixels[k][j] % K.width, v = pixels[k][j] / K.width;
+    auto add = [&](int i, double z) {
+      if (z < lo || z > hi) return;
+      const int u = i % K.width, v = i / K.width;
       const double x_opt = (u - K.cx) * z / K.fx, y_opt = (v - K.cy) * z / K.fy;
       inst.points.emplace_back(static_cast<float>(z), static_cast<float>(-x_opt), static_cast<float>(-y_opt));
-    }
+    };
+    for (std::size_t j = 0; j < pixels[k].size(); ++j) add(pixels[k][j], d[j]);
+    // Edge pixels: on the object when their own (unfiltered) depth lies in the object's band;
+    // spilled onto the background behind (or an occluder in front) when not. Dropping them
+    // all would narrow every object by erode_px pixels a side, and its centre, completed from
+    // its width, would land short.
+    if (p.restore_edges)
+      for (int i : edges[k]) add(i, f.depth[i] * K.depth_scale);
     if (static_cast<int>(inst.points.size()) >= p.min_points) out.push_back(std::move(inst));
   }
   return out;

@@ -2,7 +2,8 @@
 // RGBD instances: each instance mask's depth is median-filtered within the mask
 // (depth_filter.h), then the mask is backprojected with the depth image, keeping only
 // pixels whose depth lies in a percentile band around the mask's median depth (drops the
-// background and mixed edge pixels), after a detector-confidence gate. A learned detector
+// background and mixed edge pixels), after a detector-confidence gate. Pixels at the mask's
+// edge are judged by their own depth against that band. A learned detector
 // (YOLO-style) plugs in as a MaskDetector that fills the masks from the colour image.
 #include <cstdint>
 #include <string>
@@ -45,8 +46,10 @@ struct RgbdSegmenterParams {
   double min_depth = 0.2, max_depth = 12.0;  // metres
   int median_radius = 2;       // depth median window (pixels) within each mask, 0 = off
   int stride = 1;              // pixel step (1 = every pixel)
-  int erode_px = 0;            // drop mask pixels this close to another id: a detector's masks spill
-                               // a few pixels over the object's edge onto the background
+  int erode_px = 0;            // mask pixels this close to another id are edge pixels: a detector's masks spill
+                               // a few pixels over the object's edge onto the background; they take no part in
+                               // the depth band ...
+  bool restore_edges = true;   // ... and are kept only when their own unfiltered depth lies in the band (false: dropped)
   int min_points = 30;
 };
 

@@ -25,7 +25,8 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
       break;
     }
     case Shape::Ellipsoid: {
-      auto ell = fitEllipsoid(pts, p.ellipsoid, viewpoint, why);
+      const Eigen::Vector3d typical = info->typicalSize();
+      auto ell = fitEllipsoid(pts, p.ellipsoid, viewpoint, 0.5 * std::min(typical.x(), typical.y()), why);
       if (!ell) return std::nullopt;
       o.model = *ell;
       break;

@@ -40,6 +40,12 @@ struct EllipsoidFitParams {
   double low_percentile = 0.02;
   double high_percentile = 0.98;
   int min_points = 10;
+  // Completion of a partly seen body (fitEllipsoid): horizontal slices of this height ...
+  double slice_height = 0.1;       // metres
+  int min_slice_points = 10;       // ... with at least this many points ...
+  double slice_percentile = 0.01;  // ... whose bearings from the viewpoint span this and 1 - this quantile;
+  double widest_fraction = 0.9;    // the slices at least this fraction as wide (sine of half the span) as the widest vote
+  double max_sin_half_angle = 0.9; // a wider view is from within the object: box centre
 };
 
 struct FitParams {
@@ -59,10 +65,14 @@ std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
                                 const Eigen::Vector3d& size_typical, std::string* why = nullptr);
-// The centroid is completed away from the viewpoint: a partly seen object is taken as deep as
-// it is wide across the line of sight.
+// The centroid is completed away from the viewpoint: each horizontal slice is taken as a circle
+// seen from the viewpoint (its nearest range and angular width give the centre's distance), so a
+// partly seen object is as deep as it is wide across the line of sight.
+// min_half_depth (metres): the centre lies at least this far behind the nearest points (the
+// class's typical half-depth: a view cut by the image border or by an occluder shows less than
+// the object's width).
 std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams& p, const Eigen::Vector3d& viewpoint,
-                                      std::string* why = nullptr);
+                                      double min_half_depth = 0.0, std::string* why = nullptr);
 
 // The model of the object's class (ClassTable shape), with class size gates applied.
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,

@@ -275,11 +275,12 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
   }
 }
 
-std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body) const {
+std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_since_report) const {
   std::vector<Object> out;
   const Pose T_body_odom = T_odom_body.inverse();
+  const int max_missed = std::max(params_.report_max_missed, frames_since_report - 1);
   for (const auto& [id, t] : tracks_) {
-    if (t.moving || t.hits < params_.min_age || t.missed > params_.report_max_missed) continue;
+    if (t.moving || t.hits < params_.min_age || t.missed > max_missed) continue;
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint());

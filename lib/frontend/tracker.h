@@ -3,7 +3,8 @@
 // instances to tracks by centroid distance (gated by the class's association distance),
 // points accumulated over a sliding window of observations, a minimum age before a track
 // yields objects, deletion after missed frames, and rejection of moving objects (tracks whose
-// accumulated points grow beyond the class's size limits).
+// accumulated points grow beyond the class's size limits; a single instance that wide is a
+// segmentation error and is dropped).
 #include <deque>
 #include <map>
 #include <vector>
@@ -63,8 +64,11 @@ class Tracker {
   // One frame: instances (sensor/body frame) at odometry pose frame.odom_pose.
   void update(const FrameInstances& frame, InputIssues& issues);
   // Fitted models of the confirmed, static, recently seen tracks in the body frame of
-  // T_odom_body; object ids are track ids.
-  std::vector<Object> objectsInBody(const Pose& T_odom_body) const;
+  // T_odom_body; object ids are track ids. Recently: missed in at most
+  // max(report_max_missed, frames_since_report - 1) frames, where frames_since_report counts
+  // the frames since the previous report (a key pose) including this one: a track confirmed
+  // between two key poses and lost just before the second is still reported once.
+  std::vector<Object> objectsInBody(const Pose& T_odom_body, int frames_since_report = 0) const;
 
   const std::map<std::int64_t, Track>& tracks() const { return tracks_; }
   const ClassTable& classes() const { return classes_; }

@@ -64,3 +64,28 @@ TEST(RgbdSegmenter, BadInputIsCountedNotFatal) {
   EXPECT_TRUE(segmentRgbd(no_k, classes, {}, issues).empty());
   EXPECT_EQ(issues.get("invalid intrinsics"), 1);
 }
+
+// erode_px 2: the square's edge pixels (depth 2 m, on the object) stay, judged by their own
+// depth; the mask's two rows spilled onto the background at 6 m go. With restore_edges off
+// (the old behaviour) the square loses its 2-pixel rim and with it a fifth of its width.
+TEST(RgbdSegmenter, EdgePixelsOnTheObjectStaySpilledOnesGo) {
+  const ClassTable classes = ClassTable::loadDefault();
+  RgbdSegmenterParams p;
+  p.erode_px = 2;
+  InputIssues issues;
+  const auto inst = segmentRgbd(makeFrame(), classes, p, issues);
+  ASSERT_EQ(inst.size(), 1u);
+  EXPECT_EQ(inst[0].points.size(), 400u);
+  float lo = 1e9f, hi = -1e9f;
+  for (const auto& q : inst[0].points) {
+    EXPECT_NEAR(q.x(), 2.01, 0.02);
+    lo = std::min(lo, q.y()), hi = std::max(hi, q.y());
+  }
+  EXPECT_NEAR(hi - lo, 19 * 2.0 / 50, 0.01);  // columns 10-29 at 2.00-2.02 m, fx 50
+  p.restore_edges = false;
+  const auto eroded = segmentRgbd(makeFrame(), classes, p, issues);
+  ASSERT_EQ(eroded.size(), 1u);
+  lo = 1e9f, hi = -1e9f;
+  for (const auto& q : eroded[0].points) lo = std::min(lo, q.y()), hi = std::max(hi, q.y());
+  EXPECT_NEAR(hi - lo, 15 * 2.0 / 50, 0.01);
+}

@@ -114,9 +114,15 @@ int main(int argc, char** argv) {
           for (const auto& [name, c] : m.per_class)
             std::printf("    %-8s estimated %3d  ground truth %3d  matched %3d\n", name.c_str(), c[0], c[1], c[2]);
           for (const auto& [name, v] : m.iou) std::printf("    %s label IoU %-10s %.3f\n", m.mode.c_str(), name.c_str(), v);
+          for (const auto& [name, v] : m.along_ray) {
+            std::vector<double> a = v;
+            std::printf("    %-8s along the line of sight (ground truth, evaluation only): median %+.3f m, p10 %+.3f, p90 %+.3f, %zu observations\n",
+                        name.c_str(), quantile(a, 0.5), quantile(a, 0.1), quantile(a, 0.9), a.size());
+          }
           if (total.size() <= i) total.push_back(m);
           else {
             ModeResult& t = total[i];
+            for (const auto& [name, v] : m.along_ray) t.along_ray[name].insert(t.along_ray[name].end(), v.begin(), v.end());
             t.estimated += m.estimated, t.ground_truth += m.ground_truth, t.matched += m.matched;
             t.duplicates += m.duplicates, t.false_objects += m.false_objects, t.ignored += m.ignored;
             for (const auto& [name, v] : m.iou) t.iou[name] += v;
@@ -150,6 +156,15 @@ int main(int argc, char** argv) {
         report.add(prefix + ".recall", m.recall, "", false, tr, paper_r).note = note;
         report.add(prefix + ".f1", m.f1, "", false).note = note;
         report.add(prefix + ".duplicates", m.duplicates, "", true).note = "unmatched estimates of matched objects, " + seeds_text;
+        if (m.mode.rfind("rgbd", 0) == 0)
+          for (const auto& [name, v] : m.along_ray) {
+            std::vector<double> a = v;
+            report.add(prefix + ".along_ray_m." + name + ".median", quantile(a, 0.5), "m").note =
+                "key-pose " + name + " observations placed by the true key pose, offset from the nearest real " + name +
+                " along the line of sight (negative: short); scored with ground truth (evaluation only), " +
+                std::to_string(a.size()) + " observations, " + seeds_text + "; p10 " + std::to_string(quantile(a, 0.1)) +
+                ", p90 " + std::to_string(quantile(a, 0.9));
+          }
         report.add(prefix + ".false_objects", m.false_objects, "", true).note = "estimates of no object, " + seeds_text;
         for (const auto& [name, v] : m.iou) {
           const auto it = rangenet_iou.find(name);

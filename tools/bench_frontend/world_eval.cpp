@@ -145,6 +145,13 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     for (auto& r : runners)
       if (!isRgbd(r.mode)) r.diagnosis = std::make_unique<SegmentDiagnosis>(object_class, spec.min_points, spec.max_range);
   std::map<int, int> seen_lidar, seen_rgbd;
+  struct RgbdTrace {
+    int seen = 0, detectable = 0, detected = 0, confident = 0;  // detectable: at least the emulator's min_area_px
+    double min_range = 1e9;
+    int instance = 0, instance_class = 0, max_hits = 0, reported = 0, reported_other = 0;  // rgbd mode's pipeline
+    bool moving = false, other_class_track = false;
+  };
+  std::map<int, RgbdTrace> rgbd_trace;  // --verbose: object id -> frames
   std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
   std::unique_ptr<RayCaster> caster;
   const std::size_t n = robot.ground_truth.size();
@@ -183,6 +190,26 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         if (const auto id = frame.mask[i]; id > 0 && id < pix.size() && frame.depth[i] > 0) ++pix[id];
       for (std::size_t i = 0; i < img.instance_object.size(); ++i)
         if (img.instance_object[i] > 0 && pix[i + 1] >= spec.min_points) ++seen_rgbd[img.instance_object[i]];
+      // --verbose: per seen object, whether the emulated detector output a mask over most of it
+      // (any class), with what confidence, and the object's distance.
+      if (spec.verbose) {
+        std::map<std::pair<int, int>, int> overlap;  // (truth id, emulated id) -> pixels
+        for (std::size_t i = 0; i < frame.mask.size(); ++i)
+          if (frame.mask[i] > 0 && emulated_frame.mask[i] > 0) ++overlap[{frame.mask[i], emulated_frame.mask[i]}];
+        for (std::size_t i = 0; i < img.instance_object.size(); ++i) {
+          if (img.instance_object[i] <= 0 || pix[i + 1] < spec.min_points) continue;
+          RgbdTrace& tr = rgbd_trace[img.instance_object[i]];
+          ++tr.seen;
+          tr.detectable += pix[i + 1] >= spec.emulator.rgbd.min_area_px;
+          const double range = (sc.world.objects.at(img.instance_object[i] - 1).object.position() - T_world_body.translation()).head<2>().norm();
+          tr.min_range = std::min(tr.min_range, range);
+          float best = -1;
+          for (const auto& [ids, n] : overlap)
+            if (ids.first == static_cast<int>(i + 1) && 2 * n >= pix[i + 1])
+              best = std::max(best, emulated_frame.instance_confidence.at(ids.second - 1));
+          if (best >= 0) ++tr.detected, tr.confident += best >= cfg.rgbd.min_confidence;
+        }
+      }
     }
     for (auto& r : runners) {
       InputIssues issues;
@@ -203,10 +230,44 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       if (r.diagnosis)
         for (const auto& [id, t] : r.bundler->tracker().tracks())
           if (t.moving) r.moving_tracks[id] = {t.class_id, t.hits};
+      if (spec.verbose && r.mode == "rgbd") {  // the pipeline's view of every seen object, this frame
+        const Pose T_world_odom = T_world_body * robot.odometry[k].inverse();
+        for (auto& [id, tr] : rgbd_trace) {
+          const Object& g = sc.world.objects.at(id - 1).object;
+          auto near = [&](const Eigen::Vector3d& p) { return (p - g.position()).head<2>().norm() < 0.5; };
+          bool inst = false, inst_class = false;
+          for (const auto& in : fi.instances)
+            if (!in.points.empty() && near(T_world_body * centroidOf(in.points)))
+              inst = true, inst_class |= in.class_id == g.class_id;
+          tr.instance += inst, tr.instance_class += inst_class;
+          for (const auto& [tid, t] : r.bundler->tracker().tracks())
+            if (near(T_world_odom * t.last_centroid)) {
+              tr.max_hits = std::max(tr.max_hits, t.hits);
+              tr.moving |= t.moving;
+              if (t.class_id != g.class_id) tr.other_class_track = true;
+            }
+          if (bundle)
+            for (const auto& o : bundle->objects)
+              if (near(T_world_body * o.position())) (o.class_id == g.class_id ? tr.reported : tr.reported_other)++;
+        }
+      }
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
-      if (bundle)
+      if (bundle) {
         addToMap(*bundle, T_world_body, classes, r.landmarks, r.votes);
+        for (const Object& o : bundle->objects) {
+          const Eigen::Vector3d p = T_world_body * o.position();
+          const Object* best = nullptr;
+          double best_d = 2.0;
+          for (const auto& g : sc.world.objects)
+            if (g.object.class_id == o.class_id && (g.object.position() - p).head<2>().norm() < best_d)
+              best_d = (g.object.position() - p).head<2>().norm(), best = &g.object;
+          const ClassInfo* info = classes.find(o.class_id);
+          if (!best || !info) continue;
+          const Eigen::Vector2d ray = (p - T_world_body.translation()).head<2>().normalized();
+          r.result.along_ray[info->name].push_back((p - best->position()).head<2>().dot(ray));
+        }
+      }
     }
   }
 
@@ -334,6 +395,16 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
                               e->position().x(), e->position().y(), yawOf(b->pose.linear()) * 180 / M_PI, b->dims.x(),
                               b->dims.y(), e->num_observations, yawOf(tb->pose.linear()) * 180 / M_PI, tb->dims.x(), tb->dims.y());
               }
+            if (isRgbd(r.mode) && rgbd_trace.count(static_cast<int>(G[j]->id))) {
+              const RgbdTrace& tr = rgbd_trace.at(static_cast<int>(G[j]->id));
+              std::printf("    emulated detector: a mask over it in %d of %d frames (%d with >= %d pixels), %d of them with confidence >= %.2f; "
+                          "nearest %.1f m; pipeline: instances near it in %d frames (%d of its class), tracks near it up to %d hits%s%s, "
+                          "reported in %d key poses (%d as another class)\n", tr.detected, tr.seen, tr.detectable,
+                          spec.emulator.rgbd.min_area_px, tr.confident,
+                          cfg.rgbd.min_confidence, tr.min_range, tr.instance, tr.instance_class, tr.max_hits,
+                          tr.moving ? ", one moving" : "", tr.other_class_track ? ", one of another class" : "", tr.reported,
+                          tr.reported_other);
+            }
           }
       } else {
         m.false_objects += static_cast<int>(E.size());

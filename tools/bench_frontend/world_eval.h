@@ -48,6 +48,10 @@ struct ModeResult {
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
   std::vector<double> frame_ms;                         // segmentation + tracking per frame
+  // Every key-pose object placed by the ground-truth key pose against the nearest real object
+  // of its class within 2 m (scored with ground truth, evaluation only): its offset along the
+  // horizontal line of sight from the key pose (negative: short of the real centre), per class.
+  std::map<std::string, std::vector<double>> along_ray;
   long issues = 0;
 };
 
