@@ -57,7 +57,11 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
   const Eigen::Vector2d ray = box_centre - eye;
   if (ray.norm() > 1e-6) {
     const Eigen::Vector2d u = ray.normalized(), v(-u.y(), u.x());
-    const int n = std::max(1, static_cast<int>(std::ceil((hi_z - lo_z) / p.slice_height)));
+    // At most kMaxSlices slices from the lowest: a received instance with points metres or
+    // kilometres apart in height must not make the fit allocate a slice per 10 cm of that.
+    constexpr int kMaxSlices = 256;
+    const double top = std::min(hi_z, lo_z + kMaxSlices * p.slice_height);
+    const int n = std::clamp(static_cast<int>(std::ceil((top - lo_z) / p.slice_height)), 1, kMaxSlices);
     std::vector<std::vector<double>> bearing(n), range(n);
     std::vector<double> all_bearing, all_range;
     for (const auto& q : pts) {
@@ -65,7 +69,7 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
       const double b = std::atan2(d.dot(v), d.dot(u)), r = d.norm();
       all_bearing.push_back(b);
       all_range.push_back(r);
-      if (q.z() < lo_z || q.z() > hi_z) continue;
+      if (q.z() < lo_z || q.z() > top) continue;
       const int k = std::clamp(static_cast<int>((q.z() - lo_z) / p.slice_height), 0, n - 1);
       bearing[k].push_back(b);
       range[k].push_back(r);

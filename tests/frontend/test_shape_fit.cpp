@@ -241,6 +241,20 @@ TEST(EllipsoidFit, CentroidRadiusHeight) {
   EXPECT_FALSE(fitObject(pts, 12345, classes, {}, Eigen::Vector3d::Zero()));
 }
 
+TEST(EllipsoidFit, PointsFarApartInHeightAreSlicedWithinABound) {
+  // A received instance may hold finite points kilometres above the rest (a hostile or broken
+  // message): the completion slices at most a bounded height, so the fit neither allocates a
+  // slice per 10 cm of that span nor hangs, and still gives a finite body.
+  Cloud pts;
+  for (double a = 0; a < M_PI; a += 0.05)
+    for (double z = 0; z <= 0.8; z += 0.05) pts.push_back(Eigen::Vector3f(3 + 0.4 * std::cos(a), 2 + 0.4 * std::sin(a), z));
+  const std::size_t body = pts.size();
+  for (std::size_t i = 0; i < body / 5; ++i) pts.push_back(Eigen::Vector3f(3, 2, 1.0e8f));
+  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
+  ASSERT_TRUE(e);
+  EXPECT_TRUE(e->centroid.allFinite());
+}
+
 TEST(EllipsoidFit, APartlySeenBodyIsCompletedAwayFromTheViewpoint) {
   // The half of a 0.4 m-radius drum that faces a sensor at the origin (centre 4 m away, at
   // 30 degrees).
