@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <unordered_map>
 
 #include "backend/data_association.h"
 #include "backend/factors.h"
@@ -327,18 +328,29 @@ std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
   return out;
 }
 
+std::unordered_map<int, int> Optimizer::robotOfPoseVar() const {
+  std::unordered_map<int, int> out;
+  for (const KeyPose& k : keyposes_) out[k.var] = k.robot;
+  return out;
+}
+
+namespace {
+int robotOf(const std::unordered_map<int, int>& robot_of_var, int var) {
+  const auto it = robot_of_var.find(var);
+  return it == robot_of_var.end() ? -1 : it->second;
+}
+}  // namespace
+
 int Optimizer::sharedLandmarks(int peer) const {
-  std::map<int, int> robot_of_var;
-  for (const KeyPose& k : keyposes_) robot_of_var[k.var] = k.robot;
+  const auto robot_of = robotOfPoseVar();
   int n = 0;
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive) continue;
     bool host = false, other = false;
     for (const Observation& o : lm.seen) {
-      const auto it = robot_of_var.find(o.pose_var);
-      if (it == robot_of_var.end()) continue;
-      host = host || it->second == host_;
-      other = other || it->second == peer;
+      const int r = robotOf(robot_of, o.pose_var);
+      host = host || r == host_;
+      other = other || r == peer;
     }
     n += host && other;
   }
@@ -346,17 +358,12 @@ int Optimizer::sharedLandmarks(int peer) const {
 }
 
 std::vector<Object> Optimizer::ownLandmarks() const {
+  const auto robot_of = robotOfPoseVar();
   std::vector<Object> out;
-  const auto host = robots_.find(host_);
-  if (host == robots_.end()) return out;
-  std::vector<int> own_vars;
-  for (int k : host->second.keyposes) own_vars.push_back(keyposes_[k].var);
-  std::sort(own_vars.begin(), own_vars.end());
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive) continue;
-    const auto own = std::count_if(lm.seen.begin(), lm.seen.end(), [&](const Observation& o) {
-      return std::binary_search(own_vars.begin(), own_vars.end(), o.pose_var);
-    });
+    const auto own = std::count_if(lm.seen.begin(), lm.seen.end(),
+                                   [&](const Observation& o) { return robotOf(robot_of, o.pose_var) == host_; });
     if (own >= cfg_.min_observations) out.push_back(landmarkObject(lm));
   }
   return out;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -170,6 +171,7 @@ class Optimizer {
     std::map<int, KeyPoseBundle> held;        // by seq, before the transform
   };
 
+  std::unordered_map<int, int> robotOfPoseVar() const;  // key-pose variable -> its robot
   UpdateResult reject(UpdateResult r, const std::string& reason);
   std::string checkBundle(const KeyPoseBundle& b, const Robot& robot) const;
   std::vector<Object> usableObjects(const KeyPoseBundle& b, UpdateResult& r) const;
