@@ -46,6 +46,10 @@ struct Scenario {
 // Key poses spaced evenly along a 2-D polyline at height z, heading along the path.
 std::vector<Pose> pathAlongWaypoints(const std::vector<Eigen::Vector2d>& waypoints, int num_poses, double z = 0.0);
 
+// One noisy detection of an object given in the body frame (noise model above); keeps its id
+// and class.
+Object observeObject(const Object& body_truth, const ScenarioNoise& noise, std::mt19937& rng);
+
 // Drives `truth` past `landmarks` and records noisy bundles stamped from `utime0` (0.1 s apart).
 ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::vector<Object>& landmarks,
                             const ScenarioNoise& noise, std::mt19937& rng, std::int64_t utime0 = 0);

@@ -46,8 +46,9 @@ Eigen::Vector3d perturbGroundRangeBearing(const Eigen::Vector3d& p, const Scenar
   const double az = std::atan2(p.y(), p.x()) + gauss(rng, n.bearing_sigma);
   return {r * std::cos(az), r * std::sin(az), p.z() + rho * gauss(rng, n.bearing_sigma)};
 }
+}  // namespace
 
-Object observe(const Object& body_truth, const ScenarioNoise& n, std::mt19937& rng) {
+Object observeObject(const Object& body_truth, const ScenarioNoise& n, std::mt19937& rng) {
   Object o = body_truth;
   const Eigen::Vector3d seen = o.shape() == Shape::Cylinder ? perturbGroundRangeBearing(o.position(), n, rng)
                                                             : perturbRangeBearing(o.position(), n, rng);
@@ -71,7 +72,6 @@ Object observe(const Object& body_truth, const ScenarioNoise& n, std::mt19937& r
   }
   return o;
 }
-}  // namespace
 
 ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::vector<Object>& landmarks,
                             const ScenarioNoise& n, std::mt19937& rng, std::int64_t utime0) {
@@ -114,7 +114,7 @@ ScenarioRobot simulateRobot(int id, const std::vector<Pose>& truth, const std::v
     if (static_cast<int>(visible.size()) > n.max_objects) visible.resize(n.max_objects);
     std::vector<int> seen;
     for (const auto& [d, i] : visible) {
-      Object o = observe(transformObject(T_b_w, landmarks[i]), n, rng);
+      Object o = observeObject(transformObject(T_b_w, landmarks[i]), n, rng);
       o.id = -1;
       o.num_observations = 1;
       b.objects.push_back(o);

@@ -1,0 +1,165 @@
+#include "realistic_run.h"
+
+#include <time.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "backend/optimizer.h"
+#include "eval/ate.h"
+#include "eval/transform_error.h"
+
+namespace slide {
+
+namespace {
+double cpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+// One robot's own stack: its optimizer (own bundles only; the host's also takes the peers')
+// and its loop closer.
+struct Stack {
+  std::unique_ptr<Optimizer> optimizer;
+  std::unique_ptr<LoopCloser> closer;
+};
+
+std::vector<KeyPose> keyPoses(const Optimizer& opt, int robot) {
+  std::vector<KeyPose> out;
+  for (const TrajectoryPose& p : opt.trajectory(robot)) out.push_back({p.seq, p.pose});
+  return out;
+}
+
+double horizontalError(const Object& est, const Object& truth) {
+  if (est.shape() == Shape::Cylinder && truth.shape() == Shape::Cylinder)
+    return (std::get<Cylinder>(est.model).root - std::get<Cylinder>(truth.model).root).head<2>().norm();
+  return (est.position() - truth.position()).norm();
+}
+}  // namespace
+
+RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
+                                double period_s, int map_every) {
+  RealisticRunResult out;
+  const ClassTable classes = ClassTable::loadDefault();
+  const int host = s.robots[0].id;
+  std::map<int, Stack> stacks;
+  for (const ScenarioRobot& r : s.robots) {
+    LoopCloserParams p = closer;
+    p.robot = r.id;
+    stacks[r.id] = {std::make_unique<Optimizer>(cfg, classes, r.id), std::make_unique<LoopCloser>(p)};
+  }
+  Optimizer& opt = *stacks[host].optimizer;
+  out.peers = static_cast<int>(s.robots.size()) - 1;
+  std::map<std::int64_t, std::map<int, int>> votes;  // host landmark id -> true index (-1: false object) -> count
+  std::map<int, Pose> given;                         // last transform given per peer
+  std::size_t longest = 0;
+  for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
+  auto timed = [&](auto&& update) {
+    const double c0 = cpuMs();
+    const UpdateResult u = update();
+    if (!u.held) {
+      out.update_ms.push_back(u.update_ms);
+      out.update_cpu_ms.push_back(cpuMs() - c0);
+    }
+    return u;
+  };
+  for (std::size_t k = 0; k < longest; ++k) {
+    for (const ScenarioRobot& r : s.robots) {
+      if (k >= r.bundles.size()) continue;
+      const UpdateResult u = timed([&] { return opt.addBundle(r.bundles[k]); });
+      for (std::size_t i = 0; i < u.landmark_ids.size() && i < r.seen[k].size(); ++i)
+        if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
+      if (r.id != host) stacks[r.id].optimizer->addBundle(r.bundles[k]);
+    }
+    const double now = static_cast<double>(k) * period_s;
+    if (k % map_every == 0 || k + 1 == longest) {
+      for (auto& [id, st] : stacks) {
+        const ObjectMap own(st.optimizer->ownLandmarks());
+        st.closer->setOwnMap(own, now);
+        st.closer->setTrajectory(keyPoses(*st.optimizer, id));
+        if (id != host) stacks[host].closer->setPeerMap(id, own, now);
+      }
+    }
+    for (auto& [id, st] : stacks) {
+      const double c0 = cpuMs();
+      const std::vector<LoopClosure> found = st.closer->poll(now);
+      out.place_cpu_s += (cpuMs() - c0) / 1000.0;
+      for (const LoopClosure& lc : found) {
+        if (lc.outcome == ConsensusFilter::Outcome::Pending) continue;
+        if (lc.robot_a == lc.robot_b) {
+          if (id != host) {
+            st.optimizer->addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b);
+            continue;
+          }
+          timed([&] { return opt.addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b); });
+          ++out.intra_closures;
+        } else if (id == host && lc.robot_a == host) {
+          const ScenarioRobot* peer = nullptr;
+          for (const ScenarioRobot& r : s.robots)
+            if (r.id == lc.robot_b) peer = &r;
+          if (!peer) continue;
+          const Pose truth = s.robots[0].truth.front().inverse() * peer->truth.front();
+          const TransformError e = transformError(lc.T_a_b, truth);
+          out.wrong_inter += e.translation_m > 1.0 || e.yaw_deg > 2.0;
+          ++out.inter_transforms;
+          given[lc.robot_b] = lc.T_a_b;
+          timed([&] { return opt.addRobotTransform(lc.robot_b, lc.T_a_b); });
+        }
+      }
+    }
+  }
+  opt.fullSolve();
+  out.keyposes = opt.numKeyPoses();
+
+  // Trajectories of the host and of the peers it merged, and their odometry placed by the
+  // transforms it was given, against the truth in the host's frame.
+  const Pose host0_inv = s.robots[0].truth.front().inverse();
+  std::vector<Pose> est, ref, odom, odom_ref;
+  for (const ScenarioRobot& r : s.robots) {
+    if (r.id != host && !opt.merged(r.id)) continue;
+    out.peers_merged += r.id != host;
+    for (const TrajectoryPose& p : opt.trajectory(r.id)) {
+      est.push_back(p.pose);
+      ref.push_back(host0_inv * r.truth[p.seq]);
+    }
+    const Pose T = r.id == host ? Pose::Identity() : given.count(r.id) ? given[r.id] : Pose::Identity();
+    for (std::size_t k = 0; k < r.bundles.size(); ++k) {
+      odom.push_back(T * r.bundles[k].odom_pose);
+      odom_ref.push_back(host0_inv * r.truth[k]);
+    }
+  }
+  const AteResult ate = absoluteTrajectoryError(est, ref, Alignment::Se3);
+  out.ate_m = ate.rmse;
+  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, Alignment::Se3).rmse;
+
+  // Confirmed landmarks against the object most of their detections came from.
+  const Pose to_world = s.robots[0].truth.front() * ate.alignment.T;
+  std::map<int, int> per_truth;
+  double sq = 0;
+  int scored = 0;
+  for (const Object& lm : opt.landmarks(true)) {
+    ++out.landmarks;
+    const auto it = votes.find(lm.id);
+    if (it == votes.end()) continue;
+    int best = -1, count = 0;
+    for (const auto& [i, c] : it->second)
+      if (c > count) best = i, count = c;
+    if (best < 0) {
+      ++out.false_landmarks;
+      continue;
+    }
+    ++per_truth[best];
+    const double e = horizontalError(transformObject(to_world, lm), s.landmarks[best]);
+    sq += e * e;
+    ++scored;
+  }
+  int extra = 0;
+  for (const auto& [i, n] : per_truth) extra += n - 1;
+  out.duplicate_fraction = scored ? static_cast<double>(extra) / scored : 0;
+  out.landmark_rmse_m = scored ? std::sqrt(sq / scored) : 0;
+  return out;
+}
+
+}  // namespace slide

@@ -1,0 +1,33 @@
+#pragma once
+// A back-end scenario run as the daemons chain it, with nothing taken from the truth on the
+// robot's side: every robot's optimizer publishes its own map, its loop closer (place
+// recognition on those maps, config/loop_closer.yaml) finds intra-robot closures and, on the
+// host, the transforms to its peers; the host's optimizer takes them as the daemon does.
+// The truth only scores the result.
+#include <vector>
+
+#include "backend/backend_config.h"
+#include "place/loop_closer.h"
+#include "scenario/scenario.h"
+
+namespace slide {
+
+struct RealisticRunResult {
+  std::vector<double> update_ms, update_cpu_ms;  // the host optimizer's updates (bundles, closures, transforms)
+  double place_cpu_s = 0;                        // every robot's loop closer (place recognition), thread CPU
+  double ate_m = 0, odom_ate_m = 0;              // host and merged peers, after a final solve
+  int peers = 0, peers_merged = 0;
+  int intra_closures = 0, inter_transforms = 0;  // given to the host's optimizer
+  int wrong_inter = 0;                           // of those transforms: > 1 m or > 2 deg from the truth
+  int landmarks = 0, false_landmarks = 0;        // confirmed; false: most detections from false objects
+  double duplicate_fraction = 0;  // confirmed landmarks beyond the first whose detections are mostly of one true object
+  double landmark_rmse_m = 0;
+  int keyposes = 0;
+};
+
+// keypose_period_s: the simulated time between key poses (the loop closer's periods are in
+// seconds); map_every: key poses between own-map publications.
+RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
+                                double keypose_period_s = 1.0, int map_every = 5);
+
+}  // namespace slide
