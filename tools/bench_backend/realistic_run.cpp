@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "backend/optimizer.h"
+#include "eval/alignment.h"
 #include "eval/ate.h"
 #include "eval/transform_error.h"
 
@@ -32,6 +33,34 @@ std::vector<KeyPose> keyPoses(const Optimizer& opt, int robot) {
   return out;
 }
 
+using Votes = std::map<std::int64_t, std::map<int, int>>;  // landmark id -> true index (-1: false object) -> count
+
+int majority(const Votes& votes, std::int64_t id) {
+  const auto it = votes.find(id);
+  int best = -1, count = 0;
+  if (it != votes.end())
+    for (const auto& [i, c] : it->second)
+      if (c > count) best = i, count = c;
+  return best;
+}
+
+// The truth for a transform between two bent maps: the least-squares rigid motion (x, y, z,
+// yaw) taking B's objects onto A's over the true objects both maps hold (identified by the
+// simulator's object ids, for scoring only); nullopt when they share fewer than 3.
+std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const ObjectMap& b, const Votes& vb) {
+  std::map<int, Eigen::Vector3d> in_a;
+  for (const Object& o : a.objects())
+    if (const int t = majority(va, o.id); t >= 0) in_a[t] = o.position();
+  std::vector<Eigen::Vector3d> pa, pb;
+  for (const Object& o : b.objects())
+    if (const int t = majority(vb, o.id); t >= 0 && in_a.count(t)) {
+      pa.push_back(in_a[t]);
+      pb.push_back(o.position());
+    }
+  if (pa.size() < 3) return std::nullopt;
+  return align(pb, pa, Alignment::Yaw4Dof).T;
+}
+
 double horizontalError(const Object& est, const Object& truth) {
   if (est.shape() == Shape::Cylinder && truth.shape() == Shape::Cylinder)
     return (std::get<Cylinder>(est.model).root - std::get<Cylinder>(truth.model).root).head<2>().norm();
@@ -52,7 +81,8 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
   }
   Optimizer& opt = *stacks[host].optimizer;
   out.peers = static_cast<int>(s.robots.size()) - 1;
-  std::map<std::int64_t, std::map<int, int>> votes;  // host landmark id -> true index (-1: false object) -> count
+  std::map<int, Votes> votes;             // per robot's optimizer
+  std::map<int, ObjectMap> published;     // each robot's own map as last given to the loop closers
   std::map<int, Pose> given;                         // last transform given per peer
   std::size_t longest = 0;
   for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
@@ -68,15 +98,17 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
   for (std::size_t k = 0; k < longest; ++k) {
     for (const ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
-      const UpdateResult u = timed([&] { return opt.addBundle(r.bundles[k]); });
-      for (std::size_t i = 0; i < u.landmark_ids.size() && i < r.seen[k].size(); ++i)
-        if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
-      if (r.id != host) stacks[r.id].optimizer->addBundle(r.bundles[k]);
+      auto vote = [&](const UpdateResult& u, Votes& v) {
+        for (std::size_t i = 0; i < u.landmark_ids.size() && i < r.seen[k].size(); ++i)
+          if (u.landmark_ids[i] >= 0) ++v[u.landmark_ids[i]][r.seen[k][i]];
+      };
+      vote(timed([&] { return opt.addBundle(r.bundles[k]); }), votes[host]);
+      if (r.id != host) vote(stacks[r.id].optimizer->addBundle(r.bundles[k]), votes[r.id]);
     }
     const double now = static_cast<double>(k) * period_s;
     if (k % map_every == 0 || k + 1 == longest) {
       for (auto& [id, st] : stacks) {
-        const ObjectMap own(st.optimizer->ownLandmarks());
+        const ObjectMap& own = published[id] = ObjectMap(st.optimizer->ownLandmarks());
         st.closer->setOwnMap(own, now);
         st.closer->setTrajectory(keyPoses(*st.optimizer, id));
         if (id != host) stacks[host].closer->setPeerMap(id, own, now);
@@ -100,9 +132,18 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
           for (const ScenarioRobot& r : s.robots)
             if (r.id == lc.robot_b) peer = &r;
           if (!peer) continue;
-          const Pose truth = s.robots[0].truth.front().inverse() * peer->truth.front();
-          const TransformError e = transformError(lc.T_a_b, truth);
-          out.wrong_inter += e.translation_m > 1.0 || e.yaw_deg > 2.0;
+          const Pose frames = s.robots[0].truth.front().inverse() * peer->truth.front();
+          const TransformError f = transformError(lc.T_a_b, frames);
+          out.frame_error_m.push_back(f.translation_m);
+          const std::optional<Pose> maps =
+              mapAlignmentTruth(published[host], votes[host], published[lc.robot_b], votes[lc.robot_b]);
+          if (maps) {
+            const TransformError e = transformError(lc.T_a_b, *maps);
+            out.map_error_m.push_back(e.translation_m);
+            out.wrong_inter += e.translation_m > 1.0 || e.yaw_deg > 2.0;
+          } else {
+            ++out.wrong_inter;  // the maps hold no common object: a false positive
+          }
           ++out.inter_transforms;
           given[lc.robot_b] = lc.T_a_b;
           timed([&] { return opt.addRobotTransform(lc.robot_b, lc.T_a_b); });
@@ -130,6 +171,15 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
       odom_ref.push_back(host0_inv * r.truth[k]);
     }
   }
+  {
+    // The host's own trajectory alone, against its own odometry.
+    const std::size_t n = opt.trajectory(host).size();
+    const std::vector<Pose> e(est.begin(), est.begin() + n), t(ref.begin(), ref.begin() + n);
+    const std::size_t m = s.robots[0].bundles.size();
+    const std::vector<Pose> o(odom.begin(), odom.begin() + m), ot(odom_ref.begin(), odom_ref.begin() + m);
+    out.host_ate_m = absoluteTrajectoryError(e, t, Alignment::Se3).rmse;
+    out.host_odom_ate_m = absoluteTrajectoryError(o, ot, Alignment::Se3).rmse;
+  }
   const AteResult ate = absoluteTrajectoryError(est, ref, Alignment::Se3);
   out.ate_m = ate.rmse;
   out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, Alignment::Se3).rmse;
@@ -141,11 +191,8 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
   int scored = 0;
   for (const Object& lm : opt.landmarks(true)) {
     ++out.landmarks;
-    const auto it = votes.find(lm.id);
-    if (it == votes.end()) continue;
-    int best = -1, count = 0;
-    for (const auto& [i, c] : it->second)
-      if (c > count) best = i, count = c;
+    if (!votes[host].count(lm.id)) continue;
+    const int best = majority(votes[host], lm.id);
     if (best < 0) {
       ++out.false_landmarks;
       continue;

@@ -16,9 +16,13 @@ struct RealisticRunResult {
   std::vector<double> update_ms, update_cpu_ms;  // the host optimizer's updates (bundles, closures, transforms)
   double place_cpu_s = 0;                        // every robot's loop closer (place recognition), thread CPU
   double ate_m = 0, odom_ate_m = 0;              // host and merged peers, after a final solve
+  double host_ate_m = 0, host_odom_ate_m = 0;    // the host's own trajectory and odometry
   int peers = 0, peers_merged = 0;
   int intra_closures = 0, inter_transforms = 0;  // given to the host's optimizer
-  int wrong_inter = 0;                           // of those transforms: > 1 m or > 2 deg from the truth
+  int wrong_inter = 0;  // of those: > 1 m or > 2 deg from the two maps' alignment, or maps sharing no object
+  // Per transform given: its error against the least-squares alignment of the two own maps over
+  // the true objects both hold (the truth for bent maps), and against the robots' true frames.
+  std::vector<double> map_error_m, frame_error_m;
   int landmarks = 0, false_landmarks = 0;        // confirmed; false: most detections from false objects
   double duplicate_fraction = 0;  // confirmed landmarks beyond the first whose detections are mostly of one true object
   double landmark_rmse_m = 0;
