@@ -62,7 +62,7 @@ Candidate refineAround(const ClassGrid& grid, const std::vector<Landmark>& b, co
 
 // The strongest distinct candidates (best first): apart by more than 1.5 yaw steps or 2 bins.
 std::vector<Candidate> distinctTops(std::vector<Candidate> peaks, double yaw_step, double bin, std::size_t n) {
-  std::stable_sort(peaks.begin(), peaks.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
+  std::sort(peaks.begin(), peaks.end(), [](const Candidate& x, const Candidate& y) { return x.score > y.score; });
   std::vector<Candidate> tops;
   for (const Candidate& p : peaks) {
     bool distinct = true;
