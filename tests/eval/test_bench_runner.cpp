@@ -12,16 +12,23 @@
 using namespace slide;
 namespace fs = std::filesystem;
 
-// Runs ./slide bench on fake suites (one good, one failing, one writing broken JSON, one
-// writing none, one absent) and checks the merged JSON and the Markdown report.
-TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
-  const fs::path dir = fs::temp_directory_path() / ("slide_bench_runner_" + std::to_string(::getpid()));
+namespace {
+// A fresh folder DIR with DIR/bin/slide-bench-<name> linked to the fake suite for each name.
+fs::path fakeSuites(const std::string& stem, std::initializer_list<const char*> names) {
+  const fs::path dir = fs::temp_directory_path() / (stem + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "bin");
   const fs::path fake = fs::path(SLIDE_BINARY_DIR) / "tests" / "eval" / "fake_bench_suite";
-  ASSERT_TRUE(fs::exists(fake)) << fake;
-  for (const char* name : {"good", "failing", "badjson", "nojson"})
-    fs::create_symlink(fake, dir / "bin" / (std::string("slide-bench-") + name));
+  EXPECT_TRUE(fs::exists(fake)) << fake;
+  for (const char* name : names) fs::create_symlink(fake, dir / "bin" / (std::string("slide-bench-") + name));
+  return dir;
+}
+}  // namespace
+
+// Runs ./slide bench on fake suites (one good, one failing, one writing broken JSON, one
+// writing none, one absent) and checks the merged JSON and the Markdown report.
+TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
+  const fs::path dir = fakeSuites("slide_bench_runner_", {"good", "failing", "badjson", "nojson"});
 
   const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
                           (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench good failing absent badjson nojson --out '" +
@@ -69,12 +76,7 @@ TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
 // A named-only suite (place_scale) runs its program with its arguments, and a plain run (no suite
 // named) leaves it out.
 TEST(BenchRunner, NamedOnlySuiteRunsItsProgramWithArgumentsAndOnlyWhenNamed) {
-  const fs::path dir = fs::temp_directory_path() / ("slide_bench_named_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "bin");
-  const fs::path fake = fs::path(SLIDE_BINARY_DIR) / "tests" / "eval" / "fake_bench_suite";
-  ASSERT_TRUE(fs::exists(fake)) << fake;
-  fs::create_symlink(fake, dir / "bin" / "slide-bench-place");
+  const fs::path dir = fakeSuites("slide_bench_named_", {"place"});
   auto run = [&](const std::string& suites, const std::string& tag) {
     const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
                             (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench " + suites + " --out '" +
