@@ -5,7 +5,7 @@
 // class-consistent landmark pair votes for the translation it implies, which scores every
 // translation of the region at once (per-class lists, no pair of different classes is ever
 // looked at). The search grows outward from the centre of the yaw range (0, +step, -step, ...;
-// every translation of the region at each yaw) and the time budget is checked after each yaw
+// every translation of the region at each yaw) and the budget (the querying thread's CPU time) is checked after each yaw
 // and every 64 landmarks within one: it is anytime and returns the best so far. Fine stage: the best coarse cells
 // are rescored exactly (class-consistent matches within the position and size thresholds,
 // per-class bucket grid) on finer grids, then refined and verified like SlideGraph's result.
