@@ -1,5 +1,6 @@
 #include "place/delaunay.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
@@ -12,6 +13,24 @@ std::uint64_t cellKey(double x, double y, double cell) {
   const auto qx = static_cast<std::int64_t>(std::floor(x / cell));
   const auto qy = static_cast<std::int64_t>(std::floor(y / cell));
   return (static_cast<std::uint64_t>(qx) * 0x9E3779B97F4A7C15ULL) ^ static_cast<std::uint64_t>(qy);
+}
+
+// Position of cell (x, y) of a 2^16 x 2^16 grid along the Hilbert curve.
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
+  constexpr std::uint32_t n = 1u << 16;
+  std::uint64_t d = 0;
+  for (std::uint32_t s = n / 2; s > 0; s /= 2) {
+    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+    if (ry == 0) {  // rotate the quadrant
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
 }
 
 std::uint64_t floatKey(float x, float y) {
@@ -61,6 +80,21 @@ std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts, const 
   // metres there, int keeps the rectangle) is no map of ours; callers drop such objects first.
   if (!(hi_x - lo_x < 1e7 && hi_y - lo_y < 1e7)) return out;
 
+  // Insertion along a Hilbert curve: Subdiv2D locates each new point by walking from the edge it
+  // touched last, so neighbours in insertion order keep the walks short (a map in random order
+  // makes every walk cross the map: N^1.5 in all). The triangulation is the same.
+  {
+    const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1e-9});
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
+    order.reserve(unique.size());
+    for (std::uint32_t i : unique) {
+      const Eigen::Vector2d p = pts[i] - centre;
+      const auto q = [&](double v, double lo) { return static_cast<std::uint32_t>(std::min(65535.0, (v - lo) / span * 65535.0)); };
+      order.emplace_back(hilbertIndex(q(p.x(), lo_x), q(p.y(), lo_y)), i);
+    }
+    std::sort(order.begin(), order.end());
+    for (std::size_t k = 0; k < order.size(); ++k) unique[k] = order[k].second;
+  }
   const double margin = 1.0 + 0.01 * std::max(hi_x - lo_x, hi_y - lo_y);
   cv::Subdiv2D subdiv(cv::Rect(static_cast<int>(std::floor(lo_x - margin)), static_cast<int>(std::floor(lo_y - margin)),
                                static_cast<int>(std::ceil(hi_x - lo_x + 2 * margin)) + 1,

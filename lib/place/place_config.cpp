@@ -63,7 +63,20 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     n.read("max_yaw_step_deg", c.slidematch.max_yaw_step_deg);
     n.read("refine_candidates", c.slidematch.refine_candidates);
     n.read("min_landmarks", c.slidematch.min_landmarks);
+    n.read("exhaustive_max_votes", c.slidematch.exhaustive_max_votes);
+    n.read("neighbourhood_radius", c.slidematch.neighbourhood_radius);
+    n.read("pruned_candidates", c.slidematch.pruned_candidates);
+    n.read("min_local_votes", c.slidematch.min_local_votes);
+    n.read("local_significance", c.slidematch.local_significance);
+    n.read("local_yaw_bin_deg", c.slidematch.local_yaw_bin_deg);
+    n.read("tile", c.slidematch.tile);
+    n.read("vote_bin", c.slidematch.vote_bin);
     n.requirePositive("coarse_bin", c.slidematch.coarse_bin);
+    n.requirePositive("budget_ms", c.slidematch.budget_ms);
+    n.requirePositive("neighbourhood_radius", c.slidematch.neighbourhood_radius);
+    n.requirePositive("local_yaw_bin_deg", c.slidematch.local_yaw_bin_deg);
+    n.requirePositive("tile", c.slidematch.tile);
+    n.requirePositive("vote_bin", c.slidematch.vote_bin);
     n.requirePositive("min_yaw_step_deg", c.slidematch.min_yaw_step_deg);
     if (c.slidematch.max_yaw_step_deg < c.slidematch.min_yaw_step_deg)
       n.fail("max_yaw_step_deg", "must be at least min_yaw_step_deg");

@@ -36,7 +36,7 @@ struct PlaceResult {
   std::size_t associations = 0;       // SlideGraph: initial associations given to CLIPPER
   std::size_t clipper_edges = 0;      // SlideGraph: consistent pairs in the sparse graph
   std::size_t clipper_peak_bytes = 0; // SlideGraph: peak bytes held by the consistency graph
-  bool budget_exhausted = false;      // stopped on its time budget (SlideGraph: no transform; SlideMatch: best so far)
+  bool budget_exhausted = false;      // stopped on its CPU-time budget (SlideGraph: no transform; SlideMatch: best so far)
   bool by_shape = false;              // matched by shape family: the maps' classes barely overlap
 };
 

@@ -2,9 +2,9 @@
 // SlideGraph: Delaunay triangles of each map, described by sorted vertex-to-centroid distances
 // and vertex classes; candidate triangle pairs from a k-d tree over B's descriptors; their
 // vertex correspondences, ranked by votes, become the associations that CLIPPER prunes; the
-// surviving clique seeds a 4-DoF alignment that guided matching refines and verifies. A wall-
-// time budget is checked inside the triangulation and association loops and between stages:
-// when it runs out the query gives no transform, with budget_exhausted set.
+// surviving clique seeds a 4-DoF alignment that guided matching refines and verifies. A budget
+// of the calling thread's CPU time is checked inside the triangulation and association loops
+// and between stages: when it runs out the query gives no transform, with budget_exhausted set.
 #include "place/clipper.h"
 #include "place/verify.h"
 
@@ -23,7 +23,7 @@ struct SlideGraphParams {
   // with descriptor radius, CLIPPER sigma and epsilon scaled up (noisy real maps; cheap there).
   std::size_t small_map = 200;
   double retry_tolerance_scale = 1.6;
-  double budget_ms = 5000;                // wall-time budget of one query (the small-map retry included)
+  double budget_ms = 5000;                // thread CPU time budget of one query (the small-map retry included)
   ClipperParams clipper;
   VerifyParams verify;
 };

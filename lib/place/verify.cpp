@@ -18,12 +18,12 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
   const double reach = std::hypot(params.match_radius, params.match_height);  // the box's corner
   for (std::size_t j = 0; j < b.size(); ++j) {
     const Eigen::Vector3d q = T_a_b * b[j].p;
-    for (std::size_t i : index_a.radius(q, reach, b[j].class_id)) {
+    index_a.forEachWithin(q, reach, b[j].class_id, [&](std::size_t i) {
       const double d = (a[i].p - q).head<2>().norm();
       if (d <= params.match_radius && std::abs(a[i].p.z() - q.z()) <= params.match_height &&
           sizesAgree(a[i].size, b[j].size, params.size_tolerance))
         cands.push_back({d, i, j});
-    }
+    });
   }
   std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
     return x.d < y.d || (x.d == y.d && (x.ia < y.ia || (x.ia == y.ia && x.ib < y.ib)));
@@ -50,7 +50,7 @@ Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, 
     if (index_a.nearest(q, LandmarkIndex::kAnyClass).second > R) continue;
     ++o.covered;
     // Local density of A's landmarks of this class around q, times the match disc.
-    const double n = static_cast<double>(index_a.radius(q, R, l.class_id).size());
+    const double n = static_cast<double>(index_a.countWithin(q, R, l.class_id));
     o.chance += std::min(1.0, n * ratio);
   }
   return o;

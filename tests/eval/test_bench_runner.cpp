@@ -12,16 +12,23 @@
 using namespace slide;
 namespace fs = std::filesystem;
 
-// Runs ./slide bench on fake suites (one good, one failing, one writing broken JSON, one
-// writing none, one absent) and checks the merged JSON and the Markdown report.
-TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
-  const fs::path dir = fs::temp_directory_path() / ("slide_bench_runner_" + std::to_string(::getpid()));
+namespace {
+// A fresh folder DIR with DIR/bin/slide-bench-<name> linked to the fake suite for each name.
+fs::path fakeSuites(const std::string& stem, std::initializer_list<const char*> names) {
+  const fs::path dir = fs::temp_directory_path() / (stem + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "bin");
   const fs::path fake = fs::path(SLIDE_BINARY_DIR) / "tests" / "eval" / "fake_bench_suite";
-  ASSERT_TRUE(fs::exists(fake)) << fake;
-  for (const char* name : {"good", "failing", "badjson", "nojson"})
-    fs::create_symlink(fake, dir / "bin" / (std::string("slide-bench-") + name));
+  EXPECT_TRUE(fs::exists(fake)) << fake;
+  for (const char* name : names) fs::create_symlink(fake, dir / "bin" / (std::string("slide-bench-") + name));
+  return dir;
+}
+}  // namespace
+
+// Runs ./slide bench on fake suites (one good, one failing, one writing broken JSON, one
+// writing none, one absent) and checks the merged JSON and the Markdown report.
+TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
+  const fs::path dir = fakeSuites("slide_bench_runner_", {"good", "failing", "badjson", "nojson"});
 
   const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
                           (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench good failing absent badjson nojson --out '" +
@@ -63,5 +70,39 @@ TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
   EXPECT_NE(md.str().find("| good.f1 | 0.7 |  | >= 0.8 | - | **FAIL** | 3 runs |"), std::string::npos) << md.str();
   EXPECT_NE(md.str().find("total wall time"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir / "out" / "good.log"));
+  fs::remove_all(dir);
+}
+
+// A named-only suite (place_scale) runs its program with its arguments, and a plain run (no suite
+// named) leaves it out.
+TEST(BenchRunner, NamedOnlySuiteRunsItsProgramWithArgumentsAndOnlyWhenNamed) {
+  const fs::path dir = fakeSuites("slide_bench_named_", {"place"});
+  auto run = [&](const std::string& suites, const std::string& tag) {
+    const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
+                            (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench " + suites + " --out '" +
+                            (dir / tag).string() + "' --json '" + (dir / (tag + ".json")).string() + "' > '" +
+                            (dir / (tag + ".txt")).string() + "' 2>&1";
+    return std::system(cmd.c_str());
+  };
+  const int named = run("place_scale", "named");
+  ASSERT_TRUE(WIFEXITED(named));
+  EXPECT_EQ(WEXITSTATUS(named), 0);
+  const Json doc = readJsonFile((dir / "named.json").string());
+  ASSERT_EQ(doc.at("suites").size(), 1u);
+  EXPECT_EQ(doc.at("suites")[0].at("suite").get<std::string>(), "place_scale");
+  EXPECT_EQ(doc.at("suites")[0].at("status").get<std::string>(), "ok");
+  std::ifstream out_in(dir / "named.txt");
+  std::stringstream out;
+  out << out_in.rdbuf();
+  EXPECT_NE(out.str().find("slide-bench-place --only scale --json"), std::string::npos) << out.str();
+
+  run("", "plain");  // every other known suite is missing here: the run fails, place runs
+  const Json all = readJsonFile((dir / "plain.json").string());
+  bool place = false;
+  for (const Json& s : all.at("suites")) {
+    EXPECT_NE(s.at("suite").get<std::string>(), "place_scale");
+    place |= s.at("suite").get<std::string>() == "place";
+  }
+  EXPECT_TRUE(place);
   fs::remove_all(dir);
 }

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
 
+#include <atomic>
 #include <random>
+#include <thread>
 
 #include <fstream>
 
@@ -196,4 +200,87 @@ TEST(PlaceRecognition, ALabelFreeMapMatchesALabelledOneByShapeFamily) {
   b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.1}, rng);
   for (Landmark& l : b) l.class_id = 0;
   EXPECT_FALSE(recognizePlace(PlaceMethod::SlideGraph, a, b, config).found);
+}
+
+namespace {
+// Trunks (class 71) and a few poles (80) as a Poisson process over [x0, x0 + w] x [0, h].
+std::vector<Landmark> poissonForest(double x0, double w, double h, unsigned seed, std::size_t first_index) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(x0, x0 + w), uy(0, h);
+  std::vector<Landmark> out;
+  const int n = static_cast<int>(0.1 * w * h);
+  for (int i = 0; i < n; ++i) {
+    Landmark l;
+    l.p = {ux(rng), uy(rng), 0};
+    l.class_id = i % 10 ? 71 : 80;
+    l.size = {0.4, 0.4, 3.0};
+    l.index = first_index + i;
+    out.push_back(l);
+  }
+  return out;
+}
+}  // namespace
+
+// Large maps take the pruned coarse stage (neighbourhood descriptors and local yaw votes): a
+// strip of forest A and a map B that holds A's last 80 m (noisy, some dropped, moved) plus 320 m
+// of forest A never saw. Forced here by exhaustive_max_votes = 0 on 2,000-landmark maps.
+TEST(SlideMatch, PrunedSearchAlignsLargeMapsThatShareAStretch) {
+  const std::vector<Landmark> a = poissonForest(0, 400, 50, 11, 0);
+  std::vector<Landmark> shared;
+  for (const Landmark& l : a)
+    if (l.p.x() > 320) shared.push_back(l);
+  std::vector<Landmark> b_world = poissonForest(400, 320, 50, 12, 100000);
+  b_world.insert(b_world.end(), shared.begin(), shared.end());
+  const Pose truth = poseFromXyzYaw(-350.0, 40.0, 0.2, -2.5);  // maps B's frame into A's
+  std::mt19937 rng(13);
+  const std::vector<Landmark> b = perturbedCopy(b_world, truth, PerturbParams{0.1, 0.0, 0.1}, rng);
+  SlideMatchParams p;
+  p.exhaustive_max_votes = 0;
+  const PlaceResult r = slideMatch(a, b, p);
+  ASSERT_FALSE(r.stage_cpu_ms.empty());
+  EXPECT_EQ(r.stage_cpu_ms.front().first, "pruned_voting");
+  ASSERT_TRUE(r.found) << r.reason;
+  const TransformError e = transformError(r.T_a_b, truth);
+  EXPECT_LT(e.translation_m, 0.3);
+  EXPECT_LT(e.yaw_deg, 0.3);
+  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(b[m.b].index, m.a);
+
+  // Two forests that share nothing: no transform.
+  const std::vector<Landmark> other = poissonForest(0, 400, 50, 14, 200000);
+  const PlaceResult none = slideMatch(a, other, p);
+  EXPECT_FALSE(none.found) << "found " << none.inliers.size() << " inliers";
+}
+
+// The budget is the querying thread's CPU time, not wall time: with a busy thread sharing its one
+// core the query gets about half of the wall clock, and its coarse search still spends the whole
+// budget in CPU time before it stops (a wall-time budget would stop it at about half).
+TEST(SlideMatch, BudgetIsTheQueryingThreadsCpuTime) {
+  const int cpu = sched_getcpu();
+  ASSERT_GE(cpu, 0);
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  cpu_set_t before;
+  ASSERT_EQ(pthread_getaffinity_np(pthread_self(), sizeof before, &before), 0);
+  if (pthread_setaffinity_np(pthread_self(), sizeof one, &one) != 0) GTEST_SKIP() << "cannot pin this thread to one core";
+  std::atomic<bool> stop{false};
+  std::thread busy([&] {
+    pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+    while (!stop.load(std::memory_order_relaxed)) {
+    }
+  });
+  const std::vector<Landmark> a = poissonForest(0, 200, 50, 21, 0);
+  const std::vector<Landmark> b = poissonForest(0, 200, 50, 22, 0);
+  SlideMatchParams p;
+  p.exhaustive_max_votes = 1e18;  // the exhaustive search: about 1,000 x 1,000 pairs per yaw, 700 yaws
+  p.budget_ms = 150;
+  const PlaceResult r = slideMatch(a, b, p);
+  stop = true;
+  busy.join();
+  pthread_setaffinity_np(pthread_self(), sizeof before, &before);
+  EXPECT_TRUE(r.budget_exhausted);
+  ASSERT_FALSE(r.stage_cpu_ms.empty());
+  EXPECT_EQ(r.stage_cpu_ms.front().first, "coarse_voting");
+  EXPECT_GE(r.stage_cpu_ms.front().second, p.budget_ms);
+  EXPECT_GT(r.ms, 1.3 * r.cpu_ms) << "the busy thread did not share the core";
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "eval/transform_error.h"
@@ -111,4 +112,31 @@ TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
   const PlaceResult m2 = slideMatch(a, b, SlideMatchParams{});
   ASSERT_TRUE(m2.found) << m2.reason;
   EXPECT_LT(transformError(m2.T_a_b, truth).translation_m, 0.2);
+}
+
+// The grid behind the radius queries returns exactly the landmarks a brute-force scan finds,
+// with a far stray landmark stretching the extent (the grid coarsens instead of growing).
+TEST(LandmarkIndex, RadiusQueriesMatchBruteForce) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-30, 30), h(-2, 2);
+  std::vector<Landmark> lms;
+  for (int i = 0; i < 600; ++i) {
+    Landmark l = at(u(rng), u(rng), h(rng));
+    l.class_id = i % 3;
+    lms.push_back(l);
+  }
+  lms.push_back(at(5e6, -5e6, 0));
+  const LandmarkIndex index(lms);
+  for (int q = 0; q < 300; ++q) {
+    const Eigen::Vector3d p(u(rng), u(rng), h(rng));
+    const double r = q % 2 ? 1.2 : 4.5;
+    const int cls = q % 4 == 3 ? LandmarkIndex::kAnyClass : q % 4;
+    std::vector<std::size_t> expect;
+    for (std::size_t i = 0; i < lms.size(); ++i)
+      if ((cls == LandmarkIndex::kAnyClass || lms[i].class_id == cls) && (lms[i].p - p).norm() <= r) expect.push_back(i);
+    std::vector<std::size_t> got = index.radius(p, r, cls);
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, expect);
+    EXPECT_EQ(index.countWithin(p, r, cls), expect.size());
+  }
 }

@@ -12,6 +12,7 @@
 #include "hetero.h"
 #include "place/loop_closer_config.h"
 #include "realistic.h"
+#include "scale.h"
 #include "scenarios.h"
 
 using namespace slide;
@@ -160,7 +161,13 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "Timed runs per pair")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "Seed of the procedural worlds and noise")->capture_default_str();
   app.add_option("--only", only, "Scenarios to run (default all): indoor urban forest kitti05 kitti07 parking_real indoor_real indoor_aliased\n"
-                 "hetero_lidar_rgbd hetero_aerial_ground realistic");
+                 "hetero_lidar_rgbd hetero_aerial_ground realistic; 'scale' (maps of 1,000-30,000 objects, long: suite\n"
+                 "place_scale) runs only when named");
+  std::vector<int> scale_sizes{1000, 10000, 30000};
+  std::vector<std::string> scale_conditions{"target", "mild"};
+  app.add_option("--scale-sizes", scale_sizes, "Objects per map of the scale cases")->capture_default_str();
+  app.add_option("--scale-conditions", scale_conditions, "Conditions of the scale cases (target, mild, harsh)")
+      ->capture_default_str();
   std::vector<std::string> realistic_worlds;
   app.add_option("--realistic-worlds", realistic_worlds,
                  "Worlds of the realistic cases (default all): forest longleaf spruces finpines urban indoor indoor_repeated forest_large");
@@ -193,7 +200,8 @@ int main(int argc, char** argv) {
                        s.pairs[k].overlapping ? "" : " (disjoint: no transform expected)");
         }
     }
-    BenchReport rep("place");
+    const bool scale_only = want.size() == 1 && want.count("scale");
+    BenchReport rep(scale_only ? "place_scale" : "place");
     for (const Scenario& s : scenarios) {
       std::size_t na = 0, nb = 0, shared = 0, overlapping = 0;
       for (const PairCase& c : s.pairs) {
@@ -259,6 +267,7 @@ int main(int argc, char** argv) {
                     " published by the consensus filter";
       }
     }
+    if (want.count("scale")) runScale(rep, config, seed, scale_sizes, scale_conditions);
     if (wanted("realistic")) {
       // The loop closer's own consensus settings (config/loop_closer.yaml).
       const ConsensusParams consensus =

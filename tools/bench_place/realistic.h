@@ -31,7 +31,13 @@ struct RouteWorld {
 // forest_large (0.1 trunks/m^2 over 600 x 600 m: ~3,000-object maps), longleaf, spruces,
 // finpines (the real inventories), urban (60 m street grid), indoor (offices), indoor_repeated
 // (rooms furnished from two templates).
+// forest_scale: 0.1 trunks/m^2 (Poisson) over 1,500 x 1,500 m, a 25 m route lattice, 15 m range:
+// room for routes of 10 km and more (the scale cases set the route length).
 RouteWorld routeWorld(const std::string& name, unsigned seed);
+
+// The error parameters of a named condition: "target" (the recall condition: 0.25 m
+// noise, 20 % missed, 20 % spurious, 7.5 % confused, 1.5 deg/100 m), "mild", "harsh".
+MapErrorParams conditionErrors(const std::string& name);
 
 // A condition: error parameters, overlap (share of B's route along A's), pairs and how many of
 // them are disjoint (routes in opposite halves of the world).
@@ -56,12 +62,22 @@ std::vector<MapPair> makePairs(const RouteWorld& w, const Condition& c, unsigned
 struct RealisticFigures {
   int overlapping = 0, correct = 0, wrong = 0, missed = 0, disjoint = 0, false_positives = 0;
   std::vector<double> trans_err, yaw_err, cpu_ms;  // errors of correct results; CPU of every query
+  std::vector<double> peak_mb;                     // every query: peak resident memory above the start
+  std::map<std::string, std::vector<double>> stage_cpu_ms;  // per stage, every query that ran it
   std::vector<double> objects_a, objects_b, shared_fraction, truth_rms;
   std::size_t peak_bytes = 0;  // SlideGraph: largest consistency graph of any query
   std::vector<std::string> wrong_notes;  // what each wrong / false-positive transform was
   std::vector<std::string> miss_notes;   // why each overlapping pair gave no transform
 };
-RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config);
+// place_gap > 0: a transform is also correct when it is right (same tolerance) about one of the
+// places the maps share: runs of shared objects no more than place_gap metres apart along A's
+// route, each with its own least-squares truth. Long routes cross each other: the whole shared
+// set then spans places the two maps bend differently, and no rigid transform fits all of them.
+RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config,
+                          double place_gap = 0);
+// The places two maps share (see runPairs), each with its least-squares truth (places with fewer
+// than 3 shared objects left out).
+std::vector<SharedTruth> sharedPlaces(const MapPair& p, double gap);
 
 // The loop closer's way: B's map grows along its route; it is checked `checks` times (evenly
 // along the route) against A's whole map and every found transform goes through the consensus
@@ -85,5 +101,8 @@ namespace slide::bench {
 // empty runs every world. Consensus: the loop closer's filter over growing maps (target condition).
 void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusParams& consensus, unsigned seed,
                   const std::vector<std::string>& worlds);
+
+// Joined with "; " (notes of several pairs in one figure).
+std::string joined(const std::vector<std::string>& notes);
 
 }  // namespace slide::bench

@@ -1,5 +1,8 @@
 # help: run the benchmark suites (all, or those named) into one JSON file and a Markdown report
 BENCH_KNOWN_SUITES=(frontend backend place team system sim)
+# Suites that run a suite program with arguments; they may run long, so they run only when named
+# (never in a plain `./slide bench`, nor in CI).
+declare -A BENCH_NAMED_SUITES=([place_scale]="slide-bench-place --only scale")
 
 bench_usage() {
   cat <<USAGE
@@ -8,6 +11,8 @@ Runs each benchmark suite program build/bin/slide-bench-SUITE with --json, one a
 other, then merges their figures into one JSON file and a Markdown report beside it (same
 name, .md) with value, target, paper and pass/fail per figure and the wall times.
 Without SUITE: ${BENCH_KNOWN_SUITES[*]}, plus any other slide-bench-* present.
+Named only (long): place_scale (place recognition on maps of 1,000, 10,000 and 30,000 objects;
+about half an hour).
 A suite whose program is missing is reported as missing; a suite that fails is reported with
 its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
   --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>,
@@ -72,6 +77,12 @@ main() {
   t_all=$(date +%s%N)
   for suite in "${suites[@]}"; do
     exe="$bench_bin/slide-bench-$suite"
+    local args=()
+    if [[ -n "${BENCH_NAMED_SUITES[$suite]:-}" ]]; then
+      read -r -a args <<< "${BENCH_NAMED_SUITES[$suite]}"
+      exe="$bench_bin/${args[0]}"
+      args=("${args[@]:1}")
+    fi
     suite_json="$out/$suite.json"
     log="$out/$suite.log"
     rm -f "$suite_json"
@@ -80,14 +91,14 @@ main() {
       printf '%s\tmissing\t0\t\t\n' "$suite" >> "$manifest"
       continue
     fi
-    log "suite $suite: running $exe --json $suite_json"
+    log "suite $suite: running $exe ${args[*]} --json $suite_json"
     t0=$(date +%s%N)
     # Line-buffered output so that the log keeps what a killed suite printed.
     local runner=()
     command -v stdbuf >/dev/null && runner=(stdbuf -oL -eL)
     [[ "$timeout_s" -gt 0 ]] && runner=(timeout "$timeout_s" "${runner[@]}")
     set +e
-    "${runner[@]}" "$exe" --json "$suite_json" 2>&1 | tee "$log"
+    "${runner[@]}" "$exe" "${args[@]}" --json "$suite_json" 2>&1 | tee "$log"
     code=${PIPESTATUS[0]}
     set -e
     t1=$(date +%s%N)
