@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slide {
 
@@ -115,6 +116,17 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
       if (r->tan_elevation > lo && r->range < range) return true;
   }
   return false;
+}
+
+float ScanLines::viewTop(double tolerance_deg, double min_share) const {
+  float top = -std::numeric_limits<float>::infinity();
+  for (int b = 0; b < kBins; ++b)
+    if (start_[b + 1] > start_[b]) top = std::max(top, returns_[start_[b + 1] - 1].tan_elevation);
+  if (!std::isfinite(top)) return std::numeric_limits<float>::quiet_NaN();
+  const float tol = static_cast<float>(std::tan(tolerance_deg * M_PI / 180.0)) * (1 + top * top);
+  int hit = 0;
+  for (int b = 0; b < kBins; ++b) hit += start_[b + 1] > start_[b] && returns_[start_[b + 1] - 1].tan_elevation >= top - tol;
+  return hit >= min_share * kBins ? top : std::numeric_limits<float>::quiet_NaN();
 }
 
 }  // namespace slide

@@ -38,6 +38,12 @@ class ScanLines {
   // stands above p (a crown may be there).
   bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
 
+  // The top of the view (tan of its elevation) where the scan's top beam hits something in most
+  // directions: the highest indexed return, when at least min_share of the azimuth bins hold
+  // a return within tolerance_deg of its elevation (walls, a ceiling or crowns all around); NaN
+  // when not (open sky above most directions: the view cuts nothing off).
+  float viewTop(double tolerance_deg, double min_share) const;
+
  private:
   struct Return {
     float azimuth, tan_elevation, range;  // radians; z over horizontal range; horizontal metres
