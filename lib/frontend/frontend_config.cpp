@@ -56,7 +56,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     const ConfigNode c = n.child("view_cut");
     opt(c, "tolerance_deg", g.view_cut.tolerance_deg, 0.0, 5.0);
     opt(c, "min_share", g.view_cut.min_share, 0.0, 1.0);
-    opt(c, "cell", g.view_cut.cell, 0.01, 5.0);
+    opt(c, "range_tolerance", g.view_cut.range_tolerance, 0.0, 5.0);
   }
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");

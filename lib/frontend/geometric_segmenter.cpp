@@ -100,44 +100,12 @@ double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
   return idx.empty() ? 0.0 : static_cast<double>((hi - lo).maxCoeff());
 }
 
-// Marks in `taken` the points `above` that stand under a return at the top of the view: in its
-// planar cell (p.cell) or a neighbouring one. A vertical face returns every beam of an azimuth
-// step at the same (x, y), so its points lie under its top-beam return; an object beside it
-// stands apart by more than a cell or two.
-void markViewCut(const Cloud& cloud, const std::vector<int>& above, const ScanLines& lines, const ViewCutParams& p,
-                 std::vector<char>& taken) {
+// Marks in `taken` the points that stand under a return at the top of the view (ViewCutParams).
+void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& taken) {
   const float top = lines.viewTop(p.tolerance_deg, p.min_share);
   if (!std::isfinite(top)) return;
   const float tol = static_cast<float>(std::tan(p.tolerance_deg * M_PI / 180.0)) * (1 + top * top);
-  std::vector<int> tops;
-  Eigen::Vector2f lo = Eigen::Vector2f::Constant(std::numeric_limits<float>::max()), hi = -lo;
-  for (int i : above) {
-    const float r = std::max(cloud[i].head<2>().norm(), 1e-3f);
-    if (cloud[i].z() / r < top - tol) continue;
-    tops.push_back(i);
-    lo = lo.cwiseMin(cloud[i].head<2>()), hi = hi.cwiseMax(cloud[i].head<2>());
-  }
-  if (tops.empty()) return;
-  // A dense grid over the top returns' bounding box (one cell of margin): they lie within the
-  // range at which the top beam meets the tallest surroundings.
-  const float inv = static_cast<float>(1.0 / p.cell);
-  lo -= Eigen::Vector2f::Constant(static_cast<float>(p.cell));
-  const long nx = static_cast<long>((hi.x() - lo.x()) * inv) + 3, ny = static_cast<long>((hi.y() - lo.y()) * inv) + 3;
-  if (nx * ny > (1L << 26)) return;  // a top beam spread over kilometres: no grid (max_range keeps it far smaller)
-  std::vector<char> under(static_cast<std::size_t>(nx * ny), 0);
-  auto cellOf = [&](const Eigen::Vector3f& q, long& x, long& y) {
-    x = static_cast<long>((q.x() - lo.x()) * inv), y = static_cast<long>((q.y() - lo.y()) * inv);
-    return x >= 0 && y >= 0 && x < nx && y < ny;
-  };
-  long x = 0, y = 0;
-  for (int i : tops) {
-    cellOf(cloud[i], x, y);
-    for (long dy = -1; dy <= 1; ++dy)
-      for (long dx = -1; dx <= 1; ++dx)
-        if (x + dx >= 0 && y + dy >= 0 && x + dx < nx && y + dy < ny) under[(y + dy) * nx + x + dx] = 1;
-  }
-  for (int i : above)
-    if (cellOf(cloud[i], x, y) && under[y * nx + x]) taken[i] = 1;
+  lines.markUnderTop(top, tol, static_cast<float>(p.range_tolerance), taken);
 }
 
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
@@ -260,7 +228,7 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
     emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
 
   // Stacks reaching the top of the view are of unknown height: no car, no other (ViewCutParams).
-  if (params_.view_cut.tolerance_deg > 0) markViewCut(cloud, above, lines, params_.view_cut, taken);
+  if (params_.view_cut.tolerance_deg > 0) markViewCut(lines, params_.view_cut, taken);
 
   // 2. Cars, 3. other.
   for (const auto& cl : carClusters(cloud, h, above, params_.car, taken)) emit(params_.car_class, cl);

@@ -52,7 +52,7 @@ struct CarParams {
 struct ViewCutParams {
   double tolerance_deg = 0.2;    // a return this close to the top beam's elevation reaches it (0: off)
   double min_share = 0.1;        // share of azimuth bins (0.25 deg) the top beam must hit
-  double cell = 0.05;            // planar cells, metres: a point in the cell of such a return or a neighbouring one is under it
+  double range_tolerance = 0.1;  // metres: a return in the azimuth bin of such a return or the next, this close in range, is under it
 };
 
 struct GeometricSegmenterParams {

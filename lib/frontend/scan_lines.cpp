@@ -129,4 +129,18 @@ float ScanLines::viewTop(double tolerance_deg, double min_share) const {
   return hit >= min_share * kBins ? top : std::numeric_limits<float>::quiet_NaN();
 }
 
+void ScanLines::markUnderTop(float tan_top, float tan_tolerance, float range_tolerance, std::vector<char>& mark) const {
+  std::vector<std::vector<float>> top_ranges(kBins);  // per bin: ranges of its returns at the top
+  bool any = false;
+  for (int b = 0; b < kBins; ++b)
+    for (int k = start_[b + 1] - 1; k >= start_[b] && returns_[k].tan_elevation >= tan_top - tan_tolerance; --k)
+      top_ranges[b].push_back(returns_[k].range), any = true;
+  if (!any) return;
+  for (int b = 0; b < kBins; ++b)
+    for (int d = -1; d <= 1; ++d)
+      for (float r : top_ranges[(b + d + kBins) % kBins])
+        for (int k = start_[b]; k < start_[b + 1]; ++k)
+          if (std::abs(returns_[k].range - r) <= range_tolerance) mark[returns_[k].index] = 1;
+}
+
 }  // namespace slide

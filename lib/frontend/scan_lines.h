@@ -44,6 +44,12 @@ class ScanLines {
   // when not (open sky above most directions: the view cuts nothing off).
   float viewTop(double tolerance_deg, double min_share) const;
 
+  // Marks in `mark` (sized like the cloud) the indexed returns that stand under a return at the
+  // top of the view (tan elevation >= tan_top - tan_tolerance): in its azimuth bin or a
+  // neighbouring one, within range_tolerance metres of its horizontal range. A vertical face
+  // returns every beam of an azimuth step at the same range.
+  void markUnderTop(float tan_top, float tan_tolerance, float range_tolerance, std::vector<char>& mark) const;
+
  private:
   struct Return {
     float azimuth, tan_elevation, range;  // radians; z over horizontal range; horizontal metres
