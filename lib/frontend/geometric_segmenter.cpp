@@ -104,8 +104,7 @@ double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
 void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& taken) {
   const float top = lines.viewTop(p.tolerance_deg, p.min_share);
   if (!std::isfinite(top)) return;
-  const float tol = static_cast<float>(std::tan(p.tolerance_deg * M_PI / 180.0)) * (1 + top * top);
-  lines.markUnderTop(top, tol, static_cast<float>(p.range_tolerance), taken);
+  lines.markUnderTop(top, p.tolerance_deg, static_cast<float>(p.range_tolerance), taken);
 }
 
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height

@@ -27,6 +27,11 @@ float azimuthOf(float y, float x) {
   if (x < 0) r = float(M_PI) - r;
   return y < 0 ? -r : r;
 }
+
+// tan(elevation + tolerance) - tan(elevation), to first order in the tolerance.
+float tanTolerance(float tan_elevation, double tolerance_deg) {
+  return static_cast<float>(std::tan(tolerance_deg * M_PI / 180.0)) * (1 + tan_elevation * tan_elevation);
+}
 }  // namespace
 
 ScanLines::ScanLines(const Cloud& cloud, const std::vector<int>& points) : cloud_(cloud) {
@@ -63,8 +68,7 @@ std::vector<int> ScanLines::next(int from, int direction, int count, double wind
                                  const std::vector<char>& skip) const {
   const Return q = polar(cloud_[from], from);
   const float window = static_cast<float>(window_deg * M_PI / 180.0);
-  // tan(elevation +- tolerance), to first order in the tolerance.
-  const float tol = static_cast<float>(std::tan(beam_tolerance_deg * M_PI / 180.0)) * (1 + q.tan_elevation * q.tan_elevation);
+  const float tol = tanTolerance(q.tan_elevation, beam_tolerance_deg);
   const int b0 = bin(q.azimuth), reach = static_cast<int>(std::ceil(window_deg * kBins / 360.0)) + 1;
   std::vector<std::pair<float, int>> found;  // (azimuth beyond `from`, index)
   for (int k = 0; k <= std::min(reach, kBins / 2); ++k) {
@@ -123,13 +127,14 @@ float ScanLines::viewTop(double tolerance_deg, double min_share) const {
   for (int b = 0; b < kBins; ++b)
     if (start_[b + 1] > start_[b]) top = std::max(top, returns_[start_[b + 1] - 1].tan_elevation);
   if (!std::isfinite(top)) return std::numeric_limits<float>::quiet_NaN();
-  const float tol = static_cast<float>(std::tan(tolerance_deg * M_PI / 180.0)) * (1 + top * top);
+  const float tol = tanTolerance(top, tolerance_deg);
   int hit = 0;
   for (int b = 0; b < kBins; ++b) hit += start_[b + 1] > start_[b] && returns_[start_[b + 1] - 1].tan_elevation >= top - tol;
   return hit >= min_share * kBins ? top : std::numeric_limits<float>::quiet_NaN();
 }
 
-void ScanLines::markUnderTop(float tan_top, float tan_tolerance, float range_tolerance, std::vector<char>& mark) const {
+void ScanLines::markUnderTop(float tan_top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const {
+  const float tan_tolerance = tanTolerance(tan_top, tolerance_deg);
   std::vector<std::vector<float>> top_ranges(kBins);  // per bin: ranges of its returns at the top
   bool any = false;
   for (int b = 0; b < kBins; ++b)
