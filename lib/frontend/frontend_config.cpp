@@ -52,6 +52,12 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "beam_tolerance_deg", g.occlusion.beam_tolerance_deg, 0.0, 5.0);
     opt(c, "min_gap", g.occlusion.min_gap, 0.0);
   }
+  if (n.has("view_cut")) {
+    const ConfigNode c = n.child("view_cut");
+    opt(c, "tolerance_deg", g.view_cut.tolerance_deg, 0.0, 5.0);
+    opt(c, "min_share", g.view_cut.min_share, 0.0, 1.0);
+    opt(c, "range_tolerance", g.view_cut.range_tolerance, 0.0, 5.0);
+  }
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
     opt(c, "cell", g.ground.cell, 0.05);

@@ -100,6 +100,13 @@ double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
   return idx.empty() ? 0.0 : static_cast<double>((hi - lo).maxCoeff());
 }
 
+// Marks in `taken` the points that stand under a return at the top of the view (ViewCutParams).
+void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& taken) {
+  const float top = lines.viewTop(p.tolerance_deg, p.min_share);
+  if (!std::isfinite(top)) return;
+  lines.markUnderTop(top, p.tolerance_deg, static_cast<float>(p.range_tolerance), taken);
+}
+
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
@@ -218,6 +225,9 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
   // 1. Columns (trunks, poles).
   for (const Column& c : detectColumns(cloud, h, above, lines, params_.column, taken, rejected))
     emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
+
+  // Stacks reaching the top of the view are of unknown height: no car, no other (ViewCutParams).
+  if (params_.view_cut.tolerance_deg > 0) markViewCut(lines, params_.view_cut, taken);
 
   // 2. Cars, 3. other.
   for (const auto& cl : carClusters(cloud, h, above, params_.car, taken)) emit(params_.car_class, cl);

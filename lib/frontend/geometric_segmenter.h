@@ -4,7 +4,8 @@
 //     (trunks and poles; a trunk when a canopy spreads above it or it is thick; see
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
-//     fit a car and whose roof is open (a wall's lower part goes on above the cap),
+//     fit a car and whose roof is open (a wall's lower part goes on above the cap), leaving out
+//     stacks that reach the top of the view (ViewCutParams),
 //  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
 //     whose surfaces are solid (not foliage), that are seen whole (not cut off by a nearer
 //     occluder beside them; see occlusion.h) and that are no upright column.
@@ -21,7 +22,10 @@ struct CarParams {
   double height_cap = 2.6;       // points above this height are left out of car clusters
   double cell = 0.3;
   int min_points = 40;
-  double min_top = 1.0, max_top = 2.3;  // 95th percentile of height above ground
+  // 95th percentile of height above ground. Cars stand 1.4 m or taller: the 95th percentile of
+  // their sides reaches 1.2 m even when the roof is out of sight (a table with monitors on it,
+  // 1.15 m, does not; at 1.0 indoor table groups were cars).
+  double min_top = 1.2, max_top = 2.3;
   double max_bottom = 0.8;       // 5th percentile of height above ground
   double min_length = 1.2, max_length = 6.5;
   double max_width = 2.8;
@@ -40,10 +44,22 @@ struct CarParams {
   double cover_height = 1.0;
 };
 
+// The top of the view: where the scan's top beam hits something in most directions (walls, a
+// ceiling, crowns all around; ScanLines::viewTop), a stack of returns that reaches it goes on
+// above what the sensor sees. Its height is unknown, so the points under such a return are no
+// car and no "other": indoors the lower part of a wall beside the robot fits a car's height and
+// footprint, and furniture standing near it joins it.
+struct ViewCutParams {
+  double tolerance_deg = 0.2;    // a return this close to the top beam's elevation reaches it (0: off)
+  double min_share = 0.1;        // share of azimuth bins (0.25 deg) the top beam must hit
+  double range_tolerance = 0.1;  // metres: a return in the azimuth bin of such a return or the next, this close in range, is under it
+};
+
 struct GeometricSegmenterParams {
   GroundParams ground;
   double max_range = 60.0;       // metres, horizontal
   ColumnParams column;
+  ViewCutParams view_cut;
   CarParams car;
   GridClusterParams other_cluster{0.3, false, 30};
   bool emit_other = true;        // emit "other" instances for remaining compact clusters ...

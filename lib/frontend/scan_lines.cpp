@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace slide {
 
@@ -25,6 +26,11 @@ float azimuthOf(float y, float x) {
   if (ay > ax) r = float(M_PI_2) - r;
   if (x < 0) r = float(M_PI) - r;
   return y < 0 ? -r : r;
+}
+
+// tan(elevation + tolerance) - tan(elevation), to first order in the tolerance.
+float tanTolerance(float tan_elevation, double tolerance_deg) {
+  return static_cast<float>(std::tan(tolerance_deg * M_PI / 180.0)) * (1 + tan_elevation * tan_elevation);
 }
 }  // namespace
 
@@ -62,8 +68,7 @@ std::vector<int> ScanLines::next(int from, int direction, int count, double wind
                                  const std::vector<char>& skip) const {
   const Return q = polar(cloud_[from], from);
   const float window = static_cast<float>(window_deg * M_PI / 180.0);
-  // tan(elevation +- tolerance), to first order in the tolerance.
-  const float tol = static_cast<float>(std::tan(beam_tolerance_deg * M_PI / 180.0)) * (1 + q.tan_elevation * q.tan_elevation);
+  const float tol = tanTolerance(q.tan_elevation, beam_tolerance_deg);
   const int b0 = bin(q.azimuth), reach = static_cast<int>(std::ceil(window_deg * kBins / 360.0)) + 1;
   std::vector<std::pair<float, int>> found;  // (azimuth beyond `from`, index)
   for (int k = 0; k <= std::min(reach, kBins / 2); ++k) {
@@ -115,6 +120,32 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
       if (r->tan_elevation > lo && r->range < range) return true;
   }
   return false;
+}
+
+float ScanLines::viewTop(double tolerance_deg, double min_share) const {
+  float top = -std::numeric_limits<float>::infinity();
+  for (int b = 0; b < kBins; ++b)
+    if (start_[b + 1] > start_[b]) top = std::max(top, returns_[start_[b + 1] - 1].tan_elevation);
+  if (!std::isfinite(top)) return std::numeric_limits<float>::quiet_NaN();
+  const float tol = tanTolerance(top, tolerance_deg);
+  int hit = 0;
+  for (int b = 0; b < kBins; ++b) hit += start_[b + 1] > start_[b] && returns_[start_[b + 1] - 1].tan_elevation >= top - tol;
+  return hit >= min_share * kBins ? top : std::numeric_limits<float>::quiet_NaN();
+}
+
+void ScanLines::markUnderTop(float tan_top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const {
+  const float tan_tolerance = tanTolerance(tan_top, tolerance_deg);
+  std::vector<std::vector<float>> top_ranges(kBins);  // per bin: ranges of its returns at the top
+  bool any = false;
+  for (int b = 0; b < kBins; ++b)
+    for (int k = start_[b + 1] - 1; k >= start_[b] && returns_[k].tan_elevation >= tan_top - tan_tolerance; --k)
+      top_ranges[b].push_back(returns_[k].range), any = true;
+  if (!any) return;
+  for (int b = 0; b < kBins; ++b)
+    for (int d = -1; d <= 1; ++d)
+      for (float r : top_ranges[(b + d + kBins) % kBins])
+        for (int k = start_[b]; k < start_[b + 1]; ++k)
+          if (std::abs(returns_[k].range - r) <= range_tolerance) mark[returns_[k].index] = 1;
 }
 
 }  // namespace slide

@@ -2,9 +2,10 @@
 // The returns of a spinning-LiDAR scan looked up by beam direction: binned by azimuth (0.25
 // deg), each bin sorted by elevation. Answers the questions the segmenter asks of the scan's
 // geometry: where a set of points ends on each beam through it (its azimuth edges), which
-// returns follow a given one on its beam (same elevation, growing or shrinking azimuth), and
-// whether a nearer return lies just above a point (its upward view is blocked). Points are in
-// the sensor frame (sensor at the origin, z up).
+// returns follow a given one on its beam (same elevation, growing or shrinking azimuth),
+// whether a nearer return lies just above a point (its upward view is blocked), and where the
+// view ends above (the top beam, and the returns standing under it). Points are in the sensor
+// frame (sensor at the origin, z up).
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +38,18 @@ class ScanLines {
   // the elevation of p, within about 1 deg of its azimuth: something in front hides what
   // stands above p (a crown may be there).
   bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
+
+  // The top of the view (tan of its elevation) where the scan's top beam hits something in most
+  // directions: the highest indexed return, when at least min_share of the azimuth bins hold
+  // a return within tolerance_deg of its elevation (walls, a ceiling or crowns all around); NaN
+  // when not (open sky above most directions: the view cuts nothing off).
+  float viewTop(double tolerance_deg, double min_share) const;
+
+  // Marks in `mark` (sized like the cloud) the indexed returns that stand under a return at the
+  // top of the view (elevation within tolerance_deg of tan_top's): in its azimuth bin or a
+  // neighbouring one, within range_tolerance metres of its horizontal range. A vertical face
+  // returns every beam of an azimuth step at the same range.
+  void markUnderTop(float tan_top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const;
 
  private:
   struct Return {

@@ -24,7 +24,7 @@ struct WallTraceParams {
   double max_step = 4.0;         // metres (horizontal) between consecutive returns on the face
   double line_tolerance = 0.08;  // metres: distance of the column edge from the line through the next two returns
   double max_step_ratio = 3.0;   // consecutive steps along the face differ at most by this factor
-  double corner_run = 1.2;       // a straight run of returns this long beside a stack behind it is a face (0: off)
+  double corner_run = 0.6;       // a straight run of returns this long beside a stack behind it is a face (0: off)
   int max_run_returns = 12;      // returns followed along that run
   double min_fraction = 0.5;     // share of the column's beams continued as a face that makes it one (0: off)
 };

@@ -1,8 +1,10 @@
 // The label-free LiDAR front-end's pieces: column detection (stacked isolated cross-sections,
-// arcs, walls and hedges), the real SemanticKITTI scans scored against their labels, ground
-// on a slope, and the scan scorer's verdicts.
+// arcs, walls and hedges), the top of the view, a simulated office (walls, furniture), the real
+// SemanticKITTI scans scored against their labels, ground on a slope, and the scan scorer's verdicts.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -15,6 +17,10 @@
 #include "frontend/ground_removal.h"
 #include "frontend/wall_trace.h"
 #include "io/kitti_scan.h"
+#include "sim/lidar.h"
+#include "sim/ray_caster.h"
+#include "sim/scenario.h"
+#include "sim/semantic_labels.h"
 
 using namespace slide;
 
@@ -400,4 +406,95 @@ TEST(ScanScore, VerdictsWithoutMerging) {
   EXPECT_EQ(s.verdicts[3], EstimateVerdict::False);
   scan.semantic.clear();
   EXPECT_THROW(scoreScanAgainstLabels(scan, {}, classes), std::invalid_argument);
+}
+
+// The top of the view is where the top beam hits something all around (walls, a ceiling): the
+// highest return when most azimuth bins hold one at its elevation; under an open sky (returns
+// at that elevation in a few directions only) there is none.
+TEST(ScanLines, ViewTopIsTheTopBeamWhenItHitsSomethingAllAround) {
+  auto ring = [](int directions) {  // one return per direction at 16.6 deg, lower ones everywhere
+    Cloud c;
+    for (int k = 0; k < 1440; ++k) {
+      const double a = 2 * M_PI * (k + 0.5) / 1440;
+      c.emplace_back(5 * std::cos(a), 5 * std::sin(a), -0.5f);
+      if (k < directions) c.emplace_back(5 * std::cos(a), 5 * std::sin(a), 5 * 0.298f);
+    }
+    std::vector<int> all(c.size());
+    std::iota(all.begin(), all.end(), 0);
+    return ScanLines(c, all).viewTop(0.2, 0.1);
+  };
+  EXPECT_NEAR(ring(1000), 0.298f, 1e-4f);
+  EXPECT_TRUE(std::isnan(ring(100))) << "a tenth of the bins or fewer: open sky";
+}
+
+namespace {
+// Instances of the label-free segmenter in simulated indoor scans (seed 1, the first 15 m of
+// the path at 2 Hz, every 4th frame), by verdict against the simulator's labels (evaluation only):
+// cars and columns (trunks, poles) made of anything, and "other" instances made mostly of furniture.
+struct IndoorCounts {
+  int cars = 0, columns = 0, furniture_other = 0, frames = 0;
+};
+// The scans (labels kept for scoring), simulated once.
+const std::vector<LabelledScan>& indoorScans() {
+  static const std::vector<LabelledScan> scans = [] {
+    ScenarioSpec ss;
+    ss.world = "indoor", ss.robots = 1, ss.seed = 1, ss.distance = 15, ss.rate = 2;
+    const Scenario sc = buildScenario(ss);
+    const RobotRun& robot = sc.robots.at(0);
+    const RayCaster caster(sc.world, 0.0);
+    std::vector<LabelledScan> out;
+    for (std::size_t k = 0; k < robot.ground_truth.size(); k += 4) {
+      std::mt19937_64 rng(k);
+      out.push_back(simulateLidarScan(caster, robot.ground_truth.poses[k], lidarModel("os1-64"), rng));
+    }
+    return out;
+  }();
+  return scans;
+}
+
+IndoorCounts indoorInstances(const GeometricSegmenterParams& p) {
+  const GeometricSegmenter seg(ClassTable::loadDefault(), p);
+  IndoorCounts n;
+  for (const LabelledScan& truth : indoorScans()) {
+    std::map<std::array<float, 3>, int> semantic;  // point -> label
+    for (std::size_t i = 0; i < truth.size(); ++i) semantic[{truth.xyz[i].x(), truth.xyz[i].y(), truth.xyz[i].z()}] = truth.semantic[i];
+    LabelledScan scan;
+    scan.xyz = truth.xyz;
+    InputIssues issues;
+    for (const auto& inst : seg.segment(scan, issues)) {
+      int furniture = 0;
+      for (const auto& q : inst.points) {
+        const auto it = semantic.find({q.x(), q.y(), q.z()});
+        furniture += it != semantic.end() && (it->second == label::kChair || it->second == label::kTable ||
+                                              it->second == label::kMonitor || it->second == label::kOtherObject);
+      }
+      if (inst.class_id == p.car_class) ++n.cars;
+      if (inst.class_id == p.trunk_class || inst.class_id == p.pole_class) ++n.columns;
+      if (inst.class_id == p.other_class && 2 * furniture > static_cast<int>(inst.points.size())) ++n.furniture_other;
+    }
+    ++n.frames;
+  }
+  return n;
+}
+}  // namespace
+
+// An office has no cars, trunks or poles. Indoors the top beam (+16.6 deg from 0.5 m) meets the
+// walls beside the robot: their lower part, cut off by the view, fits a car's footprint and
+// height, and furniture standing near them joins it; a table's group with monitors reaches car
+// height; a strip of a far wall seen through a row of doorways is as thin as a pole. Stacks
+// reaching the top of the view are left out of cars and "other" (view_cut), a car's returns
+// reach 1.2 m (min_top), a stack just behind a nearer straight run of 0.6 m is a face
+// (column.wall.corner_run; 1.2 before): furniture is left as "other". Some doorway strips stay
+// columns (their near jamb shows less than 0.6 m of wall, or none in a straight run).
+TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
+  const GeometricSegmenterParams p = loadDefaultFrontendConfig().geometric;
+  const IndoorCounts with = indoorInstances(p);
+  GeometricSegmenterParams off = p;
+  off.view_cut.tolerance_deg = 0, off.car.min_top = 1.0, off.column.wall.corner_run = 1.2;
+  const IndoorCounts without = indoorInstances(off);
+  ASSERT_GE(with.frames, 5);
+  EXPECT_LE(with.cars * 10, without.cars) << with.cars << " cars; without the rules " << without.cars;
+  EXPECT_LT(with.columns, without.columns) << with.columns << " columns; without the rules " << without.columns;
+  EXPECT_GE(with.furniture_other, with.frames) << "furniture as other in " << with.frames << " frames";
+  EXPECT_GE(without.cars, 3 * with.frames) << "the scans hold the walls and furniture the rules are for";
 }

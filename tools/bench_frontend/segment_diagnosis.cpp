@@ -20,16 +20,21 @@ std::string labelName(int label) {
     case 40: case 44: case 48: case 49: case 72: return "ground";
     case 50: return "building";
     case 51: return "fence";
+    case 52: return "other-structure";
     case 70: return "vegetation";
     case 71: return "trunk";
     case 80: return "pole";
     case 99: return "other-object";
+    case 100: return "chair";
+    case 101: return "table";
+    case 102: return "monitor";
     default: return "label " + std::to_string(label);
   }
 }
 }  // namespace
 
 void SegmentDiagnosis::addFrame(const LabelledScan& truth, const std::vector<Instance>& instances) {
+  ++frame_;
   std::unordered_multimap<std::uint64_t, int> index;
   index.reserve(truth.size());
   std::map<int, int> returns;  // object -> returns within range
@@ -89,6 +94,17 @@ void SegmentDiagnosis::addFrame(const LabelledScan& truth, const std::vector<Ins
     if (2 * right >= total) continue;
     const std::string where = src > 0 ? "object of class " + std::to_string(object_class_.at(src)) : labelName(-src);
     ++false_[instances[k].class_id][where];
+    auto& samples = false_samples_[instances[k].class_id][where];
+    if (samples.size() < kSamples) {  // where it stood and what it looked like (sensor frame)
+      Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e9f), hi = -lo, c = Eigen::Vector3f::Zero();
+      for (const auto& p : instances[k].points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p), c += p;
+      c /= static_cast<float>(std::max<std::size_t>(1, instances[k].points.size()));
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "frame %d range %.1f m, %zu points, box %.2f x %.2f, z %.2f to %.2f, confidence %.2f",
+                    frame_, c.head<2>().norm(), instances[k].points.size(), hi.x() - lo.x(), hi.y() - lo.y(), lo.z(),
+                    hi.z(), instances[k].confidence);
+      samples.emplace_back(buf);
+    }
   }
 }
 
@@ -110,6 +126,8 @@ void SegmentDiagnosis::print(const std::string& mode, const std::map<int, std::s
     std::printf("  diagnose %s false %s instances (frames), mostly from:", mode.c_str(), name.c_str());
     for (const auto& [w, n] : where) std::printf(" %s %d;", w.c_str(), n);
     std::printf("\n");
+    for (const auto& [w, samples] : false_samples_.at(c))
+      for (const auto& line : samples) std::printf("    false %s from %s: %s\n", name.c_str(), w.c_str(), line.c_str());
   }
 }
 

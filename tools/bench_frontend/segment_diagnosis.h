@@ -6,7 +6,8 @@
 // (joined), split over several instances (fragmented), under another class (wrong class), or
 // not at all (missed); for every instance whose points come mostly from no object of its class
 // it says where they come from (false, by source). Counts are summed over frames and printed
-// per class and by the object's returns in the frame.
+// per class and by the object's returns in the frame, with the first few false instances of
+// each kind described (range, extents).
 #include <array>
 #include <map>
 #include <string>
@@ -34,6 +35,10 @@ class SegmentDiagnosis {
   std::map<int, std::array<std::map<std::string, int>, 3>> objects_;
   // instance class -> source of its points -> instances
   std::map<int, std::map<std::string, int>> false_;
+  // ... and the first kSamples of them: frame, range, points, extents (sensor frame)
+  static constexpr std::size_t kSamples = 8;
+  std::map<int, std::map<std::string, std::vector<std::string>>> false_samples_;
+  int frame_ = 0;
 };
 
 }  // namespace slide

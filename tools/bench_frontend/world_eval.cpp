@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <set>
 #include <opencv2/core.hpp>
 
@@ -35,6 +36,15 @@ bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfi
     return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class ||
            (cfg.geometric.emit_other && c.id == cfg.geometric.other_class);
   return c.id != 0;  // rgbd: every detector class but the catch-all
+}
+
+// The class a real object of class c is scored as in `mode`, none when the mode cannot find it.
+// The label-free mode names no furniture: a chair, table or monitor it finds is an ellipsoid of
+// class "other", and is scored so (an "other" there is right; a car or trunk there is not).
+std::optional<int> scoreGroup(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
+  if (producible(mode, c, cfg)) return c.id;
+  if (mode == "geometric" && cfg.geometric.emit_other && c.shape == Shape::Ellipsoid) return cfg.geometric.other_class;
+  return std::nullopt;
 }
 
 bool isRgbd(const std::string& mode) { return mode.rfind("rgbd", 0) == 0; }
@@ -142,8 +152,16 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   for (const auto& g : sc.world.objects)
     if (!g.moving()) object_class[static_cast<int>(g.object.id)] = g.object.class_id;
   if (spec.diagnose)
-    for (auto& r : runners)
-      if (!isRgbd(r.mode)) r.diagnosis = std::make_unique<SegmentDiagnosis>(object_class, spec.min_points, spec.max_range);
+    for (auto& r : runners) {
+      if (isRgbd(r.mode)) continue;
+      std::map<int, int> scored_class;  // as the mode is scored: the label-free mode's furniture as "other"
+      for (const auto& [id, c] : object_class) {
+        const ClassInfo* info = classes.find(c);
+        const std::optional<int> grp = info ? scoreGroup(r.mode, *info, cfg) : std::nullopt;
+        scored_class[id] = grp.value_or(c);
+      }
+      r.diagnosis = std::make_unique<SegmentDiagnosis>(scored_class, spec.min_points, spec.max_range);
+    }
   std::map<int, int> seen_lidar, seen_rgbd;
   struct RgbdTrace {
     int seen = 0, detectable = 0, detected = 0, confident = 0;  // detectable: at least the emulator's min_area_px
@@ -289,10 +307,12 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     std::map<int, std::vector<const Object*>> gt, est, unscored;  // by evaluation group
     for (const auto& g : sc.world.objects) {
       const ClassInfo* c = classes.find(g.object.class_id);
-      if (!c || g.moving() || !producible(r.mode, *c, cfg)) continue;
+      const std::optional<int> grp = c ? scoreGroup(r.mode, *c, cfg) : std::nullopt;
+      if (!grp || g.moving()) continue;
       const auto it = seen.find(static_cast<int>(g.object.id));
       const bool visible = it != seen.end() && it->second >= spec.min_frames;
-      (visible ? gt : unscored)[c->id].push_back(&g.object);
+      (visible ? gt : unscored)[*grp].push_back(&g.object);
+      if (visible && *grp != c->id) ++r.result.scored_as[c->name + " as " + classes.at(*grp).name];
     }
     // The map: every landmark, none merged here. A landmark nearer to a real object below the
     // visibility criterion (too far, too few returns) than to any scored one, and within the

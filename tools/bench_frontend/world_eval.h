@@ -12,7 +12,9 @@
 // into the labelled segmenter), oracle (the simulator's ground-truth labels: an upper bound),
 // rgbd (emulated instance masks), rgbd.oracle (ground-truth masks: an upper bound), learned
 // (the range-image model of cfg.learned labels the points, the labelled segmenter clusters
-// them; no ground truth on its path, which scores its point IoU only).
+// them; no ground truth on its path, which scores its point IoU only). The label-free mode names
+// no furniture: real chairs, tables and monitors count as "other" for it (its catch-all
+// ellipsoids); every other mode is scored on the classes it names.
 #include <map>
 #include <string>
 #include <vector>
@@ -47,6 +49,7 @@ struct ModeResult {
   std::map<std::string, double> iou;  // emulated and learned modes: per-class point IoU of their labels
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
+  std::map<std::string, int> scored_as;  // "chair as other": real objects of a class the mode cannot name, scored as another
   std::vector<double> frame_ms;                         // segmentation + tracking per frame
   // Every key-pose object placed by the ground-truth key pose against the nearest real object
   // of its class within 2 m (scored with ground truth, evaluation only): its offset along the
