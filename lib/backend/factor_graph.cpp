@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <cmath>
 #include <stdexcept>
@@ -218,6 +219,7 @@ FactorGraph::Snapshot FactorGraph::snapshot() const {
 }
 
 SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt, std::vector<double>* residual_norms) {
+  const auto t0 = std::chrono::steady_clock::now();
   SolveReport aborted;
   aborted.aborted = true;
   aborted.message = "cancelled";
@@ -249,7 +251,8 @@ SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt,
   if (opt.cancel) o.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
-  const SolveReport r = report(summary);
+  SolveReport r = report(summary);
+  r.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (r.aborted || !residual_norms) return r;
   residual_norms->assign(s.num_factors, 0.0);
   std::vector<const double*> params;

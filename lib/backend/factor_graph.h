@@ -29,6 +29,7 @@ struct SolveReport {
   int iterations = 0;
   int residual_blocks = 0;
   bool aborted = false;  // cancelled: the values are not a solution
+  double wall_ms = 0;    // wall time of the solve (full solves: building the problem included)
   std::string message;  // the solver's termination message
 };
 
