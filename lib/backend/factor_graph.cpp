@@ -218,6 +218,12 @@ FactorGraph::Snapshot FactorGraph::snapshot() const {
   return s;
 }
 
+void FactorGraph::addToSnapshot(Snapshot& s, ceres::CostFunction* cost, const std::vector<int>& vars) {
+  s.terms.push_back({std::shared_ptr<ceres::CostFunction>(cost), nullptr, -1, static_cast<int>(s.vars.size()),
+                     static_cast<int>(vars.size())});
+  s.vars.insert(s.vars.end(), vars.begin(), vars.end());
+}
+
 SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt, std::vector<double>* residual_norms) {
   const auto t0 = std::chrono::steady_clock::now();
   SolveReport aborted;
@@ -258,6 +264,7 @@ SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt,
   std::vector<const double*> params;
   std::vector<double> res;
   for (const Snapshot::Term& t : s.terms) {
+    if (t.factor < 0) continue;
     params.clear();
     for (int k = 0; k < t.count; ++k) params.push_back(s.values[s.vars[t.first + k]].data());
     res.resize(t.cost->num_residuals());

@@ -66,7 +66,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   auto tally = [&](const UpdateResult& u) {
     if (!u.full_solve) return;
     ++out.full_solves;
-    out.full_solve_ms.push_back(u.solve.wall_ms);
+    out.full_solve_ms.push_back(u.full_solve_ms);
   };
   auto last_input = Clock::now();
   auto pace = [&]() {
