@@ -129,9 +129,9 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   for (std::size_t i = 0; i < count; ++i) {
     if (!landmarks_[i].alive || landmarks_[i].seen.size() < 2) continue;
     auto outlier = [&](const Observation& obs) {
+      if (norms && obs.factor >= static_cast<int>(norms->size())) return false;  // made after the solve's snapshot
       const double limit = cfg_.outlier_sigmas * std::sqrt(static_cast<double>(graph_.residualCount(obs.factor)));
-      const bool solved = norms && obs.factor < static_cast<int>(norms->size());
-      return (solved ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit;
+      return (norms ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit;
     };
     const std::vector<Observation>& seen = landmarks_[i].seen;
     if (std::none_of(seen.begin(), seen.end(), outlier)) continue;  // the common case: nothing copied

@@ -315,6 +315,10 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
                                       [&](const PendingLoop& l) { return l.robot == robot && l.seq_a == seq_a && l.seq_b == seq_b; }),
                        pending_loops_.end());
   pending_loops_.push_back({robot, seq_a, seq_b, T_a_b});
+  // A running solve without loop closures of its own (periodic, re-observed landmarks) gives
+  // way: the robot is back at a known place now, and every key pose placed before the
+  // closure is taken in adds detections far from their landmarks.
+  yieldToLoop();
   requestFull(cfg_.loop_iterations, r);
   r.accepted = true;
   r.update_ms = msSince(t0);

@@ -205,6 +205,10 @@ class Optimizer {
   void takePendingLoops(FullSolveJob& job);
   void addLoopFactors(const FullSolveJob& job);
   void requeueLoops(const FullSolveJob& job);
+  // A new loop closure cancels a running background solve that brings none (a periodic one or
+  // one for re-observed landmarks), so that the closure's solve starts as soon as the worker is
+  // free; a solve bringing closures always finishes (closures never starve each other).
+  void yieldToLoop();
   int addLandmark(const Object& world);
   void addObservation(int pose_var, const Pose& T_w_b, const Object& body_obj, Landmark& lm);
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
@@ -218,8 +222,10 @@ class Optimizer {
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
   // landmark (a wrong association made while the poses had drifted): each becomes a new
-  // landmark, which mergeDuplicates() may join to the right one. Returns how many. Residual
-  // norms come from `norms` (by factor id, as a solved snapshot gave them) where it has them.
+  // landmark, which mergeDuplicates() may join to the right one. Returns how many. With
+  // `norms` (by factor id, as a solved snapshot gave them) only the observations that snapshot
+  // held are judged: those made since were placed by key poses that only followed the solve
+  // rigidly, and would be found off wherever the solve moved the landmark.
   int detachOutliers(const std::vector<double>* norms = nullptr);
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;

@@ -164,13 +164,20 @@ void Optimizer::startPending(UpdateResult& r) {
   if (worker_->start(task)) running_ = job;
 }
 
+void Optimizer::yieldToLoop() {
+  if (running_ && running_->loops.empty()) cancelSolve();
+}
+
 bool Optimizer::poll(UpdateResult* out) {
-  if (!running_ || worker_->busy()) return false;
-  const std::shared_ptr<FullSolveJob> job = std::move(running_);
+  if (running_ && worker_->busy()) return false;
   UpdateResult local;
   UpdateResult& r = out ? *out : local;
-  const bool taken = adopt(*job, r);
-  startPending(r);  // a loop closure or merge that came while it ran
+  bool taken = false;
+  if (running_) {
+    const std::shared_ptr<FullSolveJob> job = std::move(running_);
+    taken = adopt(*job, r);
+  }
+  startPending(r);  // a loop closure or merge that came while it ran (or once a cancelled one ended)
   return taken;
 }
 

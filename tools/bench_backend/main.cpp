@@ -191,6 +191,7 @@ int main(int argc, char** argv) {
   bool background_solves = false;
   double rate_hz = 10;
   std::string route = "return";
+  double final_seconds = 0;
   app.add_option("--keyposes", long_keyposes,
                  "instead: one long mission of this many key poses (forest tiles chained), named backend.<N>.*; "
                  "run one size per process (the figures include the peak RSS); full solves inside the updates "
@@ -204,6 +205,9 @@ int main(int argc, char** argv) {
                  "all the way back); 'chain' drives the tiles one after the other, never returning")
       ->check(CLI::IsMember({"return", "chain"}))
       ->capture_default_str();
+  app.add_option("--final-seconds", final_seconds,
+                 "long mission: bound the final solve to about this many seconds (0: to convergence)")
+      ->capture_default_str();
   app.add_flag("--background-solves", background_solves,
                "long mission: full solves on a worker thread, as the daemon's --background-solves (the other "
                "scenarios always solve inside the updates)");
@@ -215,7 +219,7 @@ int main(int argc, char** argv) {
       cfg.background_solves = background_solves;
       const Scenario s = route == "chain" ? makeForestChainScenario(long_keyposes) : makeForestReturnScenario(long_keyposes);
       spdlog::info("long mission ({}): {} key poses, {} landmarks", s.name, s.robots[0].bundles.size(), s.landmarks.size());
-      reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz), cfg.background_solves, rate_hz);
+      reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz, final_seconds), cfg.background_solves, rate_hz);
       rep.printTable(std::cout);
       if (!json.empty()) rep.writeJson(json);
       return 0;

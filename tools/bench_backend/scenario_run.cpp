@@ -51,7 +51,8 @@ double landmarkError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz) {
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz,
+                              double final_seconds) {
   ScenarioRunResult out;
   Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
   std::mt19937 rng(11);
@@ -134,7 +135,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   }
   const auto t0 = Clock::now();
   const double c0 = cpuMs();
-  opt.fullSolve();
+  opt.fullSolve(final_seconds);
   out.final_solve_cpu_ms = cpuMs() - c0;
   out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.incremental_cost = opt.cost();
