@@ -6,8 +6,9 @@
 // Full solves run on a snapshot of the graph; with background_solves that happens on one
 // worker thread, and the update that finds the solve finished takes its result in (the key
 // poses added meanwhile follow their robot's last solved pose, landmarks made meanwhile their
-// first observer), so no update waits for a full solve. Without it (the default: tests and
-// in-process benchmarks) each full solve runs inside the update that asks for it.
+// first observer), so no update waits for a full solve; slide-optimizer runs so by default.
+// Without it (BackendConfig's default, for reproducible tests and in-process benchmarks) each
+// full solve runs inside the update that asks for it.
 #include <atomic>
 #include <cstdint>
 #include <functional>

@@ -135,6 +135,8 @@ void reportLong(BenchReport& rep, int keyposes, const std::string& route, const 
   rep.add(p + "update_ms.p99", quantile(r.update_ms, 0.99), "ms").note = n;
   rep.add(p + "update_ms.max", quantile(r.update_ms, 1.0), "ms", true, 50.0).note =
       n + ", loop closures included; target: issue 21";
+  rep.add(p + "update_cpu_ms.max", quantile(r.update_cpu_ms, 1.0), "ms").note =
+      "thread CPU time of the slowest update (wall time on a shared machine includes waiting for a core)";
   rep.add(p + "full_solves", r.full_solves, "").note = "full-solve results taken into the estimate during updates";
   rep.add(p + "full_solve_ms.median", median(r.full_solve_ms), "ms").note =
       std::string("wall time of each full solve taken in") + (background ? ", on the worker thread" : ", inside an update");
