@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   std::string journal_path, out_dir;
   int publish_every = 1;
   double write_period = 10, settle_after = 3;
-  bool background_solves = false;
+  bool inline_solves = false;
   OptimizerChannels ch;
   addRobotBusOptions(app, bus);
   app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
@@ -37,9 +37,10 @@ int main(int argc, char** argv) {
                  "seconds without input after which the estimate is solved to convergence once (0: never)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("--background-solves", background_solves,
-               "full solves on a worker thread, off the update path (experimental: at 4,000 key poses the estimate "
-               "drifts; see BENCHMARKS.md)");
+  app.add_flag("--inline-solves", inline_solves,
+               "run full solves inside the updates that ask for them (an update then waits for one: seconds on long "
+               "missions); by default they run on a worker thread on a snapshot of the graph and the update path "
+               "never waits for one");
   app.add_option("--publish-every", publish_every, "publish map and trajectories every N updates (and on full solves)")
       ->capture_default_str();
   app.add_option("--bundle-channel", ch.bundle)->capture_default_str();
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
   return runApp(app, common, argc, argv, [&]() {
     const std::string url = bus.resolve();
     BackendConfig cfg = loadBackendConfig(config_path);
-    cfg.background_solves = background_solves;
+    cfg.background_solves = !inline_solves;
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);

@@ -239,25 +239,35 @@ void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
   if (optimizer_.poll(&r)) {
     ++updates_;
     logResult(r, "background solve");
+    if (settling_) {
+      settled_updates_ = updates_;
+      logSettled(r.solve);
+    }
     publishAll();
   }
+  if (!optimizer_.solving()) settling_ = false;  // taken in above, or by an update (input came)
   if (settle_after_s_ > 0 && updates_ != settled_updates_ && optimizer_.numKeyPoses() > 0 && !optimizer_.solving() &&
       now - last_input_ >= std::chrono::duration<double>(settle_after_s_)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const SolveReport s = optimizer_.fullSolve(0, true);  // a stop request ends it
-    ++updates_;
-    settled_updates_ = updates_;
-    spdlog::info("no input for {:.0f} s: settled the estimate ({} iterations, {:.0f} ms, cost {:.4g} -> {:.4g})",
-                 settle_after_s_, s.iterations,
-                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
-                 s.initial_cost, s.final_cost);
-    publishAll();
+    const SolveReport s = optimizer_.settle();
+    if (optimizer_.solving()) {
+      settling_ = true;  // on the worker: a later poll() takes it in
+    } else {
+      ++updates_;
+      settled_updates_ = updates_;
+      logSettled(s);
+      publishAll();
+    }
   }
   if (write_period_s_ > 0 && updates_ != written_updates_ &&
       now - last_write_ >= std::chrono::duration<double>(write_period_s_)) {
     last_write_ = now;
     writeOutputs();
   }
+}
+
+void OptimizerNode::logSettled(const SolveReport& s) const {
+  spdlog::info("no input for {:.0f} s: settled the estimate ({} iterations, {:.0f} ms, cost {:.4g} -> {:.4g})",
+               settle_after_s_, s.iterations, s.wall_ms, s.initial_cost, s.final_cost);
 }
 
 void OptimizerNode::stop(double budget_s) {

@@ -69,8 +69,8 @@ class OptimizerNode {
   void poll(std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
   // Full solves on the update path run one or two iterations each, so an estimate converges
   // only while inputs keep coming. After `idle_s` seconds without an accepted input the estimate
-  // changed since, poll() runs one full solve to convergence (guarded) and publishes it
-  // (0: never).
+  // changed since, poll() has it solved to convergence once (Optimizer::settle: on the worker
+  // with background solves, then taken in and published like any other; 0: never).
   void setSettle(double idle_s) { settle_after_s_ = idle_s; }
   // Asked to stop: cancels a running solve without waiting for it and writes the current
   // estimate at once; then refines it with a full solve of at most `budget_s` seconds (an
@@ -93,6 +93,7 @@ class OptimizerNode {
   bool process(Input kind, const void* data, int size);
   void journal(Input kind, const void* data, int size);
   void publishStatus(const UpdateResult& r);
+  void logSettled(const SolveReport& s) const;
 
   Optimizer optimizer_;
   ClassTable classes_;
@@ -115,6 +116,7 @@ class OptimizerNode {
   double settle_after_s_ = 0;
   std::chrono::steady_clock::time_point last_input_ = std::chrono::steady_clock::now();
   int settled_updates_ = 0;  // updates_ after the last settling solve
+  bool settling_ = false;    // a settling solve runs on the worker
 };
 
 }  // namespace slide

@@ -91,8 +91,9 @@ struct BackendConfig {
   double full_trust_region_radius = 1e8;
   int num_threads = 2;  // Ceres threads of full solves (per-key-pose solves use one)
   // Full solves on a worker thread, taken in by the first update after they finish. Not read
-  // from YAML: the optimizer daemon turns it on; in-process runs (tests, benchmarks) keep each
-  // full solve inside its update, so their figures are reproducible.
+  // from YAML: the optimizer daemon turns it on (unless --inline-solves); in-process runs
+  // (tests, benchmarks) keep each full solve inside its update, so their figures are
+  // reproducible (a background solve's result depends on when the worker finishes).
   bool background_solves = false;
 
   // Soundness: an intra-robot loop closure, or an estimate of any robot's trajectory after a

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <cmath>
 #include <stdexcept>
@@ -217,7 +218,14 @@ FactorGraph::Snapshot FactorGraph::snapshot() const {
   return s;
 }
 
+void FactorGraph::addToSnapshot(Snapshot& s, ceres::CostFunction* cost, const std::vector<int>& vars) {
+  s.terms.push_back({std::shared_ptr<ceres::CostFunction>(cost), nullptr, -1, static_cast<int>(s.vars.size()),
+                     static_cast<int>(vars.size())});
+  s.vars.insert(s.vars.end(), vars.begin(), vars.end());
+}
+
 SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt, std::vector<double>* residual_norms) {
+  const auto t0 = std::chrono::steady_clock::now();
   SolveReport aborted;
   aborted.aborted = true;
   aborted.message = "cancelled";
@@ -249,12 +257,14 @@ SolveReport FactorGraph::solveSnapshot(Snapshot& s, const FullSolveOptions& opt,
   if (opt.cancel) o.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
-  const SolveReport r = report(summary);
+  SolveReport r = report(summary);
+  r.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (r.aborted || !residual_norms) return r;
   residual_norms->assign(s.num_factors, 0.0);
   std::vector<const double*> params;
   std::vector<double> res;
   for (const Snapshot::Term& t : s.terms) {
+    if (t.factor < 0) continue;
     params.clear();
     for (int k = 0; k < t.count; ++k) params.push_back(s.values[s.vars[t.first + k]].data());
     res.resize(t.cost->num_residuals());

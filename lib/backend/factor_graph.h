@@ -29,6 +29,7 @@ struct SolveReport {
   int iterations = 0;
   int residual_blocks = 0;
   bool aborted = false;  // cancelled: the values are not a solution
+  double wall_ms = 0;    // wall time of the solve (full solves: building the problem included)
   std::string message;  // the solver's termination message
 };
 
@@ -43,7 +44,7 @@ class FactorGraph {
     struct Term {
       std::shared_ptr<ceres::CostFunction> cost;
       ceres::LossFunction* loss = nullptr;
-      int factor = 0;             // id in the graph
+      int factor = 0;             // id in the graph (-1: added to the snapshot only)
       int first = 0, count = 0;   // its variables: vars[first .. first + count)
     };
     std::vector<BlockKind> kinds;
@@ -101,6 +102,9 @@ class FactorGraph {
   SolveReport solveFull(int max_iterations, double function_tolerance, int num_threads = 1,
                         double trust_region_radius = 1e4);
   Snapshot snapshot() const;
+  // Adds a factor to a snapshot only (not to any graph; its id is -1): e.g. a loop closure that
+  // enters the graph once the snapshot's solution is taken in. Takes ownership of `cost`.
+  static void addToSnapshot(Snapshot& s, ceres::CostFunction* cost, const std::vector<int>& vars);
   // Solves every variable of `s` in place; safe on any thread. With `residual_norms`, fills
   // the whitened residual norm of each factor at the solution, by factor id (0 for factors
   // not in the snapshot). A cancelled solve reports aborted and leaves no norms.

@@ -128,12 +128,15 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   const std::size_t count = landmarks_.size();
   for (std::size_t i = 0; i < count; ++i) {
     if (!landmarks_[i].alive || landmarks_[i].seen.size() < 2) continue;
-    std::vector<Observation> keep, bad;
-    for (const Observation& obs : landmarks_[i].seen) {
+    auto outlier = [&](const Observation& obs) {
+      if (norms && obs.factor >= static_cast<int>(norms->size())) return false;  // made after the solve's snapshot
       const double limit = cfg_.outlier_sigmas * std::sqrt(static_cast<double>(graph_.residualCount(obs.factor)));
-      const bool solved = norms && obs.factor < static_cast<int>(norms->size());
-      ((solved ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit ? bad : keep).push_back(obs);
-    }
+      return (norms ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit;
+    };
+    const std::vector<Observation>& seen = landmarks_[i].seen;
+    if (std::none_of(seen.begin(), seen.end(), outlier)) continue;  // the common case: nothing copied
+    std::vector<Observation> keep, bad;
+    for (const Observation& obs : seen) (outlier(obs) ? bad : keep).push_back(obs);
     if (bad.empty() || keep.empty()) continue;
     landmarks_[i].seen = keep;
     landmarks_[i].observations = static_cast<int>(keep.size());

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <memory>
 
-#include "backend/optimizer.h"
 #include "backend/pose_block.h"
 
 namespace slide {
@@ -44,52 +43,40 @@ std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const P
   return out;
 }
 
-void Optimizer::spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b) {
-  const std::vector<int>& list = robots_[a.robot].keyposes;
-  const auto first = std::find_if(list.begin(), list.end(), [&](int k) { return keyposes_[k].seq == a.seq; });
-  std::vector<int> vars;
-  int b_index = -1;
-  for (auto it = first; it != list.end(); ++it) {
-    if (keyposes_[*it].seq == b.seq) b_index = static_cast<int>(vars.size());
-    vars.push_back(keyposes_[*it].var);
-  }
-  if (b_index <= 0) return;
-  std::vector<Pose> before(vars.size());
-  for (std::size_t i = 0; i < vars.size(); ++i) before[i] = poseOf(vars[i]);
-  PoseSigma loop_sigma;
-  loop_sigma << cfg_.loop_translation_sigma, cfg_.loop_translation_sigma, cfg_.loop_translation_sigma,
-      cfg_.loop_rotation_sigma, cfg_.loop_rotation_sigma, cfg_.loop_rotation_sigma;
-  const LoopSpreadNoise noise{cfg_.odom_translation_floor, cfg_.odom_translation_per_m, cfg_.odom_rotation_floor,
-                              cfg_.odom_rotation_per_m};
-  const std::vector<Pose> after = spreadLoopError(before, b_index, T_a_b, loop_sigma, noise);
-  // Correction of each moved pose, in the host frame, by variable.
-  std::vector<Pose> correction(graph_.numVariables(), Pose::Identity());
-  std::vector<char> moved(graph_.numVariables(), 0);
-  for (std::size_t i = 0; i < vars.size(); ++i) {
-    correction[vars[i]] = after[i] * before[i].inverse();
-    moved[vars[i]] = 1;
-    const PoseBlock block = toPoseBlock(after[i]);
-    std::copy(block.begin(), block.end(), graph_.value(vars[i]));
-  }
-  // Each landmark follows the observer that moved least (those seen from before the loop stay).
-  for (const Landmark& lm : landmarks_) {
-    if (!lm.alive || lm.seen.empty()) continue;
-    const Pose* C = nullptr;
-    double least = 1e300;
-    for (const Observation& o : lm.seen) {
-      const double d = moved[o.pose_var] ? correction[o.pose_var].translation().norm() : 0.0;
-      if (d < least) least = d, C = moved[o.pose_var] ? &correction[o.pose_var] : nullptr;
+void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<LoopSpread>& loops,
+                 const std::vector<LandmarkObservers>& landmarks, const PoseSigma& loop_sigma,
+                 const LoopSpreadNoise& noise) {
+  std::vector<Pose> correction(values.size(), Pose::Identity());
+  std::vector<char> moved(values.size(), 0);
+  for (const LoopSpread& loop : loops) {
+    if (loop.b <= 0 || loop.b >= static_cast<int>(loop.vars.size())) continue;
+    std::vector<Pose> before(loop.vars.size());
+    for (std::size_t i = 0; i < loop.vars.size(); ++i) before[i] = fromPoseBlock(values[loop.vars[i]].data());
+    const std::vector<Pose> after = spreadLoopError(before, loop.b, loop.T_a_b, loop_sigma, noise);
+    for (std::size_t i = 0; i < loop.vars.size(); ++i) {
+      correction[loop.vars[i]] = after[i] * before[i].inverse();
+      moved[loop.vars[i]] = 1;
+      const PoseBlock block = toPoseBlock(after[i]);
+      std::copy(block.begin(), block.end(), values[loop.vars[i]].begin());
     }
-    if (C) moveLandmark(lm, *C);
+    for (const LandmarkObservers& lm : landmarks) {
+      const Pose* C = nullptr;
+      double least = 1e300;
+      for (int o : lm.observers) {
+        const double d = moved[o] ? correction[o].translation().norm() : 0.0;
+        if (d < least) least = d, C = moved[o] ? &correction[o] : nullptr;
+      }
+      if (C) moveLandmarkBlock(values[lm.var].data(), lm.shape, *C);
+    }
+    for (int v : loop.vars) moved[v] = 0;
   }
 }
 
-void Optimizer::moveLandmark(const Landmark& lm, const Pose& C) {
-  double* v = graph_.value(lm.var);
-  if (lm.shape == Shape::Cuboid) {
+void moveLandmarkBlock(double* v, Shape shape, const Pose& C) {
+  if (shape == Shape::Cuboid) {
     const PoseBlock block = toPoseBlock(C * fromPoseBlock(v));
     std::copy(block.begin(), block.end(), v);
-  } else if (lm.shape == Shape::Cylinder) {
+  } else if (shape == Shape::Cylinder) {
     const Eigen::Vector3d root = C * Eigen::Vector3d(v[0], v[1], v[2]);
     const Eigen::Vector3d axis = C.linear() * Eigen::Vector3d(v[3], v[4], v[5]);
     for (int k = 0; k < 3; ++k) v[k] = root[k], v[3 + k] = axis[k];

@@ -28,8 +28,18 @@ struct EnvelopeCheck {
   double allowed_m = 0, allowed_deg = 0;            // what the envelope allows
 };
 
-// steps: the odometry steps from key pose a to key pose b (in order); odom_a_b: the relative
-// pose odometry gives; T_a_b: the relative pose to check (a loop closure or an estimate).
+// The drift accumulated over odometry steps taken in order (add one at a time, so a walk along
+// a trajectory checks every key pose against its start in linear time).
+struct OdometryDrift {
+  double translation_var = 0, yaw_var = 0, heading_shift = 0;
+  void add(const OdometryStep& s);
+};
+
+// drift: of the odometry steps from key pose a to key pose b; odom_a_b: the relative pose
+// odometry gives; T_a_b: the relative pose to check (a loop closure or an estimate).
+EnvelopeCheck checkAgainstOdometry(const OdometryDrift& drift, const Pose& odom_a_b, const Pose& T_a_b,
+                                   const OdometryEnvelope& envelope);
+// The same with the steps from a to b, in order.
 EnvelopeCheck checkAgainstOdometry(const std::vector<OdometryStep>& steps, const Pose& odom_a_b, const Pose& T_a_b,
                                    const OdometryEnvelope& envelope);
 

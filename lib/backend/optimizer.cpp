@@ -309,12 +309,16 @@ UpdateResult Optimizer::addLoopClosure(int robot, int seq_a, int seq_b, const Po
                            std::to_string(c.allowed_m) + " m / " + std::to_string(c.allowed_deg) + " deg)");
   }
   inputs_.push_back({Input::Kind::Loop, {}, robot, seq_a, seq_b, T_a_b});
-  const auto key = std::make_pair(robot, std::make_pair(seq_a, seq_b));
-  const auto it = loop_factors_.find(key);
-  if (it != loop_factors_.end()) graph_.removeFactor(it->second);
-  loop_factors_[key] = graph_.addFactor(
-      relativePoseFactor(T_a_b, sigma6(cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma)), {a->var, b->var}, false);
-  if (cfg_.spread_loops && seq_a < seq_b) pending_spreads_.push_back({robot, seq_a, seq_b, T_a_b});
+  // A repeat of a closure still waiting replaces it (one already in the graph is replaced when
+  // this one enters).
+  pending_loops_.erase(std::remove_if(pending_loops_.begin(), pending_loops_.end(),
+                                      [&](const PendingLoop& l) { return l.robot == robot && l.seq_a == seq_a && l.seq_b == seq_b; }),
+                       pending_loops_.end());
+  pending_loops_.push_back({robot, seq_a, seq_b, T_a_b});
+  // A running solve without loop closures of its own (periodic, re-observed landmarks) gives
+  // way: the robot is back at a known place now, and every key pose placed before the
+  // closure is taken in adds detections far from their landmarks.
+  yieldToLoop();
   requestFull(cfg_.loop_iterations, r);
   r.accepted = true;
   r.update_ms = msSince(t0);

@@ -6,8 +6,9 @@
 // Full solves run on a snapshot of the graph; with background_solves that happens on one
 // worker thread, and the update that finds the solve finished takes its result in (the key
 // poses added meanwhile follow their robot's last solved pose, landmarks made meanwhile their
-// first observer), so no update waits for a full solve. Without it (the default: tests and
-// in-process benchmarks) each full solve runs inside the update that asks for it.
+// first observer), so no update waits for a full solve; slide-optimizer runs so by default.
+// Without it (BackendConfig's default, for reproducible tests and in-process benchmarks) each
+// full solve runs inside the update that asks for it.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -43,6 +44,7 @@ struct UpdateResult {
   std::vector<std::string> warnings;       // objects dropped from an accepted bundle, and why
   std::vector<std::int64_t> landmark_ids;  // per input object: its landmark id, -1 if dropped
   bool full_solve = false;  // a full solve's result entered the estimate in this update
+  double full_solve_ms = 0; // that solve's wall time (on the worker when in the background)
   double update_ms = 0;     // wall time of the whole update
   SolveReport solve;
 };
@@ -71,6 +73,10 @@ class Optimizer {
   // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
   // A repeated (robot, seq_a, seq_b) replaces the earlier one. Refused when it is further from
   // the robot's odometry between the two key poses than the odometry envelope allows.
+  // It waits for the next full solve to start (at once unless a background solve runs), goes
+  // into that solve's snapshot with its error spread along its loop there, and enters the graph
+  // with the solve's solution: never before, since a per-key-pose solve would pull the newest
+  // key poses alone onto it and bend the trajectory by the whole loop error at one step.
   UpdateResult addLoopClosure(int robot, int seq_a, int seq_b, const Pose& T_a_b);
   // Full solve to convergence over the whole graph (at most final_iterations), in the calling
   // thread (a background solve is cancelled first), then outliers, duplicates and the
@@ -80,6 +86,11 @@ class Optimizer {
   // With `interruptible`, the stop flag (setStopFlag) ends it at its next iteration and the
   // estimate stays as it was.
   SolveReport fullSolve(double max_seconds = 0, bool interruptible = false);
+  // Solves the estimate to convergence once (e.g. when inputs pause): with background_solves
+  // a full solve of final_iterations on the worker, taken in by poll() or the next update like
+  // any other (outliers, duplicates and the guard follow it; returns at once, an empty
+  // report); otherwise fullSolve() here, ended by the stop flag (its report).
+  SolveReport settle();
   // Takes a finished background solve into the estimate (updates do this first; call it when
   // idle too). True when one was taken; `r` gets full_solve, its report and any warnings.
   bool poll(UpdateResult* r = nullptr);
@@ -189,7 +200,16 @@ class Optimizer {
   // The job's solution into the graph; false when it is stale (a rebuild) or was cancelled.
   bool adopt(FullSolveJob& job, UpdateResult& r);
   bool background() const { return cfg_.background_solves && !replaying_; }
-  void applyPendingSpreads();
+  // The loop closures waiting for a full solve go into its job (its snapshot, and their
+  // spreads); the job's loop factors into the graph when its solution is taken in; a job not
+  // taken in (cancelled, aborted) gives its loop closures back to the queue.
+  void takePendingLoops(FullSolveJob& job);
+  void addLoopFactors(const FullSolveJob& job);
+  void requeueLoops(const FullSolveJob& job);
+  // A new loop closure cancels a running background solve that brings none (a periodic one or
+  // one for re-observed landmarks), so that the closure's solve starts as soon as the worker is
+  // free; a solve bringing closures always finishes (closures never starve each other).
+  void yieldToLoop();
   int addLandmark(const Object& world);
   void addObservation(int pose_var, const Pose& T_w_b, const Object& body_obj, Landmark& lm);
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
@@ -203,16 +223,14 @@ class Optimizer {
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
   // landmark (a wrong association made while the poses had drifted): each becomes a new
-  // landmark, which mergeDuplicates() may join to the right one. Returns how many. Residual
-  // norms come from `norms` (by factor id, as a solved snapshot gave them) where it has them.
+  // landmark, which mergeDuplicates() may join to the right one. Returns how many. With
+  // `norms` (by factor id, as a solved snapshot gave them) only the observations that snapshot
+  // held are judged: those made since were placed by key poses that only followed the solve
+  // rigidly, and would be found off wherever the solve moved the landmark.
   int detachOutliers(const std::vector<double>* norms = nullptr);
   SolveReport solveAfterInsert(int robot, int pose_var, const std::vector<int>& touched, bool loop, UpdateResult& r);
   const KeyPose* findKeyPose(int robot, int seq) const;
-  // Before the full solve of a new loop closure a-b: spreads its error along a robot's key
-  // poses from a on (loop_spread.h) and moves each landmark with its least-moved observer.
-  void spreadLoop(const KeyPose& a, const KeyPose& b, const Pose& T_a_b);
-  // Moves a landmark by C (host frame), as its observer moved.
-  void moveLandmark(const Landmark& lm, const Pose& C);
+  Vector6d loopSigma() const;  // of an intra-robot loop closure's factor (config)
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
   // Soundness (optimizer_guard.cpp). The odometry envelope check of a robot's key poses
   // (indices into its list) i..j against T_i_j; the frame of a merged peer as the graph holds it.
@@ -251,15 +269,15 @@ class Optimizer {
   std::map<int, std::vector<Pose>> refused_;     // transforms whose merge was undone
   bool replaying_ = false;
   int unmerged_ = 0, rebuilds_ = 0;
-  // Full solves: iterations of the one due (0: none), loop closures to spread before it, the
+  // Full solves: iterations of the one due (0: none), loop closures it adds to the graph, the
   // one running in the background, the worker, and the graph's generation (a rebuild makes a
   // new one; a solve of an older one is dropped).
   int pending_iterations_ = 0;
-  struct LoopToSpread {
+  struct PendingLoop {
     int robot, seq_a, seq_b;
     Pose T_a_b;
   };
-  std::vector<LoopToSpread> pending_spreads_;
+  std::vector<PendingLoop> pending_loops_;
   std::shared_ptr<FullSolveJob> running_;
   std::unique_ptr<backend::SolveWorker> worker_;
   std::function<void()> solve_hook_;

@@ -21,13 +21,13 @@ int Optimizer::robotOutsideEnvelope(std::string* why) const {
     if (!robot.merged || robot.keyposes.size() < 2) continue;
     const KeyPose& first = keyposes_[robot.keyposes.front()];
     const Pose est0 = poseOf(first.var);
-    std::vector<OdometryStep> steps;
+    OdometryDrift drift;  // of the steps from the first key pose to kp
     for (std::size_t k = 1; k < robot.keyposes.size(); ++k) {
       const KeyPose& kp = keyposes_[robot.keyposes[k]];
-      steps.push_back(kp.step);
+      drift.add(kp.step);
       if (k % 5 != 0 && k + 1 != robot.keyposes.size()) continue;  // every fifth and the last
       const EnvelopeCheck c =
-          checkAgainstOdometry(steps, first.odom_pose.inverse() * kp.odom_pose, est0.inverse() * poseOf(kp.var), cfg_.envelope);
+          checkAgainstOdometry(drift, first.odom_pose.inverse() * kp.odom_pose, est0.inverse() * poseOf(kp.var), cfg_.envelope);
       if (!c.inside) {
         if (why)
           *why = "robot " + std::to_string(id) + " key pose " + std::to_string(kp.seq) + " is " +

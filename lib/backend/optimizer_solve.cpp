@@ -1,9 +1,12 @@
 // Full solves of the optimizer: on a snapshot of the graph, in the calling thread or on the
 // background worker, and how a solution made while the graph grew is taken in.
+#include <algorithm>
 #include <chrono>
 #include <unordered_map>
 
 #include "backend/optimizer.h"
+#include "backend/factors.h"
+#include "backend/loop_spread.h"
 #include "backend/pose_block.h"
 #include "backend/solve_worker.h"
 
@@ -14,7 +17,7 @@ namespace slide {
 struct Optimizer::FullSolveJob {
   FactorGraph::Snapshot snapshot;
   FactorGraph::FullSolveOptions options;
-  bool update_path = true;  // solved during updates: outliers, duplicates and guard follow it
+  bool update_path = true;  // taken in by an update or poll(): outliers, duplicates and guard follow it
   int epoch = 0;
   struct RobotEnd {
     int robot;
@@ -22,21 +25,49 @@ struct Optimizer::FullSolveJob {
     int var;            // the last one's variable
   };
   std::vector<RobotEnd> ends;
+  // Loop closures it brings: in its snapshot only, spread along their loops before the solve,
+  // added to the graph when its solution is taken in (queued again when it is not).
+  std::vector<PendingLoop> loops;
+  std::vector<LoopSpread> spreads;
+  std::vector<LandmarkObservers> observers;
+  PoseSigma loop_sigma;
+  LoopSpreadNoise spread_noise;
   std::vector<double> residual_norms;
   SolveReport report;
 
   void run(const std::atomic<bool>* cancel) {
+    if (!spreads.empty()) spreadLoops(snapshot.values, spreads, observers, loop_sigma, spread_noise);
     options.cancel = cancel;
     report = FactorGraph::solveSnapshot(snapshot, options, update_path ? &residual_norms : nullptr);
   }
 };
+
+Vector6d Optimizer::loopSigma() const {
+  PoseSigma s;
+  s << cfg_.loop_translation_sigma, cfg_.loop_translation_sigma, cfg_.loop_translation_sigma, cfg_.loop_rotation_sigma,
+      cfg_.loop_rotation_sigma, cfg_.loop_rotation_sigma;
+  return s;
+}
 
 bool Optimizer::solving() const { return running_ || (worker_ && worker_->busy()); }
 
 void Optimizer::cancelSolve() {
   if (!running_) return;
   worker_->cancel();
+  requeueLoops(*running_);
   running_.reset();
+}
+
+void Optimizer::requeueLoops(const FullSolveJob& job) {
+  if (job.epoch != epoch_ || job.loops.empty()) return;  // a rebuild replayed them
+  std::vector<PendingLoop> back;  // before those that came since, unless one repeats it
+  for (const PendingLoop& l : job.loops)
+    if (std::none_of(pending_loops_.begin(), pending_loops_.end(), [&](const PendingLoop& p) {
+          return p.robot == l.robot && p.seq_a == l.seq_a && p.seq_b == l.seq_b;
+        }))
+      back.push_back(l);
+  pending_loops_.insert(pending_loops_.begin(), back.begin(), back.end());
+  pending_iterations_ = std::max(pending_iterations_, cfg_.loop_iterations);
 }
 
 bool Optimizer::requestFull(int iterations, UpdateResult& r) {
@@ -46,24 +77,63 @@ bool Optimizer::requestFull(int iterations, UpdateResult& r) {
   return inline_solve;
 }
 
-void Optimizer::applyPendingSpreads() {
-  for (const LoopToSpread& l : pending_spreads_) {
+void Optimizer::takePendingLoops(FullSolveJob& job) {
+  job.loop_sigma = loopSigma();
+  job.spread_noise = {cfg_.odom_translation_floor, cfg_.odom_translation_per_m, cfg_.odom_rotation_floor,
+                      cfg_.odom_rotation_per_m};
+  for (const PendingLoop& l : pending_loops_) {
     const KeyPose* a = findKeyPose(l.robot, l.seq_a);
     const KeyPose* b = findKeyPose(l.robot, l.seq_b);
-    if (a && b) spreadLoop(*a, *b, l.T_a_b);
+    if (!a || !b) continue;  // checked on arrival; key poses are never removed
+    job.loops.push_back(l);
+    FactorGraph::addToSnapshot(job.snapshot, relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var});
+    if (!cfg_.spread_loops || l.seq_a >= l.seq_b) continue;
+    LoopSpread spread;
+    spread.T_a_b = l.T_a_b;
+    const std::vector<int>& list = robots_[l.robot].keyposes;
+    auto k = std::lower_bound(list.begin(), list.end(), l.seq_a, [&](int kp, int seq) { return keyposes_[kp].seq < seq; });
+    for (; k != list.end(); ++k) {
+      if (keyposes_[*k].seq == l.seq_b) spread.b = static_cast<int>(spread.vars.size());
+      spread.vars.push_back(keyposes_[*k].var);
+    }
+    job.spreads.push_back(std::move(spread));
   }
-  pending_spreads_.clear();
+  pending_loops_.clear();
+  if (job.spreads.empty()) return;
+  for (const Landmark& lm : landmarks_) {
+    if (!lm.alive || lm.seen.empty()) continue;
+    LandmarkObservers o{lm.var, lm.shape, {}};
+    o.observers.reserve(lm.seen.size());
+    for (const Observation& obs : lm.seen) o.observers.push_back(obs.pose_var);
+    job.observers.push_back(std::move(o));
+  }
+}
+
+void Optimizer::addLoopFactors(const FullSolveJob& job) {
+  for (const PendingLoop& l : job.loops) {
+    const KeyPose* a = findKeyPose(l.robot, l.seq_a);
+    const KeyPose* b = findKeyPose(l.robot, l.seq_b);
+    const auto key = std::make_pair(l.robot, std::make_pair(l.seq_a, l.seq_b));
+    const auto it = loop_factors_.find(key);
+    if (it != loop_factors_.end()) graph_.removeFactor(it->second);  // repeated while the solve ran
+    loop_factors_[key] = graph_.addFactor(relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var}, false);
+  }
 }
 
 std::shared_ptr<Optimizer::FullSolveJob> Optimizer::makeJob(int iterations, double function_tolerance) {
-  applyPendingSpreads();
   auto job = std::make_shared<FullSolveJob>();
+  for (const PendingLoop& l : pending_loops_) {  // a repeated closure replaces the one in the graph
+    const auto it = loop_factors_.find({l.robot, {l.seq_a, l.seq_b}});
+    if (it == loop_factors_.end()) continue;
+    graph_.removeFactor(it->second);
+    loop_factors_.erase(it);
+  }
   job->snapshot = graph_.snapshot();
+  takePendingLoops(*job);
   job->options.max_iterations = iterations;
   job->options.function_tolerance = function_tolerance;
   job->options.num_threads = cfg_.num_threads;
   job->options.trust_region_radius = cfg_.full_trust_region_radius;
-  job->update_path = iterations < cfg_.final_iterations;
   job->epoch = epoch_;
   for (const auto& [id, robot] : robots_)
     if (!robot.keyposes.empty()) {
@@ -77,7 +147,9 @@ std::shared_ptr<Optimizer::FullSolveJob> Optimizer::makeJob(int iterations, doub
 
 void Optimizer::startPending(UpdateResult& r) {
   if (pending_iterations_ == 0 || solving()) return;
-  std::shared_ptr<FullSolveJob> job = makeJob(pending_iterations_, cfg_.full_function_tolerance);
+  const bool converge = pending_iterations_ >= cfg_.final_iterations;  // settle()
+  std::shared_ptr<FullSolveJob> job =
+      makeJob(pending_iterations_, converge ? cfg_.final_function_tolerance : cfg_.full_function_tolerance);
   pending_iterations_ = 0;
   if (!background()) {
     job->run(stop_flag_);
@@ -92,18 +164,30 @@ void Optimizer::startPending(UpdateResult& r) {
   if (worker_->start(task)) running_ = job;
 }
 
+void Optimizer::yieldToLoop() {
+  if (running_ && running_->loops.empty()) cancelSolve();
+}
+
 bool Optimizer::poll(UpdateResult* out) {
-  if (!running_ || worker_->busy()) return false;
-  const std::shared_ptr<FullSolveJob> job = std::move(running_);
+  if (running_ && worker_->busy()) return false;
   UpdateResult local;
   UpdateResult& r = out ? *out : local;
-  const bool taken = adopt(*job, r);
-  startPending(r);  // a loop closure or merge that came while it ran
+  bool taken = false;
+  if (running_) {
+    const std::shared_ptr<FullSolveJob> job = std::move(running_);
+    taken = adopt(*job, r);
+  }
+  startPending(r);  // a loop closure or merge that came while it ran (or once a cancelled one ended)
   return taken;
 }
 
 bool Optimizer::adopt(FullSolveJob& job, UpdateResult& r) {
-  if (job.epoch != epoch_ || job.report.aborted) return false;
+  if (job.epoch != epoch_) return false;
+  if (job.report.aborted) {
+    requeueLoops(job);
+    return false;
+  }
+  addLoopFactors(job);
   const FactorGraph::Snapshot& s = job.snapshot;
   // Key poses added meanwhile keep their pose relative to their robot's last key pose of the
   // snapshot as it is now (local solves have moved it since), and follow it to its solution;
@@ -129,14 +213,23 @@ bool Optimizer::adopt(FullSolveJob& job, UpdateResult& r) {
     for (const Landmark& lm : landmarks_) {
       if (!lm.alive || lm.seen.empty() || lm.var < static_cast<int>(s.values.size())) continue;
       const auto it = moved.find(lm.seen.front().pose_var);
-      if (it != moved.end()) moveLandmark(lm, it->second);
+      if (it != moved.end()) moveLandmarkBlock(graph_.value(lm.var), lm.shape, it->second);
     }
   afterSolve({}, true);
   if (job.update_path && detachOutliers(&job.residual_norms) + mergeDuplicates() > 0) afterSolve({}, true);
   r.full_solve = true;
+  r.full_solve_ms = job.report.wall_ms;
   r.solve = job.report;
   if (job.update_path) guard(r);
   return true;
+}
+
+SolveReport Optimizer::settle() {
+  if (!background()) return fullSolve(0, true);
+  pending_iterations_ = std::max(pending_iterations_, cfg_.final_iterations);
+  UpdateResult r;
+  startPending(r);
+  return r.solve;
 }
 
 SolveReport Optimizer::fullSolve(double max_seconds, bool interruptible) {
@@ -151,6 +244,7 @@ SolveReport Optimizer::fullSolve(double max_seconds, bool interruptible) {
   for (int round = 0; round < 4; ++round) {
     if (round > 0 && (detachOutliers() + mergeDuplicates() == 0 || (max_seconds > 0 && left() <= 0))) break;
     std::shared_ptr<FullSolveJob> job = makeJob(cfg_.final_iterations, cfg_.final_function_tolerance);
+    job->update_path = false;  // outliers, duplicates and the guard follow below
     if (max_seconds > 0) job->options.max_seconds = std::max(1e-3, left());
     job->run(interruptible ? stop_flag_ : nullptr);
     adopt(*job, r);

@@ -135,40 +135,71 @@ std::vector<Object> forestTrunks(std::mt19937& rng) {
           });
   return lms;
 }
+
+Scenario forestScenario(const std::string& name, std::vector<Object> lms, const std::vector<Pose>& path, std::mt19937& rng) {
+  ScenarioNoise n;
+  n.range = 15.0;
+  return finish(name, std::move(lms), path, n, rng);
+}
 }  // namespace
 
 Scenario makeForestScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::vector<Object> lms = forestTrunks(rng);
-  ScenarioNoise n;
-  n.range = 15.0;
-  return finish("forest", std::move(lms), pathAlongWaypoints(forestRoute(0), 1000, 0.0), n, rng);
+  return forestScenario("forest", std::move(lms), pathAlongWaypoints(forestRoute(0), 1000, 0.0), rng);
 }
 
-Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
-  std::mt19937 rng(seed);
+namespace {
+constexpr double kForestSpacing = 1430.0 / 999.0;  // the forest's key-pose spacing
+constexpr double kTileStep = 400.0;                 // tiles sit this far apart in x
+
+// `tiles` copies of the forest tile side by side and their routes driven one after the other
+// (each route's end joined to the next one's start along y = 100 m).
+void chainTiles(int tiles, std::mt19937& rng, std::vector<Eigen::Vector2d>& route, std::vector<Object>& lms) {
   const std::vector<Object> tile = forestTrunks(rng);
-  const double spacing = 1430.0 / 999.0;  // the forest's key-pose spacing
-  const double tile_length = 1430.0 + 400.0;  // one route and the road to the next tile's start
-  const int tiles = std::max(1, static_cast<int>(std::ceil(num_keyposes * spacing / tile_length)) + 1);
-  std::vector<Eigen::Vector2d> route;
-  std::vector<Object> lms;
   for (int t = 0; t < tiles; ++t) {
-    const std::vector<Eigen::Vector2d> r = forestRoute(400.0 * t);
+    const std::vector<Eigen::Vector2d> r = forestRoute(kTileStep * t);
     route.insert(route.end(), r.begin(), r.end());
     for (Object o : tile) {
-      std::get<Cylinder>(o.model).root.x() += 400.0 * t;
+      std::get<Cylinder>(o.model).root.x() += kTileStep * t;
       o.id = static_cast<std::int64_t>(lms.size());
       lms.push_back(o);
     }
   }
+}
+
+double routeLength(const std::vector<Eigen::Vector2d>& route) {
   double length = 0;
   for (std::size_t i = 1; i < route.size(); ++i) length += (route[i] - route[i - 1]).norm();
-  std::vector<Pose> path = pathAlongWaypoints(route, static_cast<int>(std::lround(length / spacing)) + 1, 0.0);
+  return length;
+}
+}  // namespace
+
+Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const double tile_length = 1430.0 + kTileStep;  // one route and the road to the next tile's start
+  const int tiles = std::max(1, static_cast<int>(std::ceil(num_keyposes * kForestSpacing / tile_length)) + 1);
+  std::vector<Eigen::Vector2d> route;
+  std::vector<Object> lms;
+  chainTiles(tiles, rng, route, lms);
+  std::vector<Pose> path =
+      pathAlongWaypoints(route, static_cast<int>(std::lround(routeLength(route) / kForestSpacing)) + 1, 0.0);
   path.resize(std::min<std::size_t>(path.size(), static_cast<std::size_t>(std::max(2, num_keyposes))));
-  ScenarioNoise n;
-  n.range = 15.0;
-  return finish("forest_chain", std::move(lms), path, n, rng);
+  return forestScenario("forest_chain", std::move(lms), path, rng);
+}
+
+Scenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const int n = std::max(2, num_keyposes);
+  // Out through `tiles` tiles, back along y = 100 m from the last tile's start to the first's.
+  auto length = [](int tiles) { return tiles * 1430.0 + 2 * (tiles - 1) * kTileStep; };
+  int tiles = 1;
+  while (length(tiles) < (n - 1) * kForestSpacing - 1e-6) ++tiles;
+  std::vector<Eigen::Vector2d> route;
+  std::vector<Object> lms;
+  chainTiles(tiles, rng, route, lms);
+  if (tiles > 1) route.push_back(forestRoute(0).front());
+  return forestScenario("forest_return", std::move(lms), pathAlongWaypoints(route, n, 0.0), rng);
 }
 
 }  // namespace slide

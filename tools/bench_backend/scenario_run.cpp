@@ -51,7 +51,8 @@ double landmarkError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz) {
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz,
+                              double final_seconds) {
   ScenarioRunResult out;
   Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
   std::mt19937 rng(11);
@@ -63,6 +64,11 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   for (const auto& r : s.robots)
     for (const auto& lc : simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
   int objects = 0;
+  auto tally = [&](const UpdateResult& u) {
+    if (!u.full_solve) return;
+    ++out.full_solves;
+    out.full_solve_ms.push_back(u.full_solve_ms);
+  };
   auto last_input = Clock::now();
   auto pace = [&]() {
     if (pace_hz > 0 && opt.solving())
@@ -82,17 +88,18 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
         out.update_ms.push_back(u.update_ms);
         out.update_cpu_ms.push_back(cpu);
       }
-      out.full_solves += u.full_solve;
+      tally(u);
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
       if (!opt.merged(r.id)) continue;
       for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
         pace();
+        out.loops_during_solve += opt.solving();
         const double c1 = cpuMs();
         const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
         out.update_cpu_ms.push_back(cpuMs() - c1);
         out.update_ms.push_back(l.update_ms);
-        out.full_solves += l.full_solve;
+        tally(l);
         ++out.loop_closures;
       }
     }
@@ -107,7 +114,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
       // Ids of landmarks the merged bundles joined are not reported per object; votes come
       // from later updates.
       out.update_ms.push_back(u.update_ms);
-      out.full_solves += u.full_solve;
+      tally(u);
     }
   }
   {
@@ -116,10 +123,19 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
     Pairs pairs;
     collect(s, live, pairs);
     out.live_ate_m = absoluteTrajectoryError(pairs.est, pairs.ref, Alignment::Se3).rmse;
+    for (const ScenarioRobot& r : s.robots) {
+      const auto it = live.find(r.id);
+      if (it == live.end()) continue;
+      for (std::size_t k = 1; k < it->second.size(); ++k) {
+        const TrajectoryPose &a = it->second[k - 1], &b = it->second[k];
+        const Pose est = a.pose.inverse() * b.pose, truth = r.truth[a.seq].inverse() * r.truth[b.seq];
+        out.live_max_step_error_m = std::max(out.live_max_step_error_m, (est.translation() - truth.translation()).norm());
+      }
+    }
   }
   const auto t0 = Clock::now();
   const double c0 = cpuMs();
-  opt.fullSolve();
+  opt.fullSolve(final_seconds);
   out.final_solve_cpu_ms = cpuMs() - c0;
   out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.incremental_cost = opt.cost();
@@ -151,17 +167,22 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   double sq = 0;
   int n = 0;
   const Pose host_to_world = s.robots[0].truth.front();
+  std::map<int, int> confirmed_per_object;  // true object -> confirmed landmarks it is the majority of
   for (const Object& lm : lms) {
     const auto it = votes.find(lm.id);
     if (it == votes.end()) continue;
     int best = -1, count = 0;
     for (const auto& [i, c] : it->second)
       if (c > count) best = i, count = c;
+    ++confirmed_per_object[best];
     const double e = landmarkError(transformObject(host_to_world * ate.alignment.T, lm), s.landmarks[best]);
     sq += e * e;
     ++n;
   }
   out.landmark_rmse_m = n ? std::sqrt(sq / n) : 0;
+  int duplicates = 0;
+  for (const auto& [i, c] : confirmed_per_object) duplicates += c - 1;
+  out.duplicate_fraction = lms.empty() ? 0.0 : static_cast<double>(duplicates) / lms.size();
   int total = 0, wrong = 0;
   for (const auto& [id, counts] : votes) {
     int best = 0, sum = 0;

@@ -21,6 +21,14 @@ struct ScenarioRunResult {
   int landmarks = 0;
   int true_landmarks_seen = 0;
   int full_solves = 0;
+  std::vector<double> full_solve_ms;  // wall time of each full solve taken in (on the worker when in the background)
+  int loops_during_solve = 0;         // loop closures that arrived while a background solve ran
+  // The live estimate's worst key-pose step: largest difference between an estimated and the
+  // true relative translation of consecutive key poses (evaluation against the truth).
+  double live_max_step_error_m = 0;
+  // Confirmed landmarks whose majority true object is also another confirmed landmark's, as
+  // a fraction of the confirmed landmarks (evaluation against the simulator's associations).
+  double duplicate_fraction = 0;
   int loop_closures = 0;  // intra-robot closures given (simulated loop closer)
   double wrong_association_fraction = 0;  // detections not of their landmark's majority object
   int keyposes = 0;
@@ -33,6 +41,8 @@ struct ScenarioRunResult {
 // three quarters (0.05 m / 0.2 deg).
 // pace_hz > 0: while a background full solve runs, inputs arrive at most this often (the
 // robot's key-pose rate; otherwise they come as fast as the optimizer takes them).
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0);
+// final_seconds > 0 bounds the final full solve (Optimizer::fullSolve's max_seconds).
+ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0,
+                              double final_seconds = 0);
 
 }  // namespace slide
