@@ -10,7 +10,7 @@
 #include "app/clock.h"
 #include "bundle_messages.h"
 #include "io/tum_trajectory.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "slide/optimizer_status_t.hpp"
 
 namespace slide {

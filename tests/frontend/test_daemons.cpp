@@ -18,7 +18,7 @@
 #include <map>
 #include <thread>
 
-#include "frontend_msg/frontend_convert.h"
+#include "msg/frontend_convert.h"
 #include "msg/convert.h"
 #include "slide/odometry_t.hpp"
 #include "drive_by.h"

@@ -16,6 +16,7 @@ namespace slide {
 
 // Labels are dropped (and "label count mismatch" counted) unless num_labels == num_points.
 LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues);
+// Labels when the scan has them; instance ids 0 when it has classes only; intensity 0 where missing.
 lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header);
 
 // nullopt (and a counted issue) when image byte sizes do not match the intrinsics.
