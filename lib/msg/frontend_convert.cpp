@@ -116,28 +116,4 @@ FrameInstances instancesFromMsg(const frame_instances_t& m) {
   return f;
 }
 
-keypose_bundle_t bundleToMsg(const KeyposeBundle& b, int robot) {
-  keypose_bundle_t m;
-  m.header.utime = b.utime;
-  m.header.robot = robot;
-  m.header.seq = b.seq;
-  m.odom_pose = toMsg(b.odom_pose);
-  m.relative_odom = toMsg(b.relative_odom);
-  for (int i = 0; i < 6; ++i) m.odom_sigma[i] = static_cast<float>(b.odom_sigma[i]);
-  m.num_objects = static_cast<int32_t>(b.objects.size());
-  for (const auto& o : b.objects) m.objects.push_back(toMsg(o));
-  return m;
-}
-
-KeyposeBundle bundleFromMsg(const keypose_bundle_t& m) {
-  KeyposeBundle b;
-  b.seq = m.header.seq;
-  b.utime = m.header.utime;
-  b.odom_pose = fromMsg(m.odom_pose);
-  b.relative_odom = fromMsg(m.relative_odom);
-  for (int i = 0; i < 6; ++i) b.odom_sigma[i] = m.odom_sigma[i];
-  for (const auto& o : m.objects) b.objects.push_back(fromMsg(o));
-  return b;
-}
-
 }  // namespace slide

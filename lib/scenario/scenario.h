@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "backend/keypose_bundle.h"
+#include "objects/keypose_bundle.h"
 #include "objects/object.h"
 
 namespace slide {

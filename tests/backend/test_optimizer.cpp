@@ -63,10 +63,10 @@ TEST(BackendOptimizer, KeyPosesNeverReceivedAreCounted) {
   const auto& in = s.robots[0].bundles;
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 5; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
-  EXPECT_EQ(opt.missingKeyposes(), 0);
+  EXPECT_EQ(opt.missingKeyPoses(), 0);
   // A flood the daemon could not keep up with: it saw only every 10th bundle.
   for (int k = 10; k < 60; k += 10) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
-  EXPECT_EQ(opt.missingKeyposes(), 5 + 4 * 9);
+  EXPECT_EQ(opt.missingKeyPoses(), 5 + 4 * 9);
   EXPECT_EQ(opt.numKeyPoses(), 10);
 }
 

@@ -76,7 +76,7 @@ pid_t startOptimizer(const std::vector<std::string>& args) {
 std::vector<std::vector<uint8_t>> longMission(int keyposes) {
   const Scenario s = makeForestChainScenario(keyposes);
   std::vector<std::vector<uint8_t>> out;
-  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toMsg(b)));
+  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toLcm(b)));
   return out;
 }
 
