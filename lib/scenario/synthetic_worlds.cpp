@@ -65,9 +65,9 @@ Object trunk(int class_id, const Eigen::Vector2d& p, double radius, double lengt
   return o;
 }
 
-Scenario finish(const std::string& name, std::vector<Object> landmarks, const std::vector<Pose>& path,
+GraphScenario finish(const std::string& name, std::vector<Object> landmarks, const std::vector<Pose>& path,
                 const ScenarioNoise& noise, std::mt19937& rng) {
-  Scenario s;
+  GraphScenario s;
   s.name = name;
   s.noise = noise;
   s.landmarks = std::move(landmarks);
@@ -76,7 +76,7 @@ Scenario finish(const std::string& name, std::vector<Object> landmarks, const st
 }
 }  // namespace
 
-Scenario makeIndoorScenario(std::uint32_t seed) {
+GraphScenario makeIndoorScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   const std::vector<Eigen::Vector2d> lap = {{2, 2}, {8, 2}, {8, 18}, {2, 18}, {2, 2}, {8, 2}, {8, 18}, {5, 18}};
   std::vector<Object> lms;
@@ -93,7 +93,7 @@ Scenario makeIndoorScenario(std::uint32_t seed) {
   return finish("indoor", std::move(lms), pathAlongWaypoints(lap, 150, 0.0), n, rng);
 }
 
-Scenario makeUrbanScenario(std::uint32_t seed) {
+GraphScenario makeUrbanScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   // A 150 m block driven around once (600 m), then its first street again (115 m): 715 m.
   const std::vector<Eigen::Vector2d> route = {{25, 25}, {175, 25}, {175, 175}, {25, 175}, {25, 25}, {140, 25}};
@@ -137,7 +137,7 @@ std::vector<Object> forestTrunks(std::mt19937& rng) {
 }
 }  // namespace
 
-Scenario makeForestScenario(std::uint32_t seed) {
+GraphScenario makeForestScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::vector<Object> lms = forestTrunks(rng);
   ScenarioNoise n;
@@ -145,7 +145,7 @@ Scenario makeForestScenario(std::uint32_t seed) {
   return finish("forest", std::move(lms), pathAlongWaypoints(forestRoute(0), 1000, 0.0), n, rng);
 }
 
-Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
+GraphScenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
   std::mt19937 rng(seed);
   const std::vector<Object> tile = forestTrunks(rng);
   const double spacing = 1430.0 / 999.0;  // the forest's key-pose spacing

@@ -26,7 +26,7 @@ std::vector<uint8_t> encodeMsg(const M& m) {
 
 // Robot 0 drives the indoor scenario's poses [0, a_end), robot 1 [b_begin, b_end).
 inline std::vector<RawMessage> twoRobotMessages(int a_end = 80, int b_begin = 50, int b_end = 130) {
-  Scenario s = makeIndoorScenario(6);
+  GraphScenario s = makeIndoorScenario(6);
   const std::vector<Pose> path = s.robots[0].truth;
   std::mt19937 rng(3);
   const ScenarioRobot a = simulateRobot(0, {path.begin(), path.begin() + a_end}, s.landmarks, s.noise, rng);

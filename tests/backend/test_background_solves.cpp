@@ -67,7 +67,7 @@ void feedOwn(OptimizerNode& node, const std::vector<slide::testing::RawMessage>&
 }  // namespace
 
 TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
-  const Scenario s = makeUrbanScenario();
+  const GraphScenario s = makeUrbanScenario();
   const auto& bundles = s.robots[0].bundles;
   Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
   Gate gate;

@@ -74,7 +74,7 @@ pid_t startOptimizer(const std::vector<std::string>& args) {
 
 // A long mission's own bundles (forest tiles chained) as LCM bytes.
 std::vector<std::vector<uint8_t>> longMission(int keyposes) {
-  const Scenario s = makeForestChainScenario(keyposes);
+  const GraphScenario s = makeForestChainScenario(keyposes);
   std::vector<std::vector<uint8_t>> out;
   for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toLcm(b)));
   return out;

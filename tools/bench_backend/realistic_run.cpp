@@ -39,7 +39,7 @@ double horizontalError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
+RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
                                 double period_s, int map_every) {
   RealisticRunResult out;
   const ClassTable classes = ClassTable::loadDefault();
@@ -130,9 +130,9 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
       odom_ref.push_back(host0_inv * r.truth[k]);
     }
   }
-  const AteResult ate = absoluteTrajectoryError(est, ref, Alignment::Se3);
+  const AteResult ate = absoluteTrajectoryError(est, ref, TrajectoryAlignment::Se3);
   out.ate_m = ate.rmse;
-  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, Alignment::Se3).rmse;
+  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, TrajectoryAlignment::Se3).rmse;
 
   // Confirmed landmarks against the object most of their detections came from.
   const Pose to_world = s.robots[0].truth.front() * ate.alignment.T;

@@ -33,6 +33,6 @@ struct ScenarioRunResult {
 // three quarters (0.05 m / 0.2 deg).
 // pace_hz > 0: while a background full solve runs, inputs arrive at most this often (the
 // robot's key-pose rate; otherwise they come as fast as the optimizer takes them).
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0);
+ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0);
 
 }  // namespace slide
