@@ -10,7 +10,7 @@
 #include "app/clock.h"
 #include "bundle_messages.h"
 #include "io/tum_trajectory.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "slide/optimizer_status_t.hpp"
 
 namespace slide {
@@ -159,9 +159,9 @@ bool OptimizerNode::process(Input kind, const void* data, int size) {
                    kind == Input::Bundle ? "this robot's" : "peers'");
       return false;
     }
-    std::vector<std::string> warnings;
-    const KeyPoseBundle b = fromMsg(m, warnings);
-    for (const auto& w : warnings) spdlog::warn("malformed object dropped: {}", w);
+    std::vector<std::string> dropped;
+    const KeyPoseBundle b = fromLcm(m, &dropped);
+    for (const auto& w : dropped) spdlog::warn("malformed object dropped: robot {} key pose {}: {}", b.robot, b.seq, w);
     r = optimizer_.addBundle(b);
     logResult(r, "bundle of robot " + std::to_string(b.robot) + " key pose " + std::to_string(b.seq));
   }
@@ -194,7 +194,7 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
   const std::uint64_t dropped = static_cast<std::uint64_t>(decode_errors_) + (bus_drops_ ? bus_drops_() : 0);
   s.dropped_messages = static_cast<std::int32_t>(std::min<std::uint64_t>(dropped, INT32_MAX));
   s.unjournalled_inputs = unjournalled_;
-  s.missing_keyposes = static_cast<std::int32_t>(std::min<std::int64_t>(optimizer_.missingKeyposes(), INT32_MAX));
+  s.missing_keyposes = static_cast<std::int32_t>(std::min<std::int64_t>(optimizer_.missingKeyPoses(), INT32_MAX));
   publish_(channels_.status, msg::encodeLcm(s));
 }
 

@@ -57,7 +57,7 @@ class OptimizerNode {
 
   void publishAll();
   // Outputs: TUM files <dir>/trajectory_robot<N>.txt for every robot and the (merged) object
-  // map <dir>/map_robot<host>.txt (mapio text), each written whole or not at all. Written
+  // map <dir>/map_robot<host>.txt (io/object_map_text.h), each written whole or not at all. Written
   // every `period_s` seconds by poll() when the estimate changed (0: never), by writeOutputs()
   // and at stop(). An empty dir writes nothing.
   void setOutputs(const std::string& dir, double period_s);

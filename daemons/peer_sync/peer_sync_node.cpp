@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/clock.h"
+#include "msg/convert.h"
 #include "slide/peer_sync_status_t.hpp"
 #include "team_msg.h"
 
@@ -50,7 +51,7 @@ void PeerSyncDaemon::logStart(const std::string& state_dir) const {
 void PeerSyncDaemon::onOwnBundle(const std::string& channel, const void* data, std::size_t size, team::Micros now) {
   std::string why = "undecodable keypose_bundle_t";
   auto m = team::decodeLcm<keypose_bundle_t>(data, size);
-  std::optional<team::Bundle> b = m ? team::fromLcm(*m, &why) : std::nullopt;
+  std::optional<KeyPoseBundle> b = m ? team::acceptBundle(*m, &why) : std::nullopt;
   if (!b) return undecodable(channel, why);
   const std::uint64_t lost = node_.dropped(Drop::Lost);
   if (auto drop = node_.addOwnBundle(std::move(*b), now))
@@ -103,12 +104,12 @@ void PeerSyncDaemon::step(team::Micros now) {
   for (int k = 0; k < max_deliveries_; ++k) {
     auto b = node_.nextDelivery();
     if (!b) break;
-    if (!robot_bus_(channels_.peer_bundle, msg::encodeLcm(team::toLcm(*b)))) {  // not recorded: tried again next step
-      spdlog::warn("{}: publish of bundle {}/{} failed", channels_.peer_bundle, b->origin, b->seq);
+    if (!robot_bus_(channels_.peer_bundle, msg::encodeLcm(toLcm(*b)))) {  // not recorded: tried again next step
+      spdlog::warn("{}: publish of bundle {}/{} failed", channels_.peer_bundle, b->robot, b->seq);
       break;
     }
-    node_.confirmDelivered(b->origin, b->seq);
-    spdlog::debug("delivered bundle {}/{}", b->origin, b->seq);
+    node_.confirmDelivered(b->robot, b->seq);
+    spdlog::debug("delivered bundle {}/{}", b->robot, b->seq);
   }
   for (const auto& map : node_.takeMaps()) {
     robot_bus_(channels_.peer_map, msg::encodeLcm(team::toLcm(map)));

@@ -157,20 +157,7 @@ std::optional<Ack> fromLcm(const sync_ack_t& m, std::string* why) {
   return a;
 }
 
-keypose_bundle_t toLcm(const Bundle& b) {
-  keypose_bundle_t m;
-  m.header.utime = b.utime;
-  m.header.robot = b.origin;
-  m.header.seq = b.seq;
-  m.odom_pose = slide::toMsg(b.odom_pose);
-  m.relative_odom = slide::toMsg(b.relative_odom);
-  std::copy(b.odom_sigma.begin(), b.odom_sigma.end(), m.odom_sigma);
-  for (const auto& o : b.objects) m.objects.push_back(slide::toMsg(o));
-  m.num_objects = static_cast<int32_t>(m.objects.size());
-  return m;
-}
-
-std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
+std::optional<KeyPoseBundle> acceptBundle(const keypose_bundle_t& m, std::string* why) {
   const std::string who = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq);
   if (!usablePose(m.odom_pose) || !usablePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
       !withinFrame(m.relative_odom.position))
@@ -181,24 +168,15 @@ std::optional<Bundle> fromLcm(const keypose_bundle_t& m, std::string* why) {
     if (!(s >= 0 && s <= kMaxSigma))
       return *why = who + ": odom_sigma " + std::to_string(s) + " is not in [0, " + std::to_string(kMaxSigma) + "]",
              std::nullopt;
-  Bundle b;
-  b.origin = m.header.robot;
-  b.seq = m.header.seq;
-  b.utime = m.header.utime;
-  b.odom_pose = slide::fromMsg(m.odom_pose);
-  b.relative_odom = slide::fromMsg(m.relative_odom);
-  std::copy(std::begin(m.odom_sigma), std::end(m.odom_sigma), b.odom_sigma.begin());
-  try {
-    for (const auto& o : m.objects) {
-      Object obj = slide::fromMsg(o);
-      if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
-      if (!saneObject(obj)) throw std::invalid_argument("object " + std::to_string(o.id) + " is beyond " +
-                                                        std::to_string(kMaxCoordinate) + " m or absurdly large");
-      b.objects.push_back(std::move(obj));
-    }
-  } catch (const std::invalid_argument& e) {
-    return *why = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq) + ": " + e.what(),
-           std::nullopt;
+  std::vector<std::string> dropped;
+  KeyPoseBundle b = slide::fromLcm(m, &dropped);
+  if (!dropped.empty()) return *why = who + ": " + dropped.front(), std::nullopt;
+  for (std::size_t i = 0; i < b.objects.size(); ++i) {
+    const std::string object = "object " + std::to_string(m.objects[i].id);
+    if (!b.objects[i].isFinite()) return *why = who + ": " + object + " has non-finite numbers", std::nullopt;
+    if (!saneObject(b.objects[i]))
+      return *why = who + ": " + object + " is beyond " + std::to_string(kMaxCoordinate) + " m or absurdly large",
+             std::nullopt;
   }
   return b;
 }

@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "frontend_msg/frontend_convert.h"
+#include "msg/frontend_convert.h"
 #include "msg/convert.h"
 #include "viewer/thin.h"
 

@@ -8,14 +8,6 @@
 namespace slide {
 
 namespace {
-header_t header(int64_t utime, int robot, int seq) {
-  header_t h;
-  h.utime = utime;
-  h.robot = robot;
-  h.seq = seq;
-  return h;
-}
-
 std::vector<uint8_t> bytesOf(const cv::Mat& m) {
   const cv::Mat c = m.isContinuous() ? m : m.clone();
   const auto* p = c.ptr<uint8_t>();
@@ -23,24 +15,12 @@ std::vector<uint8_t> bytesOf(const cv::Mat& m) {
 }
 }  // namespace
 
-lidar_scan_t toScanMessage(const LabelledScan& scan, int64_t utime, int robot, int seq) {
-  lidar_scan_t m;
-  m.header = header(utime, robot, seq);
-  m.num_points = static_cast<int32_t>(scan.size());
-  m.xyz.resize(scan.size());
-  m.intensity.resize(scan.size());
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    m.xyz[i] = {scan.xyz[i].x(), scan.xyz[i].y(), scan.xyz[i].z()};
-    m.intensity[i] = scan.intensity.empty() ? 0.f : scan.intensity[i];
-  }
-  m.has_labels = scan.hasLabels();
-  m.num_labels = m.has_labels ? m.num_points : 0;
-  if (m.has_labels) {
-    m.semantic.assign(scan.semantic.begin(), scan.semantic.end());
-    if (scan.instance.size() == scan.size()) m.instance.assign(scan.instance.begin(), scan.instance.end());
-    else m.instance.assign(scan.size(), 0);
-  }
-  return m;
+header_t frameHeader(int64_t utime, int robot, int seq) {
+  header_t h;
+  h.utime = utime;
+  h.robot = robot;
+  h.seq = seq;
+  return h;
 }
 
 rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const InstanceMask* mask,
@@ -48,7 +28,7 @@ rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const Ins
                            int seq) {
   if (color.size() != depth.size()) throw std::invalid_argument("colour and depth images differ in size");
   rgbd_frame_t m;
-  m.header = header(utime, robot, seq);
+  m.header = frameHeader(utime, robot, seq);
   m.intrinsics.width = depth.cols;
   m.intrinsics.height = depth.rows;
   m.intrinsics.fx = calib.fx;
@@ -75,7 +55,7 @@ rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const Ins
 
 odometry_t toOdometryMessage(const Pose& pose, const Pose* prev, double dt, int64_t utime, int robot, int seq) {
   odometry_t m;
-  m.header = header(utime, robot, seq);
+  m.header = frameHeader(utime, robot, seq);
   m.pose = toMsg(pose);
   Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
   if (prev && dt > 0) {

@@ -1,5 +1,6 @@
 #pragma once
-// Dataset frames as robot-bus messages (slide.lidar_scan_t, rgbd_frame_t, odometry_t).
+// Dataset frames as robot-bus messages (slide.rgbd_frame_t, odometry_t; scans go through
+// msg/frontend_convert.h).
 #include <cstdint>
 
 #include <opencv2/core.hpp>
@@ -7,14 +8,14 @@
 #include "geometry/pose.h"
 #include "io/kitti_scan.h"
 #include "io/rgbd_files.h"
-#include "slide/lidar_scan_t.hpp"
+#include "slide/header_t.hpp"
 #include "slide/odometry_t.hpp"
 #include "slide/rgbd_frame_t.hpp"
 
 namespace slide {
 
-// Labels when the scan has them; instance ids 0 when it has classes only.
-lidar_scan_t toScanMessage(const LabelledScan& scan, int64_t utime, int robot, int seq);
+// The header of the frame `seq` of `robot` at utime (scans: msg/frontend_convert.h, scanToMsg).
+header_t frameHeader(int64_t utime, int robot, int seq);
 
 // mask may be null (no instances); confidence (one per instance) null means 1.0 each.
 // color is 8-bit BGR, depth 16-bit.

@@ -2,7 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
-#include "frontend_msg/frontend_convert.h"
+#include "msg/convert.h"
+#include "msg/frontend_convert.h"
 
 namespace slide {
 
@@ -14,8 +15,9 @@ TrackerNode::TrackerNode(int robot, std::string out_channel, const ClassTable& c
 void TrackerNode::onInstances(const frame_instances_t& m) {
   InputIssues issues;
   if (m.header.robot != robot_) issues.count("instances of another robot");
-  else if (const auto b = bundler_.process(instancesFromMsg(m), issues)) {
-    publish_(out_channel_, msg::encodeLcm(bundleToMsg(*b, robot_)));
+  else if (auto b = bundler_.process(instancesFromMsg(m), issues)) {
+    b->robot = robot_;
+    publish_(out_channel_, msg::encodeLcm(toLcm(*b)));
     spdlog::debug("key pose {}: {} objects", b->seq, b->objects.size());
   }
   window_.add(issues);

@@ -27,7 +27,7 @@ class TrackerNode {
  private:
   int robot_;
   std::string out_channel_;
-  KeyposeBundler bundler_;
+  KeyPoseBundler bundler_;
   msg::Publisher publish_;
   IssueWindow window_;
 };

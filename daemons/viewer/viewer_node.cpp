@@ -62,7 +62,7 @@ bool ViewerNode::onRobotBus(int view, const std::string& channel, const void* da
   ++received_;
   if (channel == ch_.object_map) return onObjectMap(view, channel, data, size, t);
   if (channel == ch_.trajectory) return onTrajectory(view, channel, data, size, t);
-  if (channel == ch_.keypose_bundle) return onKeyposeBundle(view, channel, data, size, t);
+  if (channel == ch_.keypose_bundle) return onKeyPoseBundle(view, channel, data, size, t);
   if (channel == ch_.instances) return onInstances(view, channel, data, size, t);
   if (channel == ch_.loop_closure) return onLoopClosure(view, channel, data, size, t);
   if (channel == ch_.optimizer_status) return onOptimizerStatus(view, channel, data, size, t);
@@ -125,7 +125,7 @@ void ViewerNode::updateCorrection(RobotMemory& mem) {
   }
 }
 
-bool ViewerNode::onKeyposeBundle(int view, const std::string& ch, const void* data, std::size_t size, double t) {
+bool ViewerNode::onKeyPoseBundle(int view, const std::string& ch, const void* data, std::size_t size, double t) {
   keypose_bundle_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's bundle");

@@ -81,7 +81,7 @@ class ViewerNode {
 
   bool onObjectMap(int view, const std::string& ch, const void* data, std::size_t size, double t);
   bool onTrajectory(int view, const std::string& ch, const void* data, std::size_t size, double t);
-  bool onKeyposeBundle(int view, const std::string& ch, const void* data, std::size_t size, double t);
+  bool onKeyPoseBundle(int view, const std::string& ch, const void* data, std::size_t size, double t);
   bool onInstances(int view, const std::string& ch, const void* data, std::size_t size, double t);
   bool onLoopClosure(int view, const std::string& ch, const void* data, std::size_t size, double t);
   bool onOptimizerStatus(int view, const std::string& ch, const void* data, std::size_t size, double t);

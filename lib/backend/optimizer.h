@@ -21,9 +21,9 @@
 
 #include "backend/backend_config.h"
 #include "backend/factor_graph.h"
-#include "backend/keypose_bundle.h"
 #include "backend/landmark_grid.h"
 #include "objects/class_table.h"
+#include "objects/keypose_bundle.h"
 
 namespace slide {
 
@@ -124,7 +124,7 @@ class Optimizer {
   int rejected() const { return rejected_; }
   // Key poses never received: gaps in a robot's sequence, bridged with odometry (lost
   // datagrams, or a sender flooding faster than this robot reads).
-  std::int64_t missingKeyposes() const { return missing_keyposes_; }
+  std::int64_t missingKeyPoses() const { return missing_keyposes_; }
   int merges() const { return merges_; }
   int detached() const { return detached_; }
   int unmerged() const { return unmerged_; }   // merges undone (contradicted or unsound)

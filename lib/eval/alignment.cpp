@@ -6,29 +6,29 @@
 
 namespace slide {
 
-Alignment parseAlignment(const std::string& name) {
-  if (name == "none") return Alignment::None;
-  if (name == "se3") return Alignment::Se3;
-  if (name == "sim3") return Alignment::Sim3;
-  if (name == "yaw") return Alignment::Yaw4Dof;
+TrajectoryAlignment parseAlignment(const std::string& name) {
+  if (name == "none") return TrajectoryAlignment::None;
+  if (name == "se3") return TrajectoryAlignment::Se3;
+  if (name == "sim3") return TrajectoryAlignment::Sim3;
+  if (name == "yaw") return TrajectoryAlignment::Yaw4Dof;
   throw std::invalid_argument("alignment must be none, se3, sim3 or yaw, got '" + name + "'");
 }
 
-const char* alignmentName(Alignment a) {
+const char* alignmentName(TrajectoryAlignment a) {
   switch (a) {
-    case Alignment::None: return "none";
-    case Alignment::Se3: return "se3";
-    case Alignment::Sim3: return "sim3";
-    case Alignment::Yaw4Dof: return "yaw";
+    case TrajectoryAlignment::None: return "none";
+    case TrajectoryAlignment::Se3: return "se3";
+    case TrajectoryAlignment::Sim3: return "sim3";
+    case TrajectoryAlignment::Yaw4Dof: return "yaw";
   }
   return "?";
 }
 
 AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& ref,
-                      Alignment mode) {
+                      TrajectoryAlignment mode) {
   if (est.size() != ref.size()) throw std::invalid_argument("align: point sets differ in size");
   AlignmentResult out;
-  if (mode == Alignment::None || est.empty()) return out;
+  if (mode == TrajectoryAlignment::None || est.empty()) return out;
   const double n = static_cast<double>(est.size());
   Eigen::Vector3d mu_e = Eigen::Vector3d::Zero(), mu_r = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < est.size(); ++i) {
@@ -38,7 +38,7 @@ AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector
   mu_e /= n;
   mu_r /= n;
 
-  if (mode == Alignment::Yaw4Dof) {
+  if (mode == TrajectoryAlignment::Yaw4Dof) {
     // Rotation about z only: maximise sum of in-plane cross/dot terms.
     double s_cos = 0, s_sin = 0;
     for (std::size_t i = 0; i < est.size(); ++i) {
@@ -65,7 +65,7 @@ AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector
   Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
   if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0) S(2, 2) = -1;
   const Eigen::Matrix3d R = svd.matrixU() * S * svd.matrixV().transpose();
-  if (mode == Alignment::Sim3 && var_e > 0) out.scale = (svd.singularValues().asDiagonal() * S).trace() / var_e;
+  if (mode == TrajectoryAlignment::Sim3 && var_e > 0) out.scale = (svd.singularValues().asDiagonal() * S).trace() / var_e;
   out.T.linear() = R;
   out.T.translation() = mu_r - out.scale * R * mu_e;
   return out;

@@ -8,11 +8,11 @@
 
 namespace slide {
 
-enum class Alignment { None, Se3, Sim3, Yaw4Dof };
+enum class TrajectoryAlignment { None, Se3, Sim3, Yaw4Dof };
 
 // "none", "se3", "sim3" or "yaw" (x, y, z, yaw); throws std::invalid_argument otherwise.
-Alignment parseAlignment(const std::string& name);
-const char* alignmentName(Alignment a);
+TrajectoryAlignment parseAlignment(const std::string& name);
+const char* alignmentName(TrajectoryAlignment a);
 
 struct AlignmentResult {
   Pose T = Pose::Identity();  // maps estimate points into the reference frame
@@ -22,6 +22,6 @@ struct AlignmentResult {
 // Best transform (and scale) with ref[i] ≈ s * R * est[i] + t in the least-squares sense.
 // Needs at least 3 non-collinear points for Se3/Sim3, 2 for Yaw4Dof (None: identity).
 AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& ref,
-                      Alignment mode);
+                      TrajectoryAlignment mode);
 
 }  // namespace slide

@@ -8,7 +8,7 @@
 
 namespace slide {
 
-AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vector<Pose>& ref, Alignment mode) {
+AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vector<Pose>& ref, TrajectoryAlignment mode) {
   if (est.size() != ref.size()) throw std::invalid_argument("ATE: trajectories differ in length");
   std::vector<Eigen::Vector3d> pe, pr;
   for (std::size_t i = 0; i < est.size(); ++i) {

@@ -14,6 +14,6 @@ struct AteResult {
 
 // est[i] and ref[i] are the same instant; translation errors after aligning est onto ref.
 AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vector<Pose>& ref,
-                                  Alignment mode = Alignment::Se3);
+                                  TrajectoryAlignment mode = TrajectoryAlignment::Se3);
 
 }  // namespace slide

@@ -40,7 +40,7 @@ std::optional<Pose> mapAlignment(const SharedLandmarks& shared) {
     for (Eigen::Vector3d& p : v) p.z() = 0;
     return v;
   };
-  return align(flat(shared.in_b), flat(shared.in_a), Alignment::Yaw4Dof).T;
+  return align(flat(shared.in_b), flat(shared.in_a), TrajectoryAlignment::Yaw4Dof).T;
 }
 
 std::vector<double> landmarkDistances(const SharedLandmarks& shared, const Pose& T_a_b) {

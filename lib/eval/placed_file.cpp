@@ -1,9 +1,12 @@
 #include "eval/placed_file.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "io/numbers.h"
 
 namespace slide {
 
@@ -20,13 +23,9 @@ PlacedFile parsePlacedFile(const std::string& arg) {
   std::vector<double> v;
   std::string tok;
   while (std::getline(s, tok, ',')) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(tok, &used));
-      if (used != tok.size() || !std::isfinite(v.back())) throw std::invalid_argument(tok);
-    } catch (const std::exception&) {
-      throw std::invalid_argument("'" + arg + "': placement after '@' must be x,y,z,yaw_deg");
-    }
+    const std::optional<double> x = parseNumber(tok);
+    if (!x || !std::isfinite(*x)) throw std::invalid_argument("'" + arg + "': placement after '@' must be x,y,z,yaw_deg");
+    v.push_back(*x);
   }
   if (v.size() != 4 || f.path.empty()) throw std::invalid_argument("'" + arg + "': placement after '@' must be x,y,z,yaw_deg");
   f.placement = poseFromXyzYaw(v[0], v[1], v[2], v[3] * M_PI / 180.0);

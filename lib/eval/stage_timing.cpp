@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "bench/stats.h"
 #include "io/io_error.h"
+#include "io/numbers.h"
 
 namespace slide {
 
@@ -39,16 +41,10 @@ std::map<std::string, std::vector<double>> readStageSamples(const std::string& p
     s >> a >> b >> extra;
     const std::string stage = b.empty() ? "all" : a;
     const std::string num = b.empty() ? a : b;
-    double v = 0;
-    std::size_t used = 0;
-    try {
-      v = std::stod(num, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != num.size() || !std::isfinite(v) || !extra.empty())
+    const std::optional<double> v = parseNumber(num);
+    if (!v || !std::isfinite(*v) || !extra.empty())
       throw IoError(path, "line " + std::to_string(n) + ": expected 'stage value' or 'value', got '" + line + "'");
-    out[stage].push_back(v);
+    out[stage].push_back(*v);
   }
   return out;
 }

@@ -25,7 +25,7 @@ struct FrontendConfig {
   std::string rgbd_detector;  // YOLOv8-seg model YAML (yolo_seg_detector.h); empty: the frames' own masks
   FitParams fit;
   TrackerParams tracker;
-  KeyposeParams keypose;
+  KeyPoseParams keypose;
 };
 
 FrontendConfig loadFrontendConfig(const std::string& path);

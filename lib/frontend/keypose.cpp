@@ -4,7 +4,7 @@
 
 namespace slide {
 
-std::optional<KeyposeBundle> KeyposeBundler::process(const FrameInstances& frame, InputIssues& issues) {
+std::optional<KeyPoseBundle> KeyPoseBundler::process(const FrameInstances& frame, InputIssues& issues) {
   if (!frame.odom_pose.matrix().allFinite()) {
     issues.count("non-finite odometry pose");
     return std::nullopt;
@@ -18,7 +18,7 @@ std::optional<KeyposeBundle> KeyposeBundler::process(const FrameInstances& frame
   const double turned = std::abs(yawOf(rel.linear())) * 180.0 / M_PI;
   if (next_seq_ > 0 && travelled_ < params_.distance && turned < params_.yaw_deg) return std::nullopt;
 
-  KeyposeBundle b;
+  KeyPoseBundle b;
   b.seq = next_seq_++;
   b.utime = frame.utime;
   b.odom_pose = T;

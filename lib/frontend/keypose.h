@@ -7,39 +7,31 @@
 #include <vector>
 
 #include "frontend/tracker.h"
+#include "objects/keypose_bundle.h"
 
 namespace slide {
 
-struct KeyposeParams {
+struct KeyPoseParams {
   double distance = 1.0;   // metres travelled since the previous key pose
   double yaw_deg = 30.0;   // or this much turning
   std::array<double, 6> sigma_min{0.002, 0.002, 0.002, 0.0002, 0.0002, 0.0002};  // x y z roll pitch yaw
   std::array<double, 6> sigma_per_m{0.01, 0.01, 0.01, 0.001, 0.001, 0.001};      // added per metre
 };
 
-struct KeyposeBundle {
-  int seq = 0;                           // 0, 1, 2, ... per robot
-  std::int64_t utime = 0;
-  Pose odom_pose = Pose::Identity();     // T_odom_body of this key pose
-  Pose relative_odom = Pose::Identity(); // T_prev_this (identity for seq 0)
-  std::array<double, 6> odom_sigma{};
-  std::vector<Object> objects;           // body frame, ids are track ids
-};
-
 // Feeds frames to a Tracker and emits a bundle whenever a frame is a key pose (the first
-// frame always is).
-class KeyposeBundler {
+// frame always is). The bundle's robot is left 0: the caller knows whose it is.
+class KeyPoseBundler {
  public:
-  KeyposeBundler(Tracker tracker, KeyposeParams params) : tracker_(std::move(tracker)), params_(params) {}
+  KeyPoseBundler(Tracker tracker, KeyPoseParams params) : tracker_(std::move(tracker)), params_(params) {}
 
-  std::optional<KeyposeBundle> process(const FrameInstances& frame, InputIssues& issues);
+  std::optional<KeyPoseBundle> process(const FrameInstances& frame, InputIssues& issues);
 
   const Tracker& tracker() const { return tracker_; }
   int nextSeq() const { return next_seq_; }
 
  private:
   Tracker tracker_;
-  KeyposeParams params_;
+  KeyPoseParams params_;
   int next_seq_ = 0;
   int frames_since_key_ = 0;  // frames since the previous key pose, this one included
   Pose last_key_ = Pose::Identity();

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/io_error.h"
+#include "io/numbers.h"
 
 namespace slide {
 
@@ -19,17 +20,11 @@ CalibEntries readCalibFile(const std::string& path) {
     const auto colon = line.find(':');
     if (colon == std::string::npos || colon == 0)
       throw IoError(path, "line " + std::to_string(n) + ": expected 'KEY: values'");
-    std::istringstream s(line.substr(colon + 1));
     std::vector<double> v;
-    std::string tok;
-    while (s >> tok) {
-      try {
-        std::size_t used = 0;
-        v.push_back(std::stod(tok, &used));
-        if (used != tok.size()) throw std::invalid_argument(tok);
-      } catch (const std::exception&) {
-        throw IoError(path, "line " + std::to_string(n) + ": '" + tok + "' is not a number");
-      }
+    try {
+      v = parseNumberList(line.substr(colon + 1));
+    } catch (const std::invalid_argument& e) {
+      throw IoError(path, "line " + std::to_string(n) + ": " + e.what());
     }
     out[line.substr(0, colon)] = v;
   }

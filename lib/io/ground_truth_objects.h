@@ -1,7 +1,8 @@
 #pragma once
-// Ground-truth object list of a simulated world, as CSV (objects.csv beside the robot folders).
+// Object lists as CSV: the ground-truth objects of a simulated world (objects.csv beside the
+// robot folders), and object maps in the same layout or any part of it (readObjectsCsv).
 //
-// File layout: one header line, then one object per line, comma-separated:
+// objects.csv: one header line, then one object per line, comma-separated:
 //   id,class_id,shape,x,y,z,yaw,length,width,height,radius,axis_x,axis_y,axis_z,semantic,vx,vy
 // - id: instance id of the object's points in labels/*.label and instance masks
 //   (= object index + 1, so id 1 is the first object of the file);
@@ -23,6 +24,8 @@
 
 namespace slide {
 
+class ClassTable;
+
 struct GroundTruthObject {
   Object object;                                      // object.id = instance id (index + 1)
   uint16_t semantic = 0;                              // per-point label of its points
@@ -33,7 +36,24 @@ struct GroundTruthObject {
 };
 
 void writeGroundTruthObjects(const std::string& path, const std::vector<GroundTruthObject>& objects);
-// Throws IoError naming the file and line for a missing file, bad header or unparsable line.
+// readObjectsCsv without a class table, with semantic, vx and vy required.
 std::vector<GroundTruthObject> readGroundTruthObjects(const std::string& path);
+
+// Objects of a CSV file: a header line naming columns (blank and '#' lines before it and among the
+// rows are skipped), then one object per line; columns in any order, unknown ones ignored.
+//   class_id (or class): a map label or class id of `classes` (a class id as it is when
+//     `classes` is null); may be absent when default_class >= 0, which every row then gets;
+//   x, y (required), z (default 0); id (default: the row's index);
+//   shape: cuboid|cylinder|ellipsoid (default the class's; required when `classes` is null);
+//   yaw (radians, cuboids); length width height, or size_x size_y size_z: the extents of
+//     Object::extent() (default the class's typical size; zero when `classes` is null);
+//   radius: cylinders and ellipsoids, sets length = width = 2 radius (over those columns);
+//   axis_x axis_y axis_z: a cylinder's axis (normalised; upright when absent); confidence.
+// `extra`: further columns, required, whose numbers go to *extra_values (one row per object).
+// Throws IoError naming the file, line and column (missing file or column, a cell that is not a
+// finite number, an unknown label or shape, a negative size, a zero cylinder axis).
+std::vector<Object> readObjectsCsv(const std::string& path, const ClassTable* classes, int default_class = -1,
+                                   const std::vector<std::string>& extra = {},
+                                   std::vector<std::vector<double>>* extra_values = nullptr);
 
 }  // namespace slide

@@ -21,15 +21,15 @@ bool skip(const std::string& line) {
 std::string txtBeside(const std::string& png) { return std::filesystem::path(png).replace_extension(".txt").string(); }
 }  // namespace
 
-std::vector<Association> readAssociations(const std::string& path) {
+std::vector<TumAssociation> readAssociations(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw IoError(path, "cannot open file");
-  std::vector<Association> out;
+  std::vector<TumAssociation> out;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     if (skip(line)) continue;
     std::istringstream s(line);
-    Association a;
+    TumAssociation a;
     if (!(s >> a.t_rgb >> a.rgb >> a.t_depth >> a.depth))
       throw IoError(path, "line " + std::to_string(n) + ": expected 't_rgb rgb_file t_depth depth_file'");
     out.push_back(a);
@@ -37,11 +37,11 @@ std::vector<Association> readAssociations(const std::string& path) {
   return out;
 }
 
-void writeAssociations(const std::string& path, const std::vector<Association>& rows) {
+void writeAssociations(const std::string& path, const std::vector<TumAssociation>& rows) {
   std::ofstream out(path);
   if (!out) throw IoError(path, "cannot write file");
   out << std::fixed << std::setprecision(6);
-  for (const Association& a : rows) out << a.t_rgb << ' ' << a.rgb << ' ' << a.t_depth << ' ' << a.depth << '\n';
+  for (const TumAssociation& a : rows) out << a.t_rgb << ' ' << a.rgb << ' ' << a.t_depth << ' ' << a.depth << '\n';
   if (!out) throw IoError(path, "write failed");
 }
 

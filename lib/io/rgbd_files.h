@@ -16,7 +16,8 @@
 
 namespace slide {
 
-struct Association {
+// One line of a TUM RGB-D associations.txt: an RGB image and the depth image taken with it.
+struct TumAssociation {
   double t_rgb = 0;
   std::string rgb;  // relative to the dataset folder
   double t_depth = 0;
@@ -36,8 +37,8 @@ struct InstanceMask {
   std::vector<int> object_id;   // ground-truth object of instance i + 1 (0 when unknown)
 };
 
-std::vector<Association> readAssociations(const std::string& path);
-void writeAssociations(const std::string& path, const std::vector<Association>& rows);
+std::vector<TumAssociation> readAssociations(const std::string& path);
+void writeAssociations(const std::string& path, const std::vector<TumAssociation>& rows);
 // TUM "timestamp path" lists (rgb.txt, depth.txt).
 void writeTumImageList(const std::string& path, const std::vector<double>& times, const std::vector<std::string>& files);
 

@@ -32,10 +32,10 @@ class KittiFolderReader : public FrameReader {
 
 class TumFolderReader : public FrameReader {
  public:
-  TumFolderReader(fs::path dir, std::vector<Association> frames) : dir_(std::move(dir)), frames_(std::move(frames)) {}
+  TumFolderReader(fs::path dir, std::vector<TumAssociation> frames) : dir_(std::move(dir)), frames_(std::move(frames)) {}
   LabelledScan scan(std::size_t) const override { throw std::logic_error("a TUM RGB-D folder has no LiDAR scans"); }
   RgbdImages rgbd(std::size_t id) const override {
-    const Association& a = frames_.at(id);
+    const TumAssociation& a = frames_.at(id);
     RgbdImages f;
     f.color = readColorPng((dir_ / a.rgb).string());
     f.depth = readDepthPng((dir_ / a.depth).string());
@@ -46,7 +46,7 @@ class TumFolderReader : public FrameReader {
 
  private:
   fs::path dir_;
-  std::vector<Association> frames_;
+  std::vector<TumAssociation> frames_;
 };
 
 std::vector<double> openKitti(RobotDataset& d) {
@@ -66,10 +66,10 @@ std::vector<double> openKitti(RobotDataset& d) {
 
 std::vector<double> openTum(RobotDataset& d) {
   const fs::path dir(d.path);
-  std::vector<Association> frames = readAssociations((dir / "associations.txt").string());
+  std::vector<TumAssociation> frames = readAssociations((dir / "associations.txt").string());
   if (frames.empty()) throw IoError((dir / "associations.txt").string(), "no frames");
   std::vector<double> t;
-  for (const Association& a : frames) {
+  for (const TumAssociation& a : frames) {
     for (const std::string& f : {a.rgb, a.depth})
       if (!fs::exists(dir / f)) throw IoError((dir / f).string(), "missing file listed in associations.txt");
     t.push_back(a.t_rgb);

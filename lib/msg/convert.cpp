@@ -99,4 +99,35 @@ Object fromMsg(const object_t& m) {
   return o;
 }
 
+keypose_bundle_t toLcm(const KeyPoseBundle& b) {
+  keypose_bundle_t m;
+  m.header.utime = b.utime;
+  m.header.robot = b.robot;
+  m.header.seq = b.seq;
+  m.odom_pose = toMsg(b.odom_pose);
+  m.relative_odom = toMsg(b.relative_odom);
+  for (int i = 0; i < 6; ++i) m.odom_sigma[i] = static_cast<float>(b.odom_sigma[i]);
+  for (const Object& o : b.objects) m.objects.push_back(toMsg(o));
+  m.num_objects = static_cast<int32_t>(m.objects.size());
+  return m;
+}
+
+KeyPoseBundle fromLcm(const keypose_bundle_t& m, std::vector<std::string>* dropped) {
+  KeyPoseBundle b;
+  b.robot = m.header.robot;
+  b.seq = m.header.seq;
+  b.utime = m.header.utime;
+  b.odom_pose = fromMsg(m.odom_pose);
+  b.relative_odom = fromMsg(m.relative_odom);
+  for (int i = 0; i < 6; ++i) b.odom_sigma[i] = m.odom_sigma[i];
+  for (const object_t& o : m.objects) {
+    try {
+      b.objects.push_back(fromMsg(o));
+    } catch (const std::invalid_argument& e) {
+      if (dropped) dropped->push_back(e.what());
+    }
+  }
+  return b;
+}
+
 }  // namespace slide

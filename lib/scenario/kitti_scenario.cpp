@@ -30,7 +30,7 @@ std::vector<Eigen::Vector2d> readPoles(const std::string& path) {
 }
 }  // namespace
 
-Scenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
+GraphScenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
                            int num_robots, double spacing, std::uint32_t seed) {
   if (num_robots < 1) throw std::invalid_argument("makeKittiScenario: num_robots must be at least 1");
   std::mt19937 rng(seed);
@@ -39,7 +39,7 @@ Scenario makeKittiScenario(const std::string& name, const std::string& poses_fil
   for (const Pose& T : lidar)
     if ((T.translation() - keyposes.back().translation()).norm() >= spacing) keyposes.push_back(T);
 
-  Scenario s;
+  GraphScenario s;
   s.name = name;
   s.noise.range = 20.0;
   for (const Eigen::Vector2d& p : readPoles(poles_file)) {

@@ -40,14 +40,14 @@ struct FalseObject {
 };
 }  // namespace
 
-Scenario withRealism(const Scenario& s, const ScenarioRealism& r, const ClassTable& classes, std::uint32_t seed) {
+GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& r, const ClassTable& classes, std::uint32_t seed) {
   for (double v : {r.miss_rate, r.clutter_fraction, r.confusion_rate})
     if (!(v >= 0 && v < 1)) throw std::invalid_argument("withRealism: rates must lie in [0, 1)");
   if (!(r.noise_scale > 0) || r.clutter_max_views < 1)
     throw std::invalid_argument("withRealism: noise_scale must be > 0 and clutter_max_views >= 1");
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
-  Scenario out = s;
+  GraphScenario out = s;
   const ScenarioNoise applied = scaled(s.noise, r.noise_scale);
   for (ScenarioRobot& robot : out.robots) {
     const ScenarioRobot& ideal = s.robots[&robot - out.robots.data()];

@@ -24,7 +24,7 @@ struct ScenarioRealism {
 
 // The scenario re-observed under `realism`. ScenarioRobot::seen holds -1 for a false object's
 // detection. Throws std::invalid_argument on rates outside [0, 1) or a scale <= 0.
-Scenario withRealism(const Scenario& s, const ScenarioRealism& realism, const ClassTable& classes,
+GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& realism, const ClassTable& classes,
                      std::uint32_t seed = 17);
 
 }  // namespace slide

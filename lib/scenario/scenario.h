@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "backend/keypose_bundle.h"
+#include "objects/keypose_bundle.h"
 #include "objects/object.h"
 
 namespace slide {
@@ -33,10 +33,12 @@ struct ScenarioRobot {
   int id = 0;
   std::vector<Pose> truth;              // true key poses in the world frame
   std::vector<KeyPoseBundle> bundles;   // noisy, in the robot's odometry frame
-  std::vector<std::vector<int>> seen;   // per bundle and object: index into Scenario::landmarks
+  std::vector<std::vector<int>> seen;   // per bundle and object: index into GraphScenario::landmarks
 };
 
-struct Scenario {
+// A graph-level scenario: true landmarks and robots' noisy key-pose bundles (sim/scenario.h
+// holds the simulator's worlds and robot runs).
+struct GraphScenario {
   std::string name;
   std::vector<Object> landmarks;        // true landmarks in the world frame (id = index)
   std::vector<ScenarioRobot> robots;    // robots[0] is the host
@@ -69,28 +71,28 @@ std::vector<ScenarioLoopClosure> simulateLoopClosures(const ScenarioRobot& robot
                                                       double radians = 0.005, std::uint32_t seed = 7);
 
 // Indoor: 10 x 20 m room, 150 key poses, 70 furniture ellipsoids, range 4 m.
-Scenario makeIndoorScenario(std::uint32_t seed = 1);
+GraphScenario makeIndoorScenario(std::uint32_t seed = 1);
 // Urban: 200 x 200 m, 300 key poses over 715 m, 250 cars/poles/other, range 15 m.
-Scenario makeUrbanScenario(std::uint32_t seed = 2);
+GraphScenario makeUrbanScenario(std::uint32_t seed = 2);
 // Forest: 400 x 400 m, 1000 key poses over 1430 m in two loops sharing a re-driven edge,
 // 860 trunks within 15 m of the path, range 15 m.
-Scenario makeForestScenario(std::uint32_t seed = 3);
+GraphScenario makeForestScenario(std::uint32_t seed = 3);
 // A long forest mission: copies of the forest tile (its trunks and route) side by side, 400 m
 // apart in x, driven one after the other (each route's end is joined to the next one's start,
 // re-driving both tiles' southern edges), at the forest's key-pose spacing; cut to
 // `num_keyposes`. The first 1000 key poses drive the forest route.
-Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed = 3);
+GraphScenario makeForestChainScenario(int num_keyposes, std::uint32_t seed = 3);
 // A long mission that returns to its start: as many chained forest tiles as the key poses
 // reach, driven out as makeForestChainScenario does and then back west along y = 100 m (every
 // tile's southern edge and the roads between them, all driven before) to the first tile's
 // start, which is the last key pose. Revisits: each tile's re-driven shared edge, the whole
 // way back, and the start. The spacing is the forest's stretched to fit (by under 4 % from
 // 4,000 key poses on; 1,000 key poses are exactly the forest route).
-Scenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed = 3);
+GraphScenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed = 3);
 // KITTI: the real LiDAR path of a sequence (poses file, KITTI camera layout) cut into
 // `num_robots` consecutive robots, key poses every `spacing` metres, observing the real pole
 // map (csv "x,y") as cylinders within 20 m. Throws IoError / std::runtime_error on bad files.
-Scenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
+GraphScenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
                            int num_robots = 3, double spacing = 2.0, std::uint32_t seed = 5);
 
 }  // namespace slide

@@ -65,9 +65,9 @@ Object trunk(int class_id, const Eigen::Vector2d& p, double radius, double lengt
   return o;
 }
 
-Scenario finish(const std::string& name, std::vector<Object> landmarks, const std::vector<Pose>& path,
+GraphScenario finish(const std::string& name, std::vector<Object> landmarks, const std::vector<Pose>& path,
                 const ScenarioNoise& noise, std::mt19937& rng) {
-  Scenario s;
+  GraphScenario s;
   s.name = name;
   s.noise = noise;
   s.landmarks = std::move(landmarks);
@@ -76,7 +76,7 @@ Scenario finish(const std::string& name, std::vector<Object> landmarks, const st
 }
 }  // namespace
 
-Scenario makeIndoorScenario(std::uint32_t seed) {
+GraphScenario makeIndoorScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   const std::vector<Eigen::Vector2d> lap = {{2, 2}, {8, 2}, {8, 18}, {2, 18}, {2, 2}, {8, 2}, {8, 18}, {5, 18}};
   std::vector<Object> lms;
@@ -93,7 +93,7 @@ Scenario makeIndoorScenario(std::uint32_t seed) {
   return finish("indoor", std::move(lms), pathAlongWaypoints(lap, 150, 0.0), n, rng);
 }
 
-Scenario makeUrbanScenario(std::uint32_t seed) {
+GraphScenario makeUrbanScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   // A 150 m block driven around once (600 m), then its first street again (115 m): 715 m.
   const std::vector<Eigen::Vector2d> route = {{25, 25}, {175, 25}, {175, 175}, {25, 175}, {25, 25}, {140, 25}};
@@ -136,14 +136,14 @@ std::vector<Object> forestTrunks(std::mt19937& rng) {
   return lms;
 }
 
-Scenario forestScenario(const std::string& name, std::vector<Object> lms, const std::vector<Pose>& path, std::mt19937& rng) {
+GraphScenario forestScenario(const std::string& name, std::vector<Object> lms, const std::vector<Pose>& path, std::mt19937& rng) {
   ScenarioNoise n;
   n.range = 15.0;
   return finish(name, std::move(lms), path, n, rng);
 }
 }  // namespace
 
-Scenario makeForestScenario(std::uint32_t seed) {
+GraphScenario makeForestScenario(std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::vector<Object> lms = forestTrunks(rng);
   return forestScenario("forest", std::move(lms), pathAlongWaypoints(forestRoute(0), 1000, 0.0), rng);
@@ -175,7 +175,7 @@ double routeLength(const std::vector<Eigen::Vector2d>& route) {
 }
 }  // namespace
 
-Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
+GraphScenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
   std::mt19937 rng(seed);
   const double tile_length = 1430.0 + kTileStep;  // one route and the road to the next tile's start
   const int tiles = std::max(1, static_cast<int>(std::ceil(num_keyposes * kForestSpacing / tile_length)) + 1);
@@ -188,7 +188,7 @@ Scenario makeForestChainScenario(int num_keyposes, std::uint32_t seed) {
   return forestScenario("forest_chain", std::move(lms), path, rng);
 }
 
-Scenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed) {
+GraphScenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed) {
   std::mt19937 rng(seed);
   const int n = std::max(2, num_keyposes);
   // Out through `tiles` tiles, back along y = 100 m from the last tile's start to the first's.

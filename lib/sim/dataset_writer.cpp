@@ -88,7 +88,7 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
   writeRobotYaml((root / "robot.yaml").string(), sc, r, s);
 
   GenerationStats stats;
-  std::vector<Association> assoc;
+  std::vector<TumAssociation> assoc;
   std::vector<std::string> rgb_files, depth_files;
   if (lidar) {
     fs::create_directories(root / "velodyne");

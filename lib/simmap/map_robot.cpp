@@ -10,7 +10,6 @@
 #include "emulator/rgbd_emulator.h"
 #include "sim/lidar.h"
 #include "sim/ray_caster.h"
-#include "simmap/bundle_convert.h"
 
 namespace slide {
 
@@ -28,7 +27,7 @@ RobotMapping mapRobot(const Scenario& sc, int robot, const SensorRig& rig, const
   const LidarModel lidar_model = lidar ? lidarModel(rig.model) : LidarModel{};
   const CameraModel camera = lidar ? CameraModel{} : cameraModel(rig.model);
   const LabelledSegmenter segmenter(setup.classes, setup.frontend.labelled);
-  KeyposeBundler bundler(Tracker(setup.classes, setup.frontend.tracker, setup.frontend.fit), setup.frontend.keypose);
+  KeyPoseBundler bundler(Tracker(setup.classes, setup.frontend.tracker, setup.frontend.fit), setup.frontend.keypose);
   Optimizer optimizer(setup.backend, setup.classes, run.id);
 
   bool any_moving = false;
@@ -70,11 +69,12 @@ RobotMapping mapRobot(const Scenario& sc, int robot, const SensorRig& rig, const
     fi.odom_pose = run.odometry[k];
     fi.instances = lidar ? segmenter.segment(scan, issues) : segmentRgbd(frame, setup.classes, setup.frontend.rgbd, issues);
     for (Instance& in : fi.instances) in.points = transformCloud(rig.T_body_sensor, in.points);
-    const auto bundle = bundler.process(fi, issues);
+    auto bundle = bundler.process(fi, issues);
     out.input_issues += issues.total();
     const double c2 = cpuS();
     if (bundle) {
-      const UpdateResult u = optimizer.addBundle(toBackendBundle(*bundle, run.id));
+      bundle->robot = run.id;
+      const UpdateResult u = optimizer.addBundle(*bundle);
       out.rejected_bundles += !u.accepted;
     }
     out.sim_cpu_s += c1 - c0;

@@ -19,7 +19,7 @@ constexpr std::uint8_t kChained = 4;        // utime, odometry pose and sigma re
 constexpr std::uint8_t kRelativeFloat = 8;  // relative odometry as float32 (too large to quantise)
 constexpr std::uint8_t kSigmaFloat = 16;    // sigma written as float32 (out of the log-scale range)
 constexpr std::uint8_t kTeam = 32;          // objects as the team bus carries them (ObjectListKind::TeamBundle)
-constexpr std::uint8_t kGap = 64;           // a varint follows the flags: Bundle::gap (>= 1)
+constexpr std::uint8_t kGap = 64;           // a varint follows the flags: KeyPoseBundle::gap (>= 1)
 constexpr std::uint8_t kAllFlags = kFirst | kHasSigma | kChained | kRelativeFloat | kSigmaFloat | kTeam | kGap;
 
 constexpr double kMetre = 1e-3, kRadian = 1e-4;
@@ -135,10 +135,11 @@ Pose readPose(ByteReader& r, const char* what) {
 
 using SigmaCodes = std::array<std::uint8_t, 6>;
 
-std::optional<SigmaCodes> quantiseSigmas(const std::array<float, 6>& sigma) {
+// Sigmas travel as float32 (keypose_bundle_t): quantised from their float values.
+std::optional<SigmaCodes> quantiseSigmas(const Vector6d& sigma) {
   SigmaCodes q;
-  for (std::size_t i = 0; i < 6; ++i) {
-    const auto c = quantiseSigma(sigma[i]);
+  for (int i = 0; i < 6; ++i) {
+    const auto c = quantiseSigma(static_cast<float>(sigma[i]));
     if (!c) return std::nullopt;
     q[i] = *c;
   }
@@ -157,11 +158,11 @@ std::optional<T> finish(ByteReader& r, T value, std::string* error) {
 
 }  // namespace
 
-BundleContext BundleContext::of(const Bundle& b, const BundleContext* chained_to) {
+BundleContext BundleContext::of(const KeyPoseBundle& b, const BundleContext* chained_to) {
   return {b.utime, b.odom_pose, b.odom_sigma, b.relative_odom, chained_to ? wrappingSub(b.utime, chained_to->utime) : 0};
 }
 
-Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail detail) {
+Bytes encodeBundle(const KeyPoseBundle& b, const BundleContext* previous, BundleDetail detail) {
   const bool team = detail == BundleDetail::Team;
   std::optional<Quantised> chained_step;
   if (!b.first && b.gap == 0 && previous) {
@@ -192,16 +193,16 @@ Bytes encodeBundle(const Bundle& b, const BundleContext* previous, BundleDetail 
   if (sigma && sigma_codes)
     for (std::uint8_t q : *sigma_codes) w.u8(q);
   else if (sigma)
-    for (float s : b.odom_sigma) w.f32(s);
+    for (double s : b.odom_sigma) w.f32(static_cast<float>(s));
   writeObjects(w, b.objects, team ? ObjectListKind::TeamBundle : ObjectListKind::Bundle);
   return w.take();
 }
 
-std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
+std::optional<KeyPoseBundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
                                    const BundleContext* previous, bool* needs_previous) {
   ByteReader r(data);
-  Bundle b;
-  b.origin = origin;
+  KeyPoseBundle b;
+  b.robot = origin;
   b.seq = seq;
   const std::uint8_t format = r.u8();
   if (r.ok() && format != kBundleFormat) r.fail("unknown bundle format " + std::to_string(format));
@@ -233,12 +234,12 @@ std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::
   if (needs_previous) *needs_previous = chained && !previous;
   if (r.ok() && (flags & kSigmaFloat) && !(flags & kHasSigma)) r.fail("float32 sigma flag without a sigma");
   if (flags & kSigmaFloat) {
-    for (float& s : b.odom_sigma) {
+    for (double& s : b.odom_sigma) {
       s = r.f32();
       if (r.ok() && !std::isfinite(s)) r.fail("non-finite odometry sigma");
     }
   } else if (flags & kHasSigma) {
-    for (float& s : b.odom_sigma) s = static_cast<float>(sigmaOf(r.u8()));
+    for (double& s : b.odom_sigma) s = static_cast<float>(sigmaOf(r.u8()));
   }
   readObjects(r, &b.objects, (flags & kTeam) ? ObjectListKind::TeamBundle : ObjectListKind::Bundle);
   return finish(r, std::move(b), error);

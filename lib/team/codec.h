@@ -25,8 +25,9 @@
 #include <optional>
 #include <string>
 
-#include "team/bundle.h"
+#include "objects/keypose_bundle.h"
 #include "team/byte_io.h"
+#include "team/shared_map.h"
 
 namespace slide::team {
 
@@ -35,15 +36,15 @@ namespace slide::team {
 struct BundleContext {
   std::int64_t utime = 0;
   Pose odom_pose = Pose::Identity();
-  std::array<float, 6> odom_sigma{};
+  Vector6d odom_sigma = Vector6d::Zero();
   Pose relative_odom = Pose::Identity();  // that bundle's step
   std::int64_t dt = 0;                    // its utime step (0: not chained)
   // `chained_to`: the context b's encoding is chained to (null when self-contained, see
   // chainedBundle()). Sender and receivers build contexts alike, from decoded bundles.
-  static BundleContext of(const Bundle& b, const BundleContext* chained_to);
+  static BundleContext of(const KeyPoseBundle& b, const BundleContext* chained_to);
 };
 
-// A bundle after a gap (Bundle::gap > 0) is self-contained and writes the gap's length.
+// A bundle after a gap (KeyPoseBundle::gap > 0) is self-contained and writes the gap's length.
 // `previous`: the decoded context of the origin's bundle seq-1, when known. If the bundle's
 // relative odometry agrees with previous->odom_pose^-1 * odom_pose (as a tracker computes it)
 // to within 2 mm and 2e-4 rad, the bundle is chained: the odometry pose derived from the
@@ -55,11 +56,11 @@ struct BundleContext {
 // detector confidence and the tracks' observation counts (nothing downstream of peer sync
 // reads them for a peer's bundle; they decode as 1.0 and 1).
 enum class BundleDetail { Full, Team };
-Bytes encodeBundle(const Bundle& b, const BundleContext* previous = nullptr, BundleDetail detail = BundleDetail::Full);
+Bytes encodeBundle(const KeyPoseBundle& b, const BundleContext* previous = nullptr, BundleDetail detail = BundleDetail::Full);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.
 // A chained bundle needs `previous`; without it the result has only its objects and flags
 // right (utime, odometry and sigma are not) and *needs_previous = true.
-std::optional<Bundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
+std::optional<KeyPoseBundle> decodeBundle(const Bytes& data, std::int32_t origin, std::int32_t seq, std::string* error,
                                    const BundleContext* previous = nullptr, bool* needs_previous = nullptr);
 
 // True when the encoding takes utime and pose from bundle seq-1 (reads the flags only).

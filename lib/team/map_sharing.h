@@ -13,11 +13,11 @@
 #include <variant>
 #include <vector>
 
-#include "team/bundle.h"
 #include "team/byte_io.h"
 #include "team/codec.h"
 #include "team/drop_reason.h"
 #include "team/messages.h"
+#include "team/shared_map.h"
 
 namespace slide::team {
 

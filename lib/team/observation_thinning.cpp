@@ -15,9 +15,9 @@ bool ObservationThinning::worthSharing(const Object& o, const Pose& odom_pose) c
   return Eigen::AngleAxisd(moved.linear()).angle() >= policy_.turn_deg * M_PI / 180.0;
 }
 
-Bundle ObservationThinning::thin(const Bundle& b) {
+KeyPoseBundle ObservationThinning::thin(const KeyPoseBundle& b) {
   if (!policy_.enabled) return b;
-  Bundle out = b;
+  KeyPoseBundle out = b;
   out.objects.clear();
   for (const Object& o : b.objects) {
     if (!worthSharing(o, b.odom_pose)) continue;

@@ -10,7 +10,7 @@
 // stream (after a restart, from the journal) gives the same shared bundles, byte for byte.
 #include <map>
 
-#include "team/bundle.h"
+#include "objects/keypose_bundle.h"
 
 namespace slide::team {
 
@@ -25,7 +25,7 @@ class ObservationThinning {
  public:
   explicit ObservationThinning(ThinningPolicy policy) : policy_(policy) {}
   // The bundle as shared: `b` with only the objects worth sharing (all when disabled).
-  Bundle thin(const Bundle& b);
+  KeyPoseBundle thin(const KeyPoseBundle& b);
 
  private:
   struct Shared {

@@ -116,8 +116,8 @@ std::vector<std::string> PeerSyncNode::trafficSummary(Micros now) const {
 
 // ---- own input ----
 
-std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
-  if (b.origin != cfg_.robot) return drop(Drop::WrongOrigin), Drop::WrongOrigin;
+std::optional<Drop> PeerSyncNode::addOwnBundle(KeyPoseBundle b, Micros now) {
+  if (b.robot != cfg_.robot) return drop(Drop::WrongOrigin), Drop::WrongOrigin;
   auto it = db_.held().find(cfg_.robot);
   const bool have_any = it != db_.held().end() && !it->second.empty();
   if (have_any) {
@@ -143,14 +143,14 @@ std::optional<Drop> PeerSyncNode::addOwnBundle(Bundle b, Micros now) {
     b.gap = 0;
   }
   b.first = !have_any;
-  const std::optional<BundleContext> previous = contextOf(b.origin, b.seq - 1);
+  const std::optional<BundleContext> previous = contextOf(b.robot, b.seq - 1);
   ObservationDb::Entry e;
   e.data = encodeBundle(b, previous ? &*previous : nullptr);  // journalled in full
   Bytes shared = sharedEncoding(b.seq, e.data);
   e.first = b.first;
   e.step_m = static_cast<float>(b.first ? 0.0 : b.relative_odom.translation().norm());
   // Not journalled (a full disk): not held either; the next one bridges the gap to it.
-  if (!db_.add(b.origin, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
+  if (!db_.add(b.robot, b.seq, std::move(e))) return drop(Drop::JournalWrite), Drop::JournalWrite;
   own_shared_[b.seq] = std::move(shared);
   own_added_at_[b.seq] = now;
   return std::nullopt;
@@ -656,7 +656,7 @@ std::optional<BundleContext> PeerSyncNode::contextOf(std::int32_t origin, std::i
   return context;
 }
 
-std::optional<Bundle> PeerSyncNode::nextDelivery() {
+std::optional<KeyPoseBundle> PeerSyncNode::nextDelivery() {
   while (const auto next = db_.nextToDeliver(cfg_.robot)) {
     const auto [origin, seq] = *next;
     std::string error;

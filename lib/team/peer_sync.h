@@ -11,18 +11,19 @@
 #include <vector>
 
 #include "app/channels.h"
+#include "objects/keypose_bundle.h"
 #include "team/bandwidth.h"
 #include "team/bundle_pack.h"
-#include "team/bundle.h"
+#include "team/codec.h"
 #include "team/counters.h"
 #include "team/drop_reason.h"
-#include "team/message_auth.h"
-#include "team/codec.h"
 #include "team/map_sharing.h"
+#include "team/message_auth.h"
 #include "team/observation_db.h"
 #include "team/observation_thinning.h"
 #include "team/rate_limiter.h"
 #include "team/reassembly.h"
+#include "team/shared_map.h"
 #include "team/sync_config.h"
 
 namespace slide::team {
@@ -50,7 +51,7 @@ class PeerSyncNode {
   ~PeerSyncNode();
 
   // The robot's own key-pose bundle; returns the reason when refused.
-  std::optional<Drop> addOwnBundle(Bundle b, Micros now);
+  std::optional<Drop> addOwnBundle(KeyPoseBundle b, Micros now);
   // The robot's current object map (its version is assigned here).
   void setOwnMap(SharedMap m, Micros now);
 
@@ -67,7 +68,7 @@ class PeerSyncNode {
   // until confirmDelivered() records it in the journal. A held bundle that does not decode
   // with its predecessor's context is stepped over (journalled as passed) and counted as
   // Drop::Undeliverable; absent seqs are stepped over too.
-  std::optional<Bundle> nextDelivery();
+  std::optional<KeyPoseBundle> nextDelivery();
   void confirmDelivered(std::int32_t origin, std::int32_t seq);
   // Peers' maps received since the last call (newest version per robot).
   std::vector<SharedMap> takeMaps();

@@ -67,8 +67,8 @@ void SimNetwork::run(Micros dt, Micros tick) {
       for (const auto& a : out.acks) transmit(i, a);
       for (const auto& c : out.chunks) transmit(i, c);
       while (auto b = nodes_[i]->nextDelivery()) {
-        delivered_[i].emplace_back(b->origin, b->seq);
-        nodes_[i]->confirmDelivered(b->origin, b->seq);
+        delivered_[i].emplace_back(b->robot, b->seq);
+        nodes_[i]->confirmDelivered(b->robot, b->seq);
         delivered_bundles_[i].push_back(std::move(*b));
       }
     }

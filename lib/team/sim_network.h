@@ -47,7 +47,7 @@ class SimNetwork {
 
   // Every bundle each node handed to its robot, in order, as (origin, seq).
   const std::vector<std::pair<std::int32_t, std::int32_t>>& delivered(std::size_t i) const { return delivered_[i]; }
-  const std::vector<Bundle>& deliveredBundles(std::size_t i) const { return delivered_bundles_[i]; }
+  const std::vector<KeyPoseBundle>& deliveredBundles(std::size_t i) const { return delivered_bundles_[i]; }
   // Bytes put on the medium (each transmission counted once, LCM framing included).
   double bytesSent() const { return bytes_sent_; }
   std::size_t messagesSent() const { return messages_sent_; }
@@ -76,7 +76,7 @@ class SimNetwork {
   std::vector<Micros> clock_offset_;
   std::priority_queue<InFlight, std::vector<InFlight>, std::greater<InFlight>> medium_;
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> delivered_;
-  std::vector<std::vector<Bundle>> delivered_bundles_;
+  std::vector<std::vector<KeyPoseBundle>> delivered_bundles_;
   TeamChannels channels_;
   double bytes_sent_ = 0;
   std::size_t messages_sent_ = 0;

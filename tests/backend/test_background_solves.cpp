@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "io/tum_trajectory.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "optimizer_node.h"
 #include "scenario/scenario.h"
 #include "scenario_messages.h"
@@ -67,7 +67,7 @@ void feedOwn(OptimizerNode& node, const std::vector<slide::testing::RawMessage>&
 }  // namespace
 
 TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
-  const Scenario s = makeUrbanScenario();
+  const GraphScenario s = makeUrbanScenario();
   const auto& bundles = s.robots[0].bundles;
   Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
   Gate gate;
@@ -117,7 +117,7 @@ TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
 // its error is spread along its loop: they would pull the newest key poses alone onto it and
 // bend the trajectory there by the whole accumulated drift.
 TEST(BackgroundSolves, ALoopClosureWaitingForASolveNeverBendsTheNewestKeyPoses) {
-  const Scenario s = makeUrbanScenario();
+  const GraphScenario s = makeUrbanScenario();
   const ScenarioRobot& robot = s.robots[0];
   const std::vector<ScenarioLoopClosure> closures = simulateLoopClosures(robot);
   ASSERT_FALSE(closures.empty());
@@ -176,7 +176,7 @@ TEST(BackgroundSolves, StopWritesTheOutputsWithoutWaitingForARunningSolve) {
   gate.waitEntered(1);
   node.stop(0.5);  // returns while the solve is still held at its start
   EXPECT_EQ(tumLines(dir + "/trajectory_robot0.txt"), 60);
-  const ObjectMap map = readObjectMapText(dir + "/map_robot0.txt", ClassTable::loadDefault()).map;
+  const ObjectMap map = readObjectMapText(dir + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map;
   EXPECT_EQ(static_cast<int>(map.size()), node.optimizer().numLandmarks());
   EXPECT_GT(map.size(), 10u);
   gate.release();  // the cancelled solve ends; its result is never taken in

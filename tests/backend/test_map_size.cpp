@@ -10,7 +10,7 @@
 using namespace slide;
 
 TEST(MapSize, OwnMapEncodedAndFramesCounted) {
-  const Scenario s = makeIndoorScenario();
+  const GraphScenario s = makeIndoorScenario();
   ASSERT_EQ(s.robots.size(), 1u);
   const std::vector<Pose>& truth = s.robots[0].truth;
   std::vector<Pose> lidar;  // a frame between every two key poses, and one before the first

@@ -16,8 +16,8 @@ namespace {
 
 // The indoor world, driven by two robots: robot 0 the first 90 key poses, robot 1 poses
 // 60..149 (their paths overlap), each in its own odometry frame.
-Scenario twoRobotIndoor() {
-  Scenario s = makeIndoorScenario(4);
+GraphScenario twoRobotIndoor() {
+  GraphScenario s = makeIndoorScenario(4);
   const std::vector<Pose> path = s.robots[0].truth;
   std::mt19937 rng(9);
   s.robots.clear();
@@ -35,7 +35,7 @@ double maxTranslationGap(const std::vector<TrajectoryPose>& a, const std::vector
 }  // namespace
 
 TEST(BackendOptimizer, IncrementalEqualsBatchAfterFullSolve) {
-  const Scenario s = makeIndoorScenario(1);
+  const GraphScenario s = makeIndoorScenario(1);
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   int full = 0;
   for (const KeyPoseBundle& b : s.robots[0].bundles) {
@@ -59,19 +59,19 @@ TEST(BackendOptimizer, IncrementalEqualsBatchAfterFullSolve) {
 }
 
 TEST(BackendOptimizer, KeyPosesNeverReceivedAreCounted) {
-  const Scenario s = makeIndoorScenario(2);
+  const GraphScenario s = makeIndoorScenario(2);
   const auto& in = s.robots[0].bundles;
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 5; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
-  EXPECT_EQ(opt.missingKeyposes(), 0);
+  EXPECT_EQ(opt.missingKeyPoses(), 0);
   // A flood the daemon could not keep up with: it saw only every 10th bundle.
   for (int k = 10; k < 60; k += 10) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
-  EXPECT_EQ(opt.missingKeyposes(), 5 + 4 * 9);
+  EXPECT_EQ(opt.missingKeyPoses(), 5 + 4 * 9);
   EXPECT_EQ(opt.numKeyPoses(), 10);
 }
 
 TEST(BackendOptimizer, RejectsBadInputAndStaysConsistent) {
-  const Scenario s = makeIndoorScenario(2);
+  const GraphScenario s = makeIndoorScenario(2);
   const auto& in = s.robots[0].bundles;
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 10; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
@@ -127,7 +127,7 @@ TEST(BackendOptimizer, RejectsBadInputAndStaysConsistent) {
 }
 
 TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
-  const Scenario s = twoRobotIndoor();
+  const GraphScenario s = twoRobotIndoor();
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   const auto& a = s.robots[0].bundles;
   const auto& b = s.robots[1].bundles;
@@ -195,7 +195,7 @@ TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
 // again: its key poses land where they truly were, the host's own trajectory is as if the
 // wrong merge had never happened.
 TEST(BackendOptimizer, AliasedMergeIsUndoneWhenTheRightTransformArrives) {
-  const Scenario s = twoRobotIndoor();
+  const GraphScenario s = twoRobotIndoor();
   const auto& a = s.robots[0].bundles;
   const auto& b = s.robots[1].bundles;
   Optimizer solo(BackendConfig{}, ClassTable::loadDefault(), 0);
@@ -230,7 +230,7 @@ TEST(BackendOptimizer, AliasedMergeIsUndoneWhenTheRightTransformArrives) {
 // Issue 15, indoor: an intra-robot loop closure between look-alike rooms (10 m and a quarter
 // turn away from what odometry says) is refused; the true one is taken.
 TEST(BackendOptimizer, LoopClosureOutsideTheOdometryEnvelopeIsRefused) {
-  const Scenario s = twoRobotIndoor();
+  const GraphScenario s = twoRobotIndoor();
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   for (const auto& x : s.robots[0].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
   const Pose true_0_50 = s.robots[0].truth[0].inverse() * s.robots[0].truth[50];
@@ -250,7 +250,7 @@ TEST(BackendOptimizer, RefinementsStopMovingAPeerOnceSharedLandmarksAlignIt) {
   // Place recognition keeps re-detecting a merged peer's transform from maps that already hold
   // the merge; once the two robots share landmarks in the graph, such a refinement is the same
   // observations counted twice, and it leaves the estimate alone. Before that it moves the anchor.
-  const Scenario s = twoRobotIndoor();
+  const GraphScenario s = twoRobotIndoor();
   const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
   const Pose off = truth * poseFromXyzYaw(0.8, -0.5, 0, 0.03);  // within the remerge limits
   for (int until : {1000000, 10}) {

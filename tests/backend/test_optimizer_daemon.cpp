@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "io/tum_trajectory.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "scenario_messages.h"
 #include "team/journal.h"
 #include "slide/object_map_t.hpp"
@@ -74,9 +74,9 @@ pid_t startOptimizer(const std::vector<std::string>& args) {
 
 // A long mission's own bundles (forest tiles chained) as LCM bytes.
 std::vector<std::vector<uint8_t>> longMission(int keyposes) {
-  const Scenario s = makeForestChainScenario(keyposes);
+  const GraphScenario s = makeForestChainScenario(keyposes);
   std::vector<std::vector<uint8_t>> out;
-  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toMsg(b)));
+  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toLcm(b)));
   return out;
 }
 
@@ -209,7 +209,7 @@ TEST(OptimizerDaemon, StopDuringALongMissionWritesTheOutputsWithinTwoSeconds) {
   EXPECT_TRUE(waitExit(pid, 10, &status)) << "still running 10 s after SIGTERM";
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   EXPECT_EQ(readTum(tum).size(), 2000u);
-  EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault()).map.size(), 1000u);
+  EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map.size(), 1000u);
   std::filesystem::remove_all(dir);
 }
 
@@ -242,7 +242,7 @@ TEST(OptimizerDaemon, SigkillLeavesTheLastPeriodicOutputWhole) {
     const std::size_t poses = readTum(tum).size();  // throws on a cut line
     EXPECT_GE(poses, 1000u);
     EXPECT_LE(poses, bundles.size());
-    EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault()).map.size(), 500u);
+    EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map.size(), 500u);
   }
   std::filesystem::remove_all(dir);
 }

@@ -45,10 +45,10 @@ TEST(OptimizerPeers, FarObjectInAHeldPeerBundleIsDroppedAlsoAfterReplay) {
   for (std::size_t i = 0; i < msgs.size() && !far_at; ++i)
     if (msgs[i].channel == "PEER_BUNDLE" && ++peer_seen == 3) far_at = i;
   std::vector<std::string> warnings;
-  KeyPoseBundle b = fromMsg(decoded(msgs[far_at]), warnings);
+  KeyPoseBundle b = fromLcm(decoded(msgs[far_at]), &warnings);
   ASSERT_FALSE(b.objects.empty());
   b.objects.push_back(transformObject(poseFromXyzYaw(1e5, 0, 0, 0), b.objects[0]));
-  msgs[far_at].bytes = slide::testing::encodeMsg(toMsg(b));
+  msgs[far_at].bytes = slide::testing::encodeMsg(toLcm(b));
   std::size_t merge_at = 0;
   for (std::size_t i = 0; i < msgs.size() && !merge_at; ++i)
     if (msgs[i].channel == "LOOP_CLOSURE") merge_at = i;
@@ -85,7 +85,7 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
   for (const auto& m : msgs)
     if (m.channel == "PEER_BUNDLE") {
       std::vector<std::string> w;
-      peer.push_back(fromMsg(decoded(m), w));
+      peer.push_back(fromLcm(decoded(m), &w));
     }
   ASSERT_GE(peer.size(), 8u);
   // 100 robot ids, 8 bundles each: 2 peers of 5 held bundles are kept.
@@ -93,7 +93,7 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
     for (int k = 0; k < 8; ++k) {
       KeyPoseBundle b = peer[static_cast<std::size_t>(k)];
       b.robot = id;
-      const auto bytes = slide::testing::encodeMsg(toMsg(b));
+      const auto bytes = slide::testing::encodeMsg(toLcm(b));
       node.handle("PEER_BUNDLE", bytes.data(), static_cast<int>(bytes.size()));
     }
   EXPECT_EQ(node.optimizer().numHeld(), 10);

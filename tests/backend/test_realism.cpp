@@ -10,7 +10,7 @@ struct Counts {
   std::size_t detections = 0, false_detections = 0, confused = 0;
 };
 
-Counts count(const Scenario& s) {
+Counts count(const GraphScenario& s) {
   Counts c;
   for (const ScenarioRobot& r : s.robots)
     for (std::size_t k = 0; k < r.bundles.size(); ++k)
@@ -23,8 +23,8 @@ Counts count(const Scenario& s) {
 }
 
 TEST(ScenarioRealism, NoneKeepsEveryDetectionOfEveryTrueObject) {
-  const Scenario ideal = makeIndoorScenario();
-  const Scenario same = withRealism(ideal, {}, ClassTable::loadDefault());
+  const GraphScenario ideal = makeIndoorScenario();
+  const GraphScenario same = withRealism(ideal, {}, ClassTable::loadDefault());
   const Counts a = count(ideal), b = count(same);
   EXPECT_EQ(a.detections, b.detections);
   EXPECT_EQ(b.false_detections, 0u);
@@ -32,13 +32,13 @@ TEST(ScenarioRealism, NoneKeepsEveryDetectionOfEveryTrueObject) {
 }
 
 TEST(ScenarioRealism, MissesFalseObjectsAndConfusionComeAtTheirRates) {
-  const Scenario ideal = makeIndoorScenario();
+  const GraphScenario ideal = makeIndoorScenario();
   const ClassTable classes = ClassTable::loadDefault();
   ScenarioRealism r;
   r.miss_rate = 0.2;
   r.clutter_fraction = 0.15;
   r.confusion_rate = 0.1;
-  const Scenario s = withRealism(ideal, r, classes);
+  const GraphScenario s = withRealism(ideal, r, classes);
   const Counts a = count(ideal), b = count(s);
   const double true_kept = static_cast<double>(b.detections - b.false_detections) / a.detections;
   EXPECT_NEAR(true_kept, 0.8, 0.03);
@@ -53,10 +53,10 @@ TEST(ScenarioRealism, MissesFalseObjectsAndConfusionComeAtTheirRates) {
 }
 
 TEST(ScenarioRealism, NoiseTheEstimatorIsNotToldOf) {
-  const Scenario ideal = makeUrbanScenario();
+  const GraphScenario ideal = makeUrbanScenario();
   ScenarioRealism r;
   r.noise_scale = 2.0;
-  const Scenario s = withRealism(ideal, r, ClassTable::loadDefault());
+  const GraphScenario s = withRealism(ideal, r, ClassTable::loadDefault());
   ASSERT_EQ(s.robots[0].bundles.size(), ideal.robots[0].bundles.size());
   // The bundles report the nominal odometry sigmas while the steps' errors are twice as large.
   double sq_ideal = 0, sq = 0;
@@ -70,7 +70,7 @@ TEST(ScenarioRealism, NoiseTheEstimatorIsNotToldOf) {
 }
 
 TEST(ScenarioRealism, RatesOutsideTheirRangeAreRefused) {
-  const Scenario ideal = makeIndoorScenario();
+  const GraphScenario ideal = makeIndoorScenario();
   const ClassTable classes = ClassTable::loadDefault();
   ScenarioRealism r;
   r.miss_rate = 1.0;

@@ -52,7 +52,7 @@ TEST(RecordedFailures, AMergedPeersFrameKeepsItsHeight) {
       keypose_bundle_t m;
       ASSERT_GE(m.decode(in.bytes.data(), 0, static_cast<int>(in.bytes.size())), 0);
       std::vector<std::string> warnings;
-      const KeyPoseBundle b = fromMsg(m, warnings);
+      const KeyPoseBundle b = fromLcm(m, &warnings);
       odom_of[{b.robot, b.seq}] = b.odom_pose;
     }
     node.handle(in.channel, in.bytes.data(), static_cast<int>(in.bytes.size()));

@@ -164,7 +164,7 @@ TEST(Messages, FrameInstances) {
   EXPECT_EQ(roundTrip(m).instances[1].xyz[1][2], 2.0f);
 }
 
-TEST(Messages, KeyposeBundleTrajectoryMap) {
+TEST(Messages, KeyPoseBundleTrajectoryMap) {
   keypose_bundle_t b;
   b.header = header(1, 17);
   b.odom_pose = toMsg(poseFromXyzYaw(10, 0, 0, 0.1));
@@ -191,6 +191,48 @@ TEST(Messages, KeyposeBundleTrajectoryMap) {
   map.objects = someObjects();
   map.num_objects = 3;
   EXPECT_EQ(roundTrip(map).objects[2].num_ellipsoid, 1);
+}
+
+TEST(Messages, KeyPoseBundleConvertsBothWaysAndDropsModellessObjects) {
+  KeyPoseBundle b;
+  b.robot = 2;
+  b.seq = 7;
+  b.utime = 123456;
+  b.odom_pose = poseFromXyzYaw(10, 2, 0.5, 0.3);
+  b.relative_odom = poseFromXyzYaw(1, 0, 0, 0.01);
+  b.odom_sigma << 0.01f, 0.02f, 0.03f, 0.001f, 0.002f, 0.003f;
+  Object car;
+  car.id = 4;
+  car.class_id = 10;
+  car.model = Cuboid{poseFromXyzYaw(3, 1, 0.8, 0.2), {4.5, 1.8, 1.5}};
+  Object trunk;
+  trunk.id = 5;
+  trunk.class_id = 71;
+  trunk.model = Cylinder{{1, 2, 0}, Eigen::Vector3d::UnitZ(), 0.2, 6};
+  b.objects = {car, trunk};
+  keypose_bundle_t m = roundTrip(toLcm(b));
+  EXPECT_EQ(m.header.robot, 2);
+  EXPECT_EQ(m.num_objects, 2);
+  std::vector<std::string> dropped;
+  const KeyPoseBundle back = fromLcm(m, &dropped);
+  EXPECT_TRUE(dropped.empty());
+  EXPECT_EQ(back.robot, 2);
+  EXPECT_EQ(back.seq, 7);
+  EXPECT_EQ(back.utime, 123456);
+  EXPECT_TRUE(back.odom_pose.isApprox(b.odom_pose, 1e-12));
+  EXPECT_TRUE(back.relative_odom.isApprox(b.relative_odom, 1e-12));
+  EXPECT_EQ(back.odom_sigma, b.odom_sigma);  // float values travel exactly
+  ASSERT_EQ(back.objects.size(), 2u);
+  EXPECT_EQ(back.objects[1].id, 5);
+  EXPECT_EQ(back.objects[1].shape(), Shape::Cylinder);
+  // An object without a model is left out and named; the rest of the bundle stays.
+  m.objects[0].num_cuboid = 0;
+  m.objects[0].cuboid.clear();
+  const KeyPoseBundle rest = fromLcm(m, &dropped);
+  ASSERT_EQ(rest.objects.size(), 1u);
+  EXPECT_EQ(rest.objects[0].id, 5);
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_NE(dropped[0].find("4"), std::string::npos) << dropped[0];
 }
 
 TEST(Messages, LoopClosure) {

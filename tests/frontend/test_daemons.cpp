@@ -18,7 +18,7 @@
 #include <map>
 #include <thread>
 
-#include "frontend_msg/frontend_convert.h"
+#include "msg/frontend_convert.h"
 #include "msg/convert.h"
 #include "slide/odometry_t.hpp"
 #include "drive_by.h"
@@ -75,7 +75,7 @@ void pump(lcm::LCM& lcm, double seconds) {
 }
 }  // namespace
 
-TEST(FrontendDaemons, ReplayedDatasetGivesKeyposeBundles) {
+TEST(FrontendDaemons, ReplayedDatasetGivesKeyPoseBundles) {
   ASSERT_EQ(unshare(CLONE_NEWNET), 0) << "unshare(CLONE_NEWNET) failed (tests run as root)";
   ASSERT_EQ(std::system("ip link set lo up && ip route add 224.0.0.0/4 dev lo"), 0);
 

@@ -8,7 +8,7 @@
 
 #include "frontend/frontend_config.h"
 #include "drive_by.h"
-#include "frontend_msg/frontend_convert.h"
+#include "msg/frontend_convert.h"
 #include "segmenter_node.h"
 #include "synthetic_scene.h"
 #include "tracker_node.h"

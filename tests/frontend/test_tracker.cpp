@@ -20,12 +20,12 @@ struct Pipeline {
   ClassTable classes = ClassTable::loadDefault();
   FrontendConfig cfg = loadDefaultFrontendConfig();
   LabelledSegmenter seg{classes, cfg.labelled};
-  KeyposeBundler bundler{Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose};
+  KeyPoseBundler bundler{Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose};
   InputIssues issues;
 
   // The robot drives along x at 0.5 m per frame; objects may move with `car_velocity` per frame.
-  std::vector<KeyposeBundle> run(std::vector<SceneObject> objects, int frames, double car_step = 0) {
-    std::vector<KeyposeBundle> out;
+  std::vector<KeyPoseBundle> run(std::vector<SceneObject> objects, int frames, double car_step = 0) {
+    std::vector<KeyPoseBundle> out;
     for (int k = 0; k < frames; ++k) {
       const Pose T = poseFromXyzYaw(0.5 * k, 0, 1.5, 0.02 * k);
       FrameInstances f;
@@ -49,7 +49,7 @@ TEST(Tracker, StaticObjectsKeepOneTrackAndAppearAfterMinAge) {
   EXPECT_TRUE(bundles[0].objects.empty()) << "no track is old enough at the first key pose";
   EXPECT_TRUE(bundles[0].relative_odom.isApprox(Pose::Identity()));
   EXPECT_EQ(p.bundler.tracker().tracks().size(), 2u);
-  const KeyposeBundle& last = bundles.back();
+  const KeyPoseBundle& last = bundles.back();
   ASSERT_EQ(last.objects.size(), 2u);
   for (const auto& o : last.objects) {
     const Eigen::Vector3d world = last.odom_pose * o.position();
@@ -330,12 +330,12 @@ TEST(Tracker, AnInstanceWiderThanItsClassIsDroppedNotMadeAMovingTrack) {
 // confirmed in frame 2 (min_age 3) and missed in frames 3 and 4, the next key pose. It is
 // reported there once (seen since the previous key pose; report_max_missed 1 alone dropped
 // it), and not again at frame 8.
-TEST(KeyposeBundler, ATrackConfirmedBetweenKeyPosesIsReportedOnce) {
+TEST(KeyPoseBundler, ATrackConfirmedBetweenKeyPosesIsReportedOnce) {
   const ClassTable classes = ClassTable::loadDefault();
   const FrontendConfig cfg = loadDefaultFrontendConfig();
-  KeyposeBundler bundler(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
+  KeyPoseBundler bundler(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
   InputIssues issues;
-  std::vector<KeyposeBundle> bundles;
+  std::vector<KeyPoseBundle> bundles;
   for (int k = 0; k <= 8; ++k) {
     FrameInstances f;
     f.utime = k * 100000;

@@ -15,22 +15,22 @@ using namespace slide;
 
 TEST(HostileNumbers, PeerSyncRefusesBundlesWithAbsurdSigmasOrPositions) {
   std::string why;
-  ASSERT_TRUE(team::fromLcm(fuzz::bundle(0, 1), &why)) << why;
+  ASSERT_TRUE(team::acceptBundle(fuzz::bundle(0, 1), &why)) << why;
   const float inf = std::numeric_limits<float>::infinity();
   for (float s : {std::nanf(""), inf, -inf, -1.f, 1e30f}) {
     keypose_bundle_t m = fuzz::bundle(0, 1);
     m.odom_sigma[2] = s;
     why.clear();
-    EXPECT_FALSE(team::fromLcm(m, &why)) << "odom_sigma " << s;
+    EXPECT_FALSE(team::acceptBundle(m, &why)) << "odom_sigma " << s;
     EXPECT_NE(why.find("odom_sigma"), std::string::npos) << why;
   }
   for (double x : {1e39, -1e300, 3e9}) {
     keypose_bundle_t m = fuzz::bundle(0, 1);
     m.odom_pose.position[0] = x;
-    EXPECT_FALSE(team::fromLcm(m, &why)) << "odom_pose x " << x;
+    EXPECT_FALSE(team::acceptBundle(m, &why)) << "odom_pose x " << x;
     m = fuzz::bundle(0, 1);
     m.objects[0].cylinder[0].root[1] = static_cast<float>(x > 3.4e38 || x < -3.4e38 ? inf : x);
-    EXPECT_FALSE(team::fromLcm(m, &why)) << "object y " << x;
+    EXPECT_FALSE(team::acceptBundle(m, &why)) << "object y " << x;
     object_map_t map = fuzz::objectMap(0);
     map.objects[1].cylinder[0].root[0] = static_cast<float>(x > 3.4e38 || x < -3.4e38 ? inf : x);
     EXPECT_FALSE(team::fromLcm(map, &why)) << "map object x " << x;

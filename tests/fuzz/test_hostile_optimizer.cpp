@@ -20,7 +20,7 @@
 using namespace slide;
 
 TEST(HostileOptimizer, AbsurdLoopClosuresAndTransformsAreRejectedAndTrueOnesAccepted) {
-  const Scenario s = makeIndoorScenario(1);
+  const GraphScenario s = makeIndoorScenario(1);
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   const auto& truth = s.robots[0].truth;
   for (int i = 0; i < 40; ++i) ASSERT_TRUE(opt.addBundle(s.robots[0].bundles[i]).accepted);

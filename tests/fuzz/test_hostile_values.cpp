@@ -51,7 +51,7 @@ TEST(HostileValues, LandmarkGridLookUpOfAFarObjectScansOnlyTheOccupiedCells) {
 
 TEST(HostileValues, OptimizerDropsObjectsBeyondTheSensorRangeAndStaysQuick) {
   Watchdog dog(60);
-  const Scenario s = makeIndoorScenario(1);
+  const GraphScenario s = makeIndoorScenario(1);
   Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int i = 0; i < 5; ++i) ASSERT_TRUE(opt.addBundle(s.robots[0].bundles[i]).accepted);
   for (double far : {1e6, 1e7, 2e9}) {

@@ -78,11 +78,13 @@ TEST(GroundTruthObjects, ErrorsNameFileAndLine) {
   writeText(f, "x,y\n");
   expectIoError([&] { readGroundTruthObjects(f); }, {f, "header"});
   writeText(f, std::string(kHeader) + "1,10,cuboid,1,2,3,0,4,2,1.5,0,0,0,1,10,0\n");
-  expectIoError([&] { readGroundTruthObjects(f); }, {f, "line 2", "17 columns"});
+  expectIoError([&] { readGroundTruthObjects(f); }, {f, "line 2", "missing field vy"});
   writeText(f, std::string(kHeader) + "1,10,cuboid,1,2,abc,0,4,2,1.5,0,0,0,1,10,0,0\n");
-  expectIoError([&] { readGroundTruthObjects(f); }, {f, "line 2", "column z", "abc"});
+  expectIoError([&] { readGroundTruthObjects(f); }, {f, "line 2", "field z", "abc"});
   writeText(f, std::string(kHeader) + "1,10,sphere,1,2,3,0,4,2,1.5,0,0,0,1,10,0,0\n");
-  expectIoError([&] { readGroundTruthObjects(f); }, {f, "unknown shape 'sphere'"});
+  expectIoError([&] { readGroundTruthObjects(f); }, {f, "line 2", "shape: 'sphere'"});
+  writeText(f, "id,class_id,shape,x,y,z\n1,10,cuboid,1,2,3\n");
+  expectIoError([&] { readGroundTruthObjects(f); }, {f, "lacks column semantic"});
   fs::remove_all(dir);
 }
 

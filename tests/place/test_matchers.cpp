@@ -10,7 +10,7 @@
 
 #include "eval/transform_error.h"
 #include "config/config.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "place/map_perturb.h"
 #include "place/place_config.h"
 #include "place/slidegraph.h"
@@ -121,7 +121,7 @@ TEST(SlideMatch, AnytimeBudgetStillReturnsADecision) {
 TEST(PlaceRecognition, RealParkingMapAgainstAMovedCopy) {
   const ClassTable classes = ClassTable::loadDefault();
   const std::vector<Landmark> a =
-      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt", classes).map);
+      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt", classes, MissingSize::Zero).map);
   const Pose truth = poseFromXyzYaw(-31.0, 12.5, 1.0, -1.9);
   std::mt19937 rng(21);
   const std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.15}, rng);
@@ -173,7 +173,7 @@ TEST(PlaceRecognition, ALabelFreeMapMatchesALabelledOneByShapeFamily) {
   // so class-by-class matching cannot work; by shape family it finds the transform.
   const ClassTable classes = ClassTable::loadDefault();
   const std::vector<Landmark> a =
-      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/indoor/robot1.txt", classes).map);
+      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/indoor/robot1.txt", classes, MissingSize::Zero).map);
   ASSERT_GE(a.size(), 30u);
   const Pose truth = poseFromXyzYaw(12.0, -4.0, 0.0, 1.1);
   std::mt19937 rng(5);

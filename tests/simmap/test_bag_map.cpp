@@ -15,7 +15,6 @@
 #include "frontend/keypose.h"
 #include "io/robot_dataset.h"
 #include "sim/dataset_writer.h"
-#include "simmap/bundle_convert.h"
 
 using namespace slide;
 namespace fs = std::filesystem;
@@ -34,7 +33,7 @@ MapResult mapOf(const RobotDataset& d, double t0) {
   const ClassTable classes = ClassTable::loadDefault();
   const FrontendConfig fe = loadDefaultFrontendConfig();
   const GeometricSegmenter segmenter(classes, fe.geometric);
-  KeyposeBundler bundler(Tracker(classes, fe.tracker, fe.fit), fe.keypose);
+  KeyPoseBundler bundler(Tracker(classes, fe.tracker, fe.fit), fe.keypose);
   // One solver thread: two-thread full solves sum in varying order and differ by ~1e-5 m from
   // run to run, which would hide whether the inputs were the same.
   BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
@@ -50,7 +49,7 @@ MapResult mapOf(const RobotDataset& d, double t0) {
     fi.odom_pose = d.odometry[i].pose;
     fi.instances = segmenter.segment(scan, issues);
     if (const auto bundle = bundler.process(fi, issues)) {
-      optimizer.addBundle(toBackendBundle(*bundle, 0));
+      optimizer.addBundle(*bundle);
       ++out.bundles;
     }
   }

@@ -1,6 +1,5 @@
 #include <gtest/gtest.h>
 
-#include "simmap/bundle_convert.h"
 #include "simmap/sensor_rig.h"
 
 using namespace slide;
@@ -40,25 +39,4 @@ TEST(SensorRig, RgbdFrameKeepsImagesAndClasses) {
   EXPECT_EQ(f.instance_class, std::vector<int>{2});
   EXPECT_EQ(f.instance_confidence.size(), 1u);
   EXPECT_EQ(f.intrinsics.fx, cam.fx);
-}
-
-TEST(BundleConvert, CopiesEveryField) {
-  KeyposeBundle b;
-  b.seq = 4;
-  b.utime = 123;
-  b.odom_pose = poseFromXyzYaw(1, 2, 3, 0.4);
-  b.relative_odom = poseFromXyzYaw(0.5, 0, 0, 0.1);
-  b.odom_sigma = {1, 2, 3, 4, 5, 6};
-  Object o;
-  o.id = 9;
-  b.objects.push_back(o);
-  const KeyPoseBundle k = toBackendBundle(b, 2);
-  EXPECT_EQ(k.robot, 2);
-  EXPECT_EQ(k.seq, 4);
-  EXPECT_EQ(k.utime, 123);
-  EXPECT_TRUE(k.odom_pose.isApprox(b.odom_pose));
-  EXPECT_TRUE(k.relative_odom.isApprox(b.relative_odom));
-  EXPECT_EQ(k.odom_sigma[5], 6);
-  ASSERT_EQ(k.objects.size(), 1u);
-  EXPECT_EQ(k.objects[0].id, 9);
 }

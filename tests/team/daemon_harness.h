@@ -80,7 +80,7 @@ class RobotBus {
   // Drop counts by reason in the latest status message (empty before the first).
   const std::map<std::string, std::int64_t>& drops() const { return drops_; }
   bool good() { return lcm_.good(); }
-  void publish(const Bundle& b) {
+  void publish(const KeyPoseBundle& b) {
     const keypose_bundle_t m = toLcm(b);
     lcm_.publish("KEYPOSE_BUNDLE", &m);
   }

@@ -2,11 +2,11 @@
 // Random bundles and team configurations shared by the team tests.
 #include <random>
 
-#include "team/bundle.h"
+#include "objects/keypose_bundle.h"
 #include "team/codec.h"
 #include "team/message_auth.h"
-#include "team/team_keys.h"
 #include "team/sync_config.h"
+#include "team/team_keys.h"
 
 namespace slide::team::testing {
 
@@ -39,23 +39,23 @@ inline Object randomObject(std::mt19937& rng, std::int64_t id) {
   return o;
 }
 
-inline Bundle randomBundle(std::mt19937& rng, std::int32_t origin, std::int32_t seq, int num_objects = -1) {
+inline KeyPoseBundle randomBundle(std::mt19937& rng, std::int32_t origin, std::int32_t seq, int num_objects = -1) {
   std::uniform_real_distribution<double> u(-1, 1);
-  Bundle b;
-  b.origin = origin;
+  KeyPoseBundle b;
+  b.robot = origin;
   b.seq = seq;
   b.utime = 1700000000000000LL + seq * 1000000LL;
   b.odom_pose = poseFromXyzRpy({100 * u(rng), 100 * u(rng), u(rng)}, 0.02 * u(rng), 0.02 * u(rng), 3 * u(rng));
   b.relative_odom = poseFromXyzRpy({1.4, 0.1 * u(rng), 0.01 * u(rng)}, 0.01 * u(rng), 0.01 * u(rng), 0.2 * u(rng));
-  if (rng() % 4) b.odom_sigma = {0.05f, 0.05f, 0.02f, 0.01f, 0.01f, 0.02f};
+  if (rng() % 4) b.odom_sigma << 0.05f, 0.05f, 0.02f, 0.01f, 0.01f, 0.02f;
   const int n = num_objects >= 0 ? num_objects : static_cast<int>(5 + rng() % 16);
   for (int i = 0; i < n; ++i) b.objects.push_back(randomObject(rng, 1000 * origin + static_cast<int>(rng() % 200)));
   return b;
 }
 
 // True when b is a copy of a within `tol` (compare with roundTrip() for what receivers get).
-inline bool bundlesNear(const Bundle& a, const Bundle& b, double tol = 1e-5) {
-  if (a.origin != b.origin || a.seq != b.seq || a.first != b.first || a.utime != b.utime ||
+inline bool bundlesNear(const KeyPoseBundle& a, const KeyPoseBundle& b, double tol = 1e-5) {
+  if (a.robot != b.robot || a.seq != b.seq || a.first != b.first || a.utime != b.utime ||
       a.odom_sigma != b.odom_sigma || a.objects.size() != b.objects.size())
     return false;
   if (!a.odom_pose.isApprox(b.odom_pose, tol) || !a.relative_odom.isApprox(b.relative_odom, tol)) return false;
@@ -70,9 +70,9 @@ inline bool bundlesNear(const Bundle& a, const Bundle& b, double tol = 1e-5) {
 }
 
 // What a receiver gets back for a bundle: the quantised original (codec.h).
-inline Bundle roundTrip(const Bundle& b) {
+inline KeyPoseBundle roundTrip(const KeyPoseBundle& b) {
   std::string err;
-  return *decodeBundle(encodeBundle(b), b.origin, b.seq, &err);
+  return *decodeBundle(encodeBundle(b), b.robot, b.seq, &err);
 }
 
 // Robot `robot`'s signer with the pair keys derived from `master` (team_keys.h).

@@ -43,19 +43,19 @@ void expectQuantisedCopy(const Object& got, const Object& want) {
   }
 }
 
-void expectSigmaNear(const std::array<float, 6>& got, const std::array<float, 6>& want) {
-  for (std::size_t i = 0; i < 6; ++i) EXPECT_LE(std::abs(got[i] - want[i]), 0.022 * want[i] + 1e-9) << i;
+void expectSigmaNear(const Vector6d& got, const Vector6d& want) {
+  for (int i = 0; i < 6; ++i) EXPECT_LE(std::abs(got[i] - want[i]), 0.022 * want[i] + 1e-9) << i;
 }
 
 // A tracker-like stream: odometry poses composed from the relative motion.
-std::vector<Bundle> trackerStream(std::mt19937& rng, int n) {
-  std::vector<Bundle> out;
+std::vector<KeyPoseBundle> trackerStream(std::mt19937& rng, int n) {
+  std::vector<KeyPoseBundle> out;
   Pose odom = poseFromXyzYaw(120.5, -80.25, 0.3, 2.0);
   for (int k = 0; k < n; ++k) {
-    Bundle b = randomBundle(rng, 4, k, 3);
+    KeyPoseBundle b = randomBundle(rng, 4, k, 3);
     b.first = k == 0;
     // Growing slowly (as a tracker's per-metre model): mostly the same after quantisation.
-    b.odom_sigma = {0.02f + 1e-5f * k, 0.02f, 0.01f, 0.002f, 0.002f, 0.005f};
+    b.odom_sigma << 0.02f + 1e-5f * k, 0.02f, 0.01f, 0.002f, 0.002f, 0.005f;
     if (k > 0) odom = odom * b.relative_odom;
     b.odom_pose = odom;
     out.push_back(b);
@@ -68,7 +68,7 @@ std::vector<Bundle> trackerStream(std::mt19937& rng, int n) {
 TEST(Codec, BundleRoundTripIsWithinTheStatedQuantisationAndStable) {
   std::mt19937 rng(7);
   for (int k = 0; k < 300; ++k) {
-    Bundle b = randomBundle(rng, 2, k, k % 25);
+    KeyPoseBundle b = randomBundle(rng, 2, k, k % 25);
     b.first = k % 3 == 0;
     const Bytes enc = encodeBundle(b);
     std::string err;
@@ -90,7 +90,7 @@ TEST(Codec, BundleRoundTripIsWithinTheStatedQuantisationAndStable) {
 TEST(Codec, CompactSizes) {
   // A slightly tilted trunk: tag, id, class, confidence, count, 3 positions (2+2+1), 2 tilt,
   // radius, length = 14 bytes; the next trunk of the same class drops the class byte.
-  Bundle b;
+  KeyPoseBundle b;
   Object o;
   o.id = 5;
   o.class_id = 71;
@@ -98,7 +98,7 @@ TEST(Codec, CompactSizes) {
   o.num_observations = 12;
   o.model = Cylinder{{3, 4, -0.5}, Eigen::Vector3d(0.01, -0.02, 1).normalized(), 0.2, 6};
   b.objects.push_back(o);
-  const std::size_t base = encodeBundle(Bundle{}).size();
+  const std::size_t base = encodeBundle(KeyPoseBundle{}).size();
   EXPECT_EQ(encodeBundle(b).size() - base, 14u);
   o.id = 6;
   b.objects.push_back(o);
@@ -112,7 +112,7 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
   const auto stream = trackerStream(rng, 1000);
   std::optional<BundleContext> previous;
   std::size_t chained_bytes = 0, alone_bytes = 0;
-  for (const Bundle& b : stream) {
+  for (const KeyPoseBundle& b : stream) {
     const Bytes enc = encodeBundle(b, previous ? &*previous : nullptr);
     EXPECT_EQ(chainedBundle(enc), !b.first);
     std::string err;
@@ -137,7 +137,7 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
   }
   EXPECT_LT(chained_bytes + 25 * (stream.size() - 1), alone_bytes);  // >= 25 bytes saved each
   // Not consistent with the poses (or a first bundle): self-contained.
-  Bundle other = stream[5];
+  KeyPoseBundle other = stream[5];
   other.relative_odom = poseFromXyzYaw(1, 2, 0, 0.3);
   EXPECT_FALSE(chainedBundle(encodeBundle(other, &*previous)));
   other = stream[5];
@@ -147,7 +147,7 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
 
 TEST(Codec, TeamBundlesLeaveOutConfidenceAndTrackCounts) {
   std::mt19937 rng(5);
-  Bundle b = randomBundle(rng, 3, 7);
+  KeyPoseBundle b = randomBundle(rng, 3, 7);
   ASSERT_FALSE(b.objects.empty());
   for (Object& o : b.objects) o.confidence = 0.7, o.num_observations = 12;
   const Bytes full = encodeBundle(b), team = encodeBundle(b, nullptr, BundleDetail::Team);
@@ -168,7 +168,7 @@ TEST(Codec, TeamBundlesLeaveOutConfidenceAndTrackCounts) {
 }
 
 TEST(Codec, AxesPointingDownOrSidewaysComeBack) {
-  Bundle b;
+  KeyPoseBundle b;
   for (const Eigen::Vector3d& axis : {Eigen::Vector3d(0.1, 0.2, -0.97), Eigen::Vector3d(1, 0, 0),
                                       Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(-0.6, 0.8, 0),
                                       Eigen::Vector3d(0.70755, 0.70666, 0)}) {  // rounds beyond unit norm
@@ -184,7 +184,7 @@ TEST(Codec, AxesPointingDownOrSidewaysComeBack) {
 }
 
 TEST(Codec, OutOfRangeValuesAreEscapedNotClamped) {
-  Bundle b;
+  KeyPoseBundle b;
   Object far;  // 400 m away in the body frame, size beyond 2.55 m radius, confidence > 1
   far.id = 1;
   far.class_id = 71;
@@ -208,8 +208,8 @@ TEST(Codec, OutOfRangeValuesAreEscapedNotClamped) {
   EXPECT_NEAR(std::get<Ellipsoid>(d->objects[1].model).radius, -0.5, 1e-6);
   EXPECT_NEAR(std::get<Cuboid>(d->objects[2].model).dims.x(), 20.0, 1e-6);
   // Relative odometry beyond 1000 km and a sigma beyond the log scale go as float32.
-  Bundle jump;
-  jump.odom_sigma = {20.0f, 0, 0, 0, 0, 1e-6f};
+  KeyPoseBundle jump;
+  jump.odom_sigma << 20.0f, 0, 0, 0, 0, 1e-6f;
   jump.relative_odom = poseFromXyzYaw(2e6, 0, 0, 0.1);
   const auto dj = decodeBundle(encodeBundle(jump), 0, 0, &err);
   ASSERT_TRUE(dj) << err;
@@ -219,7 +219,7 @@ TEST(Codec, OutOfRangeValuesAreEscapedNotClamped) {
 
 TEST(Codec, EveryTruncationAndCorruptionIsRejectedWithoutCrash) {
   std::mt19937 rng(11);
-  const Bundle b = randomBundle(rng, 1, 3, 12);
+  const KeyPoseBundle b = randomBundle(rng, 1, 3, 12);
   const Bytes enc = encodeBundle(b);
   std::string err;
   for (std::size_t n = 0; n < enc.size(); ++n) {
@@ -276,7 +276,7 @@ TEST(Codec, MalformedFieldsAreNamed) {
   x.insert(x.begin() + 2, 0);  // gap 0
   rejects(x, "gap length out of range");
   x[2] = 4;  // gap 2 (zigzag varint)
-  std::optional<Bundle> after_gap = decodeBundle(x, 1, 1, &err);
+  std::optional<KeyPoseBundle> after_gap = decodeBundle(x, 1, 1, &err);
   ASSERT_TRUE(after_gap) << err;
   EXPECT_EQ(after_gap->gap, 2);
   x = b;

@@ -18,16 +18,16 @@ Object trunk(std::int64_t id, double radius = 0.2) {
   return o;
 }
 
-Bundle at(std::int32_t seq, double x, double yaw, std::vector<Object> objects) {
-  Bundle b;
-  b.origin = 1;
+KeyPoseBundle at(std::int32_t seq, double x, double yaw, std::vector<Object> objects) {
+  KeyPoseBundle b;
+  b.robot = 1;
   b.seq = seq;
   b.odom_pose = poseFromXyzYaw(x, 0, 0, yaw);
   b.objects = std::move(objects);
   return b;
 }
 
-std::vector<std::int64_t> ids(const Bundle& b) {
+std::vector<std::int64_t> ids(const KeyPoseBundle& b) {
   std::vector<std::int64_t> out;
   for (const auto& o : b.objects) out.push_back(o.id);
   return out;
@@ -41,7 +41,7 @@ TEST(ObservationThinning, FirstObservationAlwaysThenOnlyAfterTravel) {
   EXPECT_TRUE(t.thin(at(1, 1.4, 0, {trunk(1), trunk(2)})).objects.empty());
   // A new track is shared at once, whatever the travel.
   EXPECT_EQ(ids(t.thin(at(2, 2.8, 0, {trunk(1), trunk(3)}))), (std::vector<std::int64_t>{3}));
-  const Bundle empty = t.thin(at(3, 4.2, 0.1, {trunk(1)}));
+  const KeyPoseBundle empty = t.thin(at(3, 4.2, 0.1, {trunk(1)}));
   EXPECT_TRUE(empty.objects.empty());
   EXPECT_EQ(empty.seq, 3);  // the key pose itself is kept, odometry and all
   EXPECT_TRUE(empty.odom_pose.isApprox(poseFromXyzYaw(4.2, 0, 0, 0.1)));
@@ -62,7 +62,7 @@ TEST(ObservationThinning, TurnClassAndSizeChangesAreShared) {
 
 TEST(ObservationThinning, DeterministicAndOffMeansEverything) {
   std::mt19937 rng(3);
-  std::vector<Bundle> stream;
+  std::vector<KeyPoseBundle> stream;
   for (int k = 0; k < 200; ++k) {
     std::vector<Object> objects;
     for (int i = 0; i < 10; ++i) objects.push_back(trunk((k + static_cast<int>(rng() % 20)) / 3));
@@ -70,8 +70,8 @@ TEST(ObservationThinning, DeterministicAndOffMeansEverything) {
   }
   ObservationThinning a(ThinningPolicy{}), b(ThinningPolicy{}), off(ThinningPolicy{false, 5, 45, 0.3});
   std::size_t shared = 0, all = 0;
-  for (const Bundle& x : stream) {
-    const Bundle ta = a.thin(x);
+  for (const KeyPoseBundle& x : stream) {
+    const KeyPoseBundle ta = a.thin(x);
     EXPECT_EQ(ids(ta), ids(b.thin(x)));
     EXPECT_EQ(ids(off.thin(x)), ids(x));
     shared += ta.objects.size();

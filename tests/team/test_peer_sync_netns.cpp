@@ -136,7 +136,7 @@ class Agent {
     stop_ = true;
     thread_.join();
   }
-  void publish(const Bundle& b) {
+  void publish(const KeyPoseBundle& b) {
     std::lock_guard<std::mutex> l(mu_);
     queue_.push_back(b);
   }
@@ -152,7 +152,7 @@ class Agent {
     RobotBus bus(robotUrl(id));
     ready_ = bus.good();
     while (!stop_) {
-      std::deque<Bundle> todo;
+      std::deque<KeyPoseBundle> todo;
       {
         std::lock_guard<std::mutex> l(mu_);
         todo.swap(queue_);
@@ -168,7 +168,7 @@ class Agent {
   }
   std::atomic<bool> stop_{false}, ready_{false};
   std::mutex mu_;
-  std::deque<Bundle> queue_;
+  std::deque<KeyPoseBundle> queue_;
   std::vector<std::pair<int, int>> got_;
   std::thread thread_;
 };

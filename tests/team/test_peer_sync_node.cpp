@@ -86,7 +86,7 @@ TEST(PeerSyncNode, OwnBundleAndMapReachThePeersRobotBusOnce) {
   Micros now = 0;
   run(a, b, now, 2);  // they hear each other
   std::mt19937 rng(5);
-  const Bundle sent = randomBundle(rng, 0, 0);
+  const KeyPoseBundle sent = randomBundle(rng, 0, 0);
   const std::vector<uint8_t> bytes = msg::encodeLcm(toLcm(sent));
   a.node.onOwnBundle("KEYPOSE_BUNDLE", bytes.data(), bytes.size(), now);
   SharedMap map;
@@ -99,7 +99,7 @@ TEST(PeerSyncNode, OwnBundleAndMapReachThePeersRobotBusOnce) {
   const auto got = theOne<keypose_bundle_t>(b, "PEER_BUNDLE");
   ASSERT_TRUE(got);
   std::string why;
-  const auto delivered = fromLcm(*got, &why);
+  const auto delivered = acceptBundle(*got, &why);
   ASSERT_TRUE(delivered) << why;
   EXPECT_TRUE(bundlesNear(*delivered, roundTrip(sent), 1e-4));
   const auto got_map = theOne<object_map_t>(b, "PEER_MAP");

@@ -179,7 +179,7 @@ struct Receiver {
     std::vector<std::int32_t> out;
     while (auto b = node->nextDelivery()) {
       out.push_back(b->seq);
-      node->confirmDelivered(b->origin, b->seq);
+      node->confirmDelivered(b->robot, b->seq);
     }
     return out;
   }
@@ -193,8 +193,8 @@ struct Receiver {
 TEST(PeerSyncRecovery, ChainedBundleUnusableOnceItsPredecessorArrivesIsSkippedNotFatal) {
   const std::string dir = freshDir("chained");
   Receiver r(dir);
-  Bundle b0, b1;
-  b0.origin = b1.origin = 7;
+  KeyPoseBundle b0, b1;
+  b0.robot = b1.robot = 7;
   b0.seq = 0;
   b0.first = true;
   b1.seq = 1;
@@ -221,7 +221,7 @@ TEST(PeerSyncRecovery, ChainedBundleUnusableOnceItsPredecessorArrivesIsSkippedNo
   // Restarted on the same journal: nothing fatal, nothing again; later bundles flow.
   r.make();
   EXPECT_TRUE(r.deliverAll().empty());
-  Bundle b3 = b1;
+  KeyPoseBundle b3 = b1;
   b3.seq = 3;
   r.send(3, encodeBundle(b3));
   EXPECT_EQ(r.deliverAll(), (std::vector<std::int32_t>{3}));

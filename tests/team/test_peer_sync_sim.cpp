@@ -77,7 +77,7 @@ class SimRun {
     for (int k = 0; k < s_.bundles; ++k) {
       for (std::size_t i = 0; i < kIds.size(); ++i) {
         const std::int32_t seq = 100 * static_cast<std::int32_t>(i) + k;  // origins start at different seqs
-        Bundle b = s_.thinning ? trackerBundle(i, seq) : randomBundle(rng_, kIds[i], seq);
+        KeyPoseBundle b = s_.thinning ? trackerBundle(i, seq) : randomBundle(rng_, kIds[i], seq);
         ASSERT_FALSE(net_->node(i).addOwnBundle(b, net_->now()));
         b.first = k == 0;
         sent_[i].push_back(s_.thinning ? shared(i, b) : roundTrip(b));
@@ -105,9 +105,9 @@ class SimRun {
       const auto& got = net_->deliveredBundles(i);
       EXPECT_EQ(got.size(), (kIds.size() - 1) * static_cast<std::size_t>(s_.bundles)) << "robot " << kIds[i];
       for (std::size_t j = 0; j < kIds.size(); ++j) {
-        std::vector<Bundle> from_j;
+        std::vector<KeyPoseBundle> from_j;
         for (const auto& b : got)
-          if (b.origin == kIds[j]) from_j.push_back(b);
+          if (b.robot == kIds[j]) from_j.push_back(b);
         if (j == i) {
           EXPECT_TRUE(from_j.empty()) << "own bundles are not delivered back";
           continue;
@@ -129,8 +129,8 @@ class SimRun {
 
  private:
   // Odometry composed from the steps (chained encodings) and trunks seen over several key poses.
-  Bundle trackerBundle(std::size_t i, std::int32_t seq) {
-    Bundle b = randomBundle(rng_, kIds[i], seq, 0);
+  KeyPoseBundle trackerBundle(std::size_t i, std::int32_t seq) {
+    KeyPoseBundle b = randomBundle(rng_, kIds[i], seq, 0);
     b.relative_odom = poseFromXyzYaw(1.4, 0.01 * (rng_() % 5), 0, 0.02 * (static_cast<int>(rng_() % 11) - 5));
     odom_[i] = odom_[i] * b.relative_odom;
     b.odom_pose = odom_[i];
@@ -147,14 +147,14 @@ class SimRun {
 
   // What receivers get of an own bundle: the origin's full encoding decoded, thinned, encoded
   // again and decoded (each chained to the previous bundle as decoded).
-  Bundle shared(std::size_t i, const Bundle& b) {
+  KeyPoseBundle shared(std::size_t i, const KeyPoseBundle& b) {
     const BundleContext* previous = context_[i] ? &*context_[i] : nullptr;
     std::string err;
     const Bytes full_data = encodeBundle(b, previous);
-    const Bundle full = *decodeBundle(full_data, b.origin, b.seq, &err, previous);
+    const KeyPoseBundle full = *decodeBundle(full_data, b.robot, b.seq, &err, previous);
     const BundleDetail detail = s_.thinning ? BundleDetail::Team : BundleDetail::Full;
-    const Bundle out =
-        *decodeBundle(encodeBundle(thinning_[i].thin(full), previous, detail), b.origin, b.seq, &err, previous);
+    const KeyPoseBundle out =
+        *decodeBundle(encodeBundle(thinning_[i].thin(full), previous, detail), b.robot, b.seq, &err, previous);
     context_[i] = BundleContext::of(full, chainedBundle(full_data) ? previous : nullptr);
     thinned_out_ += full.objects.size() - out.objects.size();
     return out;
@@ -165,7 +165,7 @@ class SimRun {
   std::mt19937 rng_;
   bool healed_ = false;
   std::unique_ptr<SimNetwork> net_;
-  std::vector<std::vector<Bundle>> sent_;
+  std::vector<std::vector<KeyPoseBundle>> sent_;
   std::vector<ObservationThinning> thinning_ =
       std::vector<ObservationThinning>(kIds.size(), ObservationThinning(ThinningPolicy{}));
   std::vector<Pose> odom_ = std::vector<Pose>(kIds.size(), Pose::Identity());
@@ -490,7 +490,7 @@ TEST(PeerSyncSim, ThinnedPayloadsAreReproducedAfterARestart) {
     PeerSyncNode node(c, dir, 0);
     Pose odom = Pose::Identity();
     for (int k = 0; k < 120; ++k) {
-      Bundle b = randomBundle(rng, kIds[0], k, 0);
+      KeyPoseBundle b = randomBundle(rng, kIds[0], k, 0);
       b.relative_odom = poseFromXyzYaw(1.4, 0, 0, 0.05 * std::sin(k * 0.1));
       odom = odom * b.relative_odom;
       b.odom_pose = odom;

@@ -105,12 +105,12 @@ TEST(TeamMsg, MalformedInputIsRefusedWithAReason) {
   // A bundle with a zero quaternion or an object without a model is refused, not crashed on.
   keypose_bundle_t bad = kb;
   for (double& q : bad.odom_pose.orientation) q = 0;
-  EXPECT_FALSE(fromLcm(bad, &why));
+  EXPECT_FALSE(acceptBundle(bad, &why));
   bad = kb;
   bad.objects[0].num_cuboid = bad.objects[0].num_cylinder = bad.objects[0].num_ellipsoid = 0;
   bad.objects[0].cuboid.clear();
   bad.objects[0].cylinder.clear();
   bad.objects[0].ellipsoid.clear();
-  EXPECT_FALSE(fromLcm(bad, &why));
+  EXPECT_FALSE(acceptBundle(bad, &why));
   EXPECT_FALSE(why.empty());
 }

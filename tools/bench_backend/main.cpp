@@ -228,7 +228,7 @@ int main(int argc, char** argv) {
     BenchReport rep("backend");
     if (long_keyposes > 0) {
       cfg.background_solves = background_solves;
-      const Scenario s = route == "chain" ? makeForestChainScenario(long_keyposes) : makeForestReturnScenario(long_keyposes);
+      const GraphScenario s = route == "chain" ? makeForestChainScenario(long_keyposes) : makeForestReturnScenario(long_keyposes);
       spdlog::info("long mission ({}): {} key poses, {} landmarks", s.name, s.robots[0].bundles.size(), s.landmarks.size());
       reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz, final_seconds), cfg.background_solves, rate_hz);
       rep.printTable(std::cout);
@@ -239,7 +239,7 @@ int main(int argc, char** argv) {
     const LoopCloserParams closer =
         loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml"));
     const ClassTable classes = ClassTable::loadDefault();
-    auto run = [&](const std::string& name, const Scenario& s, const Targets& t) {
+    auto run = [&](const std::string& name, const GraphScenario& s, const Targets& t) {
       if (wanted(name)) {
         spdlog::info("scenario {}: {} robots, {} landmarks", name, s.robots.size(), s.landmarks.size());
         report(rep, name, runScenario(s, cfg), t);
@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
           {1.0, 20.0, std::nullopt, "iSAM2 anchor: 0.9 ms median, ~90 ms p99, ~110 ms max, ~8 s total"});
     for (const std::string seq : {"05", "07"}) {
       if (!any("kitti" + seq)) continue;
-      const Scenario s = makeKittiScenario("kitti" + seq, data_dir + "/kitti/poses/" + seq + ".txt",
+      const GraphScenario s = makeKittiScenario("kitti" + seq, data_dir + "/kitti/poses/" + seq + ".txt",
                                            data_dir + "/kitti/poles/" + seq + ".csv", 3);
       run("kitti" + seq, s, {std::nullopt, std::nullopt, seq == "05" ? 0.998 : 0.962, "3 robots, paper ATE in 'paper'"});
       if (!wanted("kitti" + seq)) continue;

@@ -17,7 +17,7 @@ std::size_t frameOf(const std::vector<Pose>& lidar, const Pose& T, std::size_t f
 }
 }  // namespace
 
-std::vector<RobotMapSize> robotMapSizes(const Scenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
+std::vector<RobotMapSize> robotMapSizes(const GraphScenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
                                         double points_per_scan) {
   std::vector<RobotMapSize> out;
   for (const ScenarioRobot& r : s.robots) {

@@ -21,7 +21,7 @@ struct RobotMapSize {
 // Each robot's own map; frames counted on the sequence's LiDAR poses (`lidar`, from which the
 // robot's key poses were taken). Throws std::runtime_error when a robot's key poses are not
 // found among them.
-std::vector<RobotMapSize> robotMapSizes(const Scenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
+std::vector<RobotMapSize> robotMapSizes(const GraphScenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
                                         double points_per_scan);
 
 // Mean points per scan of the KITTI-format scans (float32 x, y, z, intensity) in `dir`.

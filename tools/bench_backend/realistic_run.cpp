@@ -58,7 +58,7 @@ std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const
       pb.push_back(o.position());
     }
   if (pa.size() < 3) return std::nullopt;
-  return align(pb, pa, Alignment::Yaw4Dof).T;
+  return align(pb, pa, TrajectoryAlignment::Yaw4Dof).T;
 }
 
 double horizontalError(const Object& est, const Object& truth) {
@@ -68,7 +68,7 @@ double horizontalError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
+RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
                                 double period_s, int map_every) {
   RealisticRunResult out;
   const ClassTable classes = ClassTable::loadDefault();
@@ -177,12 +177,12 @@ RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, con
     const std::vector<Pose> e(est.begin(), est.begin() + n), t(ref.begin(), ref.begin() + n);
     const std::size_t m = s.robots[0].bundles.size();
     const std::vector<Pose> o(odom.begin(), odom.begin() + m), ot(odom_ref.begin(), odom_ref.begin() + m);
-    out.host_ate_m = absoluteTrajectoryError(e, t, Alignment::Se3).rmse;
-    out.host_odom_ate_m = absoluteTrajectoryError(o, ot, Alignment::Se3).rmse;
+    out.host_ate_m = absoluteTrajectoryError(e, t, TrajectoryAlignment::Se3).rmse;
+    out.host_odom_ate_m = absoluteTrajectoryError(o, ot, TrajectoryAlignment::Se3).rmse;
   }
-  const AteResult ate = absoluteTrajectoryError(est, ref, Alignment::Se3);
+  const AteResult ate = absoluteTrajectoryError(est, ref, TrajectoryAlignment::Se3);
   out.ate_m = ate.rmse;
-  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, Alignment::Se3).rmse;
+  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, TrajectoryAlignment::Se3).rmse;
 
   // Confirmed landmarks against the object most of their detections came from.
   const Pose to_world = s.robots[0].truth.front() * ate.alignment.T;

@@ -31,7 +31,7 @@ struct RealisticRunResult {
 
 // keypose_period_s: the simulated time between key poses (the loop closer's periods are in
 // seconds); map_every: key poses between own-map publications.
-RealisticRunResult runRealistic(const Scenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
+RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
                                 double keypose_period_s = 1.0, int map_every = 5);
 
 }  // namespace slide

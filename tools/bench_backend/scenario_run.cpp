@@ -32,7 +32,7 @@ struct Pairs {
   std::vector<Pose> est, ref;
 };
 
-void collect(const Scenario& s, const std::map<int, std::vector<TrajectoryPose>>& est, Pairs& out) {
+void collect(const GraphScenario& s, const std::map<int, std::vector<TrajectoryPose>>& est, Pairs& out) {
   const Pose host0_inv = s.robots[0].truth.front().inverse();
   for (const ScenarioRobot& r : s.robots) {
     const auto it = est.find(r.id);
@@ -51,7 +51,7 @@ double landmarkError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz,
+ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz,
                               double final_seconds) {
   ScenarioRunResult out;
   Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
@@ -122,7 +122,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
     for (int r : opt.robots()) live[r] = opt.trajectory(r);
     Pairs pairs;
     collect(s, live, pairs);
-    out.live_ate_m = absoluteTrajectoryError(pairs.est, pairs.ref, Alignment::Se3).rmse;
+    out.live_ate_m = absoluteTrajectoryError(pairs.est, pairs.ref, TrajectoryAlignment::Se3).rmse;
     for (const ScenarioRobot& r : s.robots) {
       const auto it = live.find(r.id);
       if (it == live.end()) continue;
@@ -146,7 +146,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
   for (int r : opt.robots()) est[r] = opt.trajectory(r);
   Pairs pairs;
   collect(s, est, pairs);
-  const AteResult ate = absoluteTrajectoryError(pairs.est, pairs.ref, Alignment::Se3);
+  const AteResult ate = absoluteTrajectoryError(pairs.est, pairs.ref, TrajectoryAlignment::Se3);
   out.ate_m = ate.rmse;
 
   // Raw odometry, each robot placed by the transform it was given.
@@ -159,7 +159,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
       odom.ref.push_back(s.robots[0].truth.front().inverse() * r.truth[k]);
     }
   }
-  out.odom_ate_m = absoluteTrajectoryError(odom.est, odom.ref, Alignment::Se3).rmse;
+  out.odom_ate_m = absoluteTrajectoryError(odom.est, odom.ref, TrajectoryAlignment::Se3).rmse;
 
   // Landmarks: each confirmed one against the true landmark most of its detections came from.
   const std::vector<Object> lms = opt.landmarks(true);
@@ -205,7 +205,7 @@ ScenarioRunResult runScenario(const Scenario& s, const BackendConfig& cfg, bool 
     out.batch_cost = b.report.final_cost;
     Pairs bp;
     collect(s, b.trajectories, bp);
-    out.batch_ate_m = absoluteTrajectoryError(bp.est, bp.ref, Alignment::Se3).rmse;
+    out.batch_ate_m = absoluteTrajectoryError(bp.est, bp.ref, TrajectoryAlignment::Se3).rmse;
   }
   return out;
 }

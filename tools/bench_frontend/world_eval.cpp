@@ -81,7 +81,7 @@ RgbdFrame emulatedFrame(const RgbdImage& img, const CameraModel& camera, const R
 // table's thresholds, one detection per landmark); an associated landmark takes the newer
 // estimate and, as in the back-end, the class with the most confidence-weighted votes; an
 // unassociated object becomes a new landmark. No evaluator-side merging.
-void addToMap(const KeyposeBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
+void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
               std::vector<std::map<int, double>>& votes) {
   std::vector<Detection> detections;
   for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
@@ -107,7 +107,7 @@ struct Runner {
   std::unique_ptr<LidarSegmenter> lidar;
   std::shared_ptr<const PointLabeler> labeler;  // learned mode: labels the points for `lidar`
   LabelIou label_iou;                           // learned mode: its labels against the truth
-  std::unique_ptr<KeyposeBundler> bundler;
+  std::unique_ptr<KeyPoseBundler> bundler;
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
   std::vector<std::map<int, double>> votes;  // class votes per landmark
   ModeResult result;
@@ -138,7 +138,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
     else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
     else if (mode != "rgbd" && mode != "rgbd.oracle") throw std::invalid_argument("unknown mode '" + mode + "'");
-    r.bundler = std::make_unique<KeyposeBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
+    r.bundler = std::make_unique<KeyPoseBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
     runners.push_back(std::move(r));
   }
   bool any_moving = false;

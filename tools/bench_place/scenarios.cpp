@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 
 namespace slide::bench {
 
@@ -16,7 +16,7 @@ bool inBox(const Landmark& l, double x0, double y0, double x1, double y1) {
 std::vector<Landmark> readReal(const std::string& data_dir, const std::string& set, int robot) {
   static const ClassTable classes = ClassTable::loadDefault();
   const std::string path = data_dir + "/slideslam_maps/" + set + "/robot" + std::to_string(robot) + ".txt";
-  return landmarksOf(readObjectMapText(path, classes).map);
+  return landmarksOf(readObjectMapText(path, classes, MissingSize::Zero).map);
 }
 }  // namespace
 

@@ -9,18 +9,6 @@
 namespace slide::team::bench {
 namespace {
 
-KeyPoseBundle toBackend(const Bundle& b) {
-  KeyPoseBundle k;
-  k.robot = b.origin;
-  k.seq = b.seq;
-  k.utime = b.utime;
-  k.odom_pose = b.odom_pose;
-  k.relative_odom = b.relative_odom;
-  for (int i = 0; i < 6; ++i) k.odom_sigma[i] = b.odom_sigma[static_cast<std::size_t>(i)];
-  k.objects = b.objects;
-  return k;
-}
-
 void oneWay(const std::vector<Object>& from, const std::vector<Object>& to, double gate_m, MapComparison& out) {
   for (const Object& o : from) {
     double best = std::numeric_limits<double>::infinity();
@@ -38,7 +26,7 @@ std::vector<Object> backendMap(const BackendConfig& cfg, std::int32_t host, cons
   Optimizer opt(cfg, ClassTable::loadDefault(), host);
   for (const auto& [peer, T] : transforms) opt.addRobotTransform(peer, T);
   for (const Arrival& a : arrivals)
-    for (const Bundle& b : a.bundles) opt.addBundle(toBackend(b));
+    for (const KeyPoseBundle& b : a.bundles) opt.addBundle(b);
   opt.fullSolve();
   return opt.landmarks();
 }

@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "backend/backend_config.h"
-#include "team/bundle.h"
+#include "objects/keypose_bundle.h"
 
 namespace slide::team::bench {
 
 struct Arrival {
-  std::vector<Bundle> bundles;  // own bundle of this step first, then peers' delivered in it
+  std::vector<KeyPoseBundle> bundles;  // own bundle of this step first, then peers' delivered in it
 };
 
 // `transforms`: T_host_peer per peer robot id.

@@ -32,7 +32,7 @@ struct RunResult {
   double bytes = 0;
   std::size_t bundle_chunks = 0, payload = 0;
   Traffic traffic;
-  std::vector<std::vector<Bundle>> delivered;  // per robot, in delivery order
+  std::vector<std::vector<KeyPoseBundle>> delivered;  // per robot, in delivery order
   double converge_s = 0;
   bool converged = false;
   std::uint64_t drops_total = 0;
@@ -126,12 +126,12 @@ std::map<std::tuple<int, int, int, int>, Eigen::Vector3d> composedMap(const RunR
   std::map<std::tuple<int, int, int, int>, Eigen::Vector3d> out;
   for (std::size_t robot = 0; robot < r.delivered.size(); ++robot) {
     std::map<int, Pose> pose;
-    for (const Bundle& b : r.delivered[robot]) {
-      auto it = pose.find(b.origin);
+    for (const KeyPoseBundle& b : r.delivered[robot]) {
+      auto it = pose.find(b.robot);
       const Pose T = it == pose.end() ? b.odom_pose : it->second * b.relative_odom;
-      pose[b.origin] = T;
+      pose[b.robot] = T;
       for (std::size_t i = 0; i < b.objects.size(); ++i)
-        out[{static_cast<int>(robot), b.origin, b.seq, static_cast<int>(i)}] = T * b.objects[i].position();
+        out[{static_cast<int>(robot), b.robot, b.seq, static_cast<int>(i)}] = T * b.objects[i].position();
     }
   }
   return out;
@@ -140,8 +140,8 @@ std::map<std::tuple<int, int, int, int>, Eigen::Vector3d> composedMap(const RunR
 // What robot 0's back-end is fed, in one order for every run: per key pose its own bundle,
 // then each peer's bundle of that sequence number as delivered (thinned, quantised).
 std::vector<Arrival> feedOfFirstRobot(const TeamScenario& sc, const RunResult& r) {
-  std::map<std::pair<int, int>, const Bundle*> got;
-  for (const Bundle& b : r.delivered[0]) got[{b.origin, b.seq}] = &b;
+  std::map<std::pair<int, int>, const KeyPoseBundle*> got;
+  for (const KeyPoseBundle& b : r.delivered[0]) got[{b.robot, b.seq}] = &b;
   std::vector<Arrival> out;
   for (std::size_t k = 0; k < sc.robots[0].bundles.size(); ++k) {
     Arrival a;
@@ -172,11 +172,11 @@ void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, 
   // What went on the bus per landmark: observations left after thinning, and their cost.
   std::map<std::pair<int, int>, std::size_t> shared;  // (origin, seq) -> objects as delivered
   for (const auto& robot : r.delivered)
-    for (const Bundle& b : robot) shared[{b.origin, b.seq}] = b.objects.size();
+    for (const KeyPoseBundle& b : robot) shared[{b.robot, b.seq}] = b.objects.size();
   std::size_t observations = 0, observed = 0;
   for (const auto& [key, n] : shared) observations += n;
   for (const auto& rs : sc.robots)
-    for (const Bundle& b : rs.bundles) observed += b.objects.size();
+    for (const KeyPoseBundle& b : rs.bundles) observed += b.objects.size();
   const double landmarks = static_cast<double>(sc.landmarks_seen);
   rep.add(p + ".observations_per_landmark", static_cast<double>(observed) / landmarks, "").note =
       "observations made by the team per landmark";
@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
     for (std::size_t r = 0; r < bad.delivered.size(); ++r) {
       expected += (sc.robots.size() - 1) * sc.robots[0].bundles.size();
       std::set<std::pair<int, int>> seen;
-      for (const auto& b : bad.delivered[r]) (seen.insert({b.origin, b.seq}).second ? unique : duplicates) += 1;
+      for (const auto& b : bad.delivered[r]) (seen.insert({b.robot, b.seq}).second ? unique : duplicates) += 1;
     }
     const auto want = composedMap(clean), got = composedMap(bad);
     double diff = 0;

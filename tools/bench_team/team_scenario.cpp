@@ -137,8 +137,8 @@ TeamScenario makeScenario(const std::string& kind, int robots, int keyposes, std
     std::map<std::int64_t, int> observations;
     std::map<std::int64_t, Object> own_map;          // tracker id -> object in the odometry frame
     for (int k = 0; k < keyposes; ++k) {
-      Bundle b;
-      b.origin = rs.robot;
+      KeyPoseBundle b;
+      b.robot = rs.robot;
       b.seq = k;
       b.utime = 1700000000000000LL + static_cast<std::int64_t>(k) * 1000000LL;
       if (k > 0) {
@@ -151,7 +151,7 @@ TeamScenario makeScenario(const std::string& kind, int robots, int keyposes, std
         rs.metres += rel_true.translation().norm();
       }
       b.odom_pose = odom;
-      b.odom_sigma = {0.02f, 0.02f, 0.01f, 0.002f, 0.002f, 0.005f};
+      b.odom_sigma << 0.02f, 0.02f, 0.01f, 0.002f, 0.002f, 0.005f;  // float values, as on the bus
       // Objects within range, nearest first, at most kMaxSeen, in the body frame with noise.
       std::vector<std::pair<double, std::size_t>> near;
       for (std::size_t i = 0; i < sc.world.size(); ++i) {

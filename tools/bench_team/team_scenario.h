@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "team/bundle.h"
+#include "objects/keypose_bundle.h"
+#include "team/shared_map.h"
 
 namespace slide::team::bench {
 
@@ -17,7 +18,7 @@ struct WorldObject {
 
 struct RobotStream {
   std::int32_t robot = 0;
-  std::vector<Bundle> bundles;        // seq 0.., in order
+  std::vector<KeyPoseBundle> bundles;        // seq 0.., in order
   std::vector<SharedMap> maps;        // map after each bundle (own odometry frame)
   double metres = 0;                  // true distance travelled
   Pose start = Pose::Identity();      // true first pose: the odometry frame in the world

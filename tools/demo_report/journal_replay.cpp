@@ -237,8 +237,7 @@ int main(int argc, char** argv) {
       } else if (e->channel == "KEYPOSE_BUNDLE" || (e->channel == "PEER_BUNDLE" && !own_only)) {
         keypose_bundle_t m;
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable bundle");
-        std::vector<std::string> warnings;
-        const KeyPoseBundle b = fromMsg(m, warnings);
+        const KeyPoseBundle b = fromLcm(m, nullptr);
         odom_of[{b.robot, b.seq}] = b.odom_pose;
         if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
         node.handle(e->channel, e->data, e->datalen);

@@ -104,12 +104,12 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   if (auto it = log.trajectories.find(a); it != log.trajectories.end() && it->second.poses.size() >= 3) {
     const AssociatedPoses est = associatePoses(stamped(it->second), rt.ground_truth, 0.05, 0.0, 3);
     f.poses = est.est.size();
-    f.ate = absoluteTrajectoryError(est.est, est.ref, Alignment::Se3).rmse;
+    f.ate = absoluteTrajectoryError(est.est, est.ref, TrajectoryAlignment::Se3).rmse;
     // Without alignment, through the true start: the error a peer inherits when it places this
     // robot's map by a transform between the two odometry frames.
     std::vector<Pose> in_world;
     for (const Pose& p : est.est) in_world.push_back(rt.T_world_odom * p);
-    f.ate_anchored = absoluteTrajectoryError(in_world, est.ref, Alignment::None).rmse;
+    f.ate_anchored = absoluteTrajectoryError(in_world, est.ref, TrajectoryAlignment::None).rmse;
     // Raw odometry at the same instants, as the baseline.
     std::vector<double> key_t(est.t.begin(), est.t.end());
     std::vector<StampedPose> odom_at;
@@ -122,9 +122,9 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
           orf.push_back(od.ref[i]);
         }
     if (oe.size() >= 3) {
-      f.odom_ate = absoluteTrajectoryError(oe, orf, Alignment::Se3).rmse;
+      f.odom_ate = absoluteTrajectoryError(oe, orf, TrajectoryAlignment::Se3).rmse;
       for (Pose& p : oe) p = rt.T_world_odom * p;  // the same anchoring as the estimate's
-      f.odom_ate_anchored = absoluteTrajectoryError(oe, orf, Alignment::None).rmse;
+      f.odom_ate_anchored = absoluteTrajectoryError(oe, orf, TrajectoryAlignment::None).rmse;
     }
   }
   std::vector<Object> in_world;

@@ -11,6 +11,7 @@
 #include "eval/stage_timing.h"
 #include "eval/trajectory_file.h"
 #include "eval/transform_error.h"
+#include "io/numbers.h"
 
 namespace slide {
 
@@ -26,17 +27,11 @@ Pose parseTransform(const std::string& arg, const char* what) {
   }
   for (char& c : text)
     if (c == ',') c = ' ';
-  std::istringstream s(text);
   std::vector<double> v;
-  std::string tok;
-  while (s >> tok) {
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(tok, &used));
-      if (used != tok.size()) throw std::invalid_argument(tok);
-    } catch (const std::exception&) {
-      throw std::invalid_argument(std::string(what) + ": '" + tok + "' is not a number");
-    }
+  try {
+    v = parseNumberList(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(what) + ": " + e.what());
   }
   if (v.size() == 4) return poseFromXyzYaw(v[0], v[1], v[2], v[3] * M_PI / 180);
   if (v.size() == 7) return poseFromPositionQuaternion({v[0], v[1], v[2]}, Eigen::Quaterniond(v[6], v[3], v[4], v[5]));

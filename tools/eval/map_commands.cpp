@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "eval/object_map_file.h"
+#include "io/object_map_text.h"
 #include "eval/object_matching.h"
 #include "eval/placed_file.h"
 

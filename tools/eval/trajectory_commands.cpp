@@ -181,7 +181,7 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
     RpeOptions o;
     o.delta = *delta;
     o.unit = *unit == "m" ? DeltaUnit::Metres : DeltaUnit::Frames;
-    if (*align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, Alignment::Sim3).alignment.scale;
+    if (*align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, TrajectoryAlignment::Sim3).alignment.scale;
     const RpeResult r = relativePoseError(p.est, p.ref, o);
     if (r.trans_errors.empty())
       throw std::invalid_argument("rpe: no pose pair is " + std::to_string(*delta) + " " + *unit + " apart");

@@ -5,7 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/app.h"
-#include "mapio/object_map_text.h"
+#include "io/object_map_text.h"
 #include "place/place_config.h"
 
 namespace {
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     const std::string paths[2] = {map_a, map_b};
     for (int k = 0; k < 2; ++k) {
       try {
-        const slide::ObjectMapText text = slide::readObjectMapText(paths[k], classes);
+        const slide::ObjectMapText text = slide::readObjectMapText(paths[k], classes, slide::MissingSize::Zero);
         for (const std::string& w : text.warnings) spdlog::warn("{}", w);
         lms[k] = slide::landmarksOf(text.map);
       } catch (const std::exception& e) {

@@ -75,7 +75,7 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
         RpeOptions o;
         o.delta = a->delta;
         o.unit = a->unit == "m" ? DeltaUnit::Metres : DeltaUnit::Frames;
-        if (a->align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, Alignment::Sim3).alignment.scale;
+        if (a->align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, TrajectoryAlignment::Sim3).alignment.scale;
         const RpeResult r = relativePoseError(p.est, p.ref, o);
         for (std::size_t i : r.first) s.x.push_back(p.t[i]);
         s.y = a->rotation ? r.rot_errors_deg : r.trans_errors;

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "eval/object_map_file.h"
+#include "io/object_map_text.h"
 #include "eval/object_matching.h"
 #include "eval/placed_file.h"
 #include "plot/map_plot.h"

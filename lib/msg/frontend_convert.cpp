@@ -1,4 +1,4 @@
-#include "frontend_msg/frontend_convert.h"
+#include "msg/frontend_convert.h"
 
 #include <limits>
 
@@ -34,19 +34,18 @@ lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header) {
   lidar_scan_t m;
   m.header = header;
   m.num_points = static_cast<int32_t>(scan.size());
-  m.xyz.assign(scan.size(), std::vector<float>(3, 0.0f));
+  m.xyz.resize(scan.size());
   m.intensity.resize(scan.size(), 0.0f);
   for (std::size_t i = 0; i < scan.size(); ++i) {
-    for (int k = 0; k < 3; ++k) m.xyz[i][k] = scan.xyz[i][k];
+    m.xyz[i] = {scan.xyz[i].x(), scan.xyz[i].y(), scan.xyz[i].z()};
     if (i < scan.intensity.size()) m.intensity[i] = scan.intensity[i];
   }
   m.has_labels = scan.hasLabels();
   m.num_labels = m.has_labels ? m.num_points : 0;
   if (m.has_labels) {
-    for (std::size_t i = 0; i < scan.size(); ++i) {
-      m.semantic.push_back(static_cast<int16_t>(scan.semantic[i]));
-      m.instance.push_back(static_cast<int16_t>(scan.instance[i]));
-    }
+    m.semantic.assign(scan.semantic.begin(), scan.semantic.end());
+    if (scan.instance.size() == scan.size()) m.instance.assign(scan.instance.begin(), scan.instance.end());
+    else m.instance.assign(scan.size(), 0);
   }
   return m;
 }
@@ -115,30 +114,6 @@ FrameInstances instancesFromMsg(const frame_instances_t& m) {
     f.instances.push_back(std::move(inst));
   }
   return f;
-}
-
-keypose_bundle_t bundleToMsg(const KeyposeBundle& b, int robot) {
-  keypose_bundle_t m;
-  m.header.utime = b.utime;
-  m.header.robot = robot;
-  m.header.seq = b.seq;
-  m.odom_pose = toMsg(b.odom_pose);
-  m.relative_odom = toMsg(b.relative_odom);
-  for (int i = 0; i < 6; ++i) m.odom_sigma[i] = static_cast<float>(b.odom_sigma[i]);
-  m.num_objects = static_cast<int32_t>(b.objects.size());
-  for (const auto& o : b.objects) m.objects.push_back(toMsg(o));
-  return m;
-}
-
-KeyposeBundle bundleFromMsg(const keypose_bundle_t& m) {
-  KeyposeBundle b;
-  b.seq = m.header.seq;
-  b.utime = m.header.utime;
-  b.odom_pose = fromMsg(m.odom_pose);
-  b.relative_odom = fromMsg(m.relative_odom);
-  for (int i = 0; i < 6; ++i) b.odom_sigma[i] = m.odom_sigma[i];
-  for (const auto& o : m.objects) b.objects.push_back(fromMsg(o));
-  return b;
 }
 
 }  // namespace slide

@@ -1,14 +1,13 @@
 #pragma once
 // Conversions between the front-end's types and its LCM messages (scans, RGBD frames,
-// per-frame instances, key-pose bundles). Daemons and their tests only.
+// per-frame instances; key-pose bundles: msg/convert.h). Daemons and their tests only.
 #include <optional>
 
 #include "frontend/input_issues.h"
-#include "frontend/keypose.h"
+#include "frontend/instance.h"
 #include "frontend/rgbd_segmenter.h"
 #include "io/kitti_scan.h"
 #include "slide/frame_instances_t.hpp"
-#include "slide/keypose_bundle_t.hpp"
 #include "slide/lidar_scan_t.hpp"
 #include "slide/rgbd_frame_t.hpp"
 
@@ -16,6 +15,7 @@ namespace slide {
 
 // Labels are dropped (and "label count mismatch" counted) unless num_labels == num_points.
 LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues);
+// Labels when the scan has them; instance ids 0 when it has classes only; intensity 0 where missing.
 lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header);
 
 // nullopt (and a counted issue) when image byte sizes do not match the intrinsics.
@@ -23,8 +23,5 @@ std::optional<RgbdFrame> rgbdFromMsg(const rgbd_frame_t& m, InputIssues& issues)
 
 frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header);
 FrameInstances instancesFromMsg(const frame_instances_t& m);
-
-keypose_bundle_t bundleToMsg(const KeyposeBundle& b, int robot);
-KeyposeBundle bundleFromMsg(const keypose_bundle_t& m);
 
 }  // namespace slide
