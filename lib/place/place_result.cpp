@@ -1,14 +1,6 @@
 #include "place/place_result.h"
 
-#include <ctime>
-
 namespace slide {
-
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 const char* methodName(PlaceMethod m) { return m == PlaceMethod::SlideGraph ? "slidegraph" : "slidematch"; }
 

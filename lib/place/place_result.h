@@ -5,12 +5,10 @@
 #include <utility>
 #include <vector>
 
+#include "clock/thread_cpu.h"
 #include "geometry/pose.h"
 
 namespace slide {
-
-// CPU time of the calling thread in milliseconds (unaffected by other processes' load).
-double threadCpuMs();
 
 enum class PlaceMethod { SlideGraph, SlideMatch };
 const char* methodName(PlaceMethod m);

@@ -1,24 +1,19 @@
 #include "simmap/map_robot.h"
 
-#include <time.h>
-
 #include <memory>
 
 #include "backend/optimizer.h"
+#include "clock/thread_cpu.h"
+#include "emulator/rgbd_emulator.h"
 #include "frontend/labelled_segmenter.h"
 #include "sim/dataset_writer.h"
-#include "emulator/rgbd_emulator.h"
 #include "sim/lidar.h"
 #include "sim/ray_caster.h"
 
 namespace slide {
 
 namespace {
-double cpuS() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + t.tv_nsec * 1e-9;
-}
+double cpuS() { return threadCpuMs() * 1e-3; }
 }  // namespace
 
 RobotMapping mapRobot(const Scenario& sc, int robot, const SensorRig& rig, const MappingSetup& setup) {

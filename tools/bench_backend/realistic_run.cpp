@@ -1,12 +1,11 @@
 #include "realistic_run.h"
 
-#include <time.h>
-
 #include <cmath>
 #include <map>
 #include <memory>
 
 #include "backend/optimizer.h"
+#include "clock/thread_cpu.h"
 #include "eval/alignment.h"
 #include "eval/ate.h"
 #include "eval/transform_error.h"
@@ -14,12 +13,6 @@
 namespace slide {
 
 namespace {
-double cpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
 // One robot's own stack: its optimizer (own bundles only; the host's also takes the peers')
 // and its loop closer.
 struct Stack {
@@ -87,11 +80,11 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
   std::size_t longest = 0;
   for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
   auto timed = [&](auto&& update) {
-    const double c0 = cpuMs();
+    const double c0 = threadCpuMs();
     const UpdateResult u = update();
     if (!u.held) {
       out.update_ms.push_back(u.update_ms);
-      out.update_cpu_ms.push_back(cpuMs() - c0);
+      out.update_cpu_ms.push_back(threadCpuMs() - c0);
     }
     return u;
   };
@@ -115,9 +108,9 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
       }
     }
     for (auto& [id, st] : stacks) {
-      const double c0 = cpuMs();
+      const double c0 = threadCpuMs();
       const std::vector<LoopClosure> found = st.closer->poll(now);
-      out.place_cpu_s += (cpuMs() - c0) / 1000.0;
+      out.place_cpu_s += (threadCpuMs() - c0) / 1000.0;
       for (const LoopClosure& lc : found) {
         if (lc.outcome == ConsensusFilter::Outcome::Pending) continue;
         if (lc.robot_a == lc.robot_b) {

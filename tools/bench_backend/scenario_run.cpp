@@ -1,25 +1,18 @@
 #include "scenario_run.h"
 
-#include <time.h>
-
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <thread>
 
 #include "backend/optimizer.h"
+#include "clock/thread_cpu.h"
 #include "eval/ate.h"
 
 namespace slide {
 
 namespace {
 using Clock = std::chrono::steady_clock;
-
-double cpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
 
 Pose perturb(const Pose& T, double metres, double degrees, std::mt19937& rng) {
   std::normal_distribution<double> g(0, 1);
@@ -79,9 +72,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
     for (const ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
       pace();
-      const double c0 = cpuMs();
+      const double c0 = threadCpuMs();
       const UpdateResult u = opt.addBundle(r.bundles[k]);
-      const double cpu = cpuMs() - c0;
+      const double cpu = threadCpuMs() - c0;
       objects += static_cast<int>(r.bundles[k].objects.size());
       if (!u.accepted) ++out.rejected;
       if (!u.held) {
@@ -95,9 +88,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
       for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
         pace();
         out.loops_during_solve += opt.solving();
-        const double c1 = cpuMs();
+        const double c1 = threadCpuMs();
         const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
-        out.update_cpu_ms.push_back(cpuMs() - c1);
+        out.update_cpu_ms.push_back(threadCpuMs() - c1);
         out.update_ms.push_back(l.update_ms);
         tally(l);
         ++out.loop_closures;
@@ -108,9 +101,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
       if (!first && !refine) continue;
       const Pose truth = s.robots[0].truth.front().inverse() * s.robots[p].truth.front();
       given[s.robots[p].id] = first ? perturb(truth, 0.3, 1.0, rng) : perturb(truth, 0.05, 0.2, rng);
-      const double c0 = cpuMs();
+      const double c0 = threadCpuMs();
       const UpdateResult u = opt.addRobotTransform(s.robots[p].id, given[s.robots[p].id]);
-      out.update_cpu_ms.push_back(cpuMs() - c0);
+      out.update_cpu_ms.push_back(threadCpuMs() - c0);
       // Ids of landmarks the merged bundles joined are not reported per object; votes come
       // from later updates.
       out.update_ms.push_back(u.update_ms);
@@ -134,9 +127,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
     }
   }
   const auto t0 = Clock::now();
-  const double c0 = cpuMs();
+  const double c0 = threadCpuMs();
   opt.fullSolve(final_seconds);
-  out.final_solve_cpu_ms = cpuMs() - c0;
+  out.final_solve_cpu_ms = threadCpuMs() - c0;
   out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.incremental_cost = opt.cost();
   out.keyposes = opt.numKeyPoses();
@@ -198,9 +191,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
   for (char c : seen) out.true_landmarks_seen += c;
 
   if (with_batch) {
-    const double cb = cpuMs();
+    const double cb = threadCpuMs();
     const Optimizer::Batch b = opt.solveBatch();
-    out.batch_cpu_ms = cpuMs() - cb;
+    out.batch_cpu_ms = threadCpuMs() - cb;
     out.batch_ms = b.ms;
     out.batch_cost = b.report.final_cost;
     Pairs bp;

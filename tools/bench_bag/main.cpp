@@ -2,8 +2,6 @@
 // (64 x 1024 organised PointCloud2, Ouster's 48-byte points with per-point time, odometry at
 // 100 Hz). Target: 10x real time (100 sweeps/s at 10 Hz) on one core. The bag is written first
 // by tests/io/make_bags.py (python3-rosbag) into a scratch folder.
-#include <time.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -11,15 +9,8 @@
 #include "app/app.h"
 #include "bench/report.h"
 #include "bench/stats.h"
+#include "clock/thread_cpu.h"
 #include "io/robot_dataset.h"
-
-namespace {
-double cpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * ts.tv_sec + 1e-6 * ts.tv_nsec;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Bag decoding benchmark (suite 'bag')", "slide-bench-bag"};
@@ -44,16 +35,16 @@ int main(int argc, char** argv) {
       o.bag.cloud_topic = "/os_cloud_node/points";
       o.bag.odom_topic = "/odom";
       o.bag.deskew = deskew;
-      const double c0 = cpuMs();
+      const double c0 = slide::threadCpuMs();
       const slide::RobotDataset d = slide::openRobotDataset(bag, o);
-      const double open_ms = cpuMs() - c0;
+      const double open_ms = slide::threadCpuMs() - c0;
       std::vector<double> ms;
       std::size_t points = 0;
       for (int pass = 0; pass < 3; ++pass)
         for (std::size_t i = 0; i < d.size(); ++i) {
-          const double t0 = cpuMs();
+          const double t0 = slide::threadCpuMs();
           points += d.scan(i).size();
-          ms.push_back(cpuMs() - t0);
+          ms.push_back(slide::threadCpuMs() - t0);
         }
       const double med = slide::median(ms);
       const std::string tag = deskew ? "os1_64.deskew" : "os1_64.decode";

@@ -6,9 +6,8 @@
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
-#include <ctime>
-
 #include "bench/stats.h"
+#include "clock/thread_cpu.h"
 #include "frontend/circle_fit.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
@@ -18,12 +17,6 @@
 namespace slide {
 
 namespace {
-double threadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 template <typename F>
 double medianMs(int runs, F&& f) {
   std::vector<double> ms;

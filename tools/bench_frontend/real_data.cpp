@@ -1,18 +1,18 @@
 #include "real_data.h"
 
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <algorithm>
 
+#include "clock/thread_cpu.h"
+#include "eval/labelled_scan_score.h"
 #include "frontend/circle_fit.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/xyz_cloud.h"
 #include "io/kitti_scan.h"
-#include "eval/labelled_scan_score.h"
 
 namespace slide {
 
@@ -58,12 +58,6 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
   return r;
 }
 
-double benchThreadCpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
                                   const ClassTable& classes, const FrontendConfig& cfg, int runs) {
   const LabelledScan scan = readLabelledScan(bin_path);
@@ -73,14 +67,14 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
   std::vector<Object> objects;
   for (int run = 0; run < runs; ++run) {
     InputIssues issues;
-    const double c0 = benchThreadCpuMs();
+    const double c0 = threadCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const auto instances = segmenter.segment(scan, issues);
     std::vector<Object> fitted;
     for (const auto& inst : instances)
       if (auto o = fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) fitted.push_back(*o);
     r.segment_fit_wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    r.segment_fit_ms.push_back(benchThreadCpuMs() - c0);
+    r.segment_fit_ms.push_back(threadCpuMs() - c0);
     objects = std::move(fitted);
   }
   r.score = scoreScanAgainstLabels(scan, objects, classes);
@@ -125,9 +119,9 @@ std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const Poi
   std::vector<double> ms;
   for (int run = 0; run < runs; ++run) {
     LabelledScan s = scan;
-    const double c0 = benchThreadCpuMs();
+    const double c0 = threadCpuMs();
     labeler.label(s);
-    ms.push_back(benchThreadCpuMs() - c0);
+    ms.push_back(threadCpuMs() - c0);
     if (run + 1 == runs) iou.add(truth.semantic, s.semantic);
   }
   return ms;

@@ -48,13 +48,6 @@ struct KittiScanResult {
 KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
                                   const ClassTable& classes, const FrontendConfig& cfg, int runs);
 
-}  // namespace slide
-
-namespace slide {
-
-// CPU time of the calling thread in ms: one core's work, unaffected by other processes.
-double benchThreadCpuMs();
-
 // Runs `labeler` `runs` times on the scan, timing each (thread CPU: projection, inference,
 // back-projection), and adds its last labels, scored with the scan's SemanticKITTI labels, to
 // `iou`. Returns the times in ms.

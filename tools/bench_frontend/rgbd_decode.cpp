@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "real_data.h"
+#include "clock/thread_cpu.h"
 #include "frontend/yolo_seg_decoder.h"
 
 namespace slide {
@@ -35,11 +35,11 @@ std::vector<double> timeRgbdDecode(const ClassTable& classes, const FrontendConf
   std::vector<double> ms;
   for (int run = 0; run < runs; ++run) {
     RgbdFrame f = base;
-    const double c0 = benchThreadCpuMs();
+    const double c0 = threadCpuMs();
     paintInstances(decodeYoloSeg(out0, out1, nc, lb, w, h, p), class_of_model, f);
     InputIssues issues;
     segmentRgbd(f, classes, cfg.rgbd, issues);
-    ms.push_back(benchThreadCpuMs() - c0);
+    ms.push_back(threadCpuMs() - c0);
   }
   return ms;
 }

@@ -10,18 +10,12 @@
 #include "app/app.h"
 #include "bench/report.h"
 #include "bench/stats.h"
+#include "clock/thread_cpu.h"
 #include "sim/dataset_writer.h"
 
 namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-// CPU time of this thread in ms: the machine is shared, so per-scan figures use CPU time
-// (what one core spends), not wall time.
-double cpuMs() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * ts.tv_sec + 1e-6 * ts.tv_nsec;
-}
 double processCpuS() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
@@ -56,9 +50,9 @@ int main(int argc, char** argv) {
       std::mt19937_64 rng(7);
       for (int i = 0; i < repeats; ++i) {
         const slide::Pose T = slide::poseFromXyzYaw(-40 + 4.0 * i, 3.0 * (i % 5) - 6, forest.terrain.height(-40 + 4.0 * i, 0) + 0.8, 0.3 * i);
-        const double c0 = cpuMs();
+        const double c0 = slide::threadCpuMs();
         const slide::LabelledScan scan = slide::simulateLidarScan(caster, T, model, rng);
-        ms.push_back(cpuMs() - c0);
+        ms.push_back(slide::threadCpuMs() - c0);
         points += scan.size();
       }
       report.add("forest.scan_ms." + name, slide::median(ms), "ms", true, target).note =
@@ -72,9 +66,9 @@ int main(int argc, char** argv) {
       std::mt19937_64 rng(3);
       const slide::CameraModel cam = slide::cameraModel("d455");
       for (int i = 0; i < std::max(3, repeats / 4); ++i) {
-        const double c0 = cpuMs();
+        const double c0 = slide::threadCpuMs();
         slide::renderRgbd(caster, slide::poseFromXyzYaw(-30 + 5.0 * i, 0, forest.terrain.height(-30 + 5.0 * i, 0) + 0.8, 0.5 * i), cam, rng);
-        ms.push_back(cpuMs() - c0);
+        ms.push_back(slide::threadCpuMs() - c0);
       }
       report.add("forest.rgbd_frame_ms.d455", slide::median(ms), "ms").note = "640x480, CPU time, median of " + std::to_string(ms.size());
     }
