@@ -18,7 +18,7 @@ constexpr double kMaxObjectCoordinate = 1e6;
 ObjectMap mapFromMsg(const object_map_t& m, int& dropped) {
   ObjectMap map;
   for (const object_t& o : m.objects) {
-    const Object obj = fromMsg(o);
+    const Object obj = fromLcm(o);
     if (obj.isFinite() && obj.position().cwiseAbs().maxCoeff() <= kMaxObjectCoordinate) map.add(obj);
     else ++dropped;
   }
@@ -68,7 +68,7 @@ void LoopCloserNode::onMap(const std::string& channel, const object_map_t& m, do
 void LoopCloserNode::onTrajectory(const trajectory_t& m) {
   if (m.robot != params_.robot || m.frame_robot != params_.robot) return;
   std::vector<KeyPose> kps;
-  for (int i = 0; i < m.num_poses; ++i) kps.push_back({m.keypose_seq[i], fromMsg(m.poses[i])});
+  for (int i = 0; i < m.num_poses; ++i) kps.push_back({m.keypose_seq[i], fromLcm(m.poses[i])});
   closer_.setTrajectory(std::move(kps));
 }
 

@@ -9,7 +9,7 @@ object_map_t objectMapMsg(std::int64_t utime, int robot, const std::vector<Objec
   m.utime = utime;
   m.robot = robot;
   m.frame_robot = robot;
-  for (const Object& o : objects) m.objects.push_back(toMsg(o));
+  for (const Object& o : objects) m.objects.push_back(toLcm(o));
   m.num_objects = static_cast<int32_t>(m.objects.size());
   return m;
 }
@@ -22,7 +22,7 @@ trajectory_t trajectoryMsg(std::int64_t utime, int robot, int frame_robot, const
   for (const TrajectoryPose& p : poses) {
     m.keypose_seq.push_back(p.seq);
     m.pose_utime.push_back(p.utime);
-    m.poses.push_back(toMsg(p.pose));
+    m.poses.push_back(toLcm(p.pose));
   }
   m.num_poses = static_cast<int32_t>(m.poses.size());
   return m;

@@ -186,7 +186,7 @@ object_map_t toLcm(const SharedMap& m) {
   o.utime = m.utime;
   o.robot = m.robot;
   o.frame_robot = m.frame_robot;
-  for (const auto& obj : m.objects) o.objects.push_back(slide::toMsg(obj));
+  for (const auto& obj : m.objects) o.objects.push_back(slide::toLcm(obj));
   o.num_objects = static_cast<int32_t>(o.objects.size());
   return o;
 }
@@ -198,7 +198,7 @@ std::optional<SharedMap> fromLcm(const object_map_t& m, std::string* why) {
   s.utime = m.utime;
   try {
     for (const auto& o : m.objects) {
-      Object obj = slide::fromMsg(o);
+      Object obj = slide::fromLcm(o);
       if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
       if (!saneObject(obj)) throw std::invalid_argument("object " + std::to_string(o.id) + " is beyond " +
                                                         std::to_string(kMaxCoordinate) + " m or absurdly large");

@@ -36,7 +36,7 @@ void SegmenterNode::onRgbd(const rgbd_frame_t& m) {
 }
 
 void SegmenterNode::onOdom(const odometry_t& m) {
-  odom_.add(m.header.utime, fromMsg(m.pose));
+  odom_.add(m.header.utime, fromLcm(m.pose));
   process();
 }
 
@@ -63,13 +63,13 @@ void SegmenterNode::process() {
     out.odom_pose = *pose;
     bool usable = true;  // bad frames (empty scans, unusable images) are skipped, not published
     if (const auto* scan = std::get_if<lidar_scan_t>(&pending_.front())) {
-      const LabelledScan s = scanFromMsg(*scan, issues);
+      const LabelledScan s = fromLcm(*scan, issues);
       const bool labelled = cfg_.lidar_mode == "labelled" || (cfg_.lidar_mode == "auto" && s.hasLabels());
       const LidarSegmenter& seg = learned_ ? *learned_ : labelled ? static_cast<const LidarSegmenter&>(labelled_) : geometric_;
       usable = s.size() > 0;
       if (!usable) issues.count("empty scan");
       else out.instances = seg.segment(s, issues);
-    } else if (auto frame = rgbdFromMsg(std::get<rgbd_frame_t>(pending_.front()), issues)) {
+    } else if (auto frame = fromLcm(std::get<rgbd_frame_t>(pending_.front()), issues)) {
       if (detector_) detector_->detect(*frame);
       out.instances = segmentRgbd(*frame, classes_, cfg_.rgbd, issues);
     } else {
@@ -83,13 +83,13 @@ void SegmenterNode::process() {
     h.utime = utime;
     h.robot = robot_;
     h.seq = seq_++;
-    publish_(out_channel_, msg::encodeLcm(instancesToMsg(out, h)));
+    publish_(out_channel_, msg::encodeLcm(toLcm(out, h)));
     ++published_;
     spdlog::debug("frame {}: {} instances", h.seq, out.instances.size());
     const std::int64_t since = utime - last_preview_utime_;
     if (!preview_.channel.empty() && (previews_ == 0 || since < 0 || since >= preview_.period_s * 1e6)) {
       out.instances = viewer::thinInstances(std::move(out.instances), preview_.max_points);
-      publish_(preview_.channel, msg::encodeLcm(instancesToMsg(out, h)));
+      publish_(preview_.channel, msg::encodeLcm(toLcm(out, h)));
       last_preview_utime_ = utime;
       ++previews_;
     }

@@ -56,7 +56,7 @@ rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const Ins
 odometry_t toOdometryMessage(const Pose& pose, const Pose* prev, double dt, int64_t utime, int robot, int seq) {
   odometry_t m;
   m.header = frameHeader(utime, robot, seq);
-  m.pose = toMsg(pose);
+  m.pose = toLcm(pose);
   Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
   if (prev && dt > 0) {
     const Pose delta = prev->inverse() * pose;  // motion in the previous body frame

@@ -14,7 +14,7 @@
 
 namespace slide {
 
-// The header of the frame `seq` of `robot` at utime (scans: msg/frontend_convert.h, scanToMsg).
+// The header of the frame `seq` of `robot` at utime (scans: msg/frontend_convert.h, toLcm).
 header_t frameHeader(int64_t utime, int robot, int seq);
 
 // mask may be null (no instances); confidence (one per instance) null means 1.0 each.

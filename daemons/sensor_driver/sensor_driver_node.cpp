@@ -119,7 +119,7 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
     const int seq = i - first;
     try {  // a frame that cannot be read is dropped and counted; the replay goes on
       if (d.sensor == RobotDataset::Sensor::Lidar) {
-        const lidar_scan_t scan = scanToMsg(perception.scan(d.scan(i), i), frameHeader(utime, o.robot, seq));
+        const lidar_scan_t scan = toLcm(perception.scan(d.scan(i), i), frameHeader(utime, o.robot, seq));
         sendOdometry(i, utime, seq);
         sink.send(o.scan_channel, scan, utime);
       } else {

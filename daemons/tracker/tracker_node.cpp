@@ -15,7 +15,7 @@ TrackerNode::TrackerNode(int robot, std::string out_channel, const ClassTable& c
 void TrackerNode::onInstances(const frame_instances_t& m) {
   InputIssues issues;
   if (m.header.robot != robot_) issues.count("instances of another robot");
-  else if (auto b = bundler_.process(instancesFromMsg(m), issues)) {
+  else if (auto b = bundler_.process(fromLcm(m), issues)) {
     b->robot = robot_;
     publish_(out_channel_, msg::encodeLcm(toLcm(*b)));
     spdlog::debug("key pose {}: {} objects", b->seq, b->objects.size());

@@ -16,7 +16,7 @@ void put(const Eigen::Vector3d& v, T* out) {
 }
 }  // namespace
 
-pose3_t toMsg(const Pose& T) {
+pose3_t toLcm(const Pose& T) {
   pose3_t m;
   put(T.translation(), m.position);
   const Eigen::Quaterniond q(T.linear());
@@ -27,7 +27,7 @@ pose3_t toMsg(const Pose& T) {
   return m;
 }
 
-Pose fromMsg(const pose3_t& m) {
+Pose fromLcm(const pose3_t& m) {
   return poseFromPositionQuaternion(vec(m.position),
                                     Eigen::Quaterniond(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]));
 }
@@ -43,7 +43,7 @@ bool usablePose(const pose3_t& m) {
   return qn > 0.25;
 }
 
-object_t toMsg(const Object& o) {
+object_t toLcm(const Object& o) {
   object_t m;
   m.id = o.id;
   m.class_id = static_cast<int16_t>(o.class_id);
@@ -52,7 +52,7 @@ object_t toMsg(const Object& o) {
   m.num_cuboid = m.num_cylinder = m.num_ellipsoid = 0;
   if (const auto* c = std::get_if<Cuboid>(&o.model)) {
     cuboid_t cm;
-    cm.pose = toMsg(c->pose);
+    cm.pose = toLcm(c->pose);
     put(c->dims, cm.dims);
     m.cuboid.push_back(cm);
     m.num_cuboid = 1;
@@ -76,7 +76,7 @@ object_t toMsg(const Object& o) {
   return m;
 }
 
-Object fromMsg(const object_t& m) {
+Object fromLcm(const object_t& m) {
   if (m.num_cuboid + m.num_cylinder + m.num_ellipsoid != 1 || m.num_cuboid < 0 || m.num_cylinder < 0 ||
       m.num_ellipsoid < 0)
     throw std::invalid_argument("object_t id " + std::to_string(m.id) + ": expected exactly one of cuboid, cylinder, "
@@ -88,7 +88,7 @@ Object fromMsg(const object_t& m) {
   o.confidence = m.confidence;
   o.num_observations = m.num_observations;
   if (m.num_cuboid) {
-    o.model = Cuboid{fromMsg(m.cuboid[0].pose), vec(m.cuboid[0].dims)};
+    o.model = Cuboid{fromLcm(m.cuboid[0].pose), vec(m.cuboid[0].dims)};
   } else if (m.num_cylinder) {
     const cylinder_t& c = m.cylinder[0];
     o.model = Cylinder{vec(c.root), vec(c.axis).normalized(), c.radius, c.length};
@@ -104,10 +104,10 @@ keypose_bundle_t toLcm(const KeyPoseBundle& b) {
   m.header.utime = b.utime;
   m.header.robot = b.robot;
   m.header.seq = b.seq;
-  m.odom_pose = toMsg(b.odom_pose);
-  m.relative_odom = toMsg(b.relative_odom);
+  m.odom_pose = toLcm(b.odom_pose);
+  m.relative_odom = toLcm(b.relative_odom);
   for (int i = 0; i < 6; ++i) m.odom_sigma[i] = static_cast<float>(b.odom_sigma[i]);
-  for (const Object& o : b.objects) m.objects.push_back(toMsg(o));
+  for (const Object& o : b.objects) m.objects.push_back(toLcm(o));
   m.num_objects = static_cast<int32_t>(m.objects.size());
   return m;
 }
@@ -117,12 +117,12 @@ KeyPoseBundle fromLcm(const keypose_bundle_t& m, std::vector<std::string>* dropp
   b.robot = m.header.robot;
   b.seq = m.header.seq;
   b.utime = m.header.utime;
-  b.odom_pose = fromMsg(m.odom_pose);
-  b.relative_odom = fromMsg(m.relative_odom);
+  b.odom_pose = fromLcm(m.odom_pose);
+  b.relative_odom = fromLcm(m.relative_odom);
   for (int i = 0; i < 6; ++i) b.odom_sigma[i] = m.odom_sigma[i];
   for (const object_t& o : m.objects) {
     try {
-      b.objects.push_back(fromMsg(o));
+      b.objects.push_back(fromLcm(o));
     } catch (const std::invalid_argument& e) {
       if (dropped) dropped->push_back(e.what());
     }

@@ -12,15 +12,15 @@
 
 namespace slide {
 
-pose3_t toMsg(const Pose& T);
-Pose fromMsg(const pose3_t& m);
+pose3_t toLcm(const Pose& T);
+Pose fromLcm(const pose3_t& m);
 // True when every number of `m` is finite and its quaternion is not near zero (|q|^2 > 0.25),
-// so that fromMsg gives a rotation; a received pose failing it is garbage.
+// so that fromLcm gives a rotation; a received pose failing it is garbage.
 bool usablePose(const pose3_t& m);
 
-object_t toMsg(const Object& o);
+object_t toLcm(const Object& o);
 // Throws std::invalid_argument (naming the object id) unless exactly one model is present.
-Object fromMsg(const object_t& m);
+Object fromLcm(const object_t& m);
 
 // The one conversion of a key-pose bundle (the tracker's KEYPOSE_BUNDLE, peer sync's PEER_BUNDLE).
 // Sigmas travel as float; `first` and `gap` (team layer only) do not travel.

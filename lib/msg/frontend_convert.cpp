@@ -6,7 +6,7 @@
 
 namespace slide {
 
-LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues) {
+LabelledScan fromLcm(const lidar_scan_t& m, InputIssues& issues) {
   LabelledScan s;
   const std::size_t n = std::min<std::size_t>(m.xyz.size(), static_cast<std::size_t>(std::max(0, m.num_points)));
   s.xyz.reserve(n);
@@ -30,7 +30,7 @@ LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues) {
   return s;
 }
 
-lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header) {
+lidar_scan_t toLcm(const LabelledScan& scan, const header_t& header) {
   lidar_scan_t m;
   m.header = header;
   m.num_points = static_cast<int32_t>(scan.size());
@@ -50,7 +50,7 @@ lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header) {
   return m;
 }
 
-std::optional<RgbdFrame> rgbdFromMsg(const rgbd_frame_t& m, InputIssues& issues) {
+std::optional<RgbdFrame> fromLcm(const rgbd_frame_t& m, InputIssues& issues) {
   RgbdFrame f;
   const camera_intrinsics_t& k = m.intrinsics;
   f.intrinsics = {k.width, k.height, k.fx, k.fy, k.cx, k.cy, k.depth_scale};
@@ -80,10 +80,10 @@ std::optional<RgbdFrame> rgbdFromMsg(const rgbd_frame_t& m, InputIssues& issues)
   return f;
 }
 
-frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header) {
+frame_instances_t toLcm(const FrameInstances& f, const header_t& header) {
   frame_instances_t m;
   m.header = header;
-  m.odom_pose = toMsg(f.odom_pose);
+  m.odom_pose = toLcm(f.odom_pose);
   m.num_instances = static_cast<int32_t>(f.instances.size());
   for (const auto& inst : f.instances) {
     object_instance_t o;
@@ -99,10 +99,10 @@ frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header
   return m;
 }
 
-FrameInstances instancesFromMsg(const frame_instances_t& m) {
+FrameInstances fromLcm(const frame_instances_t& m) {
   FrameInstances f;
   f.utime = m.header.utime;
-  f.odom_pose = fromMsg(m.odom_pose);
+  f.odom_pose = fromLcm(m.odom_pose);
   for (const auto& o : m.instances) {
     Instance inst;
     inst.id = o.instance_id;

@@ -14,14 +14,14 @@
 namespace slide {
 
 // Labels are dropped (and "label count mismatch" counted) unless num_labels == num_points.
-LabelledScan scanFromMsg(const lidar_scan_t& m, InputIssues& issues);
+LabelledScan fromLcm(const lidar_scan_t& m, InputIssues& issues);
 // Labels when the scan has them; instance ids 0 when it has classes only; intensity 0 where missing.
-lidar_scan_t scanToMsg(const LabelledScan& scan, const header_t& header);
+lidar_scan_t toLcm(const LabelledScan& scan, const header_t& header);
 
 // nullopt (and a counted issue) when image byte sizes do not match the intrinsics.
-std::optional<RgbdFrame> rgbdFromMsg(const rgbd_frame_t& m, InputIssues& issues);
+std::optional<RgbdFrame> fromLcm(const rgbd_frame_t& m, InputIssues& issues);
 
-frame_instances_t instancesToMsg(const FrameInstances& f, const header_t& header);
-FrameInstances instancesFromMsg(const frame_instances_t& m);
+frame_instances_t toLcm(const FrameInstances& f, const header_t& header);
+FrameInstances fromLcm(const frame_instances_t& m);
 
 }  // namespace slide

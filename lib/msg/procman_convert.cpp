@@ -2,7 +2,7 @@
 
 namespace slide {
 
-procman_lcm::cmd_t toMsg(const procman::CommandSpec& s) {
+procman_lcm::cmd_t toLcm(const procman::CommandSpec& s) {
   procman_lcm::cmd_t m;
   m.command_id = s.id;
   m.exec_str = s.exec;
@@ -13,7 +13,7 @@ procman_lcm::cmd_t toMsg(const procman::CommandSpec& s) {
   return m;
 }
 
-procman::CommandSpec fromMsg(const procman_lcm::cmd_t& m) {
+procman::CommandSpec fromLcm(const procman_lcm::cmd_t& m) {
   procman::CommandSpec s;
   s.id = m.command_id;
   s.exec = m.exec_str;
@@ -32,7 +32,7 @@ procman_lcm::orders_t makeOrders(const std::string& deputy_id, const std::string
   m.sheriff_id = sheriff_id;
   for (const procman::DesiredCommand& d : cmds) {
     procman_lcm::cmd_desired_t c;
-    c.cmd = toMsg(d.spec);
+    c.cmd = toLcm(d.spec);
     c.desired_runid = d.desired_runid;
     c.force_quit = d.force_quit;
     m.cmds.push_back(c);
@@ -43,7 +43,7 @@ procman_lcm::orders_t makeOrders(const std::string& deputy_id, const std::string
 
 std::vector<procman::DesiredCommand> desiredCommands(const procman_lcm::orders_t& m) {
   std::vector<procman::DesiredCommand> out;
-  for (const procman_lcm::cmd_desired_t& c : m.cmds) out.push_back({fromMsg(c.cmd), c.desired_runid, c.force_quit});
+  for (const procman_lcm::cmd_desired_t& c : m.cmds) out.push_back({fromLcm(c.cmd), c.desired_runid, c.force_quit});
   return out;
 }
 
@@ -60,7 +60,7 @@ procman_lcm::deputy_info_t makeDeputyInfo(const std::string& deputy_id, int64_t 
   m.swap_free_bytes = mem.swap_free_bytes;
   for (const procman::CommandReport& r : cmds) {
     procman_lcm::cmd_status_t s;
-    s.cmd = toMsg(r.spec);
+    s.cmd = toLcm(r.spec);
     s.pid = r.pid;
     s.actual_runid = r.actual_runid;
     s.exit_code = r.exit_code;
@@ -77,7 +77,7 @@ std::vector<procman::CommandReport> commandReports(const procman_lcm::deputy_inf
   std::vector<procman::CommandReport> out;
   for (const procman_lcm::cmd_status_t& s : m.cmds) {
     procman::CommandReport r;
-    r.spec = fromMsg(s.cmd);
+    r.spec = fromLcm(s.cmd);
     r.pid = s.pid;
     r.actual_runid = s.actual_runid;
     r.exit_code = s.exit_code;

@@ -15,8 +15,8 @@
 
 namespace slide {
 
-procman_lcm::cmd_t toMsg(const procman::CommandSpec& s);
-procman::CommandSpec fromMsg(const procman_lcm::cmd_t& m);
+procman_lcm::cmd_t toLcm(const procman::CommandSpec& s);
+procman::CommandSpec fromLcm(const procman_lcm::cmd_t& m);
 
 procman_lcm::orders_t makeOrders(const std::string& deputy_id, const std::string& sheriff_id, int64_t utime,
                                  const std::vector<procman::DesiredCommand>& cmds);

@@ -130,7 +130,7 @@ TEST(OptimizerPeers, OwnMapHoldsOnlyLandmarksTheRobotObservedItself) {
   EXPECT_NEAR(own.num_objects, static_cast<int>(truth_own.size()), 3);
   // Every own-map landmark is one robot 0 maps on its own (same class, within 0.5 m).
   for (const object_t& o : own.objects) {
-    const Object mine = fromMsg(o);
+    const Object mine = fromLcm(o);
     const bool found = std::any_of(truth_own.begin(), truth_own.end(), [&](const Object& t) {
       return t.class_id == mine.class_id && (t.position() - mine.position()).norm() < 0.5;
     });

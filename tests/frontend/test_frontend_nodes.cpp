@@ -47,7 +47,7 @@ TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
   for (int k = 0; k < frames; ++k) {
     // The scan comes before the odometry at its time: it waits for it. Frame 5 is empty.
     const LabelledScan scan = k == 5 ? LabelledScan{} : synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6);
-    segmenter.onScan(scanToMsg(scan, driveByHeader(k)));
+    segmenter.onScan(toLcm(scan, driveByHeader(k)));
     if (k == 0) {
       EXPECT_EQ(segmenter.published(), 0);
     }
@@ -94,7 +94,7 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
   scan.intensity.assign(scan.size(), 0.5f);
   scan.semantic.assign(scan.size(), 71);  // labels on the bus (oracle): not used in learned mode
   scan.instance.assign(scan.size(), 0);
-  segmenter.onScan(scanToMsg(scan, driveByHeader(0)));
+  segmenter.onScan(toLcm(scan, driveByHeader(0)));
   segmenter.onOdom(driveByOdometry(0));
   segmenter.onOdom(driveByOdometry(1));
   ASSERT_EQ(out.size(), 1u);
@@ -158,7 +158,7 @@ TEST(FrontendNodes, PreviewIsAThinnedCopyOfAFrameEveryPeriod) {
   segmenter.setPreview({"INSTANCES_PREVIEW", 0.25, 40});
   const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {71, {12, -4, 0}, 0.35, 6.0}};
   for (int k = 0; k < 12; ++k) {  // frames 0.1 s apart
-    segmenter.onScan(scanToMsg(synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6), driveByHeader(k)));
+    segmenter.onScan(toLcm(synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6), driveByHeader(k)));
     segmenter.onOdom(driveByOdometry(k));
   }
   segmenter.onOdom(driveByOdometry(12));

@@ -241,7 +241,7 @@ TEST(ViewerNode, KeyPoseAndInstancesFollowTheOptimizedTrajectory) {
   // Odometry says key pose 19 is at x 38; the optimizer moved it to (38, 2): later key poses
   // and instances are drawn with that correction.
   trajectory_t t = trajectoryMsg(0, 0, 20, 0, 0);
-  t.poses[19] = toMsg(poseFromXyzYaw(38, 2, 0, 0));
+  t.poses[19] = toLcm(poseFromXyzYaw(38, 2, 0, 0));
   EXPECT_TRUE(feed(node, 0, "KEYPOSE_BUNDLE", bundleMsg(0, 19, 38, 0)));
   EXPECT_TRUE(feed(node, 0, "TRAJECTORY", t));
   EXPECT_TRUE(feed(node, 0, "KEYPOSE_BUNDLE", bundleMsg(0, 20, 40, 0)));

@@ -37,14 +37,14 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot != robot) continue;
       out.map.clear();
-      for (const object_t& o : m.objects) out.map.push_back(fromMsg(o));
+      for (const object_t& o : m.objects) out.map.push_back(fromLcm(o));
     } else if (ch == channels::kTrajectory) {
       trajectory_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       LoggedTrajectory t{m.robot, m.frame_robot, {}, {}};
       for (int i = 0; i < m.num_poses; ++i) {
         t.t.push_back(m.pose_utime[i] * 1e-6);
-        t.poses.push_back(fromMsg(m.poses[i]));
+        t.poses.push_back(fromLcm(m.poses[i]));
       }
       out.trajectories[m.robot] = t;
     } else if (ch == channels::kLoopClosure) {
