@@ -122,7 +122,9 @@ void reportRealistic(BenchReport& rep, const std::string& name, const RealisticR
   for (const RealisticRunResult::IntraClosure& c : r.intra)
     spdlog::info("{}: intra closure {} -> {}: {:.2f} m / {:.2f} deg from truth, {}; host ATE so far {:.2f} m", p,
                  c.seq_a, c.seq_b, c.error_m, c.error_deg, c.accepted ? "accepted" : "rejected", c.host_ate_m);
-  for (const auto& [k, ate] : r.ate_trace) spdlog::info("{}: host ATE after {} key poses: {:.2f} m", p, k, ate);
+  for (const RealisticRunResult::AteSoFar& a : r.ate_trace)
+    spdlog::info("{}: after {} key poses: host ATE {:.2f} m, its odometry's {:.2f} m", p, a.keyposes, a.host_ate_m,
+                 a.odom_ate_m);
   rep.add(p + "inter_transforms", r.inter_transforms, "", false).note = "given to the host's optimizer";
   rep.add(p + "wrong_transforms", r.wrong_inter, "", true, 0.0).note =
       "inter-robot transforms given more than 1 m or 2 deg from the least-squares alignment of the two own maps over "

@@ -29,7 +29,11 @@ struct RealisticRunResult {
     double host_ate_m = 0;              // the host's ATE so far (SE3), just before this closure
   };
   std::vector<IntraClosure> intra;
-  std::vector<std::pair<int, double>> ate_trace;  // (key poses, host ATE so far), every 50 key poses
+  struct AteSoFar {
+    int keyposes = 0;
+    double host_ate_m = 0, odom_ate_m = 0;  // over the host's key poses so far, SE3-aligned
+  };
+  std::vector<AteSoFar> ate_trace;  // every 50 key poses
   int wrong_inter = 0;  // of those: > 1 m or > 2 deg from the two maps' alignment, or maps sharing no object
   // Per transform given: its error against the least-squares alignment of the two own maps over
   // the true objects both hold (the truth for bent maps), and against the robots' true frames.
