@@ -106,14 +106,20 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   }
   const KeyPose& cur = keyposes_.back();
   const int old_limit = cur.seq - params_.intra_min_keypose_gap;
+  // Path driven from each key pose to the current one (horizontal), for the drift allowance.
+  std::vector<double> to_cur(keyposes_.size(), 0.0);
+  for (std::size_t i = keyposes_.size() - 1; i-- > 0;)
+    to_cur[i] = to_cur[i + 1] + (keyposes_[i + 1].pose.translation() - keyposes_[i].pose.translation()).head<2>().norm();
   const KeyPose* old = nullptr;
-  double best = params_.intra_trigger_radius_m;
-  for (const KeyPose& k : keyposes_) {
-    if (k.seq > old_limit) break;
-    const double d = (k.pose.translation() - cur.pose.translation()).head<2>().norm();
-    if (d <= best) {
+  double best = 0, slack = 0;  // the chosen one's distance, and its drift allowance
+  for (std::size_t i = 0; i < keyposes_.size() && keyposes_[i].seq <= old_limit; ++i) {
+    const double d = (keyposes_[i].pose.translation() - cur.pose.translation()).head<2>().norm();
+    const double allowance = params_.intra_drift_fraction * to_cur[i];
+    if (d > params_.intra_trigger_radius_m + allowance) continue;
+    if (!old || d - allowance <= best - slack) {  // the nearest, relative to what drift allows
       best = d;
-      old = &k;
+      slack = allowance;
+      old = &keyposes_[i];
     }
   }
   if (!old) {
@@ -124,7 +130,7 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   std::vector<std::size_t> recent, older;
   for (std::size_t i = 0; i < own_.size(); ++i) {
     const Object& o = own_[i];
-    if ((o.position() - cur.pose.translation()).head<2>().norm() > params_.intra_local_radius_m) continue;
+    if ((o.position() - cur.pose.translation()).head<2>().norm() > params_.intra_local_radius_m + slack) continue;
     const auto it = first_seen_.find(o.id);
     const int seen = it == first_seen_.end() ? -1 : it->second;
     (seen > old_limit ? recent : older).push_back(i);
@@ -137,6 +143,11 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   const int place = old->seq / std::max(1, params_.intra_min_keypose_gap);
   auto [it, fresh] = intra_places_.try_emplace(place, IntraPlace{ConsensusFilter(params_.consensus)});
   IntraPlace& ip = it->second;
+  if (ip.given) {
+    last_reason_ = "intra-robot: the place of key pose " + std::to_string(old->seq) + " gave its closure (" +
+                   std::to_string(ip.seq_a) + "-" + std::to_string(ip.seq_b) + ")";
+    return std::nullopt;
+  }
   if (ip.seq_a < 0 || !keyPose(ip.seq_a) || !keyPose(ip.seq_b)) ip.seq_a = old->seq, ip.seq_b = cur.seq;
   // The match M moves the recent objects (placed from the recent key poses) onto the old ones
   // (placed from the old key poses): b's body is at M P_b where a's is at P_a.
@@ -146,6 +157,7 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
     last_reason_ = "intra-robot: " + last_reason_;
     return std::nullopt;
   }
+  ip.given = lc.outcome != ConsensusFilter::Outcome::Pending;
   lc.robot_a = lc.robot_b = params_.robot;
   lc.keypose_a = ip.seq_a;
   lc.keypose_b = ip.seq_b;

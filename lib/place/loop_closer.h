@@ -27,6 +27,9 @@ struct LoopCloserParams {
   double intra_trigger_radius_m = 10.0; // the current key pose this close to an old one...
   int intra_min_keypose_gap = 30;       // ...at least this many key poses older triggers a check
   double intra_local_radius_m = 25.0;   // objects within this of the current pose form the sub-maps
+  // Both radii grow by this fraction of the path driven between the old key pose and the
+  // current one: the own estimate can be that far off where the robot returns after a long way.
+  double intra_drift_fraction = 0.0;
   std::size_t min_objects = 6;          // per map or sub-map
   std::size_t max_map_objects = 50000;  // a map update with more objects is dropped (counted)
 };
@@ -84,11 +87,14 @@ class LoopCloser {
   };
   std::optional<LoopClosure> checkPeer(int robot, Peer& peer);
   // One intra-robot place (old key poses by min_keypose_gap): its consensus, over closures all
-  // expressed between the key poses of its first check, so that results of checks before and
-  // after the optimizer applied a closure (the map corrected, the match near identity) agree.
+  // expressed between the key poses of its first check (a closure from the match of another
+  // check's sub-maps: P_a^-1 M P_b with this pair's key poses). A place gives one closure: once
+  // the optimizer takes it in, the objects there move with it (duplicates merged, recent objects
+  // onto old ones) and later matches measure the optimizer's own compromise, not the place.
   struct IntraPlace {
     ConsensusFilter filter;
     int seq_a = -1, seq_b = -1;
+    bool given = false;
   };
   std::optional<LoopClosure> checkIntra();
   // Place recognition of the sub-maps (fills result and inliers), then the consensus filter
