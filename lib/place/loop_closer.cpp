@@ -143,11 +143,6 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   const int place = old->seq / std::max(1, params_.intra_min_keypose_gap);
   auto [it, fresh] = intra_places_.try_emplace(place, IntraPlace{ConsensusFilter(params_.consensus)});
   IntraPlace& ip = it->second;
-  if (ip.given) {
-    last_reason_ = "intra-robot: the place of key pose " + std::to_string(old->seq) + " gave its closure (" +
-                   std::to_string(ip.seq_a) + "-" + std::to_string(ip.seq_b) + ")";
-    return std::nullopt;
-  }
   if (ip.seq_a < 0 || !keyPose(ip.seq_a) || !keyPose(ip.seq_b)) ip.seq_a = old->seq, ip.seq_b = cur.seq;
   // The match M moves the recent objects (placed from the recent key poses) onto the old ones
   // (placed from the old key poses): b's body is at M P_b where a's is at P_a.
@@ -157,7 +152,17 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
     last_reason_ = "intra-robot: " + last_reason_;
     return std::nullopt;
   }
-  ip.given = lc.outcome != ConsensusFilter::Outcome::Pending;
+  if (ip.given) {  // fixed once given: confirmed (re-sent as it was) or held back
+    if (lc.outcome == ConsensusFilter::Outcome::Refined) {
+      lc.T_a_b = *ip.given;
+    } else {
+      last_reason_ = "intra-robot: a match at the place of key poses " + std::to_string(ip.seq_a) + "-" +
+                     std::to_string(ip.seq_b) + " disagrees with the closure it gave";
+      lc.outcome = ConsensusFilter::Outcome::Pending;
+    }
+  } else if (lc.outcome != ConsensusFilter::Outcome::Pending) {
+    ip.given = lc.T_a_b;
+  }
   lc.robot_a = lc.robot_b = params_.robot;
   lc.keypose_a = ip.seq_a;
   lc.keypose_b = ip.seq_b;

@@ -88,13 +88,15 @@ class LoopCloser {
   std::optional<LoopClosure> checkPeer(int robot, Peer& peer);
   // One intra-robot place (old key poses by min_keypose_gap): its consensus, over closures all
   // expressed between the key poses of its first check (a closure from the match of another
-  // check's sub-maps: P_a^-1 M P_b with this pair's key poses). A place gives one closure: once
-  // the optimizer takes it in, the objects there move with it (duplicates merged, recent objects
-  // onto old ones) and later matches measure the optimizer's own compromise, not the place.
+  // check's sub-maps: P_a^-1 M P_b with this pair's key poses). A place's closure is fixed once
+  // given: after the optimizer takes it in, the objects there move with it (duplicates merged,
+  // recent objects onto old ones) and later matches measure the optimizer's own compromise, not
+  // the place. A later match that agrees re-sends the given closure unchanged (confirmed: the
+  // optimizer replaces it and solves again); one that disagrees is held back.
   struct IntraPlace {
     ConsensusFilter filter;
     int seq_a = -1, seq_b = -1;
-    bool given = false;
+    std::optional<Pose> given;
   };
   std::optional<LoopClosure> checkIntra();
   // Place recognition of the sub-maps (fills result and inliers), then the consensus filter
