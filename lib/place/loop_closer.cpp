@@ -54,8 +54,15 @@ bool LoopCloser::setPeerMap(int robot, const ObjectMap& map, double now_s) {
 
 void LoopCloser::setTrajectory(std::vector<KeyPose> keyposes) { keyposes_ = std::move(keyposes); }
 
+const KeyPose* LoopCloser::keyPose(int seq) const {
+  const auto it = std::lower_bound(keyposes_.begin(), keyposes_.end(), seq,
+                                   [](const KeyPose& k, int s) { return k.seq < s; });
+  return it != keyposes_.end() && it->seq == seq ? &*it : nullptr;
+}
+
 LoopClosure LoopCloser::run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
-                            const std::vector<std::size_t>& ib, ConsensusFilter& filter) {
+                            const std::vector<std::size_t>& ib, ConsensusFilter& filter,
+                            const std::function<Pose(const Pose&)>& express) {
   const std::vector<Landmark> la = subset(a, ia), lb = subset(b, ib);
   LoopClosure lc;
   lc.method = params_.method;
@@ -66,9 +73,10 @@ LoopClosure LoopCloser::run(const ObjectMap& a, const std::vector<std::size_t>& 
     return lc;
   }
   for (const LandmarkMatch& m : lc.result.inliers) lc.inliers.emplace_back(a[la[m.a].index].id, b[lb[m.b].index].id);
-  const ConsensusFilter::Update u = filter.add(lc.result.T_a_b, static_cast<double>(lc.result.inliers.size()));
+  const Pose T = express ? express(lc.result.T_a_b) : lc.result.T_a_b;
+  const ConsensusFilter::Update u = filter.add(T, static_cast<double>(lc.result.inliers.size()));
   lc.outcome = u.outcome;
-  lc.T_a_b = u.outcome == ConsensusFilter::Outcome::Pending ? lc.result.T_a_b : u.T;
+  lc.T_a_b = u.outcome == ConsensusFilter::Outcome::Pending ? T : u.T;
   last_reason_.clear();
   return lc;
 }
@@ -98,14 +106,20 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   }
   const KeyPose& cur = keyposes_.back();
   const int old_limit = cur.seq - params_.intra_min_keypose_gap;
+  // Path driven from each key pose to the current one (horizontal), for the drift allowance.
+  std::vector<double> to_cur(keyposes_.size(), 0.0);
+  for (std::size_t i = keyposes_.size() - 1; i-- > 0;)
+    to_cur[i] = to_cur[i + 1] + (keyposes_[i + 1].pose.translation() - keyposes_[i].pose.translation()).head<2>().norm();
   const KeyPose* old = nullptr;
-  double best = params_.intra_trigger_radius_m;
-  for (const KeyPose& k : keyposes_) {
-    if (k.seq > old_limit) break;
-    const double d = (k.pose.translation() - cur.pose.translation()).head<2>().norm();
-    if (d <= best) {
+  double best = 0, slack = 0;  // the chosen one's distance, and its drift allowance
+  for (std::size_t i = 0; i < keyposes_.size() && keyposes_[i].seq <= old_limit; ++i) {
+    const double d = (keyposes_[i].pose.translation() - cur.pose.translation()).head<2>().norm();
+    const double allowance = params_.intra_drift_fraction * to_cur[i];
+    if (d > params_.intra_trigger_radius_m + allowance) continue;
+    if (!old || d - allowance <= best - slack) {  // the nearest, relative to what drift allows
       best = d;
-      old = &k;
+      slack = allowance;
+      old = &keyposes_[i];
     }
   }
   if (!old) {
@@ -116,7 +130,7 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
   std::vector<std::size_t> recent, older;
   for (std::size_t i = 0; i < own_.size(); ++i) {
     const Object& o = own_[i];
-    if ((o.position() - cur.pose.translation()).head<2>().norm() > params_.intra_local_radius_m) continue;
+    if ((o.position() - cur.pose.translation()).head<2>().norm() > params_.intra_local_radius_m + slack) continue;
     const auto it = first_seen_.find(o.id);
     const int seen = it == first_seen_.end() ? -1 : it->second;
     (seen > old_limit ? recent : older).push_back(i);
@@ -127,15 +141,31 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
     return std::nullopt;
   }
   const int place = old->seq / std::max(1, params_.intra_min_keypose_gap);
-  auto [it, fresh] = intra_filters_.try_emplace(place, params_.consensus);
-  LoopClosure lc = run(own_, older, own_, recent, it->second);
+  auto [it, fresh] = intra_places_.try_emplace(place, IntraPlace{ConsensusFilter(params_.consensus)});
+  IntraPlace& ip = it->second;
+  if (ip.seq_a < 0 || !keyPose(ip.seq_a) || !keyPose(ip.seq_b)) ip.seq_a = old->seq, ip.seq_b = cur.seq;
+  // The match M moves the recent objects (placed from the recent key poses) onto the old ones
+  // (placed from the old key poses): b's body is at M P_b where a's is at P_a.
+  const Pose P_a_inv = keyPose(ip.seq_a)->pose.inverse(), P_b = keyPose(ip.seq_b)->pose;
+  LoopClosure lc = run(own_, older, own_, recent, ip.filter, [&](const Pose& M) { return Pose(P_a_inv * M * P_b); });
   if (!lc.result.found) {
     last_reason_ = "intra-robot: " + last_reason_;
     return std::nullopt;
   }
+  if (ip.given) {  // fixed once given: confirmed (re-sent as it was) or held back
+    if (lc.outcome == ConsensusFilter::Outcome::Refined) {
+      lc.T_a_b = *ip.given;
+    } else {
+      last_reason_ = "intra-robot: a match at the place of key poses " + std::to_string(ip.seq_a) + "-" +
+                     std::to_string(ip.seq_b) + " disagrees with the closure it gave";
+      lc.outcome = ConsensusFilter::Outcome::Pending;
+    }
+  } else if (lc.outcome != ConsensusFilter::Outcome::Pending) {
+    ip.given = lc.T_a_b;
+  }
   lc.robot_a = lc.robot_b = params_.robot;
-  lc.keypose_a = old->seq;
-  lc.keypose_b = cur.seq;
+  lc.keypose_a = ip.seq_a;
+  lc.keypose_b = ip.seq_b;
   return lc;
 }
 

@@ -3,10 +3,12 @@
 // its peers' maps, and on poll() runs what is due —
 //  * intra-robot: when the current key pose comes near an old one, the objects first seen
 //    recently around it are matched against the objects first seen long ago (duplicates left
-//    by drift); the transform moves the recent ones onto the old ones;
+//    by drift); the match moves the recent ones onto the old ones in the robot's frame, and the
+//    closure given is what that says about two key poses' bodies (see LoopClosure::T_a_b);
 //  * inter-robot: the own map against each peer's map, every period, staggered between peers
 //    and robots, re-checked whenever either map changed.
 // Every result passes through a consensus filter per peer (per place for intra-robot).
+#include <functional>
 #include <map>
 
 #include "place/consensus_filter.h"
@@ -25,6 +27,9 @@ struct LoopCloserParams {
   double intra_trigger_radius_m = 10.0; // the current key pose this close to an old one...
   int intra_min_keypose_gap = 30;       // ...at least this many key poses older triggers a check
   double intra_local_radius_m = 25.0;   // objects within this of the current pose form the sub-maps
+  // Both radii grow by this fraction of the path driven between the old key pose and the
+  // current one: the own estimate can be that far off where the robot returns after a long way.
+  double intra_drift_fraction = 0.0;
   std::size_t min_objects = 6;          // per map or sub-map
   std::size_t max_map_objects = 50000;  // a map update with more objects is dropped (counted)
 };
@@ -39,7 +44,10 @@ struct LoopClosure {
   int robot_a = 0, robot_b = 0;
   int keypose_a = -1, keypose_b = -1;  // intra-robot: old and current key pose sequence numbers
   PlaceMethod method = PlaceMethod::SlideGraph;
-  Pose T_a_b = Pose::Identity();       // held (consensus) transform: B's frame into A's
+  // Held (consensus) transform. Inter-robot: B's frame into A's. Intra-robot: the pose of key
+  // pose b's body in key pose a's body, as the optimizer takes it: P_a^-1 M P_b with M the match
+  // (recent objects onto old ones, in the robot's frame) and P the key poses given with the map.
+  Pose T_a_b = Pose::Identity();
   PlaceResult result;                  // the raw result of this check
   std::vector<std::pair<std::int64_t, std::int64_t>> inliers;  // object ids (map A, map B)
   ConsensusFilter::Outcome outcome = ConsensusFilter::Outcome::Pending;
@@ -78,9 +86,25 @@ class LoopCloser {
     ConsensusFilter filter;
   };
   std::optional<LoopClosure> checkPeer(int robot, Peer& peer);
+  // One intra-robot place (old key poses by min_keypose_gap): its consensus, over closures all
+  // expressed between the key poses of its first check (a closure from the match of another
+  // check's sub-maps: P_a^-1 M P_b with this pair's key poses). A place's closure is fixed once
+  // given: after the optimizer takes it in, the objects there move with it (duplicates merged,
+  // recent objects onto old ones) and later matches measure the optimizer's own compromise, not
+  // the place. A later match that agrees re-sends the given closure unchanged (confirmed: the
+  // optimizer replaces it and solves again); one that disagrees is held back.
+  struct IntraPlace {
+    ConsensusFilter filter;
+    int seq_a = -1, seq_b = -1;
+    std::optional<Pose> given;
+  };
   std::optional<LoopClosure> checkIntra();
+  // Place recognition of the sub-maps (fills result and inliers), then the consensus filter
+  // over `T` (the result's transform, or what it says in another form) when found.
   LoopClosure run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
-                  const std::vector<std::size_t>& ib, ConsensusFilter& filter);
+                  const std::vector<std::size_t>& ib, ConsensusFilter& filter,
+                  const std::function<Pose(const Pose&)>& express = nullptr);
+  const KeyPose* keyPose(int seq) const;
 
   LoopCloserParams params_;
   ObjectMap own_;
@@ -88,7 +112,7 @@ class LoopCloser {
   std::map<std::int64_t, int> first_seen_;  // object id -> key pose seq when first in the map
   std::vector<KeyPose> keyposes_;
   std::map<int, Peer> peers_;
-  std::map<int, ConsensusFilter> intra_filters_;  // keyed by old key pose / gap
+  std::map<int, IntraPlace> intra_places_;  // keyed by old key pose / gap
   double next_intra_ = 0;
   std::string last_reason_;
   LoopCloserCounts counts_;

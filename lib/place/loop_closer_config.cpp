@@ -38,6 +38,8 @@ LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
     n.read("trigger_radius_m", p.intra_trigger_radius_m);
     n.read("min_keypose_gap", p.intra_min_keypose_gap);
     n.read("local_radius_m", p.intra_local_radius_m);
+    n.read("drift_fraction", p.intra_drift_fraction);
+    n.requireNonNegative("drift_fraction", p.intra_drift_fraction);
     n.requireNonNegative("period_s", p.intra_period_s);
     n.requireNonNegative("trigger_radius_m", p.intra_trigger_radius_m);
     n.requireNonNegative("local_radius_m", p.intra_local_radius_m);

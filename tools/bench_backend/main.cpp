@@ -114,6 +114,17 @@ void reportRealistic(BenchReport& rep, const std::string& name, const RealisticR
   rep.add(p + "peers_merged", r.peers_merged, "", true, static_cast<double>(r.peers)).note =
       "of " + std::to_string(r.peers) + " peers";
   rep.add(p + "intra_closures", r.intra_closures, "", false).note = "the host loop closer's, given to its optimizer";
+  rep.add(p + "wrong_intra_closures", r.wrong_intra, "", true, 0.0).note =
+      "SCORED BY THE SIMULATOR'S TRUTH: intra-robot closures given more than 1 m or 2 deg from the true relative pose "
+      "of their two key poses";
+  rep.add(p + "intra_closures_accepted", r.intra_accepted, "", false).note =
+      "by the host's optimizer (odometry envelope); " + std::to_string(r.wrong_intra_accepted) + " of them wrong (truth)";
+  for (const RealisticRunResult::IntraClosure& c : r.intra)
+    spdlog::info("{}: intra closure {} -> {}: {:.2f} m / {:.2f} deg from truth, {}; host ATE so far {:.2f} m", p,
+                 c.seq_a, c.seq_b, c.error_m, c.error_deg, c.accepted ? "accepted" : "rejected", c.host_ate_m);
+  for (const RealisticRunResult::AteSoFar& a : r.ate_trace)
+    spdlog::info("{}: after {} key poses: host ATE {:.2f} m, its odometry's {:.2f} m", p, a.keyposes, a.host_ate_m,
+                 a.odom_ate_m);
   rep.add(p + "inter_transforms", r.inter_transforms, "", false).note = "given to the host's optimizer";
   rep.add(p + "wrong_transforms", r.wrong_inter, "", true, 0.0).note =
       "inter-robot transforms given more than 1 m or 2 deg from the least-squares alignment of the two own maps over "

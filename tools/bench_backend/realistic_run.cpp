@@ -4,6 +4,8 @@
 #include <map>
 #include <memory>
 
+#include <spdlog/spdlog.h>
+
 #include "backend/optimizer.h"
 #include "clock/thread_cpu.h"
 #include "eval/alignment.h"
@@ -54,6 +56,17 @@ std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const
   return align(pb, pa, TrajectoryAlignment::Yaw4Dof).T;
 }
 
+// The host's ATE (SE3-aligned) over the key poses it holds so far; with `odometry`, its
+// odometry's over the same key poses.
+double hostAteSoFar(const Optimizer& opt, const ScenarioRobot& r, bool odometry = false) {
+  std::vector<Pose> est, ref;
+  for (const TrajectoryPose& p : opt.trajectory(r.id)) {
+    est.push_back(odometry ? r.bundles[p.seq].odom_pose : p.pose);
+    ref.push_back(r.truth[p.seq]);
+  }
+  return est.size() < 3 ? 0.0 : absoluteTrajectoryError(est, ref, TrajectoryAlignment::Se3).rmse;
+}
+
 double horizontalError(const Object& est, const Object& truth) {
   if (est.shape() == Shape::Cylinder && truth.shape() == Shape::Cylinder)
     return (std::get<Cylinder>(est.model).root - std::get<Cylinder>(truth.model).root).head<2>().norm();
@@ -98,6 +111,8 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
       vote(timed([&] { return opt.addBundle(r.bundles[k]); }), votes[host]);
       if (r.id != host) vote(stacks[r.id].optimizer->addBundle(r.bundles[k]), votes[r.id]);
     }
+    if ((k + 1) % 50 == 0)
+      out.ate_trace.push_back({static_cast<int>(k + 1), hostAteSoFar(opt, s.robots[0]), hostAteSoFar(opt, s.robots[0], true)});
     const double now = static_cast<double>(k) * period_s;
     if (k % map_every == 0 || k + 1 == longest) {
       for (auto& [id, st] : stacks) {
@@ -111,6 +126,12 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
       const double c0 = threadCpuMs();
       const std::vector<LoopClosure> found = st.closer->poll(now);
       out.place_cpu_s += (threadCpuMs() - c0) / 1000.0;
+      if (id == host && found.empty() && !st.closer->lastReason().empty())
+        spdlog::debug("key pose {}: host loop closer: {}", k, st.closer->lastReason());
+      for (const LoopClosure& lc : found)
+        if (id == host && lc.robot_a == lc.robot_b)
+          spdlog::debug("key pose {}: host loop closer: {} -> {} {} ({} inliers)", k, lc.keypose_a, lc.keypose_b,
+                        outcomeName(lc.outcome), lc.inliers.size());
       for (const LoopClosure& lc : found) {
         if (lc.outcome == ConsensusFilter::Outcome::Pending) continue;
         if (lc.robot_a == lc.robot_b) {
@@ -118,8 +139,21 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
             st.optimizer->addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b);
             continue;
           }
-          timed([&] { return opt.addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b); });
+          const ScenarioRobot& hr = s.robots[0];
+          RealisticRunResult::IntraClosure c;
+          c.seq_a = lc.keypose_a;
+          c.seq_b = lc.keypose_b;
+          const TransformError e = transformError(lc.T_a_b, hr.truth[c.seq_a].inverse() * hr.truth[c.seq_b]);
+          c.error_m = e.translation_m;
+          c.error_deg = e.rotation_deg;
+          c.host_ate_m = hostAteSoFar(opt, hr);
+          c.accepted = timed([&] { return opt.addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b); }).accepted;
+          const bool wrong = c.error_m > 1.0 || c.error_deg > 2.0;
           ++out.intra_closures;
+          out.wrong_intra += wrong;
+          out.intra_accepted += c.accepted;
+          out.wrong_intra_accepted += wrong && c.accepted;
+          out.intra.push_back(c);
         } else if (id == host && lc.robot_a == host) {
           const ScenarioRobot* peer = nullptr;
           for (const ScenarioRobot& r : s.robots)

@@ -19,6 +19,21 @@ struct RealisticRunResult {
   double host_ate_m = 0, host_odom_ate_m = 0;    // the host's own trajectory and odometry
   int peers = 0, peers_merged = 0;
   int intra_closures = 0, inter_transforms = 0;  // given to the host's optimizer
+  // Scored by the simulator's truth: intra-robot closures given more than 1 m or 2 deg from the
+  // true relative pose of their two key poses, and of those the host's optimizer accepted.
+  int wrong_intra = 0, intra_accepted = 0, wrong_intra_accepted = 0;
+  struct IntraClosure {
+    int seq_a = 0, seq_b = 0;
+    double error_m = 0, error_deg = 0;  // against truth[a]^-1 truth[b]
+    bool accepted = false;              // by the host's optimizer (odometry envelope)
+    double host_ate_m = 0;              // the host's ATE so far (SE3), just before this closure
+  };
+  std::vector<IntraClosure> intra;
+  struct AteSoFar {
+    int keyposes = 0;
+    double host_ate_m = 0, odom_ate_m = 0;  // over the host's key poses so far, SE3-aligned
+  };
+  std::vector<AteSoFar> ate_trace;  // every 50 key poses
   int wrong_inter = 0;  // of those: > 1 m or > 2 deg from the two maps' alignment, or maps sharing no object
   // Per transform given: its error against the least-squares alignment of the two own maps over
   // the true objects both hold (the truth for bent maps), and against the robots' true frames.
