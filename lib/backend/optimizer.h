@@ -30,6 +30,7 @@ namespace slide {
 namespace backend {
 class SolveWorker;
 }
+struct ObservationSpread;
 
 struct TrajectoryPose {
   int seq = 0;
@@ -216,9 +217,19 @@ class Optimizer {
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
-  // the poses): same class, associable, never seen from the same key pose. Returns merges.
+  // the poses, or made while the noise exceeded the configured sigmas), never seen from the
+  // same key pose: see sameObject(). Returns merges.
   int mergeDuplicates();
-  void moveObservations(Landmark& from, Landmark& to);
+  // a and b (one shape) are one object: of one kind and associable; or, of one kind or (with
+  // merge_within_shape) of two classes of the shape, within the stricter class's model
+  // difference and its distance or within merge_gate sigmas of sameObjectChi2 (the landmarks'
+  // observations' own spread). oa: a's current model; sa, sb: spreadOf(a), spreadOf(b).
+  bool sameObject(const Landmark& a, const Object& oa, const ObservationSpread& sa, const Landmark& b,
+                  const ObservationSpread& sb) const;
+  ObservationSpread spreadOf(const Landmark& lm) const;  // its observations as the graph places them
+  double modelVariance(const Object& body) const;  // of a body-frame detection's horizontal position, m^2
+  // All of from's observations but `keep` go to `to`; from ends (merged) when it keeps none.
+  void moveObservations(Landmark& from, Landmark& to, const std::vector<Observation>& keep = {});
   // Adds an observation's vote (its confidence) to the landmark's class.
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
