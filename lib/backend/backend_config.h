@@ -72,14 +72,12 @@ struct BackendConfig {
   double association_sigmas = 2.0;
   double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
   double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached
-  // After full solves, two landmarks never seen from one key pose are merged when associable,
-  // or when their distance is within merge_gate sigmas of the difference of two means whose
-  // observations scatter as they do (0: off); merge_within_shape: also two classes of one
-  // shape (a detector's class confusion), under the stricter class's thresholds.
-  // Two landmarks may share key poses (one of each pair of detections being of another object)
-  // up to this fraction of the smaller's observations; those stay with the younger landmark.
-  double merge_gate = 3.0;
+  // After full solves, two landmarks never seen from one key pose are merged when associable;
+  // merge_within_shape: also two classes of one shape (a detector's class confusion: a chair
+  // taken for a table now and then), when associable under the stricter class's thresholds.
   bool merge_within_shape = true;
+  // Two such landmarks may share key poses (one detection of each pair being of another object)
+  // up to this fraction of the fewer one's observations; those stay with the younger landmark.
   double merge_shared_fraction = 0.25;
 
   // Incremental solving.

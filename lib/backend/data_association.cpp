@@ -3,9 +3,7 @@
 #include "assignment/hungarian.h"
 #include "objects/association.h"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <Eigen/Cholesky>
 
 namespace slide {
@@ -30,24 +28,6 @@ double associationCost(const Detection& det, const Object& landmark, const Class
   const double m = std::sqrt(d.dot(S.ldlt().solve(d)));
   if (m > det.gate) return -1;
   return m / det.gate + modelDifference(det.object, landmark) / c.model_difference;
-}
-
-void ObservationSpread::add(const Eigen::Vector2d& p, double variance) {
-  sum += p;
-  sum_squares += p.squaredNorm();
-  model_variance += variance;
-  ++n;
-}
-
-double sameObjectChi2(double distance, const ObservationSpread& a, const ObservationSpread& b) {
-  if (a.n < 1 || b.n < 1) return std::numeric_limits<double>::infinity();
-  // Scatter about each set's own mean, pooled: 2 (n_a + n_b - 2) degrees of freedom (two axes).
-  const double scatter = std::max(0.0, a.sum_squares - a.sum.squaredNorm() / a.n) +
-                         std::max(0.0, b.sum_squares - b.sum.squaredNorm() / b.n);
-  const int dof = 2 * (a.n + b.n - 2);
-  const double model = (a.model_variance + b.model_variance) / (a.n + b.n);
-  const double variance = std::max(model, dof > 0 ? scatter / dof : 0.0);
-  return distance * distance / (variance * (1.0 / a.n + 1.0 / b.n));
 }
 
 std::vector<int> associateDetections(const std::vector<Detection>& detections,

@@ -30,22 +30,6 @@ struct LandmarkCandidate {
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack = 0.0);
 double associationCost(const Detection& detection, const Object& landmark, const ClassTable& classes);
 
-// The horizontal positions of one landmark's observations in the landmarks' frame, as sums,
-// with the variance the measurement model gives each (isotropic, m^2).
-struct ObservationSpread {
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  double sum_squares = 0;   // of |p|^2
-  double model_variance = 0;  // summed per observation
-  int n = 0;
-  void add(const Eigen::Vector2d& p, double variance);
-};
-
-// Two landmarks as two samples of one object: the squared distance between their estimates in
-// sigmas of the difference of two means, each observation's variance being the larger of the
-// pooled scatter of both sets about their own means (the noise as it is, not as configured)
-// and the measurement model's. Infinite when either set is empty.
-double sameObjectChi2(double distance, const ObservationSpread& a, const ObservationSpread& b);
-
 // For each detection, the index of its landmark or -1 (a new landmark).
 std::vector<int> associateDetections(const std::vector<Detection>& detections,
                                      const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes);

@@ -6,7 +6,6 @@
 #include "backend/factors.h"
 #include "backend/optimizer.h"
 #include "backend/pose_block.h"
-#include "objects/association.h"
 
 namespace slide {
 
@@ -161,43 +160,20 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   return detached;
 }
 
-double Optimizer::modelVariance(const Object& body) const {
-  const double rho = body.position().head<2>().norm();
-  double range = std::max(cfg_.position_sigma_floor, cfg_.range_sigma);
-  if (const auto* e = std::get_if<Ellipsoid>(&body.model)) range = std::max(range, cfg_.ellipsoid_partial_view * e->radius);
-  const double bearing = std::max(cfg_.position_sigma_floor, cfg_.bearing_sigma * rho);
-  return 0.5 * (range * range + bearing * bearing);
-}
-
-ObservationSpread Optimizer::spreadOf(const Landmark& lm) const {
-  ObservationSpread s;
-  for (const Observation& obs : lm.seen)
-    s.add(transformObject(poseOf(obs.pose_var), obs.body).position().head<2>(), modelVariance(obs.body));
-  return s;
-}
-
-bool Optimizer::sameObject(const Landmark& a, const Object& oa, const ObservationSpread& sa, const Landmark& b,
-                           const ObservationSpread& sb) const {
+bool Optimizer::sameObject(const Landmark& a, const Object& oa, const Landmark& b) const {
   if (a.shape != b.shape) return false;
   const Object ob = landmarkObject(b);
-  const bool same_kind = classes_.sameKind(a.class_id, b.class_id);
-  if (same_kind && associationCost(ob, oa, classes_) >= 0) return true;
-  if (!same_kind && !cfg_.merge_within_shape) return false;
-  // Thresholds of the stricter class when the classes differ (a confused detection's landmark).
-  const ClassInfo* ca = classes_.find(a.class_id);
-  const ClassInfo* cb = classes_.find(b.class_id);
-  if (!ca || !cb) return false;
-  const double distance = associationDistance(ob, oa);
-  if (!(modelDifference(ob, oa) <= std::min(ca->model_difference, cb->model_difference))) return false;
-  if (distance <= std::min(ca->association_distance, cb->association_distance)) return true;
-  return cfg_.merge_gate > 0 && sameObjectChi2(distance, sa, sb) <= cfg_.merge_gate * cfg_.merge_gate;
+  if (classes_.sameKind(a.class_id, b.class_id)) return associationCost(ob, oa, classes_) >= 0;
+  if (!cfg_.merge_within_shape) return false;
+  // Two classes: associable under each one's thresholds, i.e. the stricter's.
+  Object ob_as_a = ob, oa_as_b = oa;
+  ob_as_a.class_id = a.class_id;
+  oa_as_b.class_id = b.class_id;
+  return associationCost(ob_as_a, oa, classes_) >= 0 && associationCost(ob, oa_as_b, classes_) >= 0;
 }
 
 int Optimizer::mergeDuplicates() {
   int merged = 0;
-  std::vector<ObservationSpread> spread(landmarks_.size());
-  for (std::size_t i = 0; i < landmarks_.size(); ++i)
-    if (landmarks_[i].alive) spread[i] = spreadOf(landmarks_[i]);
   std::vector<int> near;
   for (std::size_t i = 0; i < landmarks_.size(); ++i) {
     if (!landmarks_[i].alive) continue;
@@ -207,20 +183,18 @@ int Optimizer::mergeDuplicates() {
     for (int j : near) {
       Landmark& a = landmarks_[i];
       Landmark& b = landmarks_[j];
-      if (j <= static_cast<int>(i) || !b.alive || !sameObject(a, oi, spread[i], b, spread[j])) continue;
-      // One object gives one detection per key pose: key poses that saw both hold a detection of
-      // something else (a neighbour, a false object) in one of them, which is rare; two objects
-      // in view together share most of theirs.
+      if (j <= static_cast<int>(i) || !b.alive || !sameObject(a, oi, b)) continue;
+      // One object gives one detection per key pose: a key pose that saw both gave one of them a
+      // detection of something else (a neighbour, a false object), which is rare; two objects in
+      // view together share most of their key poses.
       std::vector<Observation> keep;
       for (const Observation& y : b.seen)
         if (std::any_of(a.seen.begin(), a.seen.end(), [&](const Observation& x) { return x.pose_var == y.pose_var; }))
           keep.push_back(y);
       if (keep.size() > cfg_.merge_shared_fraction * std::min(a.seen.size(), b.seen.size())) continue;
-      // The older landmark (lower index) keeps its id and its class is voted again over both; b
-      // keeps its observations from key poses a has one of (b stays a landmark when it has any).
+      // The older landmark (lower index) keeps its id; the class is voted again over both. b keeps
+      // its observations from key poses a has one from (and stays a landmark if there are any).
       moveObservations(b, a, keep);
-      if (b.alive) spread[j] = spreadOf(b);
-      spread[i] = spreadOf(a);
       ++merged;
     }
   }

@@ -30,7 +30,6 @@ namespace slide {
 namespace backend {
 class SolveWorker;
 }
-struct ObservationSpread;
 
 struct TrajectoryPose {
   int seq = 0;
@@ -217,17 +216,13 @@ class Optimizer {
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
-  // the poses, or made while the noise exceeded the configured sigmas), never seen from the
-  // same key pose: see sameObject(). Returns merges.
+  // the poses, or a detector's class confusion made a second one): sameObject(), seen from
+  // the same key pose at most merge_shared_fraction of the fewer observations. Returns merges.
   int mergeDuplicates();
-  // a and b (one shape) are one object: of one kind and associable; or, of one kind or (with
-  // merge_within_shape) of two classes of the shape, within the stricter class's model
-  // difference and its distance or within merge_gate sigmas of sameObjectChi2 (the landmarks'
-  // observations' own spread). oa: a's current model; sa, sb: spreadOf(a), spreadOf(b).
-  bool sameObject(const Landmark& a, const Object& oa, const ObservationSpread& sa, const Landmark& b,
-                  const ObservationSpread& sb) const;
-  ObservationSpread spreadOf(const Landmark& lm) const;  // its observations as the graph places them
-  double modelVariance(const Object& body) const;  // of a body-frame detection's horizontal position, m^2
+  // a and b are one object: one shape, and associable (same class or family), or (with
+  // merge_within_shape) of two classes of that shape associable under each one's thresholds: a
+  // detector's class confusion. oa: a's current model.
+  bool sameObject(const Landmark& a, const Object& oa, const Landmark& b) const;
   // All of from's observations but `keep` go to `to`; from ends (merged) when it keeps none.
   void moveObservations(Landmark& from, Landmark& to, const std::vector<Observation>& keep = {});
   // Adds an observation's vote (its confidence) to the landmark's class.
