@@ -64,6 +64,10 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("association_gate", c.association_gate);
     if (c.association_gate < 0) n.fail("association_gate", "must not be negative (0 turns it off)");
     n.read("outlier_sigmas", c.outlier_sigmas);
+    n.read("merge_within_shape", c.merge_within_shape);
+    n.read("merge_shared_fraction", c.merge_shared_fraction);
+    if (!(c.merge_shared_fraction >= 0 && c.merge_shared_fraction < 1))
+      n.fail("merge_shared_fraction", "must lie in [0, 1)");
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
   }

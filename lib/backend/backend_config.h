@@ -72,6 +72,16 @@ struct BackendConfig {
   double association_sigmas = 2.0;
   double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
   double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached
+  // After full solves, two landmarks never seen from one key pose are merged when associable;
+  // merge_within_shape: also two classes of one shape (a detector's class confusion: a chair
+  // taken for a table now and then), when associable under the stricter class's thresholds.
+  bool merge_within_shape = true;
+  // Two such landmarks may share key poses (one detection of each pair being of another object)
+  // up to this fraction of the fewer one's observations; those stay with the younger landmark.
+  // Off by default: 0.25 took duplicates from 0.156 to 0.133 indoors and 0.340 to 0.315 in
+  // the forest (noise x2), but on KITTI 05 the changed maps let place recognition merge a
+  // second peer through a wrong transform (team ATE 6.6 -> 11.8 m); BENCHMARKS.md, issue 20.
+  double merge_shared_fraction = 0.0;
 
   // Incremental solving.
   int window_poses = 3;            // own latest poses optimized in each local solve

@@ -109,15 +109,21 @@ void Optimizer::voteClass(Landmark& lm, int class_id, double confidence) {
     if (v > most) most = v, lm.class_id = c;
 }
 
-void Optimizer::moveObservations(Landmark& from, Landmark& to) {
+void Optimizer::moveObservations(Landmark& from, Landmark& to, const std::vector<Observation>& keep) {
   const int last_step = std::max(from.last_step, to.last_step);
   for (const Observation& obs : from.seen) {
+    if (std::any_of(keep.begin(), keep.end(), [&](const Observation& k) { return k.factor == obs.factor; })) continue;
     graph_.removeFactor(obs.factor);
     addObservation(obs.pose_var, fromPoseBlock(graph_.value(obs.pose_var)), obs.body, to);
   }
   to.last_step = last_step;
-  from.seen.clear();
-  from.observations = 0;
+  from.seen = keep;
+  from.observations = static_cast<int>(keep.size());
+  if (!keep.empty()) {
+    from.class_votes.clear();
+    for (const Observation& obs : keep) voteClass(from, obs.body.class_id, obs.body.confidence);
+    return;
+  }
   from.alive = false;
   graph_.removeVariable(from.var);
   if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
@@ -154,6 +160,18 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   return detached;
 }
 
+bool Optimizer::sameObject(const Landmark& a, const Object& oa, const Landmark& b) const {
+  if (a.shape != b.shape) return false;
+  const Object ob = landmarkObject(b);
+  if (classes_.sameKind(a.class_id, b.class_id)) return associationCost(ob, oa, classes_) >= 0;
+  if (!cfg_.merge_within_shape) return false;
+  // Two classes: associable under each one's thresholds, i.e. the stricter's.
+  Object ob_as_a = ob, oa_as_b = oa;
+  ob_as_a.class_id = a.class_id;
+  oa_as_b.class_id = b.class_id;
+  return associationCost(ob_as_a, oa, classes_) >= 0 && associationCost(ob, oa_as_b, classes_) >= 0;
+}
+
 int Optimizer::mergeDuplicates() {
   int merged = 0;
   std::vector<int> near;
@@ -165,14 +183,18 @@ int Optimizer::mergeDuplicates() {
     for (int j : near) {
       Landmark& a = landmarks_[i];
       Landmark& b = landmarks_[j];
-      if (j <= static_cast<int>(i) || !b.alive || !classes_.sameKind(b.class_id, a.class_id)) continue;
-      if (associationCost(landmarkObject(b), oi, classes_) < 0) continue;
-      bool shared = false;
-      for (const Observation& x : a.seen)
-        for (const Observation& y : b.seen) shared = shared || x.pose_var == y.pose_var;
-      if (shared) continue;
-      // The older landmark (lower index) keeps its id.
-      moveObservations(b, a);
+      if (j <= static_cast<int>(i) || !b.alive || !sameObject(a, oi, b)) continue;
+      // One object gives one detection per key pose: a key pose that saw both gave one of them a
+      // detection of something else (a neighbour, a false object), which is rare; two objects in
+      // view together share most of their key poses.
+      std::vector<Observation> keep;
+      for (const Observation& y : b.seen)
+        if (std::any_of(a.seen.begin(), a.seen.end(), [&](const Observation& x) { return x.pose_var == y.pose_var; }))
+          keep.push_back(y);
+      if (keep.size() > cfg_.merge_shared_fraction * std::min(a.seen.size(), b.seen.size())) continue;
+      // The older landmark (lower index) keeps its id; the class is voted again over both. b keeps
+      // its observations from key poses a has one from (and stays a landmark if there are any).
+      moveObservations(b, a, keep);
       ++merged;
     }
   }
