@@ -25,6 +25,6 @@ struct ScenarioRealism {
 // The scenario re-observed under `realism`. ScenarioRobot::seen holds -1 for a false object's
 // detection. Throws std::invalid_argument on rates outside [0, 1) or a scale <= 0.
 GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& realism, const ClassTable& classes,
-                     std::uint32_t seed = 17);
+                          std::uint32_t seed = 17);
 
 }  // namespace slide
