@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
                  "long mission: bound the final solve to about this many seconds (0: to convergence)")
       ->capture_default_str();
   app.add_flag("--background-solves", background_solves,
-               "long mission: full solves on a worker thread, as the daemon's --background-solves (the other "
+               "long mission: full solves on a worker thread, as slide-optimizer does by default (the other "
                "scenarios always solve inside the updates)");
   addCommonOptions(app, common);
   return runApp(app, common, argc, argv, [&]() {
