@@ -155,8 +155,10 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
   // may be whole and are kept.
   const double c = std::cos(yaw_x), s = std::sin(yaw_x);
-  completeInterval(lo_u, hi_u, size_min.x(), size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
-  completeInterval(lo_v, hi_v, size_min.y(), size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
+  const double min_u = std::max(size_min.x(), p.complete_fraction * size_typical.x());
+  const double min_v = std::max(size_min.y(), p.complete_fraction * size_typical.y());
+  completeInterval(lo_u, hi_u, min_u, size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
+  completeInterval(lo_v, hi_v, min_v, size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
   if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
 
   const double cu = 0.5 * (lo_u + hi_u), cv_ = 0.5 * (lo_v + hi_v);

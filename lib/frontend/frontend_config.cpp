@@ -39,6 +39,14 @@ void loadCluster(const ConfigNode& n, GridClusterParams& c) {
   opt(n, "min_points", c.min_points, 1);
 }
 
+void loadNotch(const ConfigNode& c, NotchSplitParams& p) {
+  opt(c, "bin_deg", p.bin_deg, 0.01, 10.0);
+  opt(c, "depth", p.depth, 0.0);
+  opt(c, "min_side", p.min_side, 0.0);
+  opt(c, "band_low", p.band_low, 0.0);
+  opt(c, "band_high", p.band_high, p.band_low);
+}
+
 void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "max_range", g.max_range, 1.0, 1000.0);
   opt(n, "emit_other", g.emit_other);
@@ -129,6 +137,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "max_width", p.max_width, 0.0);
     opt(c, "min_split_cell", p.min_split_cell, 0.02);
     opt(c, "max_split_length", p.max_split_length, 0.0);
+    if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
@@ -163,6 +172,7 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     if (p.yaw_step_deg > 0 && p.yaw_step_deg < 0.1) c.fail("yaw_step_deg", "must be 0 (off) or at least 0.1");
     opt(c, "min_visible_fraction", p.min_visible_fraction, 0.0);
     opt(c, "size_tolerance", p.size_tolerance, 1.0);
+    opt(c, "complete_fraction", p.complete_fraction, 0.0, 1.0);
     opt(c, "min_points", p.min_points, 3);
   }
   if (n.has("ellipsoid")) {
@@ -216,6 +226,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
       opt(c, "min_split_cell", cfg.labelled.min_split_cell, 1e-3);
+      if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
       if (c.has("cluster_cell_by_class")) {
         const ConfigNode cells = c.child("cluster_cell_by_class");
         for (const std::string& name : cells.keys()) {

@@ -131,6 +131,11 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   for (std::size_t k = 0; k < todo.size(); ++k) {
     std::vector<int> cl = std::move(todo[k].first);
     const double cell = todo[k].second;
+    if (auto parts = splitAtNotch(cloud, cl, kp.notch)) {
+      for (auto* part : {&parts->first, &parts->second})
+        if (static_cast<int>(part->size()) >= kp.min_points) todo.emplace_back(std::move(*part), cell);
+      continue;
+    }
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);

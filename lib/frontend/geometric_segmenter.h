@@ -13,6 +13,7 @@
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
 #include "frontend/occlusion.h"
+#include "frontend/view_notch.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
@@ -33,6 +34,7 @@ struct CarParams {
   // cell (cars parked a few decimetres apart join at `cell`); cell or more: no splitting.
   double min_split_cell = 0.15;
   double max_split_length = 13.0;  // ... when no side of its bounding box is longer (two cars back to back)
+  NotchSplitParams notch;          // a cluster with a notch in its view is split there (cars parked nose out)
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.

@@ -65,6 +65,11 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
       for (auto& c : clusters) todo.emplace_back(std::move(c), cp.cell);
       for (std::size_t k = 0; k < todo.size(); ++k) {
         auto [c, cell] = std::move(todo[k]);
+        if (auto parts = splitAtNotch(scan.xyz, c, params_.notch)) {
+          for (auto* part : {&parts->first, &parts->second})
+            if (static_cast<int>(part->size()) >= cp.min_points) todo.emplace_back(std::move(*part), cell);
+          continue;
+        }
         std::vector<cv::Point2f> xy;
         xy.reserve(c.size());
         for (int i : c) xy.emplace_back(scan.xyz[i].x(), scan.xyz[i].y());

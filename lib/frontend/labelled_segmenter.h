@@ -15,6 +15,7 @@
 #include <string>
 
 #include "frontend/grid_clustering.h"
+#include "frontend/view_notch.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
@@ -33,6 +34,7 @@ struct LabelledSegmenterParams {
   // again on cells half as large, down to this cell (cars parked a few decimetres apart join
   // at cluster.cell); cluster.cell or more: off.
   double min_split_cell = 0.15;
+  NotchSplitParams notch;  // a cuboid-class cluster with a notch in its view is split there (view_notch.h)
 };
 
 class LabelledSegmenter : public LidarSegmenter {

@@ -32,6 +32,9 @@ struct CuboidFitParams {
   double yaw_step_deg = 1.0;       // heading search step (0: minimum-area rectangle instead)
   double min_visible_fraction = 0.4;  // visible length / class min length required
   double size_tolerance = 1.1;     // fitted extents may exceed the class maximum by this factor
+  // A horizontal extent shorter than this fraction of the class's typical one is taken as partly
+  // hidden and grows to the typical extent away from the sensor (0: only below the class minimum).
+  double complete_fraction = 0.0;
   int min_points = 30;
 };
 

@@ -255,3 +255,43 @@ TEST(Segmenters, TwoCarsParkedCloseAreTwoCars) {
   InputIssues issues;
   for (const auto& i : GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues)) EXPECT_NE(i.class_id, 10);
 }
+
+namespace {
+// The car points of a synthetic scan seen from the origin, and their instance ids.
+std::pair<Cloud, std::vector<int>> carPoints(const std::vector<SceneObject>& cars) {
+  const LabelledScan s = synth::syntheticScan(cars, poseFromXyzYaw(0, 0, 1.5, 0));
+  std::pair<Cloud, std::vector<int>> out;
+  for (std::size_t i = 0; i < s.xyz.size(); ++i)
+    if (s.semantic[i] == 10) out.first.push_back(s.xyz[i]), out.second.push_back(s.instance[i]);
+  return out;
+}
+std::vector<int> allOf(const Cloud& c) {
+  std::vector<int> idx(c.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  return idx;
+}
+}  // namespace
+
+TEST(ViewNotch, SplitsTwoCarsNoseOutAndKeepsOneCarWhole) {
+  const NotchSplitParams p;
+  // Two cars parked nose out 0.3 m apart, seen from the aisle: the rays into the gap hit their
+  // facing sides, metres beyond the two fronts.
+  const auto [pair, inst] = carPoints({{10, {12.0, -1.05, 0}, 0, 0, 0, {4.4, 1.8, 1.5}},
+                                       {10, {12.0, 1.05, 0}, 0, 0, 0, {4.4, 1.8, 1.5}}});
+  const auto parts = splitAtNotch(pair, allOf(pair), p);
+  ASSERT_TRUE(parts);
+  for (const auto* part : {&parts->first, &parts->second}) {
+    std::map<int, int> ids;
+    for (int i : *part) ++ids[inst[i]];
+    ASSERT_EQ(ids.size(), 1u) << "each part holds one car's points";
+  }
+  EXPECT_NE(inst[parts->first.front()], inst[parts->second.front()]);
+  // One car: seen at its corner (an L, nearest in the middle), broadside, or end on.
+  for (const double yaw : {0.6, M_PI / 2, 0.0}) {
+    const auto [one, ids] = carPoints({{10, {12.0, 2.0, 0}, 0, 0, yaw, {4.4, 1.8, 1.5}}});
+    EXPECT_FALSE(splitAtNotch(one, allOf(one), p)) << "yaw " << yaw;
+  }
+  NotchSplitParams off = p;
+  off.depth = 0;
+  EXPECT_FALSE(splitAtNotch(pair, allOf(pair), off));
+}

@@ -284,6 +284,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           if (!best || !info) continue;
           const Eigen::Vector2d ray = (p - T_world_body.translation()).head<2>().normalized();
           r.result.along_ray[info->name].push_back((p - best->position()).head<2>().dot(ray));
+          r.result.centre_error[info->name].push_back(best_d);
         }
       }
     }
@@ -316,7 +317,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     }
     // The map: every landmark, none merged here. A landmark nearer to a real object below the
     // visibility criterion (too far, too few returns) than to any scored one, and within the
-    // class's association distance of it, is neither credited nor penalised (counted as ignored).
+    // match distance of it, is neither credited nor penalised (counted as ignored).
     std::vector<Object> estimates;
     for (const Object& o : r.landmarks) {
       const ClassInfo* c = classes.find(o.class_id);
@@ -328,7 +329,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         return d;
       };
       const double d_out = nearest(unscored[grp]);
-      if (d_out <= classes.at(grp).association_distance && d_out < nearest(gt[grp])) {
+      if (d_out <= spec.match_distance && d_out < nearest(gt[grp])) {
         ++r.result.ignored;
         continue;
       }
@@ -358,7 +359,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         for (std::size_t i = 0; i < E.size(); ++i)
           for (std::size_t j = 0; j < G.size(); ++j)
             cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
-        const auto assign = solveGatedAssignment(cost, info.association_distance);
+        const auto assign = solveGatedAssignment(cost, spec.match_distance);
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
           if (a >= 0) ++matched, hit[a] = 1;

@@ -2,7 +2,8 @@
 // Object mapping quality of segmenter + tracker on a simulated world: one robot drives the
 // world (lib/sim, in memory), every frame is segmented and tracked, the latest fitted model
 // of every track (placed in the world with the ground-truth key pose) forms the map, which is
-// matched per class (Hungarian, class association distance) against the ground-truth objects
+// matched per class (Hungarian, centres within match_distance horizontally: 1 m, as the demo
+// report scores its maps) against the ground-truth objects
 // the robot saw well enough: at least min_points LiDAR returns (RGBD: mask pixels) within
 // max_range metres in at least min_frames frames -- a criterion of the sensor's view, fixed
 // here, not the segmenter's own thresholds. Every track counts: estimates of one object by
@@ -36,6 +37,7 @@ struct WorldEvalSpec {
   int min_points = 30;       // a ground-truth object counts as seen with this many returns ...
   double max_range = 40.0;   // ... within this horizontal range (metres) ...
   int min_frames = 3;        // ... in this many frames
+  double match_distance = 1.0;  // an estimate matches a real object within this horizontal distance (m)
   bool verbose = false;      // print every missed ground-truth object
   bool diagnose = false;     // print per-frame segmentation outcomes per class (segment_diagnosis.h)
 };
@@ -43,7 +45,7 @@ struct WorldEvalSpec {
 struct ModeResult {
   std::string mode;
   int estimated = 0, ground_truth = 0, matched = 0;
-  int duplicates = 0;        // unmatched estimates within the association distance of a matched object
+  int duplicates = 0;        // unmatched estimates within the class's association distance of a matched object
   int false_objects = 0;     // other unmatched estimates
   int ignored = 0;           // estimates of real objects below the visibility criterion (not scored)
   std::map<std::string, double> iou;  // emulated and learned modes: per-class point IoU of their labels
@@ -55,6 +57,8 @@ struct ModeResult {
   // of its class within 2 m (scored with ground truth, evaluation only): its offset along the
   // horizontal line of sight from the key pose (negative: short of the real centre), per class.
   std::map<std::string, std::vector<double>> along_ray;
+  // The same observations' horizontal distance to that real object (metres), per class.
+  std::map<std::string, std::vector<double>> centre_error;
   long issues = 0;
 };
 
