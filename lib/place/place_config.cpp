@@ -98,8 +98,7 @@ PlaceResult recognizePlace(PlaceMethod method, const std::vector<Landmark>& a, c
                            const PlaceConfig& config) {
   if (sharedClassShare(a, b) < config.min_shared_class_share) {
     const std::vector<Landmark> sa = byShapeFamily(a), sb = byShapeFamily(b);
-    PlaceResult r = method == PlaceMethod::SlideGraph ? slideGraph(sa, sb, config.slidegraph)
-                                                      : slideMatch(sa, sb, config.slidematch);
+    PlaceResult r = slideMatch(sa, sb, config.slidematch);
     r.by_shape = true;
     return r;
   }

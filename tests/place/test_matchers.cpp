@@ -284,3 +284,23 @@ TEST(SlideMatch, BudgetIsTheQueryingThreadsCpuTime) {
   EXPECT_GE(r.stage_cpu_ms.front().second, p.budget_ms);
   EXPECT_GT(r.ms, 1.3 * r.cpu_ms) << "the busy thread did not share the core";
 }
+
+TEST(PlaceRecognition, RecordedIndoorLidarAndRgbdMapsAlignByShapeFamily) {
+  // tests/data/recorded/indoor_lidar_rgbd_maps/README.md: the loop closer's SlideGraph found no
+  // transform between these two robots' maps in a mixed-team demo.
+  const ClassTable classes = ClassTable::loadDefault();
+  const std::string dir = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/indoor_lidar_rgbd_maps/";
+  const std::vector<Landmark> lidar = landmarksOf(readObjectMapText(dir + "lidar_robot0.txt", classes, MissingSize::Zero).map);
+  const std::vector<Landmark> rgbd = landmarksOf(readObjectMapText(dir + "rgbd_robot1.txt", classes, MissingSize::Zero).map);
+  const PlaceConfig config = loadDefaultPlaceConfig();
+  ASSERT_LT(sharedClassShare(lidar, rgbd), config.min_shared_class_share);
+  const Pose truth = poseFromXyzYaw(-18.38, 8.62, 0.0, -M_PI / 2);
+  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    const PlaceResult r = recognizePlace(m, lidar, rgbd, config);
+    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+    EXPECT_TRUE(r.by_shape);
+    const TransformError e = transformError(r.T_a_b, truth);
+    EXPECT_LT(e.translation_m, 0.5) << methodName(m);
+    EXPECT_LT(e.yaw_deg, 1.0) << methodName(m);
+  }
+}
