@@ -4,12 +4,13 @@
 #   train:   seeds 11-14 of forest (procedural and the real stem layouts), urban, indoor, with
 #            the Ouster OS1-64 and Velodyne HDL-64E, ground and aerial robots.
 #   heldout: seeds 1-2 (never trained on; ./slide bench frontend evaluates seed 1).
+# SIM=/path/to/slide-sim uses another build's simulator (default: this tree's build/bin).
 # One frame every 2 s (0.5 Hz) keeps consecutive scans apart.
 set -euo pipefail
 out=${1:?usage: make_data.sh OUT_DIR [train|heldout]}
 set_name=${2:-train}
 root=$(cd "$(dirname "$0")/../.." && pwd)
-sim="$root/build/bin/slide-sim"
+sim=${SIM:-"$root/build/bin/slide-sim"}
 [[ -x "$sim" ]] || { echo "build slide-sim first (cmake --build build --target slide-sim)" >&2; exit 1; }
 if [[ "$set_name" == train ]]; then seeds=(11 12 13 14); else seeds=(1 2); fi
 run() {  # name, then slide-sim options
