@@ -1,18 +1,24 @@
 #!/usr/bin/python3
 """Trains the project's range-image segmentation network on simulated scans (run by hand).
 
-Usage (see README.md beside this file for the command that made config/models/):
+Usage (config/models/README.md has the exact command that made the committed model):
   tools/train_range_net/make_data.sh runs/range_net/train train
   tools/train_range_net/make_data.sh runs/range_net/heldout heldout
+  tools/train_range_net/make_data.sh runs/range_net/kitti kitti
   /usr/bin/python3 tools/train_range_net/train.py --train runs/range_net/train \
-      --heldout runs/range_net/heldout --out config/models --minutes 25
+      --heldout runs/range_net/heldout --out runs/range_net/model --minutes 44 \
+      --extra runs/range_net/kitti:5 --pole-weight 2 --realism 1 --rare-crop 0.25
 
 Debian's python3-torch on the CPU, one thread, fixed seeds. Input: the spherical projection of
 lib/frontend/range_image.h (the same formula; keep them in step), channels range, x, y, z
 (no remission: the simulator's intensity is a function of the class, a cue real scans do not
 give), 64 rows, width 1024 (training on random 512-column crops; the network is fully
 convolutional). Each sample is augmented in point space: sensor tilt (roll, pitch +-3 deg),
-mounting height +-0.25 m, yaw, mirror, extra range noise, dropout of up to 15 % of points.
+mounting height +-0.25 m, yaw, mirror, extra range noise, dropout of up to 15 % of points;
+with --realism, first the traits of a real sensor that the simulator leaves out
+(sensor_traits: beam elevation jitter, range-dependent noise, per-beam and range-dependent
+missing returns, mixed pixels at depth edges). The options' defaults are the first model's
+recipe (2026-12-02).
 Writes slide_range_net.onnx (opset 11) and slide_range_net.yaml (projection, normalisation,
 classes) and prints per-class pixel IoU on the held-out scans.
 """
