@@ -1,18 +1,24 @@
 #!/usr/bin/python3
 """Trains the project's range-image segmentation network on simulated scans (run by hand).
 
-Usage (see README.md beside this file for the command that made config/models/):
+Usage (config/models/README.md has the exact command that made the committed model):
   tools/train_range_net/make_data.sh runs/range_net/train train
   tools/train_range_net/make_data.sh runs/range_net/heldout heldout
+  tools/train_range_net/make_data.sh runs/range_net/kitti kitti
   /usr/bin/python3 tools/train_range_net/train.py --train runs/range_net/train \
-      --heldout runs/range_net/heldout --out config/models --minutes 25
+      --heldout runs/range_net/heldout --out runs/range_net/model --minutes 44 \
+      --extra runs/range_net/kitti:5 --pole-weight 2 --realism 1 --rare-crop 0.25
 
 Debian's python3-torch on the CPU, one thread, fixed seeds. Input: the spherical projection of
 lib/frontend/range_image.h (the same formula; keep them in step), channels range, x, y, z
 (no remission: the simulator's intensity is a function of the class, a cue real scans do not
 give), 64 rows, width 1024 (training on random 512-column crops; the network is fully
 convolutional). Each sample is augmented in point space: sensor tilt (roll, pitch +-3 deg),
-mounting height +-0.25 m, yaw, mirror, extra range noise, dropout of up to 15 % of points.
+mounting height +-0.25 m, yaw, mirror, extra range noise, dropout of up to 15 % of points;
+with --realism, first the traits of a real sensor that the simulator leaves out
+(sensor_traits: beam elevation jitter, range-dependent noise, per-beam and range-dependent
+missing returns, mixed pixels at depth edges). The options' defaults are the first model's
+recipe (2026-12-02).
 Writes slide_range_net.onnx (opset 11) and slide_range_net.yaml (projection, normalisation,
 classes) and prints per-class pixel IoU on the held-out scans.
 """
@@ -67,24 +73,26 @@ def read_scan(bin_path):
     return pts, LUT[lab].astype(np.uint8)
 
 
-def sensor_of(run_dir):
-    yaml = open(os.path.join(run_dir, "robot0", "robot.yaml")).read()
+def sensor_of(robot_dir):
+    yaml = open(os.path.join(robot_dir, "robot.yaml")).read()
     return "hdl-64e" if "hdl-64e" in yaml else "os1-64"
 
 
-def load_set(root, limit=None):
-    """[(points, classes, sensor)] of every scan under root (one folder per simulated run)."""
+def load_set(root, limit=None, stride=1):
+    """[(points, classes, sensor, run)] of every scan under root (one folder per simulated run, one
+    sub-folder per robot); every stride-th scan of each robot (KITTI worlds record at 10 Hz)."""
     out = []
     for run in sorted(glob.glob(os.path.join(root, "*"))):
-        bins = sorted(glob.glob(os.path.join(run, "robot0", "velodyne", "*.bin")))
-        if not bins:
-            continue
-        sensor = sensor_of(run) if os.path.exists(os.path.join(run, "robot0", "robot.yaml")) else "os1-64"
-        if "hdl-64e" in os.path.basename(run):
-            sensor = "hdl-64e"
-        for b in bins[:limit]:
-            p, c = read_scan(b)
-            out.append((p, c, sensor, os.path.basename(run)))
+        for robot in sorted(glob.glob(os.path.join(run, "robot*"))):
+            bins = sorted(glob.glob(os.path.join(robot, "velodyne", "*.bin")))[::stride]
+            if not bins:
+                continue
+            sensor = sensor_of(robot) if os.path.exists(os.path.join(robot, "robot.yaml")) else "os1-64"
+            if "hdl-64e" in os.path.basename(run):
+                sensor = "hdl-64e"
+            for b in bins[:limit]:
+                p, c = read_scan(b)
+                out.append((p, c, sensor, os.path.basename(run)))
     return out
 
 
@@ -110,7 +118,64 @@ def project(pts, cls, fov_up, fov_down, height=HEIGHT, width=WIDTH):
     return img.reshape(4, height, width), lab.reshape(height, width), mask.reshape(height, width)
 
 
-def augment(pts, rng):
+def uniform_beams(n, up, down):
+    return np.linspace(up, down, n)
+
+
+# The simulator's beam tables (lib/sim/lidar.cpp), top to bottom, degrees.
+BEAMS = {"os1-64": uniform_beams(64, 16.6, -16.6),
+         "hdl-64e": np.concatenate([uniform_beams(32, 2.0, -8.33), uniform_beams(32, -8.83, -24.9)])}
+
+
+def sensor_traits(pts, cls, sensor, rng, realism):
+    """Traits of a real spinning LiDAR the simulator leaves out, scaled by realism (0: none),
+    applied in the sensor frame before the mounting is randomised:
+    - beam elevation jitter: each beam's elevation off its nominal value by N(0, s), s up to
+      0.15 deg (a real unit's per-laser calibration is not the datasheet's even spacing);
+    - range-dependent noise: sigma = s0 + s1 r, s0 up to 2 cm (HDL-64E datasheet: < 2 cm),
+      s1 up to 2 cm per 100 m (beam footprint and weak returns grow with range);
+    - missing returns: per-beam loss (a few weak lasers lose 30-100 % of their returns, the
+      others up to 10 %) and a range-dependent loss up to 30 % at 80 m;
+    - mixed pixels: where two azimuth neighbours of one beam differ by > 0.5 m, the far
+      return of up to half of the pairs is moved between the two surfaces, as a beam that
+      straddles an edge returns an average; such points get no label (not scored, not taught).
+    Returns points, classes and a keep mask."""
+    n = len(pts)
+    if realism <= 0 or n == 0:
+        return pts, cls, np.ones(n, dtype=bool)
+    r = np.linalg.norm(pts, axis=1)
+    r = np.maximum(r, 1e-6)
+    pitch = np.degrees(np.arcsin(np.clip(pts[:, 2] / r, -1, 1)))
+    yaw = np.arctan2(pts[:, 1], pts[:, 0])
+    table = BEAMS[sensor]
+    beam = np.searchsorted(-(table[:-1] + table[1:]) / 2, -pitch)  # nearest beam of the descending table
+    nb = len(table)
+    pitch = pitch + rng.normal(0, rng.uniform(0, 0.15 * realism), nb)[beam]
+    sigma = rng.uniform(0, 0.02 * realism) + rng.uniform(0, 2e-4 * realism) * r
+    r = r + sigma * rng.standard_normal(n)
+    cls = cls.copy()
+    # Mixed pixels along each beam (sorted by azimuth).
+    order = np.lexsort((yaw, beam))
+    rs, bs = r[order], beam[order]
+    a, b = order[:-1], order[1:]
+    edge = (bs[1:] == bs[:-1]) & (np.abs(rs[1:] - rs[:-1]) > 0.5)
+    edge &= rng.random(len(edge)) < rng.uniform(0, 0.5 * realism)
+    a, b = a[edge], b[edge]
+    far = np.where(r[a] > r[b], a, b)
+    near = np.where(r[a] > r[b], b, a)
+    t = rng.uniform(0.1, 0.9, len(far))
+    r[far] = r[near] + t * (r[far] - r[near])
+    cls[far] = 0
+    p = np.radians(pitch)
+    q = np.stack([r * np.cos(p) * np.cos(yaw), r * np.cos(p) * np.sin(yaw), r * np.sin(p)], 1).astype(np.float32)
+    weak = rng.random(nb) < 0.1 * realism
+    loss = np.where(weak, rng.uniform(0.3, 1.0, nb), rng.uniform(0, 0.1 * realism, nb))
+    p_lost = loss[beam] + rng.uniform(0, 0.3 * realism) * np.minimum(r / 80.0, 1.0) ** 2
+    keep = rng.random(n) >= p_lost
+    return q, cls, keep
+
+
+def augment(pts, rng, height=0.25):
     roll, pitch, yaw = rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-180, 180)
     cr, sr, cp, sp = math.cos(math.radians(roll)), math.sin(math.radians(roll)), math.cos(math.radians(pitch)), math.sin(math.radians(pitch))
     cy, sy = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
@@ -120,7 +185,7 @@ def augment(pts, rng):
     q = pts @ (Rz @ Ry @ Rx).T.astype(np.float32)
     if rng.random() < 0.5:
         q[:, 1] = -q[:, 1]
-    q[:, 2] += rng.uniform(-0.25, 0.25)
+    q[:, 2] += rng.uniform(-height, height)
     r = np.linalg.norm(q, axis=1, keepdims=True)
     q *= (r + rng.uniform(0, 0.03) * rng.standard_normal(r.shape).astype(np.float32)) / np.maximum(r, 1e-6)
     keep = rng.random(len(q)) >= rng.uniform(0, 0.15)
@@ -159,13 +224,19 @@ class RangeNet(nn.Module):
         return self.head(d0)
 
 
-def sample(data, rng, aug=True, crop=CROP):
+def sample(data, rng, aug=True, crop=CROP, realism=0.0, rare_crop=0.0, rare=3):
     pts, cls, sensor, _ = data[rng.integers(len(data))]
     if aug:
+        pts, cls, keep = sensor_traits(pts, cls, sensor, rng, realism)
+        pts, cls = pts[keep], cls[keep]
         pts, keep = augment(pts, rng)
         pts, cls = pts[keep], cls[keep]
     img, lab, mask = project(pts, cls, *FOV[sensor])
     c0 = rng.integers(0, WIDTH - crop + 1)
+    if rare_crop > 0 and rng.random() < rare_crop:  # centre the crop on a rare-class pixel, if any
+        cols = np.nonzero((lab == rare).any(0))[0]
+        if len(cols):
+            c0 = int(np.clip(cols[rng.integers(len(cols))] - crop // 2, 0, WIDTH - crop))
     return img[:, :, c0:c0 + crop], lab[:, c0:c0 + crop], mask[:, c0:c0 + crop]
 
 
@@ -207,6 +278,11 @@ def main():
     ap.add_argument("--batch", type=int, default=6)
     ap.add_argument("--seed", type=int, default=19)
     ap.add_argument("--limit", type=int, default=None, help="scans per run (a quick smoke test)")
+    ap.add_argument("--extra", nargs="*", default=[], help="more training roots, each ROOT:STRIDE (every STRIDE-th scan)")
+    ap.add_argument("--heldout-limit", type=int, default=8, help="held-out scans per run and robot")
+    ap.add_argument("--pole-weight", type=float, default=1.0, help="extra factor on the pole class weight")
+    ap.add_argument("--realism", type=float, default=0.0, help="scale of the real-sensor traits (sensor_traits; 0: off)")
+    ap.add_argument("--rare-crop", type=float, default=0.0, help="share of crops centred on a pole pixel")
     args = ap.parse_args()
     torch.set_num_threads(1)
     torch.manual_seed(args.seed)
@@ -214,7 +290,12 @@ def main():
     rng = np.random.default_rng(args.seed)
 
     train = load_set(args.train, args.limit)
-    heldout = load_set(args.heldout, limit=args.limit or 8)
+    for spec in args.extra:
+        root, _, stride = spec.partition(":")
+        more = load_set(root, args.limit, int(stride or 1))
+        print(f"{len(more)} extra training scans from {root}", flush=True)
+        train += more
+    heldout = load_set(args.heldout, limit=args.limit or args.heldout_limit)
     print(f"{len(train)} training scans, {len(heldout)} held-out scans", flush=True)
     # Normalisation: statistics of the shown pixels of (unaugmented) training images.
     acc = []
@@ -228,7 +309,9 @@ def main():
     weights = 1.0 / np.sqrt(np.maximum(counts, 1) / counts.sum())
     weights[0] = 0.0
     weights /= weights[1:][counts[1:] > 0].mean()
+    weights[3] *= args.pole_weight
     print("pixel counts", dict(zip([c[0] for c in CLASSES], counts.astype(int))), flush=True)
+    print("class weights", dict(zip([c[0] for c in CLASSES], np.round(weights, 3))), flush=True)
 
     net = RangeNet(4, len(CLASSES))
     params = sum(p.numel() for p in net.parameters())
@@ -244,7 +327,7 @@ def main():
             g["lr"] = 2e-3 * 0.5 * (1 + math.cos(math.pi * frac))
         xs, ys = [], []
         for _ in range(args.batch):
-            img, lab, mask = sample(train, rng)
+            img, lab, mask = sample(train, rng, realism=args.realism, rare_crop=args.rare_crop)
             xs.append(normalise(img, mask, means, stds))
             ys.append(np.where(mask, lab, 0))
         x, y = torch.from_numpy(np.stack(xs)), torch.from_numpy(np.stack(ys))
@@ -268,7 +351,8 @@ def main():
                       input_names=["range_image"], output_names=["logits"])
     with open(os.path.join(args.out, "slide_range_net.yaml"), "w") as f:
         f.write("# The project's range-image segmentation model (tools/train_range_net/train.py; how it was made and its\n")
-        f.write(f"# held-out figures: README.md beside this file). {params} parameters, trained {step} steps of {args.batch} crops 64 x {CROP}, seed {args.seed}.\n")
+        f.write(f"# held-out figures: README.md beside this file). {params} parameters, trained {step} steps of {args.batch} crops 64 x {CROP}, seed {args.seed},\n")
+        f.write(f"# pole weight x{args.pole_weight}, realism {args.realism}, rare crops {args.rare_crop}, extra data {' '.join(args.extra) or '-'}.\n")
         f.write("model: slide_range_net.onnx\n")
         f.write(f"projection: {{height: {HEIGHT}, width: {WIDTH}, fov_up_deg: 3.0, fov_down_deg: -25.0}}  # HDL-64E; trained on OS1-64 (16.6 / -16.6) too\n")
         f.write("channels: [range, x, y, z]\n")
