@@ -1,7 +1,7 @@
 # The robot's core and its tooling (README, "Library areas"). Tooling areas serve development
 # only (the simulator and its scenarios, evaluation, plots, benchmarks and their reports); a core
 # area or a daemon that links one, directly or through other targets, fails the configure step.
-set(SLIDE_TOOLING_AREAS sim scenario simmap eval plot bench report)
+set(SLIDE_TOOLING_AREAS simulator graph_scenario mapped_robot eval plot bench report)
 
 # The targets a target links, directly or through others (imported targets are not followed).
 function(slide_link_closure target out)

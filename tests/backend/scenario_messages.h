@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bundle_messages.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 #include "slide/loop_closure_t.hpp"
 
 namespace slide::testing {

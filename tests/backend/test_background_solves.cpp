@@ -13,7 +13,7 @@
 #include "io/tum_trajectory.h"
 #include "io/object_map_text.h"
 #include "optimizer_node.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 #include "scenario_messages.h"
 
 using namespace slide;

@@ -9,7 +9,7 @@
 #include "config/config.h"
 
 #include "backend/optimizer.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 
 using namespace slide;
 

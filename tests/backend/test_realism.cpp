@@ -1,7 +1,7 @@
-// The realistic detections laid over a back-end scenario (lib/scenario/realism.h).
+// The realistic detections laid over a back-end scenario (lib/graph_scenario/realism.h).
 #include <gtest/gtest.h>
 
-#include "scenario/realism.h"
+#include "graph_scenario/realism.h"
 
 namespace slide {
 namespace {

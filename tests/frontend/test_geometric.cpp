@@ -17,10 +17,10 @@
 #include "frontend/ground_removal.h"
 #include "frontend/wall_trace.h"
 #include "io/kitti_scan.h"
-#include "sim/lidar.h"
-#include "sim/ray_caster.h"
-#include "sim/scenario.h"
-#include "sim/semantic_labels.h"
+#include "simulator/lidar.h"
+#include "simulator/ray_caster.h"
+#include "simulator/scenario.h"
+#include "simulator/semantic_labels.h"
 
 using namespace slide;
 

@@ -16,9 +16,9 @@
 #include "frontend/range_image.h"
 #include "frontend/range_net_labeler.h"
 #include "eval/label_iou.h"
-#include "sim/lidar.h"
-#include "sim/ray_caster.h"
-#include "sim/scenario.h"
+#include "simulator/lidar.h"
+#include "simulator/ray_caster.h"
+#include "simulator/scenario.h"
 
 using namespace slide;
 

@@ -5,7 +5,7 @@
 
 #include "frontend/shape_fit.h"
 #include "frontend/xyz_cloud.h"
-#include "sim/ray_shapes.h"
+#include "simulator/ray_shapes.h"
 
 using namespace slide;
 

@@ -15,8 +15,8 @@
 #include <sstream>
 #include <thread>
 
-#include "sim/dataset_writer.h"
-#include "sim/scenario.h"
+#include "simulator/dataset_writer.h"
+#include "simulator/scenario.h"
 #include "slide/stream_status_t.hpp"
 
 #include "watchdog.h"

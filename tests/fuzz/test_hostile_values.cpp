@@ -17,7 +17,7 @@
 #include "backend/landmark_grid.h"
 #include "backend/optimizer.h"
 #include "frontend/frontend_config.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 
 #include "watchdog.h"
 

@@ -17,7 +17,7 @@
 #include "map_size.h"
 #include "place/loop_closer_config.h"
 #include "realistic_run.h"
-#include "scenario/realism.h"
+#include "graph_scenario/realism.h"
 #include "scenario_run.h"
 
 using namespace slide;

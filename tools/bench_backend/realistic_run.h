@@ -8,7 +8,7 @@
 
 #include "backend/backend_config.h"
 #include "place/loop_closer.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 
 namespace slide {
 

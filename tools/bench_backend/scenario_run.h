@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "backend/backend_config.h"
-#include "scenario/scenario.h"
+#include "graph_scenario/scenario.h"
 
 namespace slide {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Object mapping quality of segmenter + tracker on a simulated world: one robot drives the
-// world (lib/sim, in memory), every frame is segmented and tracked, the latest fitted model
+// world (lib/simulator, in memory), every frame is segmented and tracked, the latest fitted model
 // of every track (placed in the world with the ground-truth key pose) forms the map, which is
 // matched per class (Hungarian, centres within match_distance horizontally: 1 m, as the demo
 // report scores its maps) against the ground-truth objects

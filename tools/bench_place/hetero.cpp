@@ -11,8 +11,8 @@
 #include "place/map_perturb.h"
 #include "frontend/frontend_config.h"
 #include "place/landmark.h"
-#include "sim/scenario.h"
-#include "simmap/map_robot.h"
+#include "simulator/scenario.h"
+#include "mapped_robot/map_robot.h"
 
 namespace slide::bench {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The paper's heterogeneous cases: two simulated robots with different sensors map the same
-// world through the real front-end and back-end (lib/simmap), each in its own odometry frame;
+// world through the real front-end and back-end (lib/mapped_robot), each in its own odometry frame;
 // place recognition then aligns the two object maps and is scored against the simulator's
 // truth. lidar_rgbd: an OS1-64 LiDAR robot and a D455 RGBD robot in the indoor world.
 // aerial_ground: two D455 robots in the urban parking lot, one flying above the aisles

@@ -9,8 +9,8 @@
 #include <set>
 #include <unordered_map>
 
-#include "sim/forest_world.h"
-#include "sim/route_lattice.h"
+#include "simulator/forest_world.h"
+#include "simulator/route_lattice.h"
 #include "bench/stats.h"
 #include "peak_memory.h"
 #include "worlds.h"

@@ -11,8 +11,8 @@
 #include "bench/report.h"
 #include "place/consensus_filter.h"
 #include "place/place_config.h"
-#include "sim/drifted_object_map.h"
-#include "sim/world.h"
+#include "simulator/drifted_object_map.h"
+#include "simulator/world.h"
 
 namespace slide::bench {
 

@@ -11,7 +11,7 @@
 #include "bench/report.h"
 #include "bench/stats.h"
 #include "clock/thread_cpu.h"
-#include "sim/dataset_writer.h"
+#include "simulator/dataset_writer.h"
 
 namespace {
 using Clock = std::chrono::steady_clock;

@@ -1,5 +1,5 @@
 // slide-sim: generates a simulated multi-robot dataset (world, robot trajectories, odometry,
-// LiDAR scans or RGBD frames, ground-truth objects) in the layouts of lib/sim/dataset_writer.h.
+// LiDAR scans or RGBD frames, ground-truth objects) in the layouts of lib/simulator/dataset_writer.h.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
-#include "sim/dataset_writer.h"
+#include "simulator/dataset_writer.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Generate a simulated multi-robot dataset (one folder per robot plus objects.csv)", "slide-sim"};

@@ -122,7 +122,7 @@ def uniform_beams(n, up, down):
     return np.linspace(up, down, n)
 
 
-# The simulator's beam tables (lib/sim/lidar.cpp), top to bottom, degrees.
+# The simulator's beam tables (lib/simulator/lidar.cpp), top to bottom, degrees.
 BEAMS = {"os1-64": uniform_beams(64, 16.6, -16.6),
          "hdl-64e": np.concatenate([uniform_beams(32, 2.0, -8.33), uniform_beams(32, -8.83, -24.9)])}
 
