@@ -269,11 +269,22 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     }
     // Canopy: points above min_top spreading well beyond the axis.
     int canopy = 0, high = 0;
+    std::vector<double> high_h;
     all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d2) {
       if (h[i] < p.min_top) return;
       ++high;
       canopy += d2 > p.canopy_radius * p.canopy_radius;
+      high_h.push_back(h[i]);
     });
+    // A flat layer above it (the returns there within ceiling_max_spread of one height) is a
+    // ceiling, not a crown: the column is part of a building (a door jamb, a wall's end).
+    if (p.ceiling_max_spread > 0 && static_cast<int>(high_h.size()) >= p.ceiling_min_points) {
+      const double lo = quantileInPlace(high_h, 0.1), hi = quantileInPlace(high_h, 0.9);
+      if (hi - lo <= p.ceiling_max_spread) {
+        reject(mid, "under a flat ceiling (" + std::to_string(high_h.size()) + " returns within " + std::to_string(hi - lo) + " m)");
+        continue;
+      }
+    }
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
     if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||

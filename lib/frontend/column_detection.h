@@ -53,6 +53,10 @@ struct ColumnParams {
   double trunk_min_radius = 0.12;      // thicker columns are trunks
   double canopy_radius = 1.0;          // points farther from the axis, above min_top ...
   double canopy_min_fraction = 0.02;   // ... in this fraction of the cluster make it a trunk
+  // Returns above min_top within canopy_radius + 2 m: at least ceiling_min_points of them within
+  // ceiling_max_spread metres of one height (10th to 90th percentile) are a ceiling (0: off).
+  double ceiling_max_spread = 0.0;
+  int ceiling_min_points = 20;
   // A thin column without a canopy is a pole for sure only when its top is seen with open view
   // above it: top + end_margin below both the highest visible point at its range and
   // max_height, and no nearer return just above its top (in a forest, nearer trunks and crowns

@@ -107,6 +107,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "single_point_ring", p.single_point_ring, 0.0);
     opt(c, "canopy_radius", p.canopy_radius, 0.0);
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
+    opt(c, "ceiling_max_spread", p.ceiling_max_spread, 0.0);
+    opt(c, "ceiling_min_points", p.ceiling_min_points, 1);
     opt(c, "end_margin", p.end_margin, 0.0);
     opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
     if (c.has("wall")) {

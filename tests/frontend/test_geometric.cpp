@@ -493,11 +493,36 @@ TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
   const GeometricSegmenterParams p = loadDefaultFrontendConfig().geometric;
   const IndoorCounts with = indoorInstances(p);
   GeometricSegmenterParams off = p;
-  off.view_cut.tolerance_deg = 0, off.car.min_top = 1.0, off.column.wall.corner_run = 1.2;
+  off.view_cut.tolerance_deg = 0, off.car.min_top = 1.0, off.column.wall.corner_run = 1.2, off.column.ceiling_max_spread = 0;
   const IndoorCounts without = indoorInstances(off);
   ASSERT_GE(with.frames, 5);
   EXPECT_LE(with.cars * 10, without.cars) << with.cars << " cars; without the rules " << without.cars;
   EXPECT_LT(with.columns, without.columns) << with.columns << " columns; without the rules " << without.columns;
   EXPECT_GE(with.furniture_other, with.frames) << "furniture as other in " << with.frames << " frames";
   EXPECT_GE(without.cars, 3 * with.frames) << "the scans hold the walls and furniture the rules are for";
+}
+
+// A door jamb or a wall's end seen through a doorway stands alone in view like a pole, but a
+// ceiling spans above it: a flat layer of returns, where a tree's crown spreads over metres of
+// height. The pole under the ceiling is no column; the same pole under a crown is a trunk.
+TEST(GeometricSegmenter, AColumnUnderAFlatCeilingIsNoColumnUnderACrownItIs) {
+  Cloud base;
+  addGround(base);
+  addPole(base, {8, 0}, 0.1, 2.8);
+  Cloud ceiling = base, crown = base;
+  for (double x = 6.5; x <= 9.5; x += 0.1)
+    for (double y = -1.5; y <= 1.5; y += 0.1) ceiling.emplace_back(x, y, 2.8);
+  Cloud leaves;  // a crown 1.5 m wide from 2.8 m to 8.8 m
+  addBush(leaves, {8, 0}, 1.5, 6.0, 3);
+  for (const auto& q : leaves) crown.emplace_back(q.x(), q.y(), q.z() + 2.8f);
+  const ColumnParams p = loadDefaultFrontendConfig().geometric.column;
+  ASSERT_GT(p.ceiling_max_spread, 0);
+  EXPECT_EQ(columnsOf(base, p).size(), 1u) << "the pole alone is a column";
+  EXPECT_EQ(columnsOf(ceiling, p).size(), 0u);
+  const auto under_crown = columnsOf(crown, p);
+  ASSERT_EQ(under_crown.size(), 1u);
+  EXPECT_TRUE(under_crown[0].trunk);
+  ColumnParams off = p;
+  off.ceiling_max_spread = 0;
+  EXPECT_EQ(columnsOf(ceiling, off).size(), 1u) << "without the rule the jamb is a column";
 }
