@@ -34,7 +34,7 @@ struct LabelledSegmenterParams {
   // again on cells half as large, down to this cell (cars parked a few decimetres apart join
   // at cluster.cell); cluster.cell or more: off.
   double min_split_cell = 0.15;
-  NotchSplitParams notch;  // a cuboid-class cluster with a notch in its view is split there (view_notch.h)
+  NotchSplitParams notch{0.4, 0.0};  // depth 0: off (config/frontend.yaml says why); on, a cuboid-class cluster with a notch in its view is split there (view_notch.h)
 };
 
 class LabelledSegmenter : public LidarSegmenter {
