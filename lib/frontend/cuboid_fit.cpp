@@ -95,7 +95,9 @@ bool longerExtentIsWidth(double longer, double shorter, const Eigen::Vector3d& s
 
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
-                                const Eigen::Vector3d& size_typical, std::string* why) {
+                                const Eigen::Vector3d& size_typical, std::string* why,
+                                std::optional<Cuboid>* other_reading) {
+  if (other_reading) other_reading->reset();
   if (static_cast<int>(pts.size()) < p.min_points) {
     setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
     return std::nullopt;
@@ -105,7 +107,7 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   // Robust extents along the rectangle's axes and in z.
   std::vector<double> zs;
   for (const auto& q : pts) zs.push_back(q.z());
-  double lo_z = quantileInPlace(zs, p.low_percentile), hi_z = quantileInPlace(zs, p.high_percentile);
+  const double top_z = quantileInPlace(zs, p.high_percentile), bottom_z = quantileInPlace(zs, p.low_percentile);
   auto extents = [&](double a, double& lo_u, double& hi_u, double& lo_v, double& hi_v, double below = 1e30) {
     const double c = std::cos(a), s = std::sin(a);
     std::vector<double> u, v;
@@ -126,45 +128,52 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     hi_v = quantileInPlace(v, p.high_percentile);
     return static_cast<int>(u.size());
   };
-  double yaw_x = yaw;
   double lo_u, hi_u, lo_v, hi_v;
-  extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
+  extents(yaw, lo_u, hi_u, lo_v, hi_v);
   const double longer = std::max(hi_u - lo_u, hi_v - lo_v);
-  // Which face is seen is judged on the lower half of the points: the vertical faces, without
-  // the top (a hood or roof seen from above adds depth whichever face is in view).
-  double su0, su1, sv0, sv1;
-  if (extents(yaw_x, su0, su1, sv0, sv1, 0.5 * (lo_z + hi_z)) < p.min_points) su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
-  const bool u_longer = su1 - su0 >= sv1 - sv0;
-  const bool end_view = longerExtentIsWidth(std::max(su1 - su0, sv1 - sv0), std::min(su1 - su0, sv1 - sv0), size_min,
-                                            size_max, p.size_tolerance);
-  if (u_longer == end_view) {  // x (the length) along the other axis
-    yaw_x += M_PI / 2;
-    extents(yaw_x, lo_u, hi_u, lo_v, hi_v);
-  }
   if (longer < p.min_visible_fraction * size_min.x()) {
     setWhy(why, "visible length " + std::to_string(longer) + " m too short");
     return std::nullopt;
   }
-  const Eigen::Vector3d observed(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
-  if ((observed.array() > size_max.array() * p.size_tolerance).any()) {
-    setWhy(why, "extents (" + std::to_string(observed.x()) + ", " + std::to_string(observed.y()) + ", " +
-                    std::to_string(observed.z()) + ") exceed the class maximum");
-    return std::nullopt;
-  }
-  // Extents too short for the class were partly hidden: they grow to the class's typical size,
-  // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
-  // may be whole and are kept.
-  const double c = std::cos(yaw_x), s = std::sin(yaw_x);
-  const double min_u = std::max(size_min.x(), p.complete_fraction * size_typical.x());
-  const double min_v = std::max(size_min.y(), p.complete_fraction * size_typical.y());
-  completeInterval(lo_u, hi_u, min_u, size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
-  completeInterval(lo_v, hi_v, min_v, size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
-  if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
+  // Which face is seen is judged on the lower half of the points: the vertical faces, without
+  // the top (a hood or roof seen from above adds depth whichever face is in view).
+  double su0, su1, sv0, sv1;
+  if (extents(yaw, su0, su1, sv0, sv1, 0.5 * (bottom_z + top_z)) < p.min_points) su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
+  const double face_u = su1 - su0, face_v = sv1 - sv0;
+  const bool end_view =
+      longerExtentIsWidth(std::max(face_u, face_v), std::min(face_u, face_v), size_min, size_max, p.size_tolerance);
+  const bool length_along_u = (face_u >= face_v) != end_view;
 
-  const double cu = 0.5 * (lo_u + hi_u), cv_ = 0.5 * (lo_v + hi_v);
-  Cuboid box;
-  box.pose = poseFromXyzYaw(c * cu - s * cv_, s * cu + c * cv_, 0.5 * (lo_z + hi_z), wrapAngle(yaw_x));
-  box.dims = Eigen::Vector3d(hi_u - lo_u, hi_v - lo_v, hi_z - lo_z);
+  // The box with its length (x) along heading yaw_x, or nullopt when the extents do not fit the class.
+  auto boxAlong = [&](double yaw_x, std::string* reason) -> std::optional<Cuboid> {
+    double lu, hu, lv, hv;
+    extents(yaw_x, lu, hu, lv, hv);
+    double lo_z = bottom_z, hi_z = top_z;
+    const Eigen::Vector3d observed(hu - lu, hv - lv, hi_z - lo_z);
+    if ((observed.array() > size_max.array() * p.size_tolerance).any()) {
+      setWhy(reason, "extents (" + std::to_string(observed.x()) + ", " + std::to_string(observed.y()) + ", " +
+                         std::to_string(observed.z()) + ") exceed the class maximum");
+      return std::nullopt;
+    }
+    // Extents too short for the class were partly hidden: they grow to the class's typical size,
+    // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
+    // may be whole and are kept.
+    const double c = std::cos(yaw_x), s = std::sin(yaw_x);
+    const double min_u = std::max(size_min.x(), p.complete_fraction * size_typical.x());
+    const double min_v = std::max(size_min.y(), p.complete_fraction * size_typical.y());
+    completeInterval(lu, hu, min_u, size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
+    completeInterval(lv, hv, min_v, size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
+    if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
+    const double cu = 0.5 * (lu + hu), cv_ = 0.5 * (lv + hv);
+    Cuboid box;
+    box.pose = poseFromXyzYaw(c * cu - s * cv_, s * cu + c * cv_, 0.5 * (lo_z + hi_z), wrapAngle(yaw_x));
+    box.dims = Eigen::Vector3d(hu - lu, hv - lv, hi_z - lo_z);
+    return box;
+  };
+  const double yaw_x = length_along_u ? yaw : yaw + M_PI / 2;
+  std::optional<Cuboid> box = boxAlong(yaw_x, why);
+  // No face was long enough to be the length: the length may run along either axis.
+  if (box && other_reading && std::max(face_u, face_v) < size_min.x()) *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
   return box;
 }
 

@@ -2,8 +2,27 @@
 
 namespace slide {
 
+namespace {
+// Whether the model's extents pass the class's size gates (*why says which does not). Cylinders:
+// only the radius is gated (the visible length depends on occlusion).
+bool withinClassSize(const Object& o, const ClassInfo& info, const FitParams& p, std::string* why) {
+  const Eigen::Vector3d ext = o.extent();
+  const int gated = info.shape == Shape::Cylinder ? 2 : 3;
+  for (int i = 0; i < gated; ++i) {
+    const double tol = info.shape == Shape::Cuboid ? p.cuboid.size_tolerance : 1.0;
+    if (ext[i] > info.size_max[i] * tol || (info.shape != Shape::Cuboid && ext[i] < info.size_min[i] * 0.5)) {
+      if (why) *why = "extent " + std::to_string(ext[i]) + " m on axis " + std::to_string(i) + " outside " +
+                      info.name + " size range";
+      return false;
+    }
+  }
+  return true;
+}
+}  // namespace
+
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
-                                const Eigen::Vector3d& viewpoint, std::string* why) {
+                                const Eigen::Vector3d& viewpoint, std::string* why, std::optional<Object>* other_reading) {
+  if (other_reading) other_reading->reset();
   const ClassInfo* info = classes.find(class_id);
   if (!info) {
     if (why) *why = "unknown class " + std::to_string(class_id);
@@ -11,9 +30,11 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
   }
   Object o;
   o.class_id = class_id;
+  std::optional<Cuboid> other;
   switch (info->shape) {
     case Shape::Cuboid: {
-      auto box = fitCuboid(pts, p.cuboid, viewpoint, info->size_min, info->size_max, info->typicalSize(), why);
+      auto box = fitCuboid(pts, p.cuboid, viewpoint, info->size_min, info->size_max, info->typicalSize(), why,
+                           other_reading ? &other : nullptr);
       if (!box) return std::nullopt;
       o.model = *box;
       break;
@@ -36,16 +57,11 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
     if (why) *why = "non-finite model";
     return std::nullopt;
   }
-  // Cylinders: only the radius is gated (the visible length depends on occlusion).
-  const Eigen::Vector3d ext = o.extent();
-  const int gated = info->shape == Shape::Cylinder ? 2 : 3;
-  for (int i = 0; i < gated; ++i) {
-    const double tol = info->shape == Shape::Cuboid ? p.cuboid.size_tolerance : 1.0;
-    if (ext[i] > info->size_max[i] * tol || (info->shape != Shape::Cuboid && ext[i] < info->size_min[i] * 0.5)) {
-      if (why) *why = "extent " + std::to_string(ext[i]) + " m on axis " + std::to_string(i) + " outside " +
-                      info->name + " size range";
-      return std::nullopt;
-    }
+  if (!withinClassSize(o, *info, p, why)) return std::nullopt;
+  if (other) {
+    Object alt = o;
+    alt.model = *other;
+    if (alt.isFinite() && withinClassSize(alt, *info, p, nullptr)) *other_reading = alt;
   }
   return o;
 }

@@ -64,10 +64,13 @@ std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p
 // extents a partly seen box is completed to (away from the viewpoint) along the axes seen
 // shorter. The box's x is its length: a lone visible face (little depth) that fits the class
 // width but not its length is taken as an end (a car's front or rear) and the length runs
-// along the other axis.
+// along the other axis. When no visible face is as long as the class's shortest length, which
+// axis holds the length is a guess: *other_reading (when given) then gets the box with the
+// length along the other axis (if that fits the class), and stays empty otherwise.
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
-                                const Eigen::Vector3d& size_typical, std::string* why = nullptr);
+                                const Eigen::Vector3d& size_typical, std::string* why = nullptr,
+                                std::optional<Cuboid>* other_reading = nullptr);
 // The centroid is completed away from the viewpoint: each horizontal slice is taken as a circle
 // seen from the viewpoint (its nearest range and angular width give the centre's distance), so a
 // partly seen object is as deep as it is wide across the line of sight.
@@ -78,7 +81,9 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
                                       double min_half_depth = 0.0, std::string* why = nullptr);
 
 // The model of the object's class (ClassTable shape), with class size gates applied.
+// *other_reading (when given): a box's other reading, as fitCuboid gives it (passing the same gates).
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
-                                const Eigen::Vector3d& viewpoint, std::string* why = nullptr);
+                                const Eigen::Vector3d& viewpoint, std::string* why = nullptr,
+                                std::optional<Object>* other_reading = nullptr);
 
 }  // namespace slide

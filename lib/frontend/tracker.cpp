@@ -275,21 +275,51 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
   }
 }
 
+namespace {
+double headingOf(const Object& o) {
+  const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
+  return std::atan2(R(1, 0), R(0, 0));
+}
+
+// Each box with an other reading takes the reading whose heading the sure boxes (no other
+// reading) of its class within `radius` agree with more: the sum over them of cos(2 x the
+// heading difference), +1 parallel, -1 across). Without sure boxes nearby it keeps its first reading.
+void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fits, double radius) {
+  for (auto& [o, other] : fits) {
+    if (!other) continue;
+    const double first = headingOf(o), second = headingOf(*other);
+    double vote = 0;  // > 0: the other reading
+    for (const auto& [s, s_other] : fits)
+      if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= radius)
+        vote += std::cos(2 * (second - headingOf(s))) - std::cos(2 * (first - headingOf(s)));
+    if (vote > 0) o.model = other->model;
+  }
+}
+}  // namespace
+
 std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_since_report) const {
-  std::vector<Object> out;
+  std::vector<std::pair<Object, std::optional<Object>>> fits;  // the fit and its other reading, if any
   const Pose T_body_odom = T_odom_body.inverse();
   const int max_missed = std::max(params_.report_max_missed, frames_since_report - 1);
+  const bool readings = params_.parallel_radius > 0;
   for (const auto& [id, t] : tracks_) {
     if (t.moving || t.hits < params_.min_age || t.missed > max_missed) continue;
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
-    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint());
+    std::optional<Object> other;
+    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint(),
+                       nullptr, readings ? &other : nullptr);
     if (!o) continue;
     o->id = id;
     o->num_observations = t.hits;
     o->confidence = t.confidence_sum / t.hits;
-    out.push_back(*o);
+    if (other) other->id = o->id, other->num_observations = o->num_observations, other->confidence = o->confidence;
+    fits.emplace_back(std::move(*o), std::move(other));
   }
+  if (readings) settleBoxReadings(fits, params_.parallel_radius);
+  std::vector<Object> out;
+  out.reserve(fits.size());
+  for (auto& f : fits) out.push_back(std::move(f.first));
   return out;
 }
 

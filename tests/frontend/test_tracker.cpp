@@ -266,6 +266,44 @@ TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
   }
 }
 
+// Two cars seen along their sides (length along x, at y = 5 and y = 12) and, between them, a
+// 1.8 m stretch of a third one's side seen through a gap (x 20 to 21.8 at y = 8.5: a lone face
+// with the width of a car). Alone, the fit takes that face for the car's end (its length across
+// the face, along y); with parallel neighbours within parallel_radius it takes their heading.
+TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.parallel_radius, 0.0) << "on by default";
+  for (double radius : {cfg.tracker.parallel_radius, 0.0}) {
+    TrackerParams p = cfg.tracker;
+    p.parallel_radius = radius;
+    Tracker tracker(classes, p, cfg.fit);
+    InputIssues issues;
+    for (int k = 0; k < 4; ++k) {
+      Instance a = carInstance(), b = carInstance(), c = carInstance();
+      addFace(a, 8.0, 5.0, 12.4, 5.0);
+      addFace(b, 28.0, 12.0, 32.4, 12.0);
+      addFace(c, 20.0, 8.5, 21.8, 8.5);
+      FrameInstances f;
+      f.utime = k * 100000;
+      f.instances = {a, b, c};
+      tracker.update(f, issues);
+    }
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    ASSERT_EQ(objects.size(), 3u);
+    for (const auto& o : objects) {
+      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
+      const double across = std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI));  // 0: length along x
+      const bool stretch = std::abs(o.position().x() - 21) < 2.5;
+      if (!stretch || radius > 0) {
+        EXPECT_LT(across, 0.1) << "radius " << radius << " at x " << o.position().x();
+      } else {
+        EXPECT_NEAR(across, M_PI / 2, 0.1) << "alone, the lone face is taken for an end";
+      }
+    }
+  }
+}
+
 // Two cars side by side joined into one instance (3.8 x 4.4 m: wider than any car) in one
 // frame: without the size check on single instances the car's track takes it and counts as
 // moving (no object); with it the instance is dropped and counted, the car stays.
