@@ -232,6 +232,17 @@ Instance carInstance() {
   inst.confidence = 1;
   return inst;
 }
+
+// Four frames at the odometry origin, each with the same instances.
+void feedFourFrames(Tracker& tracker, const std::vector<Instance>& instances) {
+  InputIssues issues;
+  for (int k = 0; k < 4; ++k) {
+    FrameInstances f;
+    f.utime = k * 100000;
+    f.instances = instances;
+    tracker.update(f, issues);
+  }
+}
 }  // namespace
 
 // Car A (4.4 x 1.8 m, its length along y, x 9.1 to 10.9, nose at y = -2.8) is seen as an L (its
@@ -246,18 +257,12 @@ TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
     TrackerParams p = cfg.tracker;
     p.box_merge_width = width;
     Tracker tracker(classes, p, cfg.fit);
-    InputIssues issues;
-    for (int k = 0; k < 4; ++k) {
-      Instance a = carInstance(), stripe = carInstance(), b = carInstance();
-      addFace(a, 9.1, -2.8, 10.9, -2.8);
-      addFace(a, 9.1, -2.8, 9.1, -5.0);
-      addFace(stripe, 9.1, -5.0, 9.1, -5.4);
-      addFace(b, 11.5, -2.8, 13.3, -2.8);
-      FrameInstances f;
-      f.utime = k * 100000;
-      f.instances = {a, stripe, b};
-      tracker.update(f, issues);
-    }
+    Instance a = carInstance(), stripe = carInstance(), b = carInstance();
+    addFace(a, 9.1, -2.8, 10.9, -2.8);
+    addFace(a, 9.1, -2.8, 9.1, -5.0);
+    addFace(stripe, 9.1, -5.0, 9.1, -5.4);
+    addFace(b, 11.5, -2.8, 13.3, -2.8);
+    feedFourFrames(tracker, {a, stripe, b});
     ASSERT_EQ(tracker.tracks().size(), width > 0 ? 2u : 3u) << width;
     const auto objects = tracker.objectsInBody(Pose::Identity());
     ASSERT_EQ(objects.size(), 2u) << "the stripe alone is too short for a box";
@@ -278,17 +283,11 @@ TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
     TrackerParams p = cfg.tracker;
     p.parallel_radius = radius;
     Tracker tracker(classes, p, cfg.fit);
-    InputIssues issues;
-    for (int k = 0; k < 4; ++k) {
-      Instance a = carInstance(), b = carInstance(), c = carInstance();
-      addFace(a, 8.0, 5.0, 12.4, 5.0);
-      addFace(b, 28.0, 12.0, 32.4, 12.0);
-      addFace(c, 20.0, 8.5, 21.8, 8.5);
-      FrameInstances f;
-      f.utime = k * 100000;
-      f.instances = {a, b, c};
-      tracker.update(f, issues);
-    }
+    Instance a = carInstance(), b = carInstance(), c = carInstance();
+    addFace(a, 8.0, 5.0, 12.4, 5.0);
+    addFace(b, 28.0, 12.0, 32.4, 12.0);
+    addFace(c, 20.0, 8.5, 21.8, 8.5);
+    feedFourFrames(tracker, {a, b, c});
     const auto objects = tracker.objectsInBody(Pose::Identity());
     ASSERT_EQ(objects.size(), 3u);
     for (const auto& o : objects) {
