@@ -43,7 +43,7 @@ struct TrackerParams {
   // takes the reading whose heading lies nearer (modulo 180 deg) that of the nearest box of its
   // class within this radius (m, x-y) whose length was seen. Parked cars stand parallel to their
   // neighbours. 0: off (the fit's own guess).
-  double parallel_radius = 20.0;
+  double parallel_radius = 10.0;
 };
 
 struct Track {
