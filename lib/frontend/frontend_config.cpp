@@ -139,6 +139,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "max_width", p.max_width, 0.0);
     opt(c, "min_split_cell", p.min_split_cell, 0.02);
     opt(c, "max_split_length", p.max_split_length, 0.0);
+    opt(c, "gap_cell", p.gap_cell, 0.0);
     if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);

@@ -147,6 +147,16 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
       continue;
     }
     if (f.length < kp.min_length) continue;
+    // Car-sized, but falling apart on gap_cell cells into two or more parts of at least
+    // min_points (the end face of a car and a stripe of the next one's side, seen through the gap
+    // between them, join on `cell`): each part is tested as a cluster of its own.
+    if (kp.gap_cell > 0 && cell > kp.gap_cell + 1e-9) {
+      auto parts = clusterGrid(cloud, cl, {kp.gap_cell, false, kp.min_points});
+      if (parts.size() >= 2) {
+        for (auto& part : parts) todo.emplace_back(std::move(part), kp.gap_cell);
+        continue;
+      }
+    }
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
     for (int i : cl) taken[i] = 1;
     cars.push_back(std::move(cl));

@@ -35,6 +35,10 @@ struct CarParams {
   double min_split_cell = 0.15;
   double max_split_length = 13.0;  // ... when no side of its bounding box is longer (two cars back to back)
   NotchSplitParams notch;          // a cluster with a notch in its view is split there (cars parked nose out)
+  // A car-sized cluster that falls apart on cells this large into two or more parts of at least
+  // min_points is split into them (an end face joined on `cell` to a stripe of the next car's
+  // side seen through the gap; 0: off).
+  double gap_cell = 0.15;
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.

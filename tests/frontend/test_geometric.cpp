@@ -299,6 +299,36 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
   EXPECT_GE(face_cars_without, 1);
 }
 
+// A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
+// the next car's side seen through the gap between them (0.8 m deep at x = 7.15) join on the car
+// cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart, and
+// the car is the face alone (the stripe is too short for a car).
+TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
+  Cloud c;
+  addGround(c);
+  addWall(c, {5.0, 4.0}, {6.8, 4.0}, 1.5);
+  addWall(c, {7.15, 4.2}, {7.15, 5.0}, 1.5);
+  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.geometric.car.gap_cell, 0.0) << "on by default";
+  for (double gap_cell : {cfg.geometric.car.gap_cell, 0.0}) {
+    GeometricSegmenterParams p = cfg.geometric;
+    p.car.gap_cell = gap_cell;
+    LabelledScan scan;
+    scan.xyz = c;
+    InputIssues issues;
+    int cars = 0;
+    for (const auto& inst : GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
+      if (inst.class_id != p.car_class) continue;
+      ++cars;
+      float max_x = -1e9f;
+      for (const auto& q : inst.points) max_x = std::max(max_x, q.x());
+      if (gap_cell > 0) EXPECT_LT(max_x, 6.9f) << "the face alone";
+      else EXPECT_GT(max_x, 7.1f) << "the face with the stripe";
+    }
+    EXPECT_EQ(cars, 1) << gap_cell;
+  }
+}
+
 // Far off (45-52 m), a face nearly edge-on shows three stacks, one per azimuth step, 2.7-3 m
 // apart: the middle one has a single neighbour on each side, so neither side continues it on
 // two returns, but it lies on the line between them: a face. Moved 0.5 m off that line (a
