@@ -1,6 +1,6 @@
 #include "frontend/shape_fit.h"
 
-namespace slide {
+namespace slide::frontend {
 
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
                                 const Eigen::Vector3d& viewpoint, std::string* why) {
@@ -50,4 +50,4 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
   return o;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

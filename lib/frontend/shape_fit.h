@@ -11,7 +11,7 @@
 #include "frontend/instance.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct CylinderFitParams {
   double slice_height = 0.25;      // metres per horizontal slice
@@ -81,4 +81,4 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
                                 const Eigen::Vector3d& viewpoint, std::string* why = nullptr);
 
-}  // namespace slide
+}  // namespace slide::frontend
