@@ -166,14 +166,14 @@ void DeputyNode::publishInfo(int64_t now) {
     r.mem_vsize_bytes = it->second.last.vsize_bytes;
     r.mem_rss_bytes = it->second.last.rss_bytes;
   }
-  const procman_lcm::deputy_info_t m = makeDeputyInfo(opts_.id, now, cpu_load_, mem_, reports);
+  const procman_lcm::deputy_info_t m = msg::makeDeputyInfo(opts_.id, now, cpu_load_, mem_, reports);
   lcm_.publish("PM_INFO", &m);
   info_dirty_ = false;
 }
 
 void DeputyNode::publishOutput(int64_t now) {
   if (output_.empty()) return;
-  const procman_lcm::output_t m = makeOutput(opts_.id, now, output_.take());
+  const procman_lcm::output_t m = msg::makeOutput(opts_.id, now, output_.take());
   lcm_.publish("PM_OUTPUT", &m);
 }
 
@@ -186,7 +186,7 @@ void DeputyNode::onOrders(const lcm::ReceiveBuffer*, const std::string&, const p
     return;
   }
   bool changed = false;
-  execute(table_.applyOrders(desiredCommands(*m), now, &changed), now);
+  execute(table_.applyOrders(msg::desiredCommands(*m), now, &changed), now);
   if (changed) info_dirty_ = true;
 }
 

@@ -32,7 +32,7 @@ void prependOwnDirToPath() {
 
 int main(int argc, char** argv) {
   CLI::App app{"slide-deputy: procman-compatible deputy (PM_ORDERS in; PM_INFO, PM_OUTPUT out)", "slide-deputy"};
-  slide::CommonOptions common;
+  slide::app::CommonOptions common;
   slide::DeputyOptions opts;
   opts.id = hostName();
   opts.lcm_url = "udpm://239.255.76.67:7667?ttl=0";
@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 60000))->capture_default_str();
   app.add_option("--shutdown-wait", opts.shutdown_wait_s, "Seconds before SIGKILL when the deputy is stopped")
       ->check(CLI::Range(0.0, 600.0))->capture_default_str();
-  slide::addCommonOptions(app, common);
-  return slide::runApp(app, common, argc, argv, [&]() {
+  slide::app::addCommonOptions(app, common);
+  return slide::app::runApp(app, common, argc, argv, [&]() {
     if (opts.id.empty()) throw std::runtime_error("--id must not be empty");
     prependOwnDirToPath();
     slide::DeputyNode node(opts);

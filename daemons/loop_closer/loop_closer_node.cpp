@@ -18,7 +18,7 @@ constexpr double kMaxObjectCoordinate = 1e6;
 ObjectMap mapFromMsg(const object_map_t& m, int& dropped) {
   ObjectMap map;
   for (const object_t& o : m.objects) {
-    const Object obj = fromLcm(o);
+    const Object obj = msg::fromLcm(o);
     if (obj.isFinite() && obj.position().cwiseAbs().maxCoeff() <= kMaxObjectCoordinate) map.add(obj);
     else ++dropped;
   }
@@ -37,7 +37,7 @@ std::string readLoopCloserBus(const ConfigNode& cfg, LoopCloserChannels& ch) {
   return l.get<std::string>("url", "");
 }
 
-LoopCloserNode::LoopCloserNode(LoopCloserParams params, LoopCloserChannels channels, msg::Publisher publish)
+LoopCloserNode::LoopCloserNode(place::LoopCloserParams params, LoopCloserChannels channels, msg::Publisher publish)
     : params_(params), channels_(std::move(channels)), publish_(std::move(publish)), closer_(std::move(params)) {}
 
 long LoopCloserNode::droppedInputs() const {
@@ -67,24 +67,24 @@ void LoopCloserNode::onMap(const std::string& channel, const object_map_t& m, do
 
 void LoopCloserNode::onTrajectory(const trajectory_t& m) {
   if (m.robot != params_.robot || m.frame_robot != params_.robot) return;
-  std::vector<KeyPose> kps;
-  for (int i = 0; i < m.num_poses; ++i) kps.push_back({m.keypose_seq[i], fromLcm(m.poses[i])});
+  std::vector<place::KeyPose> kps;
+  for (int i = 0; i < m.num_poses; ++i) kps.push_back({m.keypose_seq[i], msg::fromLcm(m.poses[i])});
   closer_.setTrajectory(std::move(kps));
 }
 
 void LoopCloserNode::poll(double now_s) {
-  std::vector<LoopClosure> found;
+  std::vector<place::LoopClosure> found;
   try {
     found = closer_.poll(now_s);
   } catch (const std::exception& e) {  // one bad map must not end the daemon
     spdlog::error("place recognition failed: {}", e.what());
   }
-  for (const LoopClosure& lc : found) {
+  for (const place::LoopClosure& lc : found) {
     const Eigen::Vector4d v = xyzYawOf(lc.T_a_b);
     spdlog::info("robot {} <- robot {}{}: {} ({} inliers{}, {:.1f} ms): x {:.3f} y {:.3f} z {:.3f} yaw {:.2f} deg",
-                 lc.robot_a, lc.robot_b, lc.robot_a == lc.robot_b ? " (intra)" : "", outcomeName(lc.outcome),
+                 lc.robot_a, lc.robot_b, lc.robot_a == lc.robot_b ? " (intra)" : "", place::outcomeName(lc.outcome),
                  lc.inliers.size(), lc.result.by_shape ? ", by shape family: the maps share too few classes" : "", lc.result.ms, v[0], v[1], v[2], v[3] * 180.0 / M_PI);
-    if (lc.outcome != ConsensusFilter::Outcome::Pending) publish(lc);
+    if (lc.outcome != place::ConsensusFilter::Outcome::Pending) publish(lc);
   }
   if (closer_.counts().budget_exceeded > budget_exceeded_) {
     budget_exceeded_ = closer_.counts().budget_exceeded;
@@ -97,14 +97,14 @@ void LoopCloserNode::poll(double now_s) {
   }
 }
 
-void LoopCloserNode::publish(const LoopClosure& lc) {
+void LoopCloserNode::publish(const place::LoopClosure& lc) {
   loop_closure_t out;
-  out.utime = wallMicros();
+  out.utime = app::wallMicros();
   out.robot_a = lc.robot_a;
   out.robot_b = lc.robot_b;
   out.keypose_a = lc.keypose_a;
   out.keypose_b = lc.keypose_b;
-  out.method = lc.method == PlaceMethod::SlideGraph ? loop_closure_t::SLIDEGRAPH : loop_closure_t::SLIDEMATCH;
+  out.method = lc.method == place::PlaceMethod::SlideGraph ? loop_closure_t::SLIDEGRAPH : loop_closure_t::SLIDEMATCH;
   const Eigen::Vector4d v = xyzYawOf(lc.T_a_b);
   out.x = v[0], out.y = v[1], out.z = v[2], out.yaw = v[3];
   out.score = lc.result.score;

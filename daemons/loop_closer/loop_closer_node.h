@@ -15,11 +15,11 @@
 namespace slide {
 
 struct LoopCloserChannels {
-  std::string own_map = channels::kOwnMap;
-  std::string peer_maps = channels::kPeerMap;
-  std::string trajectory = channels::kTrajectory;
-  std::string loop_closures = channels::kLoopClosure;
-  std::string status = channels::kDaemonStatus;
+  std::string own_map = app::channels::kOwnMap;
+  std::string peer_maps = app::channels::kPeerMap;
+  std::string trajectory = app::channels::kTrajectory;
+  std::string loop_closures = app::channels::kLoopClosure;
+  std::string status = app::channels::kDaemonStatus;
 };
 
 // Reads the config's `lcm:` section (url and channel names) into `channels`; returns its url,
@@ -28,7 +28,7 @@ std::string readLoopCloserBus(const ConfigNode& cfg, LoopCloserChannels& channel
 
 class LoopCloserNode {
  public:
-  LoopCloserNode(LoopCloserParams params, LoopCloserChannels channels, msg::Publisher publish);
+  LoopCloserNode(place::LoopCloserParams params, LoopCloserChannels channels, msg::Publisher publish);
 
   // A map on `channel`, own (robot == params.robot) or a peer's; maps not in their own robot's
   // frame are skipped. `now_s`: steady seconds.
@@ -38,19 +38,19 @@ class LoopCloserNode {
   // Runs the checks due at `now_s` and publishes the closures the consensus filter confirms.
   void poll(double now_s);
 
-  const LoopCloser& closer() const { return closer_; }
+  const place::LoopCloser& closer() const { return closer_; }
   long published() const { return published_; }
   long droppedObjects() const { return dropped_objects_; }
   // Inputs refused: objects dropped, maps over the size cap, checks over budget.
   long droppedInputs() const;
 
  private:
-  void publish(const LoopClosure& lc);
+  void publish(const place::LoopClosure& lc);
 
-  LoopCloserParams params_;
+  place::LoopCloserParams params_;
   LoopCloserChannels channels_;
   msg::Publisher publish_;
-  LoopCloser closer_;
+  place::LoopCloser closer_;
   long dropped_objects_ = 0;
   long published_ = 0;
   long budget_exceeded_ = 0;

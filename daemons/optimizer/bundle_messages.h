@@ -11,6 +11,7 @@
 namespace slide {
 
 object_map_t objectMapMsg(std::int64_t utime, int robot, const std::vector<Object>& objects);
-trajectory_t trajectoryMsg(std::int64_t utime, int robot, int frame_robot, const std::vector<TrajectoryPose>& poses);
+trajectory_t trajectoryMsg(std::int64_t utime, int robot, int frame_robot,
+                           const std::vector<backend::TrajectoryPose>& poses);
 
 }  // namespace slide

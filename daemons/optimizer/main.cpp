@@ -16,8 +16,8 @@ using namespace slide;
 int main(int argc, char** argv) {
   CLI::App app{"Back-end optimizer: keeps the robot's factor graph of key poses and object landmarks "
                "optimized, merges peers once their transform is known, publishes map and trajectories"};
-  CommonOptions common;
-  RobotBusOptions bus;
+  app::CommonOptions common;
+  app::RobotBusOptions bus;
   std::string config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   std::string classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   std::string journal_path, out_dir;
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   double write_period = 10, settle_after = 3;
   bool inline_solves = false;
   OptimizerChannels ch;
-  addRobotBusOptions(app, bus);
+  app::addRobotBusOptions(app, bus);
   app.add_option("--config", config_path, "back-end parameters (YAML)")->capture_default_str();
   app.add_option("--classes", classes_path, "class table (YAML)")->capture_default_str();
   app.add_option("--journal", journal_path,
@@ -50,10 +50,10 @@ int main(int argc, char** argv) {
   app.add_option("--own-map-channel", ch.own_map)->capture_default_str();
   app.add_option("--trajectory-channel", ch.trajectory)->capture_default_str();
   app.add_option("--status-channel", ch.status)->capture_default_str();
-  addCommonOptions(app, common);
-  return runApp(app, common, argc, argv, [&]() {
+  app::addCommonOptions(app, common);
+  return app::runApp(app, common, argc, argv, [&]() {
     const std::string url = bus.resolve();
-    BackendConfig cfg = loadBackendConfig(config_path);
+    backend::BackendConfig cfg = backend::loadBackendConfig(config_path);
     cfg.background_solves = !inline_solves;
     const ClassTable classes = ClassTable::load(classes_path);
     lcm::LCM lcm(url);
@@ -61,9 +61,9 @@ int main(int argc, char** argv) {
     OptimizerNode node(cfg, classes, bus.robot, ch, msg::lcmPublisher(lcm), publish_every);
     node.setOutputs(out_dir, write_period);
     node.setSettle(settle_after);
-    node.optimizer().setStopFlag(stopFlag());  // a stop aborts a solve running inside an update
-    installStopHandlers();
-    installWriteHandler();
+    node.optimizer().setStopFlag(app::stopFlag());  // a stop aborts a solve running inside an update
+    app::installStopHandlers();
+    app::installWriteHandler();
     if (!journal_path.empty()) {
       node.openJournal(journal_path);
       node.publishAll();
@@ -74,13 +74,13 @@ int main(int argc, char** argv) {
     node.setBusDrops([&inbox]() { return inbox.dropped(); });
     spdlog::info("robot {} optimizer on {} (in: {}, {}, {}; out: {}, {}, {})", bus.robot, url, ch.bundle, ch.peer_bundle,
                  ch.loop_closure, ch.object_map, ch.trajectory, ch.status);
-    while (!stopRequested()) {
-      if (lcm.handleTimeout(100) < 0 && !stopRequested()) throw std::runtime_error("LCM receive failed on " + url);
+    while (!app::stopRequested()) {
+      if (lcm.handleTimeout(100) < 0 && !app::stopRequested()) throw std::runtime_error("LCM receive failed on " + url);
       node.poll();
-      if (takeWriteRequest()) node.writeOutputs();
+      if (app::takeWriteRequest()) node.writeOutputs();
     }
     node.stop();
-    const Optimizer& o = node.optimizer();
+    const backend::Optimizer& o = node.optimizer();
     spdlog::info("stopping: {} key poses, {} landmarks, {} peers merged, {} inputs rejected, {} undecodable, "
                  "dropped on the bus: {}", o.numKeyPoses(), o.numLandmarks(), o.numPeersMerged(), o.rejected(),
                  node.decodeErrors(), inbox.dropped() ? inbox.summary() : "none");

@@ -35,13 +35,13 @@ void checkJournalFile(const std::string& path) {
                              path + " still reads an LCM log");
 }
 
-void logResult(const UpdateResult& r, const std::string& what) {
+void logResult(const backend::UpdateResult& r, const std::string& what) {
   for (const auto& w : r.warnings) spdlog::warn("{}", w);
   if (!r.accepted) spdlog::warn("rejected {}: {}", what, r.reason);
 }
 }  // namespace
 
-OptimizerNode::OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot,
+OptimizerNode::OptimizerNode(const backend::BackendConfig& config, const ClassTable& classes, int robot,
                              OptimizerChannels channels, Publisher publish, int publish_every)
     : optimizer_(config, classes, robot),
       classes_(classes),
@@ -124,7 +124,7 @@ void OptimizerNode::handle(const std::string& channel, const void* data, int siz
 }
 
 bool OptimizerNode::process(Input kind, const void* data, int size) {
-  UpdateResult r;
+  backend::UpdateResult r;
   if (kind == Input::LoopClosure) {
     loop_closure_t m;
     if (m.decode(data, 0, size) < 0) {
@@ -160,7 +160,7 @@ bool OptimizerNode::process(Input kind, const void* data, int size) {
       return false;
     }
     std::vector<std::string> dropped;
-    const KeyPoseBundle b = fromLcm(m, &dropped);
+    const KeyPoseBundle b = msg::fromLcm(m, &dropped);
     for (const auto& w : dropped) spdlog::warn("malformed object dropped: robot {} key pose {}: {}", b.robot, b.seq, w);
     r = optimizer_.addBundle(b);
     logResult(r, "bundle of robot " + std::to_string(b.robot) + " key pose " + std::to_string(b.seq));
@@ -179,10 +179,10 @@ bool OptimizerNode::process(Input kind, const void* data, int size) {
   return true;
 }
 
-void OptimizerNode::publishStatus(const UpdateResult& r) {
+void OptimizerNode::publishStatus(const backend::UpdateResult& r) {
   if (!publish_) return;
   optimizer_status_t s;
-  s.utime = wallMicros();
+  s.utime = app::wallMicros();
   s.robot = optimizer_.hostRobot();
   s.num_keyposes = optimizer_.numKeyPoses();
   s.num_landmarks = optimizer_.numLandmarks();
@@ -200,7 +200,7 @@ void OptimizerNode::publishStatus(const UpdateResult& r) {
 
 void OptimizerNode::publishAll() {
   if (!publish_) return;
-  const std::int64_t t = wallMicros();
+  const std::int64_t t = app::wallMicros();
   const int host = optimizer_.hostRobot();
   publish_(channels_.object_map, msg::encodeLcm(objectMapMsg(t, host, optimizer_.landmarks())));
   publish_(channels_.own_map, msg::encodeLcm(objectMapMsg(t, host, optimizer_.ownLandmarks())));
@@ -220,11 +220,12 @@ bool OptimizerNode::writeOutputs() {
     std::filesystem::create_directories(out_dir_);
     for (int r : optimizer_.robots()) {
       std::vector<StampedPose> poses;
-      for (const TrajectoryPose& p : optimizer_.trajectory(r)) poses.push_back({p.utime * 1e-6, p.pose});
-      writeTum(out_dir_ + "/trajectory_robot" + std::to_string(r) + ".txt", poses);
+      for (const backend::TrajectoryPose& p : optimizer_.trajectory(r)) poses.push_back({p.utime * 1e-6, p.pose});
+      io::writeTum(out_dir_ + "/trajectory_robot" + std::to_string(r) + ".txt", poses);
     }
     const ObjectMap objects(optimizer_.landmarks());
-    writeObjectMapText(out_dir_ + "/map_robot" + std::to_string(optimizer_.hostRobot()) + ".txt", objects, classes_);
+    io::writeObjectMapText(out_dir_ + "/map_robot" + std::to_string(optimizer_.hostRobot()) + ".txt", objects,
+                           classes_);
     spdlog::debug("wrote {} key poses and {} objects to {}", optimizer_.numKeyPoses(), objects.size(), out_dir_);
   } catch (const std::exception& e) {
     spdlog::error("outputs not written: {}", e.what());
@@ -235,7 +236,7 @@ bool OptimizerNode::writeOutputs() {
 }
 
 void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
-  UpdateResult r;
+  backend::UpdateResult r;
   if (optimizer_.poll(&r)) {
     ++updates_;
     logResult(r, "background solve");
@@ -248,7 +249,7 @@ void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
   if (!optimizer_.solving()) settling_ = false;  // taken in above, or by an update (input came)
   if (settle_after_s_ > 0 && updates_ != settled_updates_ && optimizer_.numKeyPoses() > 0 && !optimizer_.solving() &&
       now - last_input_ >= std::chrono::duration<double>(settle_after_s_)) {
-    const SolveReport s = optimizer_.settle();
+    const backend::SolveReport s = optimizer_.settle();
     if (optimizer_.solving()) {
       settling_ = true;  // on the worker: a later poll() takes it in
     } else {
@@ -265,7 +266,7 @@ void OptimizerNode::poll(std::chrono::steady_clock::time_point now) {
   }
 }
 
-void OptimizerNode::logSettled(const SolveReport& s) const {
+void OptimizerNode::logSettled(const backend::SolveReport& s) const {
   spdlog::info("no input for {:.0f} s: settled the estimate ({} iterations, {:.0f} ms, cost {:.4g} -> {:.4g})",
                settle_after_s_, s.iterations, s.wall_ms, s.initial_cost, s.final_cost);
 }
@@ -274,7 +275,7 @@ void OptimizerNode::stop(double budget_s) {
   optimizer_.cancelSolve();
   if (writeOutputs() && !out_dir_.empty())
     spdlog::info("wrote the estimate of {} key poses to {}", optimizer_.numKeyPoses(), out_dir_);
-  const SolveReport s = optimizer_.fullSolve(budget_s);
+  const backend::SolveReport s = optimizer_.fullSolve(budget_s);
   if (s.aborted) {
     spdlog::warn("final solve not used: {}", s.message);
     return;

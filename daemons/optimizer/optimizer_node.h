@@ -18,13 +18,13 @@
 namespace slide {
 
 struct OptimizerChannels {
-  std::string bundle = channels::kKeyPoseBundle;
-  std::string peer_bundle = channels::kPeerBundle;
-  std::string loop_closure = channels::kLoopClosure;
-  std::string object_map = channels::kObjectMap;
-  std::string own_map = channels::kOwnMap;
-  std::string trajectory = channels::kTrajectory;
-  std::string status = channels::kOptimizerStatus;
+  std::string bundle = app::channels::kKeyPoseBundle;
+  std::string peer_bundle = app::channels::kPeerBundle;
+  std::string loop_closure = app::channels::kLoopClosure;
+  std::string object_map = app::channels::kObjectMap;
+  std::string own_map = app::channels::kOwnMap;
+  std::string trajectory = app::channels::kTrajectory;
+  std::string status = app::channels::kOptimizerStatus;
 };
 
 class OptimizerNode {
@@ -32,7 +32,7 @@ class OptimizerNode {
   // Publishes through `publish(channel, bytes)`; an empty function publishes nothing.
   using Publisher = msg::Publisher;
 
-  OptimizerNode(const BackendConfig& config, const ClassTable& classes, int robot, OptimizerChannels channels,
+  OptimizerNode(const backend::BackendConfig& config, const ClassTable& classes, int robot, OptimizerChannels channels,
                 Publisher publish, int publish_every = 1);
   ~OptimizerNode();
 
@@ -79,8 +79,8 @@ class OptimizerNode {
   // Messages the bus layer dropped before they reached handle() (size cap, handler
   // exceptions): added to the status message's dropped_messages.
   void setBusDrops(std::function<std::uint64_t()> count) { bus_drops_ = std::move(count); }
-  const Optimizer& optimizer() const { return optimizer_; }
-  Optimizer& optimizer() { return optimizer_; }
+  const backend::Optimizer& optimizer() const { return optimizer_; }
+  backend::Optimizer& optimizer() { return optimizer_; }
   int decodeErrors() const { return decode_errors_; }
   // Accepted inputs the journal could not take (a full disk): an alarm in every status.
   int unjournalled() const { return unjournalled_; }
@@ -92,10 +92,10 @@ class OptimizerNode {
   enum class Input { Bundle, PeerBundle, LoopClosure };
   bool process(Input kind, const void* data, int size);
   void journal(Input kind, const void* data, int size);
-  void publishStatus(const UpdateResult& r);
-  void logSettled(const SolveReport& s) const;
+  void publishStatus(const backend::UpdateResult& r);
+  void logSettled(const backend::SolveReport& s) const;
 
-  Optimizer optimizer_;
+  backend::Optimizer optimizer_;
   ClassTable classes_;
   OptimizerChannels channels_;
   Publisher publish_;

@@ -6,7 +6,7 @@
 
 namespace slide {
 
-PeerSyncSetup readPeerSyncSetup(const ConfigNode& cfg, const RobotBusOptions& bus, const std::string& team_url,
+PeerSyncSetup readPeerSyncSetup(const ConfigNode& cfg, const app::RobotBusOptions& bus, const std::string& team_url,
                                 const std::string& state_dir, const std::string& team_key_file) {
   PeerSyncSetup s;
   s.sync = team::SyncConfig::fromConfig(cfg, bus.robot);
@@ -17,7 +17,7 @@ PeerSyncSetup readPeerSyncSetup(const ConfigNode& cfg, const RobotBusOptions& bu
   s.state_dir = state_dir;
   if (s.state_dir.empty()) {
     std::string base = cfg.get<std::string>("state_dir", "");
-    if (base.empty()) base = persistentStateDir() + "/peer-sync";
+    if (base.empty()) base = app::persistentStateDir() + "/peer-sync";
     s.state_dir = base + "/robot" + std::to_string(bus.robot);
   }
   const double tick_s = cfg.get<double>("tick_period_s", 0.05);

@@ -22,7 +22,7 @@ struct PeerSyncSetup {
 // Empty `team_url`, `state_dir`, `team_key_file`: the config's; without a robot bus URL on the
 // command line or in the config, robot bus.robot's own bus. Throws ConfigError naming the key
 // of a missing, absurd or unknown setting.
-PeerSyncSetup readPeerSyncSetup(const ConfigNode& cfg, const RobotBusOptions& bus, const std::string& team_url,
+PeerSyncSetup readPeerSyncSetup(const ConfigNode& cfg, const app::RobotBusOptions& bus, const std::string& team_url,
                                 const std::string& state_dir, const std::string& team_key_file);
 
 }  // namespace slide

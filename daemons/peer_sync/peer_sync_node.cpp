@@ -104,7 +104,7 @@ void PeerSyncDaemon::step(team::Micros now) {
   for (int k = 0; k < max_deliveries_; ++k) {
     auto b = node_.nextDelivery();
     if (!b) break;
-    if (!robot_bus_(channels_.peer_bundle, msg::encodeLcm(toLcm(*b)))) {  // not recorded: tried again next step
+    if (!robot_bus_(channels_.peer_bundle, msg::encodeLcm(msg::toLcm(*b)))) {  // not recorded: tried again next step
       spdlog::warn("{}: publish of bundle {}/{} failed", channels_.peer_bundle, b->robot, b->seq);
       break;
     }
@@ -145,7 +145,7 @@ void PeerSyncDaemon::logStats(team::Micros now) {
   for (const auto& line : node_.trafficSummary(now)) spdlog::info("{}", line);
   // The same counts for whoever watches the robot bus.
   peer_sync_status_t st;
-  st.utime = wallMicros();
+  st.utime = app::wallMicros();
   st.robot = node_.config().robot;
   st.held_bundles = static_cast<int32_t>(node_.db().size());
   st.bytes_sent = node_.traffic().totalSent();

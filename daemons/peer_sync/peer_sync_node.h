@@ -18,11 +18,11 @@
 namespace slide {
 
 struct PeerSyncChannels {
-  std::string own_bundle = channels::kKeyPoseBundle;  // robot bus, in
-  std::string own_map = channels::kOwnMap;         // robot bus, in
-  std::string peer_bundle = channels::kPeerBundle;    // robot bus, out
-  std::string peer_map = channels::kPeerMap;          // robot bus, out
-  std::string status = channels::kPeerSyncStatus;     // robot bus, out
+  std::string own_bundle = app::channels::kKeyPoseBundle;  // robot bus, in
+  std::string own_map = app::channels::kOwnMap;         // robot bus, in
+  std::string peer_bundle = app::channels::kPeerBundle;    // robot bus, out
+  std::string peer_map = app::channels::kPeerMap;          // robot bus, out
+  std::string status = app::channels::kPeerSyncStatus;     // robot bus, out
   team::TeamChannels team;                            // team bus
 };
 

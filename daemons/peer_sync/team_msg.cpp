@@ -159,7 +159,7 @@ std::optional<Ack> fromLcm(const sync_ack_t& m, std::string* why) {
 
 std::optional<KeyPoseBundle> acceptBundle(const keypose_bundle_t& m, std::string* why) {
   const std::string who = "bundle " + std::to_string(m.header.robot) + "/" + std::to_string(m.header.seq);
-  if (!usablePose(m.odom_pose) || !usablePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
+  if (!msg::usablePose(m.odom_pose) || !msg::usablePose(m.relative_odom) || !withinFrame(m.odom_pose.position) ||
       !withinFrame(m.relative_odom.position))
     return *why = who + ": invalid odom_pose or relative_odom (non-finite, or beyond " +
                   std::to_string(kMaxCoordinate) + " m)",
@@ -169,7 +169,7 @@ std::optional<KeyPoseBundle> acceptBundle(const keypose_bundle_t& m, std::string
       return *why = who + ": odom_sigma " + std::to_string(s) + " is not in [0, " + std::to_string(kMaxSigma) + "]",
              std::nullopt;
   std::vector<std::string> dropped;
-  KeyPoseBundle b = slide::fromLcm(m, &dropped);
+  KeyPoseBundle b = msg::fromLcm(m, &dropped);
   if (!dropped.empty()) return *why = who + ": " + dropped.front(), std::nullopt;
   for (std::size_t i = 0; i < b.objects.size(); ++i) {
     const std::string object = "object " + std::to_string(m.objects[i].id);
@@ -186,7 +186,7 @@ object_map_t toLcm(const SharedMap& m) {
   o.utime = m.utime;
   o.robot = m.robot;
   o.frame_robot = m.frame_robot;
-  for (const auto& obj : m.objects) o.objects.push_back(slide::toLcm(obj));
+  for (const auto& obj : m.objects) o.objects.push_back(msg::toLcm(obj));
   o.num_objects = static_cast<int32_t>(o.objects.size());
   return o;
 }
@@ -198,7 +198,7 @@ std::optional<SharedMap> fromLcm(const object_map_t& m, std::string* why) {
   s.utime = m.utime;
   try {
     for (const auto& o : m.objects) {
-      Object obj = slide::fromLcm(o);
+      Object obj = msg::fromLcm(o);
       if (!obj.isFinite()) throw std::invalid_argument("object " + std::to_string(o.id) + " has non-finite numbers");
       if (!saneObject(obj)) throw std::invalid_argument("object " + std::to_string(o.id) + " is beyond " +
                                                         std::to_string(kMaxCoordinate) + " m or absurdly large");

@@ -20,15 +20,15 @@ using namespace slide;
 int main(int argc, char** argv) {
   CLI::App app{"Segmenter daemon: LiDAR scans (labelled, geometric or learned mode) and RGBD frames (instance masks) "
                "to per-frame object instances stamped with their odometry pose"};
-  CommonOptions common;
-  addCommonOptions(app, common);
-  RobotBusOptions bus;
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
+  app::RobotBusOptions bus;
   std::string config_file = std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml";
   std::string classes_file = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
-  std::string scan_ch = channels::kScan, rgbd_ch = channels::kRgbd, odom_ch = channels::kOdom;
-  std::string out_ch = channels::kInstances, status_ch = channels::kDaemonStatus, mode;
+  std::string scan_ch = app::channels::kScan, rgbd_ch = app::channels::kRgbd, odom_ch = app::channels::kOdom;
+  std::string out_ch = app::channels::kInstances, status_ch = app::channels::kDaemonStatus, mode;
   std::size_t max_pending = 50;
-  addRobotBusOptions(app, bus);
+  app::addRobotBusOptions(app, bus);
   app.add_option("--config", config_file, "Front-end YAML")->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML")->capture_default_str();
   app.add_option("--mode", mode, "LiDAR mode, overrides the config: auto | labelled | geometric | learned")
@@ -37,18 +37,18 @@ int main(int argc, char** argv) {
   app.add_option("--rgbd-channel", rgbd_ch, "RGBD frames in")->capture_default_str();
   app.add_option("--odom-channel", odom_ch, "Odometry in")->capture_default_str();
   app.add_option("--instances-channel", out_ch, "Instances out")->capture_default_str();
-  SegmenterNode::Preview preview{channels::kInstancesPreview};
+  SegmenterNode::Preview preview{app::channels::kInstancesPreview};
   app.add_option("--preview-channel", preview.channel, "Thinned copy of the instances out, for the viewer ('': none)")
       ->capture_default_str();
   app.add_option("--preview-period", preview.period_s, "Seconds of frame time between two previews")->capture_default_str();
   app.add_option("--preview-points", preview.max_points, "Points of a preview (thinned)")->capture_default_str();
   app.add_option("--status-channel", status_ch, "Counts out (daemon_status_t every 5 s)")->capture_default_str();
   app.add_option("--max-pending", max_pending, "Frames kept waiting for odometry")->capture_default_str();
-  return runApp(app, common, argc, argv, [&]() {
+  return app::runApp(app, common, argc, argv, [&]() {
     const int robot = bus.robot;
     const std::string url = bus.resolve();
     const ClassTable classes = ClassTable::load(classes_file);
-    FrontendConfig cfg = loadFrontendConfig(config_file);
+    frontend::FrontendConfig cfg = frontend::loadFrontendConfig(config_file);
     if (!mode.empty()) cfg.lidar_mode = mode;
     lcm::LCM lcm(url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at " + url);
@@ -61,14 +61,14 @@ int main(int argc, char** argv) {
     // A segmenter more than a few seconds behind its sensor skips frames rather than queue MBs.
     inbox.setQueueCapacity(scan_ch, 30);
     inbox.setQueueCapacity(rgbd_ch, 30);
-    installStopHandlers();
+    app::installStopHandlers();
     spdlog::info("robot {}: {} + {} + {} -> {} on {} (lidar mode {})", robot, scan_ch, rgbd_ch, odom_ch, out_ch, url,
                  cfg.lidar_mode);
     msg::StatusBeacon status(lcm, status_ch, robot, "segmenter");
     auto counts = [&](bool now) { status.tick(node.published(), inbox.dropped(), node.issues().total(), now); };
-    while (!stopRequested()) {
-      if (lcm.handleTimeout(200) < 0 && !stopRequested()) throw std::runtime_error("LCM receive failed on " + url);
-      node.report(steadySeconds());
+    while (!app::stopRequested()) {
+      if (lcm.handleTimeout(200) < 0 && !app::stopRequested()) throw std::runtime_error("LCM receive failed on " + url);
+      node.report(app::steadySeconds());
       counts(false);
     }
     counts(true);

@@ -14,15 +14,22 @@ const header_t& headerOf(const std::variant<lidar_scan_t, rgbd_frame_t>& f) {
 }
 }  // namespace
 
-SegmenterNode::SegmenterNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
-                             std::size_t max_pending, msg::Publisher publish)
-    : robot_(robot), out_channel_(std::move(out_channel)), classes_(classes), cfg_(cfg),
-      labelled_(classes, cfg.labelled), geometric_(classes, cfg.geometric), max_pending_(max_pending),
+SegmenterNode::SegmenterNode(int robot, std::string out_channel, const ClassTable& classes,
+                             const frontend::FrontendConfig& cfg, std::size_t max_pending, msg::Publisher publish)
+    : robot_(robot),
+      out_channel_(std::move(out_channel)),
+      classes_(classes),
+      cfg_(cfg),
+      labelled_(classes, cfg.labelled),
+      geometric_(classes, cfg.geometric),
+      max_pending_(max_pending),
       publish_(std::move(publish)) {
   if (cfg.lidar_mode == "learned")
-    learned_ = std::make_unique<LearnedLidarSegmenter>(RangeNetLabeler::fromParams(cfg.learned),
-                                                       std::make_shared<LabelledSegmenter>(classes, cfg.labelled));
-  if (!cfg.rgbd_detector.empty()) detector_ = std::make_unique<YoloSegDetector>(loadYoloSegConfig(cfg.rgbd_detector, classes));
+    learned_ = std::make_unique<frontend::LearnedLidarSegmenter>(
+        frontend::RangeNetLabeler::fromParams(cfg.learned),
+        std::make_shared<frontend::LabelledSegmenter>(classes, cfg.labelled));
+  if (!cfg.rgbd_detector.empty())
+    detector_ = std::make_unique<frontend::YoloSegDetector>(frontend::loadYoloSegConfig(cfg.rgbd_detector, classes));
 }
 
 void SegmenterNode::onScan(const lidar_scan_t& m) {
@@ -36,7 +43,7 @@ void SegmenterNode::onRgbd(const rgbd_frame_t& m) {
 }
 
 void SegmenterNode::onOdom(const odometry_t& m) {
-  odom_.add(m.header.utime, fromLcm(m.pose));
+  odom_.add(m.header.utime, msg::fromLcm(m.pose));
   process();
 }
 
@@ -46,7 +53,7 @@ void SegmenterNode::report(double now_s) {
 
 // Segments every pending frame whose odometry pose is known, in arrival order.
 void SegmenterNode::process() {
-  InputIssues issues;
+  frontend::InputIssues issues;
   while (!pending_.empty()) {
     const std::int64_t utime = headerOf(pending_.front()).utime;
     const auto pose = odom_.at(utime);
@@ -58,20 +65,22 @@ void SegmenterNode::process() {
       }
       break;
     }
-    FrameInstances out;
+    frontend::FrameInstances out;
     out.utime = utime;
     out.odom_pose = *pose;
     bool usable = true;  // bad frames (empty scans, unusable images) are skipped, not published
     if (const auto* scan = std::get_if<lidar_scan_t>(&pending_.front())) {
-      const LabelledScan s = fromLcm(*scan, issues);
+      const io::LabelledScan s = msg::fromLcm(*scan, issues);
       const bool labelled = cfg_.lidar_mode == "labelled" || (cfg_.lidar_mode == "auto" && s.hasLabels());
-      const LidarSegmenter& seg = learned_ ? *learned_ : labelled ? static_cast<const LidarSegmenter&>(labelled_) : geometric_;
+      const frontend::LidarSegmenter& seg = learned_   ? *learned_
+                                            : labelled ? static_cast<const frontend::LidarSegmenter&>(labelled_)
+                                                       : geometric_;
       usable = s.size() > 0;
       if (!usable) issues.count("empty scan");
       else out.instances = seg.segment(s, issues);
-    } else if (auto frame = fromLcm(std::get<rgbd_frame_t>(pending_.front()), issues)) {
+    } else if (auto frame = msg::fromLcm(std::get<rgbd_frame_t>(pending_.front()), issues)) {
       if (detector_) detector_->detect(*frame);
-      out.instances = segmentRgbd(*frame, classes_, cfg_.rgbd, issues);
+      out.instances = frontend::segmentRgbd(*frame, classes_, cfg_.rgbd, issues);
     } else {
       usable = false;
     }
@@ -83,13 +92,13 @@ void SegmenterNode::process() {
     h.utime = utime;
     h.robot = robot_;
     h.seq = seq_++;
-    publish_(out_channel_, msg::encodeLcm(toLcm(out, h)));
+    publish_(out_channel_, msg::encodeLcm(msg::toLcm(out, h)));
     ++published_;
     spdlog::debug("frame {}: {} instances", h.seq, out.instances.size());
     const std::int64_t since = utime - last_preview_utime_;
     if (!preview_.channel.empty() && (previews_ == 0 || since < 0 || since >= preview_.period_s * 1e6)) {
       out.instances = viewer::thinInstances(std::move(out.instances), preview_.max_points);
-      publish_(preview_.channel, msg::encodeLcm(toLcm(out, h)));
+      publish_(preview_.channel, msg::encodeLcm(msg::toLcm(out, h)));
       last_preview_utime_ = utime;
       ++previews_;
     }

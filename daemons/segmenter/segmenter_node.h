@@ -30,7 +30,7 @@ class SegmenterNode {
   // `max_pending`: frames kept waiting for odometry (the oldest is dropped beyond it). In
   // learned mode (and with an RGBD detector) the model is loaded here: a missing, unreadable or
   // wrongly shaped model throws (the message names the file and what was expected).
-  SegmenterNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
+  SegmenterNode(int robot, std::string out_channel, const ClassTable& classes, const frontend::FrontendConfig& cfg,
                 std::size_t max_pending, msg::Publisher publish);
 
   // A thinned copy of the published instances (what the viewer draws; the run logs keep it where
@@ -51,7 +51,7 @@ class SegmenterNode {
   void report(double now_s);
   int published() const { return published_; }
   int previews() const { return previews_; }
-  const InputIssues& issues() const { return window_.total(); }
+  const frontend::InputIssues& issues() const { return window_.total(); }
 
  private:
   using Frame = std::variant<lidar_scan_t, rgbd_frame_t>;
@@ -60,16 +60,16 @@ class SegmenterNode {
   int robot_;
   std::string out_channel_;
   const ClassTable& classes_;
-  const FrontendConfig& cfg_;
-  LabelledSegmenter labelled_;
-  GeometricSegmenter geometric_;
-  std::unique_ptr<LidarSegmenter> learned_;  // lidar_mode learned only
-  std::unique_ptr<YoloSegDetector> detector_;  // rgbd.detector set only: masks from the colour image
+  const frontend::FrontendConfig& cfg_;
+  frontend::LabelledSegmenter labelled_;
+  frontend::GeometricSegmenter geometric_;
+  std::unique_ptr<frontend::LidarSegmenter> learned_;  // lidar_mode learned only
+  std::unique_ptr<frontend::YoloSegDetector> detector_;  // rgbd.detector set only: masks from the colour image
   std::size_t max_pending_;
   msg::Publisher publish_;
-  OdometryBuffer odom_;
+  frontend::OdometryBuffer odom_;
   std::deque<Frame> pending_;
-  IssueWindow window_;
+  frontend::IssueWindow window_;
   int seq_ = 0;
   int published_ = 0;
   Preview preview_;

@@ -10,17 +10,22 @@ namespace {
 struct Field {
   const char* flag;
   const char* key;
-  std::string BagOptions::*member;
+  std::string io::BagOptions::*member;
   const char* help;
 };
 const Field kFields[] = {
-    {"--cloud-topic", "cloud_topic", &BagOptions::cloud_topic, "Bag: sensor_msgs/PointCloud2 topic (LiDAR)"},
-    {"--color-topic", "color_topic", &BagOptions::color_topic, "Bag: colour sensor_msgs/Image topic, bgr8/rgb8 (RGBD)"},
-    {"--depth-topic", "depth_topic", &BagOptions::depth_topic, "Bag: depth sensor_msgs/Image topic, 16UC1 mm or 32FC1 m (RGBD)"},
-    {"--camera-info-topic", "camera_info_topic", &BagOptions::camera_info_topic, "Bag: sensor_msgs/CameraInfo topic (RGBD)"},
-    {"--odom-topic", "odom_topic", &BagOptions::odom_topic, "Bag: nav_msgs/Odometry topic (empty: the /tf chain odom frame -> body frame)"},
-    {"--odom-frame", "odom_frame", &BagOptions::odom_frame, "Bag: odometry frame of the /tf chain"},
-    {"--body-frame", "body_frame", &BagOptions::body_frame, "Bag: body frame (default: the Odometry child_frame_id, or base_link; another frame is reached through /tf)"},
+    {"--cloud-topic", "cloud_topic", &io::BagOptions::cloud_topic, "Bag: sensor_msgs/PointCloud2 topic (LiDAR)"},
+    {"--color-topic", "color_topic", &io::BagOptions::color_topic,
+     "Bag: colour sensor_msgs/Image topic, bgr8/rgb8 (RGBD)"},
+    {"--depth-topic", "depth_topic", &io::BagOptions::depth_topic,
+     "Bag: depth sensor_msgs/Image topic, 16UC1 mm or 32FC1 m (RGBD)"},
+    {"--camera-info-topic", "camera_info_topic", &io::BagOptions::camera_info_topic,
+     "Bag: sensor_msgs/CameraInfo topic (RGBD)"},
+    {"--odom-topic", "odom_topic", &io::BagOptions::odom_topic,
+     "Bag: nav_msgs/Odometry topic (empty: the /tf chain odom frame -> body frame)"},
+    {"--odom-frame", "odom_frame", &io::BagOptions::odom_frame, "Bag: odometry frame of the /tf chain"},
+    {"--body-frame", "body_frame", &io::BagOptions::body_frame,
+     "Bag: body frame (default: the Odometry child_frame_id, or base_link; another frame is reached through /tf)"},
 };
 }  // namespace
 
@@ -53,9 +58,9 @@ void readBagConfig(const ConfigNode& sd, BagCli& cli) {
 }
 
 int listBag(const std::string& bag) {
-  const std::vector<BagTopicInfo> topics = listBagTopics(bag);
+  const std::vector<io::BagTopicInfo> topics = io::listBagTopics(bag);
   std::printf("%-40s %-32s %10s %10s\n", "topic", "type", "messages", "rate_hz");
-  for (const BagTopicInfo& t : topics)
+  for (const io::BagTopicInfo& t : topics)
     std::printf("%-40s %-32s %10zu %10.2f\n", t.topic.c_str(), t.type.c_str(), t.messages, t.rateHz());
   return 0;
 }

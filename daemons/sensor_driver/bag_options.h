@@ -11,8 +11,8 @@
 namespace slide {
 
 struct BagCli {
-  BagOptions options;
-  double max_odometry_gap_s = DatasetOptions{}.max_odometry_gap_s;  // io/robot_dataset.h
+  io::BagOptions options;
+  double max_odometry_gap_s = io::DatasetOptions{}.max_odometry_gap_s;  // io/robot_dataset.h
   bool list = false;
   std::vector<CLI::Option*> set;  // options given on the command line win over config
   CLI::Option* gap = nullptr;

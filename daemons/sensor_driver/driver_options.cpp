@@ -7,7 +7,7 @@ namespace slide {
 void addDriverOptions(CLI::App& app, DriverCli& cli) {
   ReplayOptions& opt = cli.replay;
   app.add_option("dataset", cli.dataset, "Dataset folder of one robot (e.g. OUT/robot0) or a ROS 1 .bag file")->required();
-  addRobotBusOptions(app, cli.bus)->description("Robot id (stamped into headers; picks the default bus)");
+  app::addRobotBusOptions(app, cli.bus)->description("Robot id (stamped into headers; picks the default bus)");
   app.add_option("--config", cli.config_path,
                  "YAML with a 'sensor_driver' section (rate, start_frame, start_time, max_odom_gap, detections, "
                  "detection_config, channels: scan, rgbd, odom, status; bag: cloud_topic, color_topic, depth_topic, "
@@ -77,8 +77,8 @@ DetectionSource readDriverConfig(DriverCli& cli) {
   return parseDetectionSource(cli.detections);
 }
 
-DatasetOptions datasetOptions(const DriverCli& cli) {
-  DatasetOptions d;
+io::DatasetOptions datasetOptions(const DriverCli& cli) {
+  io::DatasetOptions d;
   d.bag = cli.bag.options;
   d.max_odometry_gap_s = cli.bag.max_odometry_gap_s;
   return d;

@@ -13,7 +13,7 @@ namespace slide {
 
 struct DriverCli {
   std::string dataset, log_path, config_path;
-  RobotBusOptions bus;
+  app::RobotBusOptions bus;
   ReplayOptions replay;
   BagCli bag;
   bool no_publish = false, no_progress = false, oracle_labels = false;
@@ -32,6 +32,6 @@ void addDriverOptions(CLI::App& app, DriverCli& cli);
 DetectionSource readDriverConfig(DriverCli& cli);
 
 // The dataset reader's options.
-DatasetOptions datasetOptions(const DriverCli& cli);
+io::DatasetOptions datasetOptions(const DriverCli& cli);
 
 }  // namespace slide

@@ -23,8 +23,8 @@ header_t frameHeader(int64_t utime, int robot, int seq) {
   return h;
 }
 
-rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const InstanceMask* mask,
-                           const std::vector<float>* confidence, const CameraCalib& calib, int64_t utime, int robot,
+rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const io::InstanceMask* mask,
+                           const std::vector<float>* confidence, const io::CameraCalib& calib, int64_t utime, int robot,
                            int seq) {
   if (color.size() != depth.size()) throw std::invalid_argument("colour and depth images differ in size");
   rgbd_frame_t m;
@@ -56,7 +56,7 @@ rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const Ins
 odometry_t toOdometryMessage(const Pose& pose, const Pose* prev, double dt, int64_t utime, int robot, int seq) {
   odometry_t m;
   m.header = frameHeader(utime, robot, seq);
-  m.pose = toLcm(pose);
+  m.pose = msg::toLcm(pose);
   Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
   if (prev && dt > 0) {
     const Pose delta = prev->inverse() * pose;  // motion in the previous body frame

@@ -19,8 +19,8 @@ header_t frameHeader(int64_t utime, int robot, int seq);
 
 // mask may be null (no instances); confidence (one per instance) null means 1.0 each.
 // color is 8-bit BGR, depth 16-bit.
-rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const InstanceMask* mask,
-                           const std::vector<float>* confidence, const CameraCalib& calib, int64_t utime, int robot,
+rgbd_frame_t toRgbdMessage(const cv::Mat& color, const cv::Mat& depth, const io::InstanceMask* mask,
+                           const std::vector<float>* confidence, const io::CameraCalib& calib, int64_t utime, int robot,
                            int seq);
 
 // Body pose in the odometry frame; velocities (body frame) from the previous pose over dt

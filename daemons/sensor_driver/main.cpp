@@ -14,11 +14,11 @@ using namespace slide;
 
 int main(int argc, char** argv) {
   CLI::App app{"Replay a robot dataset onto the robot bus (and/or into an LCM log)", "slide-sensor-driver"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   DriverCli cli;
   addDriverOptions(app, cli);
-  return runApp(app, common, argc, argv, [&]() {
+  return app::runApp(app, common, argc, argv, [&]() {
     if (cli.bag.list) return listBag(cli.dataset);
     std::unique_ptr<lcm::LCM> bus;
     std::unique_ptr<MessageSink> sink;
@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
       const DetectionSource source = readDriverConfig(cli);
       const FramePerception perception = openPerception(source, cli.detection_config, cli.replay.robot);
       progress.detections = toString(source);
-      const RobotDataset d = openRobotDataset(cli.dataset, datasetOptions(cli));
+      const io::RobotDataset d = io::openRobotDataset(cli.dataset, datasetOptions(cli));
       if (!cli.no_publish) {
         auto b = std::make_unique<lcm::LCM>(url);
         if (!b->good()) throw std::runtime_error("cannot open LCM bus " + url);
@@ -38,10 +38,10 @@ int main(int argc, char** argv) {
         spdlog::info("publishing on {}", url);
       }
       sink = std::make_unique<MessageSink>(msg::lcmPublisher(bus.get()), cli.log_path);
-      installStopHandlers();
-      replayDataset(d, cli.replay, perception, *sink, stopRequested, progress);
+      app::installStopHandlers();
+      replayDataset(d, cli.replay, perception, *sink, app::stopRequested, progress);
       if (source == DetectionSource::Oracle) spdlog::warn("ORACLE run: ground-truth labels / masks were published");
-      return stopRequested() ? 130 : 0;
+      return app::stopRequested() ? 130 : 0;
     } catch (const std::exception& e) {
       publishFailed(bus, sink, !cli.no_publish, url, cli.log_path, cli.replay, progress, e.what());
       throw;

@@ -21,30 +21,32 @@ DetectionSource parseDetectionSource(const std::string& name) {
   throw std::invalid_argument("unknown detection source '" + name + "' (expected none, emulated or oracle)");
 }
 
-LabelledScan FramePerception::scan(LabelledScan read, int frame) const {
+io::LabelledScan FramePerception::scan(io::LabelledScan read, int frame) const {
   if (source_ == DetectionSource::Oracle) return read;
   if (source_ == DetectionSource::Emulated && read.hasLabels())
-    return emulateLidarLabels(read, config_.lidar, detectionSeed(config_.seed, robot_, frame));
+    return emulator::emulateLidarLabels(read, config_.lidar, emulator::detectionSeed(config_.seed, robot_, frame));
   read.semantic.clear();  // none (or nothing to emulate from): ground truth is never published
   read.instance.clear();
   return read;
 }
 
-std::optional<FramePerception::Masks> FramePerception::masks(std::optional<InstanceMask> truth, const cv::Mat& depth,
-                                                             double depth_scale, int frame) const {
+std::optional<FramePerception::Masks> FramePerception::masks(std::optional<io::InstanceMask> truth,
+                                                             const cv::Mat& depth, double depth_scale,
+                                                             int frame) const {
   if (source_ == DetectionSource::None || !truth) return std::nullopt;
   if (source_ == DetectionSource::Oracle) {
     Masks m{std::move(*truth), {}};
     m.confidence.assign(m.masks.class_id.size(), 1.0f);
     return m;
   }
-  EmulatedMasks e = emulateRgbdDetections(*truth, depth, depth_scale, config_.rgbd, detectionSeed(config_.seed, robot_, frame));
+  emulator::EmulatedMasks e = emulator::emulateRgbdDetections(*truth, depth, depth_scale, config_.rgbd,
+                                                              emulator::detectionSeed(config_.seed, robot_, frame));
   return Masks{std::move(e.masks), std::move(e.confidence)};
 }
 
 FramePerception openPerception(DetectionSource source, const std::string& detection_config, int robot) {
-  DetectionEmulatorConfig emulator;
-  if (source == DetectionSource::Emulated) emulator = loadDetectionEmulatorConfig(detection_config);
+  emulator::DetectionEmulatorConfig emulator;
+  if (source == DetectionSource::Emulated) emulator = emulator::loadDetectionEmulatorConfig(detection_config);
   if (source == DetectionSource::Oracle)
     spdlog::warn("ORACLE: publishing the dataset's GROUND-TRUTH labels / masks (--detections oracle); a real robot "
                  "has none, so every figure from this run is an upper bound");

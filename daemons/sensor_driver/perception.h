@@ -20,25 +20,26 @@ DetectionSource parseDetectionSource(const std::string& name);
 
 class FramePerception {
  public:
-  FramePerception(DetectionSource source, DetectionEmulatorConfig config, int robot)
+  FramePerception(DetectionSource source, emulator::DetectionEmulatorConfig config, int robot)
       : source_(source), config_(std::move(config)), robot_(robot) {}
   DetectionSource source() const { return source_; }
 
   // Scan `read` of dataset frame `frame` (with the recording's ground-truth labels, if it has
   // any) as published: no labels, emulated labels without instance ids, or the ground truth.
-  LabelledScan scan(LabelledScan read, int frame) const;
+  io::LabelledScan scan(io::LabelledScan read, int frame) const;
 
   struct Masks {
-    InstanceMask masks;
+    io::InstanceMask masks;
     std::vector<float> confidence;
   };
   // Instance masks of RGBD frame `frame` as published, from the recording's ground-truth masks
   // `truth`; nullopt when none are published or the recording has none.
-  std::optional<Masks> masks(std::optional<InstanceMask> truth, const cv::Mat& depth, double depth_scale, int frame) const;
+  std::optional<Masks> masks(std::optional<io::InstanceMask> truth, const cv::Mat& depth, double depth_scale,
+                             int frame) const;
 
  private:
   DetectionSource source_;
-  DetectionEmulatorConfig config_;
+  emulator::DetectionEmulatorConfig config_;
   int robot_;
 };
 

@@ -27,7 +27,7 @@ void drawProgress(int done, int total, double data_t, double rate) {
 MessageSink::MessageSink(msg::Publisher bus, const std::string& log_path) : bus_(std::move(bus)) {
   if (!log_path.empty()) {
     log_ = std::make_unique<lcm::LogFile>(log_path, "w");
-    if (!log_->good()) throw IoError(log_path, "cannot open LCM log for writing");
+    if (!log_->good()) throw io::IoError(log_path, "cannot open LCM log for writing");
   }
 }
 
@@ -35,7 +35,7 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
   if (bus_ && !bus_(channel, data))
     spdlog::warn("publishing on {} failed", channel);
   if (log_) {
-    if (first_utime_ < 0) first_utime_ = dataset_utime, log_origin_ = wallMicros();
+    if (first_utime_ < 0) first_utime_ = dataset_utime, log_origin_ = app::wallMicros();
     lcm::LogEvent ev;
     ev.eventnum = event_num_++;
     ev.timestamp = log_origin_ + (dataset_utime - first_utime_);
@@ -49,7 +49,7 @@ void MessageSink::send(const std::string& channel, const std::vector<uint8_t>& d
 void sendStatus(MessageSink& sink, const ReplayOptions& o, const StreamProgress& p, int8_t state,
                 const std::string& reason) {
   stream_status_t s;
-  s.utime = wallMicros();
+  s.utime = app::wallMicros();
   s.robot = o.robot;
   s.state = state;
   s.frames_sent = p.sent;
@@ -60,15 +60,16 @@ void sendStatus(MessageSink& sink, const ReplayOptions& o, const StreamProgress&
   sink.send(o.status_channel, s, p.data_utime);
 }
 
-int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerception& perception, MessageSink& sink,
-                  const std::function<bool()>& stop, StreamProgress& progress) {
+int replayDataset(const io::RobotDataset& d, const ReplayOptions& o, const FramePerception& perception,
+                  MessageSink& sink, const std::function<bool()>& stop, StreamProgress& progress) {
   const int n = static_cast<int>(d.size());
   int first = std::clamp(o.start_frame, 0, n);
   while (first < n && d.times[first] - d.times.front() < o.start_time) ++first;
   int last = o.max_frames > 0 ? std::min(n, first + o.max_frames) : n;
   const int total = last - first;
   spdlog::info("replaying {} frames [{}, {}) of {} ({}), rate {}", total, first, last, d.path,
-               d.sensor == RobotDataset::Sensor::Lidar ? "lidar" : "rgbd", o.rate > 0 ? std::to_string(o.rate) : "max");
+               d.sensor == io::RobotDataset::Sensor::Lidar ? "lidar" : "rgbd",
+               o.rate > 0 ? std::to_string(o.rate) : "max");
   for (const std::string& w : d.warnings) spdlog::warn("{}: {}", d.path, w);
   if (d.dropped.total() > 0)
     spdlog::warn("{}: {} frames dropped without an odometry pose ({} outside its time span, {} in gaps)", d.path,
@@ -118,19 +119,19 @@ int replayDataset(const RobotDataset& d, const ReplayOptions& o, const FramePerc
     const int64_t utime = static_cast<int64_t>(std::llround(d.times[i] * 1e6));
     const int seq = i - first;
     try {  // a frame that cannot be read is dropped and counted; the replay goes on
-      if (d.sensor == RobotDataset::Sensor::Lidar) {
-        const lidar_scan_t scan = toLcm(perception.scan(d.scan(i), i), frameHeader(utime, o.robot, seq));
+      if (d.sensor == io::RobotDataset::Sensor::Lidar) {
+        const lidar_scan_t scan = msg::toLcm(perception.scan(d.scan(i), i), frameHeader(utime, o.robot, seq));
         sendOdometry(i, utime, seq);
         sink.send(o.scan_channel, scan, utime);
       } else {
-        RgbdImages f = d.rgbd(i);
+        io::RgbdImages f = d.rgbd(i);
         const auto masks = perception.masks(std::move(f.mask), f.depth, d.camera.depth_scale, i);
         const rgbd_frame_t frame = toRgbdMessage(f.color, f.depth, masks ? &masks->masks : nullptr,
                                                  masks ? &masks->confidence : nullptr, d.camera, utime, o.robot, seq);
         sendOdometry(i, utime, seq);
         sink.send(o.rgbd_channel, frame, utime);
       }
-    } catch (const IoError& e) {
+    } catch (const io::IoError& e) {
       if (bar) std::fprintf(stderr, "\n");
       spdlog::warn("frame {} dropped: {}", i, e.what());
       ++unreadable;

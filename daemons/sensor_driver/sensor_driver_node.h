@@ -21,8 +21,9 @@ struct ReplayOptions {
   int start_frame = 0;        // skip the first K frames ...
   double start_time = 0.0;    // ... or the first S seconds of data (whichever skips more)
   int max_frames = 0;         // > 0: stop after this many frames
-  std::string scan_channel = channels::kScan, rgbd_channel = channels::kRgbd, odom_channel = channels::kOdom;
-  std::string status_channel = channels::kSensorStatus;
+  std::string scan_channel = app::channels::kScan, rgbd_channel = app::channels::kRgbd,
+              odom_channel = app::channels::kOdom;
+  std::string status_channel = app::channels::kSensorStatus;
   bool progress = true;       // progress bar on stderr
   double max_gap_s = 10.0;    // a longer pause between two frames' times is replayed as this long
 };
@@ -73,7 +74,7 @@ void publishFailed(std::unique_ptr<lcm::LCM>& bus, std::unique_ptr<MessageSink>&
 // to send, from progress, when this throws). `stop` is polled between frames and at least
 // every 100 ms while waiting (interrupts end the replay early, without FINISHED). A frame that
 // cannot be read is dropped, logged and counted; the replay goes on.
-int replayDataset(const RobotDataset& dataset, const ReplayOptions& options, const FramePerception& perception,
+int replayDataset(const io::RobotDataset& dataset, const ReplayOptions& options, const FramePerception& perception,
                   MessageSink& sink, const std::function<bool()>& stop, StreamProgress& progress);
 
 }  // namespace slide

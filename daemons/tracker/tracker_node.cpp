@@ -7,17 +7,19 @@
 
 namespace slide {
 
-TrackerNode::TrackerNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
-                         msg::Publisher publish)
-    : robot_(robot), out_channel_(std::move(out_channel)), bundler_(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose),
+TrackerNode::TrackerNode(int robot, std::string out_channel, const ClassTable& classes,
+                         const frontend::FrontendConfig& cfg, msg::Publisher publish)
+    : robot_(robot),
+      out_channel_(std::move(out_channel)),
+      bundler_(frontend::Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose),
       publish_(std::move(publish)) {}
 
 void TrackerNode::onInstances(const frame_instances_t& m) {
-  InputIssues issues;
+  frontend::InputIssues issues;
   if (m.header.robot != robot_) issues.count("instances of another robot");
-  else if (auto b = bundler_.process(fromLcm(m), issues)) {
+  else if (auto b = bundler_.process(msg::fromLcm(m), issues)) {
     b->robot = robot_;
-    publish_(out_channel_, msg::encodeLcm(toLcm(*b)));
+    publish_(out_channel_, msg::encodeLcm(msg::toLcm(*b)));
     spdlog::debug("key pose {}: {} objects", b->seq, b->objects.size());
   }
   window_.add(issues);

@@ -15,21 +15,21 @@ namespace slide {
 
 class TrackerNode {
  public:
-  TrackerNode(int robot, std::string out_channel, const ClassTable& classes, const FrontendConfig& cfg,
+  TrackerNode(int robot, std::string out_channel, const ClassTable& classes, const frontend::FrontendConfig& cfg,
               msg::Publisher publish);
 
   void onInstances(const frame_instances_t& m);
   // Logs a summary of the skipped input when one is due at `now_s` (steady seconds).
   void report(double now_s);
   int bundles() const { return bundler_.nextSeq(); }
-  const InputIssues& issues() const { return window_.total(); }
+  const frontend::InputIssues& issues() const { return window_.total(); }
 
  private:
   int robot_;
   std::string out_channel_;
-  KeyPoseBundler bundler_;
+  frontend::KeyPoseBundler bundler_;
   msg::Publisher publish_;
-  IssueWindow window_;
+  frontend::IssueWindow window_;
 };
 
 }  // namespace slide

@@ -45,14 +45,14 @@ std::vector<LogSource> logSourcesOf(const std::string& path) {
 
 LogPlayer::LogPlayer(std::vector<LogSource> sources, ViewerNode& node, viewer::Scene& scene, bool follow, double wall)
     : sources_(std::move(sources)), node_(node), scene_(scene), follow_(follow), clock_(0, 0, follow, wall) {
-  for (const LogSource& s : sources_) readers_.push_back(std::make_unique<LcmLogReader>(s.path));
+  for (const LogSource& s : sources_) readers_.push_back(std::make_unique<io::LcmLogReader>(s.path));
   readMore(wall);
 }
 
 void LogPlayer::addSources(const std::vector<LogSource>& sources) {
   for (const LogSource& s : sources) {
     if (std::any_of(sources_.begin(), sources_.end(), [&s](const LogSource& o) { return o.path == s.path; })) continue;
-    readers_.push_back(std::make_unique<LcmLogReader>(s.path));
+    readers_.push_back(std::make_unique<io::LcmLogReader>(s.path));
     sources_.push_back(s);
   }
 }
@@ -64,7 +64,7 @@ std::size_t LogPlayer::readMore(double wall) {
     auto wanted = [this, team](const std::string& c) {
       return team ? node_.wantsTeamChannel(c) : node_.wantsRobotChannel(c);
     };
-    LcmLogEvent ev;
+    io::LcmLogEvent ev;
     while (readers_[i]->next(ev, wanted))
       fresh.push_back({static_cast<double>(ev.utime) * 1e-6, static_cast<int>(i), ev.channel, std::move(ev.data)});
   }

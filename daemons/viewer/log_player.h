@@ -54,7 +54,7 @@ class LogPlayer {
   void feed(const Event& e);
 
   std::vector<LogSource> sources_;
-  std::vector<std::unique_ptr<LcmLogReader>> readers_;
+  std::vector<std::unique_ptr<io::LcmLogReader>> readers_;
   ViewerNode& node_;
   viewer::Scene& scene_;
   bool follow_;

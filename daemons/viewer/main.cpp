@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Live map viewer: serves one web page that draws robots' object maps, trajectories, key poses,\n"
                "instances, loop closures, team links and status from their buses (or a recorded run) in 3-D.",
                "slide-viewer"};
-  CommonOptions common;
+  app::CommonOptions common;
   std::vector<int> robots;
   std::vector<std::string> buses, replay;
   std::string team_url;
@@ -39,12 +39,12 @@ int main(int argc, char** argv) {
   addWebServerOptions(app, web);
   app.add_option("--max-instance-points", params.max_instance_points, "Points of a scan's instances sent (thinned)")
       ->capture_default_str();
-  addCommonOptions(app, common);
-  return runApp(app, common, argc, argv, [&]() {
+  app::addCommonOptions(app, common);
+  return app::runApp(app, common, argc, argv, [&]() {
     checkWebRoot(web.web_root);
     const std::vector<ViewerBus> bus_list = viewerBuses(robots, buses, team_url, !replay.empty());
     ViewerSession session(viewerLegend(ClassTable::load(classes_path)), params);
-    if (!replay.empty()) session.startReplay(replay, follow, wallSeconds());
+    if (!replay.empty()) session.startReplay(replay, follow, app::wallSeconds());
     std::vector<std::unique_ptr<lcm::LCM>> lcms;
     std::vector<lcm::LCM*> fds;
     std::vector<std::unique_ptr<msg::Inbox>> inboxes;
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
       msg::Inbox& inbox = *inboxes.emplace_back(std::make_unique<msg::Inbox>(*lcms.back()));
       for (const std::string& c : b.team ? ch.teamBus() : ch.robotBus())
         inbox.subscribeBytes(c, [&session, &inbox, b](const std::string& channel, const void* data, std::size_t size) {
-          if (!session.onBus(b.team, b.robot, channel, data, size, wallSeconds()))
+          if (!session.onBus(b.team, b.robot, channel, data, size, app::wallSeconds()))
             inbox.countUndecodable(channel, session.dropSummary());
         });
       // Only the newest scan's instances are drawn: a viewer that falls behind skips old ones.
@@ -64,16 +64,16 @@ int main(int argc, char** argv) {
       spdlog::info("listening to {} on {}", b.team ? "the team bus" : "robot " + std::to_string(b.robot) + "'s bus", b.url);
     }
     WebServer server(
-        web, [&](ClientCursor& c) { return session.update(c, steadySeconds(), wallSeconds()); },
-        [&](const std::string& text) { return session.control(text, wallSeconds()); },
+        web, [&](ClientCursor& c) { return session.update(c, app::steadySeconds(), app::wallSeconds()); },
+        [&](const std::string& text) { return session.control(text, app::wallSeconds()); },
         [&](const WebServerStats& s) { return session.stats(s); });
-    installStopHandlers();
+    app::installStopHandlers();
     spdlog::info("viewer at {} (over SSH: ssh -L {}:127.0.0.1:{} <robot>, then open http://127.0.0.1:{}/)", server.url(),
                  web.port, web.port, web.port);
-    while (!stopRequested()) {
-      session.step(steadySeconds(), wallSeconds());
+    while (!app::stopRequested()) {
+      session.step(app::steadySeconds(), app::wallSeconds());
       msg::handleAny(fds, 50000);
-      session.logTraffic(server, steadySeconds());
+      session.logTraffic(server, app::steadySeconds());
     }
     spdlog::info("stopping; {} bytes sent to browsers; {}", server.stats().bytes_sent, session.summary());
     return 0;

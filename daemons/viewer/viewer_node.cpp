@@ -80,7 +80,7 @@ bool ViewerNode::onObjectMap(int view, const std::string& ch, const void* data, 
   objects.reserve(m.objects.size());
   for (const object_t& o : m.objects) {
     try {
-      Object obj = fromLcm(o);
+      Object obj = msg::fromLcm(o);
       if (obj.isFinite() && obj.position().cwiseAbs().maxCoeff() <= params_.max_coordinate &&
           obj.extent().cwiseAbs().maxCoeff() <= params_.max_extent) {
         objects.push_back(std::move(obj));
@@ -101,8 +101,8 @@ bool ViewerNode::onTrajectory(int view, const std::string& ch, const void* data,
   std::vector<Eigen::Vector3d> positions;
   std::map<int, Pose> optimized;
   for (int i = 0; i < m.num_poses; ++i) {
-    if (!usablePose(m.poses[i])) return drop(ch, "non-finite or absurd pose");
-    const Pose T = fromLcm(m.poses[i]);
+    if (!msg::usablePose(m.poses[i])) return drop(ch, "non-finite or absurd pose");
+    const Pose T = msg::fromLcm(m.poses[i]);
     if (!finitePose(T)) return drop(ch, "non-finite or absurd pose");
     positions.push_back(T.translation());
     if (m.robot == view) optimized[m.keypose_seq[i]] = T;
@@ -129,8 +129,8 @@ bool ViewerNode::onKeyPoseBundle(int view, const std::string& ch, const void* da
   keypose_bundle_t m{};
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's bundle");
-  if (!usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
-  const Pose T_odom_body = fromLcm(m.odom_pose);
+  if (!msg::usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
+  const Pose T_odom_body = msg::fromLcm(m.odom_pose);
   if (!finitePose(T_odom_body)) return drop(ch, "non-finite or absurd pose");
   RobotMemory& mem = memory_[view];
   mem.odom.emplace_back(m.header.seq, T_odom_body);
@@ -145,8 +145,8 @@ bool ViewerNode::onInstances(int view, const std::string& ch, const void* data, 
   if (!decodeExact(data, size, m)) return drop(ch, "undecodable");
   if (m.header.robot != view) return drop(ch, "another robot's instances");
   if (m.num_instances > params_.max_instances) return drop(ch, "too many instances");
-  if (!usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
-  const Pose T_frame_body = memory_[view].correction * fromLcm(m.odom_pose);
+  if (!msg::usablePose(m.odom_pose)) return drop(ch, "non-finite or absurd pose");
+  const Pose T_frame_body = memory_[view].correction * msg::fromLcm(m.odom_pose);
   if (!finitePose(T_frame_body)) return drop(ch, "non-finite or absurd pose");
   std::vector<viewer::InstanceView> raw;
   for (const object_instance_t& o : m.instances) {

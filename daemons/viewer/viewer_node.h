@@ -18,16 +18,16 @@
 namespace slide {
 
 struct ViewerChannels {
-  std::string object_map = channels::kObjectMap;
-  std::string trajectory = channels::kTrajectory;
-  std::string keypose_bundle = channels::kKeyPoseBundle;
-  std::string instances = channels::kInstancesPreview;  // the segmenter's thinned copy
-  std::string loop_closure = channels::kLoopClosure;
-  std::string optimizer_status = channels::kOptimizerStatus;
-  std::string sensor_status = channels::kSensorStatus;
-  std::string team_heartbeat = channels::kTeamHeartbeat;
-  std::string team_chunk = channels::kTeamChunk;
-  std::string team_ack = channels::kTeamAck;
+  std::string object_map = app::channels::kObjectMap;
+  std::string trajectory = app::channels::kTrajectory;
+  std::string keypose_bundle = app::channels::kKeyPoseBundle;
+  std::string instances = app::channels::kInstancesPreview;  // the segmenter's thinned copy
+  std::string loop_closure = app::channels::kLoopClosure;
+  std::string optimizer_status = app::channels::kOptimizerStatus;
+  std::string sensor_status = app::channels::kSensorStatus;
+  std::string team_heartbeat = app::channels::kTeamHeartbeat;
+  std::string team_chunk = app::channels::kTeamChunk;
+  std::string team_ack = app::channels::kTeamAck;
 
   // What the viewer listens to on a robot bus, and on the team bus.
   std::vector<std::string> robotBus() const {

@@ -19,7 +19,7 @@ std::vector<ViewerBus> viewerBuses(const std::vector<int>& robots, const std::ve
   if (replaying && (!robots.empty() || !buses.empty() || !team_url.empty()))
     throw std::runtime_error("--replay plays logs; it does not mix with --robot, --bus or --team-url");
   std::vector<ViewerBus> out;
-  for (int r : robots) out.push_back({false, r, robotBusUrl(r)});
+  for (int r : robots) out.push_back({false, r, app::robotBusUrl(r)});
   static const std::regex re(R"((\d{1,9})=(.+))");
   for (const std::string& b : buses) {
     std::smatch m;

@@ -8,7 +8,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-namespace slide {
+namespace slide::app {
 
 void addCommonOptions(CLI::App& app, CommonOptions& opts) {
   app.add_option("--log-level", opts.log_level, "Log level")
@@ -46,4 +46,4 @@ std::string persistentStateDir() {
   return std::string(home) + "/.local/state/slide";
 }
 
-}  // namespace slide
+}  // namespace slide::app

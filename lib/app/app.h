@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-namespace slide {
+namespace slide::app {
 
 struct CommonOptions {
   std::string log_level = "info";
@@ -25,4 +25,4 @@ std::string persistentStateDir();
 // CLI errors print usage; exceptions from body are logged as errors and give exit code 1.
 int runApp(CLI::App& app, CommonOptions& opts, int argc, char** argv, const std::function<int()>& body);
 
-}  // namespace slide
+}  // namespace slide::app

@@ -1,7 +1,7 @@
 #pragma once
 // Channel names on the robot bus and the team bus: every daemon's defaults (options and config
 // keys) come from here, so that what one daemon sends is what the next one listens to.
-namespace slide::channels {
+namespace slide::app::channels {
 
 // Robot bus: sensor driver -> segmenter -> tracker -> optimizer, loop closer and peer sync.
 inline constexpr char kScan[] = "SCAN";                   // lidar_scan_t
@@ -28,4 +28,4 @@ inline constexpr char kTeamHeartbeat[] = "TEAM_HEARTBEAT";
 inline constexpr char kTeamChunk[] = "TEAM_CHUNK";
 inline constexpr char kTeamAck[] = "TEAM_ACK";
 
-}  // namespace slide::channels
+}  // namespace slide::app::channels

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-namespace slide {
+namespace slide::app {
 
 double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -20,4 +20,4 @@ std::int64_t wallMicros() {
 
 double wallSeconds() { return static_cast<double>(wallMicros()) * 1e-6; }
 
-}  // namespace slide
+}  // namespace slide::app

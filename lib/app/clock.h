@@ -5,11 +5,11 @@
 // restart) and in seconds (the viewer's replay clock, which runs against recorded utimes).
 #include <cstdint>
 
-namespace slide {
+namespace slide::app {
 
 double steadySeconds();
 std::int64_t steadyMicros();
 std::int64_t wallMicros();
 double wallSeconds();
 
-}  // namespace slide
+}  // namespace slide::app

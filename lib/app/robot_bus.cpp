@@ -1,6 +1,6 @@
 #include "app/robot_bus.h"
 
-namespace slide {
+namespace slide::app {
 
 std::string robotBusUrl(int robot) {
   return "udpm://239.255.76.67:" + std::to_string(7667 + robot) + "?ttl=0&recv_buf_size=" +
@@ -22,4 +22,4 @@ CLI::Option* addRobotBusOptions(CLI::App& app, RobotBusOptions& opts) {
   return robot;
 }
 
-}  // namespace slide
+}  // namespace slide::app

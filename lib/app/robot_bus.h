@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-namespace slide {
+namespace slide::app {
 
 constexpr int kRobotBusRecvBufBytes = 4194304;
 std::string robotBusUrl(int robot);
@@ -24,4 +24,4 @@ struct RobotBusOptions {
 // see whether it was given).
 CLI::Option* addRobotBusOptions(CLI::App& app, RobotBusOptions& opts);
 
-}  // namespace slide
+}  // namespace slide::app

@@ -2,7 +2,7 @@
 
 #include <csignal>
 
-namespace slide {
+namespace slide::app {
 
 namespace {
 std::atomic<bool> g_stop{false};  // lock-free, so a signal handler may set it
@@ -29,4 +29,4 @@ bool takeWriteRequest() {
   return true;
 }
 
-}  // namespace slide
+}  // namespace slide::app

@@ -4,7 +4,7 @@
 // files now (the optimizer's outputs). The handlers only set a flag.
 #include <atomic>
 
-namespace slide {
+namespace slide::app {
 
 // Installs the SIGINT and SIGTERM handlers.
 void installStopHandlers();
@@ -17,4 +17,4 @@ void installWriteHandler();
 // True once per SIGUSR1 (the flag is cleared).
 bool takeWriteRequest();
 
-}  // namespace slide
+}  // namespace slide::app

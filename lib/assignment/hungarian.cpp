@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::assignment {
 
 namespace {
 // Rows <= cols. 1-based arrays as in the textbook formulation: p[j] is the row matched to
@@ -80,4 +80,4 @@ std::vector<int> solveGatedAssignment(const Eigen::MatrixXd& cost, double max_co
   return a;
 }
 
-}  // namespace slide
+}  // namespace slide::assignment

@@ -5,7 +5,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::assignment {
 
 // result[r] = column assigned to row r, or -1; min(rows, cols) rows get a column and the
 // total cost is minimal. Costs must be finite.
@@ -15,4 +15,4 @@ std::vector<int> solveAssignment(const Eigen::MatrixXd& cost);
 // pairs as possible, then the least total cost among those; rows left out get -1.
 std::vector<int> solveGatedAssignment(const Eigen::MatrixXd& cost, double max_cost);
 
-}  // namespace slide
+}  // namespace slide::assignment

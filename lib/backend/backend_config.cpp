@@ -2,7 +2,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::backend {
 
 BackendConfig loadBackendConfig(const std::string& path) {
   const ConfigNode root = ConfigNode::load(path);
@@ -116,4 +116,4 @@ BackendConfig loadBackendConfig(const std::string& path) {
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

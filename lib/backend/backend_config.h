@@ -6,7 +6,7 @@
 #include "backend/odometry_envelope.h"
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::backend {
 
 struct BackendConfig {
   // Odometry noise, used when a bundle's odom_sigma is missing (zeros) or
@@ -121,4 +121,4 @@ struct BackendConfig {
 // Loads backend.yaml; every key is optional (defaults above); errors name file and key.
 BackendConfig loadBackendConfig(const std::string& path);
 
-}  // namespace slide
+}  // namespace slide::backend

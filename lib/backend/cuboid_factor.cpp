@@ -5,7 +5,7 @@
 #include "backend/factors.h"
 #include "backend/se3_jet.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 
@@ -38,4 +38,4 @@ ceres::CostFunction* cuboidFactor(const Pose& measured_in_body, const Eigen::Vec
   return new ceres::AutoDiffCostFunction<CuboidError, 9, 7, 7, 3>(f);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -5,7 +5,7 @@
 #include "backend/factors.h"
 #include "backend/se3_jet.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 
@@ -45,4 +45,4 @@ ceres::CostFunction* cylinderFactor(const Eigen::Vector3d& root_in_body, const E
   return new ceres::AutoDiffCostFunction<CylinderError, 8, 7, 7>(f);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

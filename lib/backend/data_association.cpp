@@ -6,7 +6,7 @@
 #include <cmath>
 #include <Eigen/Cholesky>
 
-namespace slide {
+namespace slide::backend {
 
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack) {
   if (!classes.sameKind(detection.class_id, landmark.class_id)) return -1;
@@ -48,10 +48,10 @@ std::vector<int> associateDetections(const std::vector<Detection>& detections,
       }
     }
   if (!any) return result;
-  const std::vector<int> assigned = solveGatedAssignment(cost, 0.5 * kNotAllowed);
+  const std::vector<int> assigned = assignment::solveGatedAssignment(cost, 0.5 * kNotAllowed);
   for (std::size_t i = 0; i < detections.size(); ++i)
     if (assigned[i] >= 0) result[i] = candidates[assigned[i]].index;
   return result;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -6,7 +6,7 @@
 
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::backend {
 
 // A detection in the landmarks' frame, with the extra distance its own uncertainty allows
 // (e.g. a few bearing sigmas times its range) on top of the class threshold. With a
@@ -34,4 +34,4 @@ double associationCost(const Detection& detection, const Object& landmark, const
 std::vector<int> associateDetections(const std::vector<Detection>& detections,
                                      const std::vector<LandmarkCandidate>& candidates, const ClassTable& classes);
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -5,7 +5,7 @@
 #include "backend/factors.h"
 #include "backend/se3_jet.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 
@@ -41,4 +41,4 @@ ceres::CostFunction* ellipsoidFactor(const Eigen::Vector3d& centroid_in_body, do
   return new ceres::AutoDiffCostFunction<EllipsoidError, 3, 7, 3>(f);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

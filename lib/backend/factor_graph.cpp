@@ -10,7 +10,7 @@
 
 #include "backend/factors.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 int blockSize(BlockKind k) { return k == BlockKind::Vector3 ? 3 : 7; }
@@ -332,4 +332,4 @@ double FactorGraph::cost() const {
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

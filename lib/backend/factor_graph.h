@@ -19,7 +19,7 @@ class Manifold;
 class Problem;
 }  // namespace ceres
 
-namespace slide {
+namespace slide::backend {
 
 enum class BlockKind { Pose, Cylinder, Vector3 };  // sizes 7, 7, 3
 
@@ -150,4 +150,4 @@ class FactorGraph {
   std::shared_ptr<ceres::Manifold> pose_manifold_, cylinder_manifold_;
 };
 
-}  // namespace slide
+}  // namespace slide::backend

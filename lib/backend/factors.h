@@ -13,7 +13,7 @@ class CostFunction;
 class Manifold;
 }  // namespace ceres
 
-namespace slide {
+namespace slide::backend {
 
 enum class Differentiation { Automatic, Numeric };
 
@@ -70,4 +70,4 @@ ceres::CostFunction* ellipsoidFactor(const Eigen::Vector3d& centroid_in_body, do
 ceres::Manifold* newPoseManifold();
 ceres::Manifold* newCylinderManifold();
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -5,7 +5,7 @@
 #include "backend/factors.h"
 #include "backend/se3_jet.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 
@@ -35,4 +35,4 @@ ceres::CostFunction* gravityFactor(const Eigen::Quaterniond& measured, double si
   return new ceres::AutoDiffCostFunction<GravityError, 3, 7>(f);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

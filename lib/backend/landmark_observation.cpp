@@ -7,7 +7,7 @@
 #include "backend/optimizer.h"
 #include "backend/pose_block.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 // Whitening of a body-frame position error for a range-bearing sensor at the origin.
@@ -224,4 +224,4 @@ Object Optimizer::landmarkObject(const Landmark& lm, const FactorGraph::Values* 
   return o;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

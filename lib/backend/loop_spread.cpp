@@ -7,7 +7,7 @@
 
 #include "backend/pose_block.h"
 
-namespace slide {
+namespace slide::backend {
 
 std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const Pose& T_a_b, const PoseSigma& loop_sigma,
                                   const LoopSpreadNoise& noise) {
@@ -86,4 +86,4 @@ void moveLandmarkBlock(double* v, Shape shape, const Pose& C) {
   }
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -10,7 +10,7 @@
 #include "backend/factors.h"
 #include "objects/object.h"
 
-namespace slide {
+namespace slide::backend {
 
 struct LoopSpreadNoise {
   double translation_floor = 0.005, translation_per_m = 0.01;  // per edge: max(floor, per_m * length)
@@ -47,4 +47,4 @@ void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<L
 // Moves a landmark's block (pose, cylinder or point, as the graph holds it) by C.
 void moveLandmarkBlock(double* v, Shape shape, const Pose& C);
 
-}  // namespace slide
+}  // namespace slide::backend

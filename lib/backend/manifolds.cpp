@@ -5,7 +5,7 @@
 
 #include "backend/factors.h"
 
-namespace slide {
+namespace slide::backend {
 
 ceres::Manifold* newPoseManifold() {
   return new ceres::ProductManifold<ceres::EuclideanManifold<3>, ceres::EigenQuaternionManifold>();
@@ -15,4 +15,4 @@ ceres::Manifold* newCylinderManifold() {
   return new ceres::ProductManifold<ceres::EuclideanManifold<3>, ceres::SphereManifold<3>, ceres::EuclideanManifold<1>>();
 }
 
-}  // namespace slide
+}  // namespace slide::backend

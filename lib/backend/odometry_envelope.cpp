@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::backend {
 
 void OdometryDrift::add(const OdometryStep& s) {
   translation_var += s.translation_sigma * s.translation_sigma;
@@ -30,4 +30,4 @@ EnvelopeCheck checkAgainstOdometry(const std::vector<OdometryStep>& steps, const
   return checkAgainstOdometry(drift, odom_a_b, T_a_b, envelope);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

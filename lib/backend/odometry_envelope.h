@@ -8,7 +8,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::backend {
 
 struct OdometryEnvelope {
   double gate_sigmas = 3.0;    // allowed deviation in sigmas of the accumulated drift
@@ -43,4 +43,4 @@ EnvelopeCheck checkAgainstOdometry(const OdometryDrift& drift, const Pose& odom_
 EnvelopeCheck checkAgainstOdometry(const std::vector<OdometryStep>& steps, const Pose& odom_a_b, const Pose& T_a_b,
                                    const OdometryEnvelope& envelope);
 
-}  // namespace slide
+}  // namespace slide::backend

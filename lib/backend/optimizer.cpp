@@ -10,7 +10,7 @@
 #include "backend/pose_block.h"
 #include "backend/solve_worker.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -34,7 +34,7 @@ Optimizer::Optimizer(BackendConfig config, ClassTable classes, int host_robot)
     : cfg_(config), classes_(std::move(classes)), host_(host_robot), graph_(config.robust_loss_scale) {
   robots_[host_].merged = true;
   for (int id : classes_.ids()) max_association_distance_ = std::max(max_association_distance_, classes_.at(id).association_distance);
-  grid_ = backend::LandmarkGrid(std::max(4.0, max_association_distance_));
+  grid_ = LandmarkGrid(std::max(4.0, max_association_distance_));
 }
 
 Optimizer::~Optimizer() = default;
@@ -419,4 +419,4 @@ Optimizer::Batch Optimizer::solveBatch() const {
   return b;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

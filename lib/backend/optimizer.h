@@ -25,11 +25,9 @@
 #include "objects/class_table.h"
 #include "objects/keypose_bundle.h"
 
-namespace slide {
+namespace slide::backend {
 
-namespace backend {
 class SolveWorker;
-}
 
 struct TrajectoryPose {
   int seq = 0;
@@ -260,7 +258,7 @@ class Optimizer {
   std::vector<Landmark> landmarks_;
   std::map<int, Robot> robots_;
   std::map<std::pair<int, std::pair<int, int>>, int> loop_factors_;
-  backend::LandmarkGrid grid_;
+  LandmarkGrid grid_;
   double max_association_distance_ = 1.0;
   int step_ = 0;                 // key poses inserted so far
   int last_full_step_ = 0;
@@ -285,10 +283,10 @@ class Optimizer {
   };
   std::vector<PendingLoop> pending_loops_;
   std::shared_ptr<FullSolveJob> running_;
-  std::unique_ptr<backend::SolveWorker> worker_;
+  std::unique_ptr<SolveWorker> worker_;
   std::function<void()> solve_hook_;
   const std::atomic<bool>* stop_flag_ = nullptr;
   int epoch_ = 0;
 };
 
-}  // namespace slide
+}  // namespace slide::backend

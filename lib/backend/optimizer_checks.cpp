@@ -3,7 +3,7 @@
 
 #include "backend/optimizer.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 bool finite(const Pose& T) { return T.matrix().allFinite(); }
@@ -79,4 +79,4 @@ std::vector<Object> Optimizer::usableObjects(const KeyPoseBundle& b, UpdateResul
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

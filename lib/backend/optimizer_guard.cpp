@@ -6,7 +6,7 @@
 #include "backend/optimizer.h"
 #include "backend/solve_worker.h"
 
-namespace slide {
+namespace slide::backend {
 
 EnvelopeCheck Optimizer::envelopeOf(int robot, std::size_t i, std::size_t j, const Pose& T_i_j) const {
   const std::vector<int>& list = robots_.at(robot).keyposes;
@@ -83,7 +83,7 @@ void Optimizer::rebuildWithout(int peer, const std::optional<Pose>& T_host_peer)
   // The worker stays; a solve of the old graph still running is dropped (another epoch).
   cancelSolve();
   fresh.epoch_ = epoch_ + 1;
-  std::unique_ptr<backend::SolveWorker> worker = std::move(worker_);
+  std::unique_ptr<SolveWorker> worker = std::move(worker_);
   fresh.solve_hook_ = solve_hook_;
   *this = std::move(fresh);
   worker_ = std::move(worker);
@@ -105,4 +105,4 @@ void Optimizer::guard(UpdateResult& r) {
   }
 }
 
-}  // namespace slide
+}  // namespace slide::backend

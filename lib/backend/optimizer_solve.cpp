@@ -10,7 +10,7 @@
 #include "backend/pose_block.h"
 #include "backend/solve_worker.h"
 
-namespace slide {
+namespace slide::backend {
 
 // One full solve: the snapshot it works on, and what taking its solution in needs to know of
 // the graph as it was then (each robot's last key pose).
@@ -156,7 +156,7 @@ void Optimizer::startPending(UpdateResult& r) {
     adopt(*job, r);
     return;
   }
-  if (!worker_) worker_ = std::make_unique<backend::SolveWorker>();
+  if (!worker_) worker_ = std::make_unique<SolveWorker>();
   const auto task = [job, hook = solve_hook_](const std::atomic<bool>& cancel) {
     if (hook) hook();
     job->run(&cancel);
@@ -265,4 +265,4 @@ SolveReport Optimizer::fullSolve(double max_seconds, bool interruptible) {
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -5,7 +5,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::backend {
 
 using PoseBlock = std::array<double, 7>;
 
@@ -18,4 +18,4 @@ inline Pose fromPoseBlock(const double* b) {
   return poseFromPositionQuaternion({b[0], b[1], b[2]}, Eigen::Quaterniond(b[6], b[3], b[4], b[5]));
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -5,7 +5,7 @@
 #include "backend/factors.h"
 #include "backend/se3_jet.h"
 
-namespace slide {
+namespace slide::backend {
 
 namespace {
 
@@ -53,4 +53,4 @@ ceres::CostFunction* posePriorFactor(const Pose& measured, const PoseSigma& sigm
   return new ceres::AutoDiffCostFunction<PosePriorError, 6, 7>(f);
 }
 
-}  // namespace slide
+}  // namespace slide::backend

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace slide::jet {
+namespace slide::backend::jet {
 
 template <typename T>
 using Vec3 = Eigen::Matrix<T, 3, 1>;
@@ -66,4 +66,4 @@ Vec3<T> toBody(const T* pose, const Vec3<T>& p_world) {
   return rotationOf(pose).conjugate() * (p_world - translationOf(pose));
 }
 
-}  // namespace slide::jet
+}  // namespace slide::backend::jet

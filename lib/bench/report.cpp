@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace slide {
+namespace slide::bench {
 
 namespace {
 std::string cell(const std::optional<double>& v) {
@@ -80,4 +80,4 @@ void BenchReport::writeJson(const std::string& path) const {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-}  // namespace slide
+}  // namespace slide::bench

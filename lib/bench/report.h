@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::bench {
 
 struct BenchResult {
   std::string name;   // e.g. "forest.update_ms.median"
@@ -42,4 +42,4 @@ class BenchReport {
   std::vector<BenchResult> results_;
 };
 
-}  // namespace slide
+}  // namespace slide::bench

@@ -5,7 +5,7 @@
 #include <limits>
 #include <numeric>
 
-namespace slide {
+namespace slide::bench {
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -21,4 +21,4 @@ double mean(const std::vector<double>& v) {
   return std::accumulate(v.begin(), v.end(), 0.0) / v.size();
 }
 
-}  // namespace slide
+}  // namespace slide::bench

@@ -2,7 +2,7 @@
 
 #include <ctime>
 
-namespace slide {
+namespace slide::clock {
 
 double threadCpuMs() {
   timespec ts{};
@@ -10,4 +10,4 @@ double threadCpuMs() {
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
-}  // namespace slide
+}  // namespace slide::clock

@@ -3,6 +3,7 @@
 // what was expected. A ConfigNode is a view into one loaded file; every key a reader asks for
 // (has, get, read, child, ...) is remembered for the file, so that a reader can reject the keys
 // it never asked for (misspellings) once it has read its part: rejectUnknownKeys.
+// Vocabulary: in namespace slide itself, not slide::config, as every area uses it (README).
 #include <yaml-cpp/yaml.h>
 
 #include <map>

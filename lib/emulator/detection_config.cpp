@@ -2,7 +2,7 @@
 #include "config/config.h"
 #include "emulator/detection_emulator.h"
 
-namespace slide {
+namespace slide::emulator {
 
 namespace {
 void probability(const ConfigNode& n, const std::string& key, double& v) {
@@ -136,4 +136,4 @@ DetectionEmulatorConfig loadDetectionEmulatorConfig(const std::string& path) {
   return cfg;
 }
 
-}  // namespace slide
+}  // namespace slide::emulator

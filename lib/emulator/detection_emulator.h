@@ -26,7 +26,7 @@
 
 #include "io/kitti_scan.h"
 
-namespace slide {
+namespace slide::emulator {
 
 // Errors of one SemanticKITTI label (a "thing" class: car, trunk, pole, ...).
 struct LidarClassErrors {
@@ -102,8 +102,8 @@ uint64_t detectionSeed(uint64_t seed, int robot, int frame);
 
 // Emulated labels of a ground-truth labelled scan (same points, same order; `instance` all 0).
 // A scan without labels comes back without labels.
-LabelledScan emulateLidarLabels(const LabelledScan& truth, const LidarEmulatorParams& params, uint64_t seed);
+io::LabelledScan emulateLidarLabels(const io::LabelledScan& truth, const LidarEmulatorParams& params, uint64_t seed);
 
 // The RGBD function, emulateRgbdDetections, is in emulator/rgbd_emulator.h.
 
-}  // namespace slide
+}  // namespace slide::emulator

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace slide {
+namespace slide::emulator {
 
 struct FastRng {
   explicit FastRng(uint64_t seed) : state(seed) {}
@@ -43,4 +43,4 @@ struct FastRng {
   bool has_spare = false;
 };
 
-}  // namespace slide
+}  // namespace slide::emulator

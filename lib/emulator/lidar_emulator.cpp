@@ -5,7 +5,7 @@
 #include "emulator/detection_emulator.h"
 #include "emulator/fast_rng.h"
 
-namespace slide {
+namespace slide::emulator {
 
 double LidarClassErrors::missProbability(double range, int points) const {
   if (points < miss_min_points) return 1.0;
@@ -34,7 +34,7 @@ struct RangeImage {
   std::vector<float> range;
 };
 
-RangeImage project(const LabelledScan& s, int width, int height) {
+RangeImage project(const io::LabelledScan& s, int width, int height) {
   RangeImage im;
   im.width = std::max(width, 8);
   im.height = std::max(height, 2);
@@ -76,8 +76,8 @@ std::array<int, 4> neighbours(const RangeImage& im, int px) {
 }
 }  // namespace
 
-LabelledScan emulateLidarLabels(const LabelledScan& truth, const LidarEmulatorParams& p, uint64_t seed) {
-  LabelledScan out;
+io::LabelledScan emulateLidarLabels(const io::LabelledScan& truth, const LidarEmulatorParams& p, uint64_t seed) {
+  io::LabelledScan out;
   out.xyz = truth.xyz;
   out.intensity = truth.intensity;
   if (!truth.hasLabels() || truth.semantic.size() != truth.size()) return out;
@@ -178,4 +178,4 @@ LabelledScan emulateLidarLabels(const LabelledScan& truth, const LidarEmulatorPa
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::emulator

@@ -8,7 +8,7 @@
 #include "emulator/rgbd_emulator.h"
 #include "emulator/fast_rng.h"
 
-namespace slide {
+namespace slide::emulator {
 
 double RgbdClassErrors::detectProbability(double depth, double occluded) const {
   const double near = 1.0 / (1.0 + std::exp((depth - detect_range) / std::max(detect_width, 1e-6)));
@@ -70,7 +70,7 @@ float median(std::vector<float> v) {
 }
 }  // namespace
 
-EmulatedMasks emulateRgbdDetections(const InstanceMask& truth, const cv::Mat& depth, double depth_scale,
+EmulatedMasks emulateRgbdDetections(const io::InstanceMask& truth, const cv::Mat& depth, double depth_scale,
                                     const RgbdEmulatorParams& p, uint64_t seed) {
   if (truth.mask.empty() || truth.mask.type() != CV_16UC1 || depth.type() != CV_16UC1 || truth.mask.size() != depth.size())
     throw std::invalid_argument("emulateRgbdDetections: mask and depth must be 16-bit images of one size");
@@ -145,4 +145,4 @@ EmulatedMasks emulateRgbdDetections(const InstanceMask& truth, const cv::Mat& de
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::emulator

@@ -8,16 +8,16 @@
 #include "io/rgbd_files.h"
 #include "emulator/detection_emulator.h"
 
-namespace slide {
+namespace slide::emulator {
 
 struct EmulatedMasks {
-  InstanceMask masks;              // CV_16UC1 ids 1..K, class per id, object ids 0
+  io::InstanceMask masks;              // CV_16UC1 ids 1..K, class per id, object ids 0
   std::vector<float> confidence;   // per id
 };
 
 // Emulated detections of a frame from its ground-truth instance mask and its depth image
 // (CV_16UC1, depth_scale metres per unit). Throws std::invalid_argument when sizes differ.
-EmulatedMasks emulateRgbdDetections(const InstanceMask& truth, const cv::Mat& depth, double depth_scale,
+EmulatedMasks emulateRgbdDetections(const io::InstanceMask& truth, const cv::Mat& depth, double depth_scale,
                                     const RgbdEmulatorParams& params, uint64_t seed);
 
-}  // namespace slide
+}  // namespace slide::emulator

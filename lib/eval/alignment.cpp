@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::eval {
 
 TrajectoryAlignment parseAlignment(const std::string& name) {
   if (name == "none") return TrajectoryAlignment::None;
@@ -71,4 +71,4 @@ AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

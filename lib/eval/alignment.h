@@ -6,7 +6,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::eval {
 
 enum class TrajectoryAlignment { None, Se3, Sim3, Yaw4Dof };
 
@@ -24,4 +24,4 @@ struct AlignmentResult {
 AlignmentResult align(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& ref,
                       TrajectoryAlignment mode);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -6,7 +6,7 @@
 
 #include "bench/stats.h"
 
-namespace slide {
+namespace slide::eval {
 
 AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vector<Pose>& ref, TrajectoryAlignment mode) {
   if (est.size() != ref.size()) throw std::invalid_argument("ATE: trajectories differ in length");
@@ -26,11 +26,11 @@ AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vecto
   }
   if (!r.errors.empty()) {
     r.rmse = std::sqrt(sq / r.errors.size());
-    r.mean = mean(r.errors);
-    r.median = median(r.errors);
+    r.mean = bench::mean(r.errors);
+    r.median = bench::median(r.errors);
     r.max = *std::max_element(r.errors.begin(), r.errors.end());
   }
   return r;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

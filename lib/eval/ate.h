@@ -4,7 +4,7 @@
 
 #include "eval/alignment.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct AteResult {
   double rmse = 0, mean = 0, median = 0, max = 0;
@@ -16,4 +16,4 @@ struct AteResult {
 AteResult absoluteTrajectoryError(const std::vector<Pose>& est, const std::vector<Pose>& ref,
                                   TrajectoryAlignment mode = TrajectoryAlignment::Se3);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -3,7 +3,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::eval {
 
 BandwidthFigures bandwidthFigures(double bytes, std::size_t landmarks, double metres_travelled) {
   if (bytes < 0 || metres_travelled < 0) throw std::invalid_argument("bandwidth: negative bytes or distance");
@@ -15,4 +15,4 @@ BandwidthFigures bandwidthFigures(double bytes, std::size_t landmarks, double me
   return f;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

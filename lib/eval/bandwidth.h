@@ -2,7 +2,7 @@
 // Communication cost figures of the paper: bytes sent per landmark and per metre travelled.
 #include <cstddef>
 
-namespace slide {
+namespace slide::eval {
 
 struct BandwidthFigures {
   double bytes = 0;
@@ -12,4 +12,4 @@ struct BandwidthFigures {
 
 BandwidthFigures bandwidthFigures(double bytes, std::size_t landmarks, double metres_travelled);
 
-}  // namespace slide
+}  // namespace slide::eval

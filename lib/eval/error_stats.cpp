@@ -5,7 +5,7 @@
 
 #include "bench/stats.h"
 
-namespace slide {
+namespace slide::eval {
 
 ErrorStats errorStats(const std::vector<double>& errors) {
   ErrorStats s;
@@ -14,8 +14,8 @@ ErrorStats errorStats(const std::vector<double>& errors) {
   double sq = 0;
   for (double e : errors) sq += e * e;
   s.rmse = std::sqrt(sq / errors.size());
-  s.mean = mean(errors);
-  s.median = median(errors);
+  s.mean = bench::mean(errors);
+  s.median = bench::median(errors);
   double var = 0;
   for (double e : errors) var += (e - s.mean) * (e - s.mean);
   s.std = std::sqrt(var / errors.size());
@@ -25,4 +25,4 @@ ErrorStats errorStats(const std::vector<double>& errors) {
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace slide {
+namespace slide::eval {
 
 struct ErrorStats {
   std::size_t count = 0;
@@ -13,4 +13,4 @@ struct ErrorStats {
 // All zero for an empty sample; std is the population standard deviation.
 ErrorStats errorStats(const std::vector<double>& errors);
 
-}  // namespace slide
+}  // namespace slide::eval

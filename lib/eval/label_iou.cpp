@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace slide {
+namespace slide::eval {
 
 LabelIou::LabelIou()
     : LabelIou({{"car", {10, 252}},
@@ -52,4 +52,4 @@ std::vector<std::string> LabelIou::groups() const {
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

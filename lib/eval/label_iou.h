@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::eval {
 
 class LabelIou {
  public:
@@ -30,4 +30,4 @@ class LabelIou {
   std::map<std::string, std::array<long, 3>> counts_;
 };
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -7,7 +7,7 @@
 
 #include "frontend/grid_clustering.h"
 
-namespace slide {
+namespace slide::eval {
 
 const char* verdictName(EstimateVerdict v) {
   switch (v) {
@@ -50,14 +50,14 @@ void matchShape(std::vector<LabelledTarget>& targets, const std::vector<int>& ta
 }
 }  // namespace
 
-ScanScore scoreScanAgainstLabels(const LabelledScan& scan, const std::vector<Object>& estimates,
+ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector<Object>& estimates,
                                  const ClassTable& classes, const ScanScoreParams& params) {
   if (!scan.hasLabels() || scan.semantic.size() != scan.size() || scan.instance.size() != scan.size())
     throw std::invalid_argument("scoring a scan needs one label per point");
   ScanScore s;
   std::map<int, std::pair<int, std::vector<int>>> cars;  // instance -> (class, points)
   std::map<int, std::vector<int>> columns;                // class -> points
-  Cloud car_points, column_points;
+  frontend::Cloud car_points, column_points;
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const auto cls = classes.fromSemanticKitti(scan.semantic[i]);
     if (!cls || !scan.xyz[i].allFinite()) continue;
@@ -84,7 +84,7 @@ ScanScore scoreScanAgainstLabels(const LabelledScan& scan, const std::vector<Obj
   for (const auto& [inst, c] : cars)
     if (static_cast<int>(c.second.size()) >= params.min_car_points) add(c.first, inst, c.second);
   for (const auto& [cls, idx] : columns)
-    for (const auto& cl : clusterGrid(scan.xyz, idx, {params.column_cell, false, params.min_column_points}))
+    for (const auto& cl : frontend::clusterGrid(scan.xyz, idx, {params.column_cell, false, params.min_column_points}))
       add(cls, 0, cl);
 
   std::vector<int> car_t, col_t, car_e, col_e;
@@ -111,7 +111,7 @@ ScanScore scoreScanAgainstLabels(const LabelledScan& scan, const std::vector<Obj
   s.verdicts.assign(estimates.size(), EstimateVerdict::Unscored);
   for (const auto& t : s.targets)
     if (t.estimate >= 0) s.verdicts[t.estimate] = EstimateVerdict::Matched;
-  auto judge = [&](const std::vector<int>& est_idx, const std::vector<int>& target_idx, const Cloud& labelled,
+  auto judge = [&](const std::vector<int>& est_idx, const std::vector<int>& target_idx, const frontend::Cloud& labelled,
                    double gate, ShapeTally& tally, bool cuboids) {
     tally.targets = static_cast<int>(target_idx.size());
     tally.estimates = static_cast<int>(est_idx.size());
@@ -140,4 +140,4 @@ ScanScore scoreScanAgainstLabels(const LabelledScan& scan, const std::vector<Obj
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

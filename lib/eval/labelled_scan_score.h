@@ -22,7 +22,7 @@
 #include "objects/class_table.h"
 #include "objects/object.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct ScanScoreParams {
   int min_car_points = 200;
@@ -56,7 +56,7 @@ struct ScanScore {
 };
 
 // Throws std::invalid_argument when the scan carries no labels.
-ScanScore scoreScanAgainstLabels(const LabelledScan& scan, const std::vector<Object>& estimates,
+ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector<Object>& estimates,
                                  const ClassTable& classes, const ScanScoreParams& params = {});
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -5,7 +5,7 @@
 
 #include "eval/alignment.h"
 
-namespace slide {
+namespace slide::eval {
 
 namespace {
 
@@ -56,4 +56,4 @@ HorizontalError horizontalError(const Pose& estimate, const Pose& reference) {
           std::abs(wrapAngle(yaw)) * 180.0 / M_PI};
 }
 
-}  // namespace slide
+}  // namespace slide::eval

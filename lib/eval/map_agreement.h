@@ -11,7 +11,7 @@
 #include "geometry/pose.h"
 #include "objects/object.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct SharedLandmarks {
   std::vector<Eigen::Vector3d> in_a, in_b;  // the same real object, in frame a and in frame b
@@ -35,4 +35,4 @@ struct HorizontalError {
 };
 HorizontalError horizontalError(const Pose& estimate, const Pose& reference);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
-namespace slide {
+namespace slide::eval {
 
 namespace {
 double objectDistance(const Object& a, const Object& b, bool planar) {
@@ -66,4 +66,4 @@ ObjectMappingScore scoreObjectMap(const std::vector<Object>& est, const std::vec
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

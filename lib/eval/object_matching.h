@@ -13,7 +13,7 @@
 
 #include "objects/object.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct ObjectMatchOptions {
   double threshold = 1.0;   // metres between object positions (Object::position())
@@ -46,4 +46,4 @@ struct ObjectMappingScore {
 ObjectMappingScore scoreObjectMap(const std::vector<Object>& est, const std::vector<Object>& gt,
                                   const ObjectMatchOptions& opts = {});
 
-}  // namespace slide
+}  // namespace slide::eval

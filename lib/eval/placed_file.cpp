@@ -8,7 +8,7 @@
 
 #include "io/numbers.h"
 
-namespace slide {
+namespace slide::eval {
 
 PlacedFile parsePlacedFile(const std::string& arg) {
   PlacedFile f;
@@ -23,7 +23,7 @@ PlacedFile parsePlacedFile(const std::string& arg) {
   std::vector<double> v;
   std::string tok;
   while (std::getline(s, tok, ',')) {
-    const std::optional<double> x = parseNumber(tok);
+    const std::optional<double> x = io::parseNumber(tok);
     if (!x || !std::isfinite(*x)) throw std::invalid_argument("'" + arg + "': placement after '@' must be x,y,z,yaw_deg");
     v.push_back(*x);
   }
@@ -32,4 +32,4 @@ PlacedFile parsePlacedFile(const std::string& arg) {
   return f;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

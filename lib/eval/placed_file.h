@@ -5,7 +5,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct PlacedFile {
   std::string path;
@@ -15,4 +15,4 @@ struct PlacedFile {
 // Throws std::invalid_argument naming the argument when the placement is not 4 numbers.
 PlacedFile parsePlacedFile(const std::string& arg);
 
-}  // namespace slide
+}  // namespace slide::eval

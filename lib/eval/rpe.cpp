@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::eval {
 
 namespace {
 // atan2(sin, cos) of the rotation angle: well conditioned near zero, unlike acos of the trace
@@ -59,4 +59,4 @@ RpeResult relativePoseError(const std::vector<Pose>& est, const std::vector<Pose
   return r;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -8,7 +8,7 @@
 #include "eval/error_stats.h"
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::eval {
 
 enum class DeltaUnit { Frames, Metres };
 
@@ -35,4 +35,4 @@ RpeResult relativePoseError(const std::vector<Pose>& est, const std::vector<Pose
 // Length of the polyline through the poses' positions.
 double pathLength(const std::vector<Pose>& poses);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -10,7 +10,7 @@
 #include "io/io_error.h"
 #include "io/numbers.h"
 
-namespace slide {
+namespace slide::eval {
 
 std::vector<StageTiming> stageTimings(const std::map<std::string, std::vector<double>>& samples) {
   std::vector<StageTiming> out;
@@ -19,9 +19,9 @@ std::vector<StageTiming> stageTimings(const std::map<std::string, std::vector<do
     StageTiming t;
     t.stage = stage;
     t.count = v.size();
-    t.median = median(v);
-    t.p99 = quantile(v, 0.99);
-    t.mean = mean(v);
+    t.median = bench::median(v);
+    t.p99 = bench::quantile(v, 0.99);
+    t.mean = bench::mean(v);
     t.max = *std::max_element(v.begin(), v.end());
     out.push_back(t);
   }
@@ -30,7 +30,7 @@ std::vector<StageTiming> stageTimings(const std::map<std::string, std::vector<do
 
 std::map<std::string, std::vector<double>> readStageSamples(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw IoError(path, "cannot open file");
+  if (!in) throw io::IoError(path, "cannot open file");
   std::map<std::string, std::vector<double>> out;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -41,12 +41,12 @@ std::map<std::string, std::vector<double>> readStageSamples(const std::string& p
     s >> a >> b >> extra;
     const std::string stage = b.empty() ? "all" : a;
     const std::string num = b.empty() ? a : b;
-    const std::optional<double> v = parseNumber(num);
+    const std::optional<double> v = io::parseNumber(num);
     if (!v || !std::isfinite(*v) || !extra.empty())
-      throw IoError(path, "line " + std::to_string(n) + ": expected 'stage value' or 'value', got '" + line + "'");
+      throw io::IoError(path, "line " + std::to_string(n) + ": expected 'stage value' or 'value', got '" + line + "'");
     out[stage].push_back(*v);
   }
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::eval {
 
 struct StageTiming {
   std::string stage;
@@ -20,4 +20,4 @@ std::vector<StageTiming> stageTimings(const std::map<std::string, std::vector<do
 // a line with a single number counts for stage "all". Throws IoError naming file and line.
 std::map<std::string, std::vector<double>> readStageSamples(const std::string& path);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
-namespace slide {
+namespace slide::eval {
 
 std::vector<std::pair<std::size_t, std::size_t>> associateByTime(const std::vector<double>& est_t,
                                                                  const std::vector<double>& ref_t, double max_dt,
@@ -67,4 +67,4 @@ AssociatedPoses associatePoses(const std::vector<StampedPose>& est, const std::v
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -7,7 +7,7 @@
 
 #include "io/tum_trajectory.h"
 
-namespace slide {
+namespace slide::eval {
 
 // (index in est, index in ref) pairs, one-to-one, ordered by est index. Stamps of est are
 // shifted by `offset` first. Candidate pairs are each est stamp's nearest ref stamp; when two
@@ -27,4 +27,4 @@ struct AssociatedPoses {
 AssociatedPoses associatePoses(const std::vector<StampedPose>& est, const std::vector<StampedPose>& ref,
                                double max_dt, double offset = 0.0, std::size_t min_pairs = 2);
 
-}  // namespace slide
+}  // namespace slide::eval

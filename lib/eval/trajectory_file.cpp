@@ -7,7 +7,7 @@
 #include "io/io_error.h"
 #include "io/kitti_poses.h"
 
-namespace slide {
+namespace slide::eval {
 
 TrajectoryFormat parseTrajectoryFormat(const std::string& s) {
   if (s == "auto") return TrajectoryFormat::Auto;
@@ -19,7 +19,7 @@ TrajectoryFormat parseTrajectoryFormat(const std::string& s) {
 namespace {
 TrajectoryFormat detect(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw IoError(path, "cannot open file");
+  if (!in) throw io::IoError(path, "cannot open file");
   std::string line;
   while (std::getline(in, line)) {
     const auto first = line.find_first_not_of(" \t\r");
@@ -30,23 +30,23 @@ TrajectoryFormat detect(const std::string& path) {
     while (s >> tok) ++n;
     if (n == 8) return TrajectoryFormat::Tum;
     if (n == 12) return TrajectoryFormat::Kitti;
-    throw IoError(path, "first line has " + std::to_string(n) +
+    throw io::IoError(path, "first line has " + std::to_string(n) +
                             " values; expected 8 (TUM: t tx ty tz qx qy qz qw) or 12 (KITTI 3x4 pose)");
   }
-  throw IoError(path, "no poses in file");
+  throw io::IoError(path, "no poses in file");
 }
 }  // namespace
 
 std::vector<StampedPose> readTrajectory(const std::string& path, TrajectoryFormat format,
                                         const std::string& kitti_times_path) {
   if (format == TrajectoryFormat::Auto) format = detect(path);
-  if (format == TrajectoryFormat::Tum) return readTum(path);
-  const std::vector<Pose> poses = readKittiPoses(path);
+  if (format == TrajectoryFormat::Tum) return io::readTum(path);
+  const std::vector<Pose> poses = io::readKittiPoses(path);
   std::vector<double> times;
   if (!kitti_times_path.empty()) {
-    times = readKittiTimes(kitti_times_path);
+    times = io::readKittiTimes(kitti_times_path);
     if (times.size() != poses.size())
-      throw IoError(kitti_times_path, "has " + std::to_string(times.size()) + " times for " +
+      throw io::IoError(kitti_times_path, "has " + std::to_string(times.size()) + " times for " +
                                           std::to_string(poses.size()) + " poses in " + path);
   }
   std::vector<StampedPose> out;
@@ -59,11 +59,11 @@ std::vector<StampedPose> readTrajectory(const std::string& path, const Trajector
   if (opts.kitti_lidar) {
     std::vector<Pose> cam;
     for (const auto& p : t) cam.push_back(p.pose);
-    const auto lidar = kittiLidarPoses(cam, kittiVeloToCamTr0410());
+    const auto lidar = io::kittiLidarPoses(cam, io::kittiVeloToCamTr0410());
     for (std::size_t i = 0; i < t.size(); ++i) t[i].pose = lidar[i];
   }
   for (auto& p : t) p.pose = opts.placement * p.pose;
   return t;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

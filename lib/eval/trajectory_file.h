@@ -7,7 +7,7 @@
 
 #include "io/tum_trajectory.h"
 
-namespace slide {
+namespace slide::eval {
 
 enum class TrajectoryFormat { Auto, Tum, Kitti };
 
@@ -28,4 +28,4 @@ struct TrajectoryReadOptions {
 
 std::vector<StampedPose> readTrajectory(const std::string& path, const TrajectoryReadOptions& opts);
 
-}  // namespace slide
+}  // namespace slide::eval

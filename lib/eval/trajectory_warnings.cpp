@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace slide {
+namespace slide::eval {
 
 std::optional<std::string> scaleWarning(double scale, const TrajectoryWarningLimits& limits) {
   if (std::isfinite(scale) && scale >= limits.min_scale && scale <= limits.max_scale) return std::nullopt;
@@ -37,4 +37,4 @@ std::optional<std::string> coverageWarning(std::size_t matched, std::size_t n_es
   return std::nullopt;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

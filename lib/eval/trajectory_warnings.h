@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace slide {
+namespace slide::eval {
 
 struct TrajectoryWarningLimits {
   double min_scale = 0.5, max_scale = 2.0;  // a sim3 scale outside this range has collapsed / exploded
@@ -21,4 +21,4 @@ std::optional<std::string> scaleWarning(double scale, const TrajectoryWarningLim
 std::optional<std::string> coverageWarning(std::size_t matched, std::size_t n_est, std::size_t n_ref,
                                            const TrajectoryWarningLimits& limits = {});
 
-}  // namespace slide
+}  // namespace slide::eval

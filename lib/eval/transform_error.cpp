@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::eval {
 
 TransformError transformError(const Pose& estimate, const Pose& truth) {
   TransformError e;
@@ -15,4 +15,4 @@ TransformError transformError(const Pose& estimate, const Pose& truth) {
   return e;
 }
 
-}  // namespace slide
+}  // namespace slide::eval

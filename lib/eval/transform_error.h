@@ -3,7 +3,7 @@
 // recognition) against the true one.
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::eval {
 
 struct TransformError {
   double translation_m = 0;  // |t_est - t_true|
@@ -13,4 +13,4 @@ struct TransformError {
 
 TransformError transformError(const Pose& estimate, const Pose& truth);
 
-}  // namespace slide
+}  // namespace slide::eval

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Circle through three points; nullopt when they are (nearly) collinear.
@@ -88,4 +88,4 @@ std::optional<Circle> fitCircleRansac(const std::vector<Eigen::Vector2d>& pts, c
   return best;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::frontend {
 
 struct Circle {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();
@@ -29,4 +29,4 @@ struct CircleRansacParams {
 // RANSAC over 3-point circles with radius bounds, then algebraic refits on the inliers.
 std::optional<Circle> fitCircleRansac(const std::vector<Eigen::Vector2d>& pts, const CircleRansacParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -10,7 +10,7 @@
 #include "frontend/grid_clustering.h"
 #include "frontend/point_stats.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 std::int64_t pack(long x, long y) { return (static_cast<std::int64_t>(x) << 32) ^ (y & 0xffffffffLL); }
@@ -302,4 +302,4 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -16,7 +16,7 @@
 #include "frontend/instance.h"
 #include "frontend/wall_trace.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct ColumnParams {
   double slice_low = 0.3;        // metres above ground: the slices cover [slice_low, slice_high)
@@ -95,4 +95,4 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
                                   const ScanLines& lines, const ColumnParams& params, std::vector<char>& taken,
                                   std::vector<ColumnRejection>* rejected = nullptr);
 
-}  // namespace slide
+}  // namespace slide::frontend

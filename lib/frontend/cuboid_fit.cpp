@@ -5,7 +5,7 @@
 #include "frontend/point_stats.h"
 #include "frontend/shape_fit.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 void setWhy(std::string* why, const std::string& s) {
@@ -177,4 +177,4 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   return box;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -3,7 +3,7 @@
 #include "frontend/point_stats.h"
 #include "frontend/shape_fit.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 struct SliceFit {
@@ -158,4 +158,4 @@ std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParam
   return cyl;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace slide {
+namespace slide::frontend {
 
 std::vector<std::uint16_t> medianDepthWithinMasks(const std::vector<std::uint16_t>& depth,
                                                   const std::vector<std::uint16_t>& mask, int width, int height,
@@ -31,4 +31,4 @@ std::vector<std::uint16_t> medianDepthWithinMasks(const std::vector<std::uint16_
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace slide {
+namespace slide::frontend {
 
 // Filtered copy of `depth` (width*height raw units, 0 = missing) for the pixels whose `mask`
 // id is non-zero; other pixels are copied. radius 0 returns the input unchanged.
@@ -15,4 +15,4 @@ std::vector<std::uint16_t> medianDepthWithinMasks(const std::vector<std::uint16_
                                                   const std::vector<std::uint16_t>& mask, int width, int height,
                                                   int radius);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -3,7 +3,7 @@
 #include "frontend/point_stats.h"
 #include "frontend/shape_fit.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Where one horizontal slice of a round body puts the body's centre, seen from the viewpoint:
@@ -104,4 +104,4 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
   return e;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -5,7 +5,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // A path in the config, relative to the config file's folder unless absolute.
@@ -288,4 +288,4 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
 
 FrontendConfig loadDefaultFrontendConfig() { return loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml"); }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -12,7 +12,7 @@
 #include "frontend/shape_fit.h"
 #include "frontend/tracker.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct FrontendConfig {
   // auto (labelled when the scan has labels) | labelled | geometric | learned (a range-image
@@ -32,4 +32,4 @@ FrontendConfig loadFrontendConfig(const std::string& path);
 // config/frontend.yaml of the source tree.
 FrontendConfig loadDefaultFrontendConfig();
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -10,7 +10,7 @@
 
 #include "frontend/point_stats.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 struct Footprint {
@@ -201,11 +201,11 @@ GeometricSegmenter::GeometricSegmenter(ClassTable classes, GeometricSegmenterPar
   for (int id : {params_.trunk_class, params_.pole_class, params_.car_class, params_.other_class}) classes_.at(id);
 }
 
-std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, InputIssues& issues) const {
+std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, InputIssues& issues) const {
   return segment(scan, issues, nullptr);
 }
 
-std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, InputIssues& issues,
+std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, InputIssues& issues,
                                                   std::vector<ColumnRejection>* rejected) const {
   if (scan.size() == 0) {
     issues.count("empty scan");
@@ -252,4 +252,4 @@ std::vector<Instance> GeometricSegmenter::segment(const LabelledScan& scan, Inpu
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

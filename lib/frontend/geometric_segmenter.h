@@ -17,7 +17,7 @@
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct CarParams {
   double height_cap = 2.6;       // points above this height are left out of car clusters
@@ -92,13 +92,14 @@ class GeometricSegmenter : public LidarSegmenter {
   // Throws std::out_of_range when a configured class id is missing from `classes`.
   GeometricSegmenter(ClassTable classes, GeometricSegmenterParams params);
   std::string name() const override { return "geometric"; }
-  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override;
+  std::vector<Instance> segment(const io::LabelledScan& scan, InputIssues& issues) const override;
   // The same, also listing the column candidates that were turned down and why.
-  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues, std::vector<ColumnRejection>* rejected) const;
+  std::vector<Instance> segment(const io::LabelledScan& scan, InputIssues& issues,
+                                std::vector<ColumnRejection>* rejected) const;
 
  private:
   ClassTable classes_;
   GeometricSegmenterParams params_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

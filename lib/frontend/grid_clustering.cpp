@@ -7,7 +7,7 @@
 #include <numeric>
 #include <utility>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 constexpr std::int64_t kLimit = 1 << 20;  // cell coordinates beyond +-2^20 are dropped
@@ -160,4 +160,4 @@ std::vector<std::vector<int>> clusterGrid(const Cloud& cloud, const std::vector<
   return clusters;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

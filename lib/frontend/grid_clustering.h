@@ -5,7 +5,7 @@
 
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct GridClusterParams {
   double cell = 0.3;      // cell edge in metres; gaps wider than ~2 cells always split
@@ -18,4 +18,4 @@ struct GridClusterParams {
 std::vector<std::vector<int>> clusterGrid(const Cloud& cloud, const std::vector<int>& subset,
                                           const GridClusterParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

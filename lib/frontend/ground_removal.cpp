@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Minimum filter of radius w along rows then columns (separable for a square window).
@@ -124,4 +124,4 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
   return h;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

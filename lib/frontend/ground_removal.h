@@ -8,7 +8,7 @@
 
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct GroundParams {
   double cell = 0.5;         // metres
@@ -24,4 +24,4 @@ struct GroundParams {
 // points.
 std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

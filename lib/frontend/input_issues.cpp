@@ -1,6 +1,6 @@
 #include "frontend/input_issues.h"
 
-namespace slide {
+namespace slide::frontend {
 
 long InputIssues::total() const {
   long n = 0;
@@ -26,9 +26,9 @@ std::string InputIssues::summary() const {
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend
 
-namespace slide {
+namespace slide::frontend {
 
 std::optional<std::string> IssueWindow::due(double now_s) {
   if (pending_.empty() || now_s - last_s_ < interval_s_) return std::nullopt;
@@ -38,4 +38,4 @@ std::optional<std::string> IssueWindow::due(double now_s) {
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

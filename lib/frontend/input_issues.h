@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-namespace slide {
+namespace slide::frontend {
 
 class InputIssues {
  public:
@@ -25,9 +25,9 @@ class InputIssues {
   std::map<std::string, long> counts_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend
 
-namespace slide {
+namespace slide::frontend {
 
 // Collects issues between reports so a daemon warns at most once per interval with the counts
 // since its last warning (and the running totals).
@@ -49,4 +49,4 @@ class IssueWindow {
   InputIssues pending_, total_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

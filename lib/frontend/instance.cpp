@@ -1,6 +1,6 @@
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 Cloud transformCloud(const Pose& T, const Cloud& cloud) {
   const Eigen::Matrix3f R = T.linear().cast<float>();
@@ -17,4 +17,4 @@ Eigen::Vector3d centroidOf(const Cloud& cloud) {
   return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -8,7 +8,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::frontend {
 
 using Cloud = std::vector<Eigen::Vector3f>;
 
@@ -30,4 +30,4 @@ Cloud transformCloud(const Pose& T, const Cloud& cloud);
 // Mean of the points; zero for an empty cloud.
 Eigen::Vector3d centroidOf(const Cloud& cloud);
 
-}  // namespace slide
+}  // namespace slide::frontend

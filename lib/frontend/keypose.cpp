@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::frontend {
 
 std::optional<KeyPoseBundle> KeyPoseBundler::process(const FrameInstances& frame, InputIssues& issues) {
   if (!frame.odom_pose.matrix().allFinite()) {
@@ -33,4 +33,4 @@ std::optional<KeyPoseBundle> KeyPoseBundler::process(const FrameInstances& frame
   return b;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

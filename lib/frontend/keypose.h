@@ -9,7 +9,7 @@
 #include "frontend/tracker.h"
 #include "objects/keypose_bundle.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct KeyPoseParams {
   double distance = 1.0;   // metres travelled since the previous key pose
@@ -39,4 +39,4 @@ class KeyPoseBundler {
   double travelled_ = 0;  // path length since the last key pose
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

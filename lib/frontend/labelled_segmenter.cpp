@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <opencv2/imgproc.hpp>
 
-namespace slide {
+namespace slide::frontend {
 
 LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
     : classes_(std::move(classes)), params_(std::move(params)) {
@@ -16,7 +16,7 @@ LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams
   }
 }
 
-std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, InputIssues& issues) const {
+std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, InputIssues& issues) const {
   if (scan.size() == 0) {
     issues.count("empty scan");
     return {};
@@ -106,4 +106,4 @@ std::vector<Instance> LabelledSegmenter::segment(const LabelledScan& scan, Input
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

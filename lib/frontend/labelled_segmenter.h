@@ -19,7 +19,7 @@
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct LabelledSegmenterParams {
   GridClusterParams cluster{0.3, false, 15};
@@ -43,7 +43,7 @@ class LabelledSegmenter : public LidarSegmenter {
   LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params);
   std::string name() const override { return "labelled"; }
   // Scans without labels give no instances and count "scan without labels".
-  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override;
+  std::vector<Instance> segment(const io::LabelledScan& scan, InputIssues& issues) const override;
 
  private:
   ClassTable classes_;
@@ -51,4 +51,4 @@ class LabelledSegmenter : public LidarSegmenter {
   std::map<int, double> cell_of_class_;  // cluster_cell_by_class by class id
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -1,6 +1,6 @@
 #include "frontend/occlusion.h"
 
-namespace slide {
+namespace slide::frontend {
 
 double occludedFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& points,
                         const std::vector<char>& in_set, const OcclusionParams& p) {
@@ -15,4 +15,4 @@ double occludedFraction(const Cloud& cloud, const ScanLines& lines, const std::v
   return static_cast<double>(occluded) / beams.size();
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

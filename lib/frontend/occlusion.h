@@ -9,7 +9,7 @@
 
 #include "frontend/scan_lines.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct OcclusionParams {
   double window_deg = 2.0;          // azimuth searched beyond an edge for the next return
@@ -23,4 +23,4 @@ struct OcclusionParams {
 double occludedFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& points,
                         const std::vector<char>& in_set, const OcclusionParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

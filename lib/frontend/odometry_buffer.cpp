@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-namespace slide {
+namespace slide::frontend {
 
 void OdometryBuffer::add(std::int64_t utime, const Pose& T) {
   if (!T.matrix().allFinite()) return;
@@ -31,4 +31,4 @@ bool OdometryBuffer::hopeless(std::int64_t utime) const {
   return !poses_.empty() && poses_.rbegin()->first > utime + tolerance_us_ && !at(utime);
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

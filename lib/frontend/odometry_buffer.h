@@ -7,7 +7,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::frontend {
 
 class OdometryBuffer {
  public:
@@ -29,4 +29,4 @@ class OdometryBuffer {
   std::map<std::int64_t, Pose> poses_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

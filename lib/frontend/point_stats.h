@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-namespace slide {
+namespace slide::frontend {
 
 // q-th quantile (0..1) by nth_element (no interpolation); NaN for an empty sample.
 // Reorders `v`.
@@ -15,4 +15,4 @@ inline double quantileInPlace(std::vector<double>& v, double q) {
   return v[k];
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -5,9 +5,9 @@
 #include <limits>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::frontend {
 
-RangeImage projectScan(const LabelledScan& scan, const RangeProjection& p) {
+RangeImage projectScan(const io::LabelledScan& scan, const RangeProjection& p) {
   if (p.height <= 0 || p.width <= 0 || p.height > 4096 || p.width > 65536)
     throw std::invalid_argument("range image size must be 1..4096 x 1..65536, got " + std::to_string(p.height) + " x " +
                                 std::to_string(p.width));
@@ -35,8 +35,9 @@ RangeImage projectScan(const LabelledScan& scan, const RangeProjection& p) {
   return img;
 }
 
-std::vector<float> rangeImageInput(const LabelledScan& scan, const RangeImage& img, const std::vector<RangeChannel>& channels,
-                                   const std::vector<float>& means, const std::vector<float>& stds) {
+std::vector<float> rangeImageInput(const io::LabelledScan& scan, const RangeImage& img,
+                                   const std::vector<RangeChannel>& channels, const std::vector<float>& means,
+                                   const std::vector<float>& stds) {
   if (means.size() != channels.size() || stds.size() != channels.size())
     throw std::invalid_argument("range image input: " + std::to_string(channels.size()) + " channels need as many means and stds");
   const std::size_t pixels = img.point_of_pixel.size();
@@ -61,7 +62,7 @@ std::vector<float> rangeImageInput(const LabelledScan& scan, const RangeImage& i
   return blob;
 }
 
-std::vector<uint16_t> backProjectLabels(const LabelledScan& scan, const RangeImage& img,
+std::vector<uint16_t> backProjectLabels(const io::LabelledScan& scan, const RangeImage& img,
                                         const std::vector<uint16_t>& pixel_labels, const RangeProjection& p, uint16_t none) {
   if (pixel_labels.size() != img.point_of_pixel.size() || img.pixel_of_point.size() != scan.size())
     throw std::invalid_argument("back-projection: labels or image do not match the scan");
@@ -92,4 +93,4 @@ std::vector<uint16_t> backProjectLabels(const LabelledScan& scan, const RangeIma
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -20,7 +20,7 @@
 
 #include "io/kitti_scan.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct RangeProjection {
   int height = 64, width = 1024;
@@ -37,7 +37,7 @@ struct RangeImage {
 };
 
 // Throws std::invalid_argument for a non-positive size or an empty field of view.
-RangeImage projectScan(const LabelledScan& scan, const RangeProjection& projection);
+RangeImage projectScan(const io::LabelledScan& scan, const RangeProjection& projection);
 
 // Channels a model reads, in its input order.
 enum class RangeChannel { Range, X, Y, Z, Remission };
@@ -46,14 +46,14 @@ enum class RangeChannel { Range, X, Y, Z, Remission };
 // (value - mean[c]) / std[c]; empty pixels hold 0 (the mean). Sizes of means and stds must
 // equal channels.size() (std::invalid_argument otherwise); remission reads scan.intensity
 // (0 when the scan has none).
-std::vector<float> rangeImageInput(const LabelledScan& scan, const RangeImage& image,
+std::vector<float> rangeImageInput(const io::LabelledScan& scan, const RangeImage& image,
                                    const std::vector<RangeChannel>& channels, const std::vector<float>& means,
                                    const std::vector<float>& stds);
 
 // Per-point labels from per-pixel labels (height * width, row-major), as above. Points without
 // a pixel get `none`.
-std::vector<uint16_t> backProjectLabels(const LabelledScan& scan, const RangeImage& image,
+std::vector<uint16_t> backProjectLabels(const io::LabelledScan& scan, const RangeImage& image,
                                         const std::vector<uint16_t>& pixel_labels, const RangeProjection& projection,
                                         uint16_t none = 0);
 
-}  // namespace slide
+}  // namespace slide::frontend

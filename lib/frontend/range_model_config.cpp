@@ -4,7 +4,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 RangeChannel channelOf(const ConfigNode& n, const std::string& key, const std::string& name) {
@@ -65,4 +65,4 @@ RangeModelConfig loadRangeModelConfig(const std::string& path) {
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

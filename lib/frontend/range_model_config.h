@@ -17,8 +17,10 @@
 #include "frontend/range_image.h"
 
 namespace slide {
-
 class ConfigNode;
+}  // namespace slide
+
+namespace slide::frontend {
 
 struct RangeModelClass {
   std::string name;
@@ -42,4 +44,4 @@ RangeModelConfig loadRangeModelConfig(const std::string& path);
 // search_rows, search_cols) into `p`; ConfigError for values out of range.
 void readRangeProjection(const ConfigNode& n, RangeProjection& p);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -4,7 +4,7 @@
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::frontend {
 
 struct RangeNetLabeler::Net {
   cv::dnn::Net net;
@@ -70,7 +70,7 @@ std::shared_ptr<const RangeNetLabeler> RangeNetLabeler::fromParams(const Learned
   return std::make_shared<const RangeNetLabeler>(std::move(c), params.min_confidence);
 }
 
-void RangeNetLabeler::label(LabelledScan& scan) const {
+void RangeNetLabeler::label(io::LabelledScan& scan) const {
   const RangeProjection& p = config_.projection;
   const RangeImage img = projectScan(scan, p);
   std::vector<float> blob = rangeImageInput(scan, img, config_.channels, config_.means, config_.stds);
@@ -100,4 +100,4 @@ void RangeNetLabeler::label(LabelledScan& scan) const {
   scan.instance.clear();
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -11,7 +11,7 @@
 #include "frontend/range_model_config.h"
 #include "frontend/segmenter.h"
 
-namespace slide {
+namespace slide::frontend {
 
 // The front-end config's `segmenter.learned` section: which model, the confidence gate, and
 // the robot's own sensor where it differs from the model's projection.
@@ -31,7 +31,7 @@ class RangeNetLabeler : public PointLabeler {
   ~RangeNetLabeler() override;
   std::string name() const override { return "learned"; }
   // Fills scan.semantic; clears scan.instance (the network separates no instances).
-  void label(LabelledScan& scan) const override;
+  void label(io::LabelledScan& scan) const override;
   const RangeModelConfig& config() const { return config_; }
   // The model of `params` with its overrides applied; throws std::runtime_error when no model
   // is configured, ConfigError / std::runtime_error as above for a bad one.
@@ -44,4 +44,4 @@ class RangeNetLabeler : public PointLabeler {
   std::unique_ptr<Net> net_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

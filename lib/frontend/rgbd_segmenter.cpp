@@ -5,7 +5,7 @@
 #include "frontend/depth_filter.h"
 #include "frontend/point_stats.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Is a pixel of another id (or the image border) within `r` pixels (square window) of (u, v)?
@@ -94,4 +94,4 @@ std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes,
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -13,7 +13,7 @@
 #include "frontend/instance.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct CameraIntrinsics {
   int width = 0, height = 0;
@@ -59,4 +59,4 @@ struct RgbdSegmenterParams {
 std::vector<Instance> segmentRgbd(const RgbdFrame& frame, const ClassTable& classes, const RgbdSegmenterParams& params,
                                   InputIssues& issues);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Azimuth difference wrapped into (-pi, pi].
@@ -148,4 +148,4 @@ void ScanLines::markUnderTop(float tan_top, double tolerance_deg, float range_to
           if (std::abs(returns_[k].range - r) <= range_tolerance) mark[returns_[k].index] = 1;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -12,7 +12,7 @@
 
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 class ScanLines {
  public:
@@ -66,4 +66,4 @@ class ScanLines {
   std::vector<Return> returns_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

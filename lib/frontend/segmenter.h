@@ -11,14 +11,14 @@
 #include "frontend/instance.h"
 #include "io/kitti_scan.h"
 
-namespace slide {
+namespace slide::frontend {
 
 class LidarSegmenter {
  public:
   virtual ~LidarSegmenter() = default;
   virtual std::string name() const = 0;
   // Instances of one scan; bad points (non-finite) are skipped and counted in `issues`.
-  virtual std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const = 0;
+  virtual std::vector<Instance> segment(const io::LabelledScan& scan, InputIssues& issues) const = 0;
 };
 
 // A learned per-point classifier: fills scan.semantic (SemanticKITTI class ids) and, when it
@@ -27,7 +27,7 @@ class PointLabeler {
  public:
   virtual ~PointLabeler() = default;
   virtual std::string name() const = 0;
-  virtual void label(LabelledScan& scan) const = 0;
+  virtual void label(io::LabelledScan& scan) const = 0;
 };
 
 // Runs a PointLabeler, then segments its labels with `labelled` (e.g. a LabelledSegmenter).
@@ -36,8 +36,8 @@ class LearnedLidarSegmenter : public LidarSegmenter {
   LearnedLidarSegmenter(std::shared_ptr<const PointLabeler> labeler, std::shared_ptr<const LidarSegmenter> labelled)
       : labeler_(std::move(labeler)), labelled_(std::move(labelled)) {}
   std::string name() const override { return labeler_->name() + "+" + labelled_->name(); }
-  std::vector<Instance> segment(const LabelledScan& scan, InputIssues& issues) const override {
-    LabelledScan copy = scan;
+  std::vector<Instance> segment(const io::LabelledScan& scan, InputIssues& issues) const override {
+    io::LabelledScan copy = scan;
     labeler_->label(copy);
     if (copy.semantic.size() != copy.size() || (!copy.instance.empty() && copy.instance.size() != copy.size())) {
       issues.count("labeler output size mismatch");
@@ -52,4 +52,4 @@ class LearnedLidarSegmenter : public LidarSegmenter {
   std::shared_ptr<const LidarSegmenter> labelled_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

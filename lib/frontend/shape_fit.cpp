@@ -1,6 +1,6 @@
 #include "frontend/shape_fit.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Whether the model's extents pass the class's size gates (*why says which does not). Cylinders:
@@ -66,4 +66,4 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
   return o;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

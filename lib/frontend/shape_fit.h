@@ -11,7 +11,7 @@
 #include "frontend/instance.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct CylinderFitParams {
   double slice_height = 0.25;      // metres per horizontal slice
@@ -86,4 +86,4 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
                                 const Eigen::Vector3d& viewpoint, std::string* why = nullptr,
                                 std::optional<Object>* other_reading = nullptr);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -7,7 +7,7 @@
 
 #include "assignment/hungarian.h"
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 Cloud subsample(const Cloud& c, int max_points) {
@@ -168,7 +168,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     Eigen::MatrixXd cost(obs.size(), cand.size());
     for (std::size_t i = 0; i < obs.size(); ++i)
       for (std::size_t j = 0; j < cand.size(); ++j) cost(i, j) = centroidDistance(shape, obs[i].centroid, cand[j]->last_centroid);
-    const std::vector<int> assign = solveGatedAssignment(cost, gate);
+    const std::vector<int> assign = assignment::solveGatedAssignment(cost, gate);
     for (std::size_t i = 0; i < obs.size(); ++i) {
       if (assign[i] >= 0) apply(*cand[assign[i]], obs[i]);
       else left.push_back(std::move(obs[i]));
@@ -323,4 +323,4 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -16,7 +16,7 @@
 #include "frontend/shape_fit.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct TrackerParams {
   double gate_scale = 0.5;           // gate = class association_distance * gate_scale
@@ -100,4 +100,4 @@ class Tracker {
   std::int64_t next_id_ = 0;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

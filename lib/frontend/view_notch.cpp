@@ -6,7 +6,7 @@
 
 #include "frontend/point_stats.h"
 
-namespace slide {
+namespace slide::frontend {
 
 std::optional<std::pair<std::vector<int>, std::vector<int>>> splitAtNotch(const Cloud& cloud, const std::vector<int>& idx,
                                                                           const NotchSplitParams& p) {
@@ -75,4 +75,4 @@ std::optional<std::pair<std::vector<int>, std::vector<int>>> splitAtNotch(const 
   return parts;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

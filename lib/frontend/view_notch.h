@@ -12,7 +12,7 @@
 
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct NotchSplitParams {
   double bin_deg = 0.4;   // azimuth bins (wider than the LiDAR's azimuth step: every bin of a surface holds a return)
@@ -27,4 +27,4 @@ struct NotchSplitParams {
 std::optional<std::pair<std::vector<int>, std::vector<int>>> splitAtNotch(const Cloud& cloud, const std::vector<int>& idx,
                                                                           const NotchSplitParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

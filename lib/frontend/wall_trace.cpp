@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 // Distance of c from the line through a and b (a != b).
@@ -76,4 +76,4 @@ double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vecto
   return static_cast<double>(faces) / n;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -15,7 +15,7 @@
 
 #include "frontend/scan_lines.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct WallTraceParams {
   double window_deg = 2.0;       // azimuth searched beyond a column edge for the next returns ...
@@ -37,4 +37,4 @@ struct WallTraceParams {
 double faceFraction(const Cloud& cloud, const ScanLines& lines, const std::vector<int>& column,
                     const std::vector<char>& in_column, const WallTraceParams& params);
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -6,11 +6,11 @@
 
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::frontend {
 
 Cloud readXyzCloud(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw IoError(path, "cannot open");
+  if (!in) throw io::IoError(path, "cannot open");
   Cloud out;
   std::string line;
   int n = 0;
@@ -22,11 +22,11 @@ Cloud readXyzCloud(const std::string& path) {
     double x, y, z;
     if (!(s >> x >> y >> z)) {
       if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-      throw IoError(path, "line " + std::to_string(n) + ": expected x y z");
+      throw io::IoError(path, "line " + std::to_string(n) + ": expected x y z");
     }
     out.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
   }
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

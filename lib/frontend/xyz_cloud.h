@@ -5,9 +5,9 @@
 
 #include "frontend/instance.h"
 
-namespace slide {
+namespace slide::frontend {
 
 // Throws IoError naming the file and line for a missing file or an unparsable line.
 Cloud readXyzCloud(const std::string& path);
 
-}  // namespace slide
+}  // namespace slide::frontend

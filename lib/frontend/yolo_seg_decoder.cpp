@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace slide {
+namespace slide::frontend {
 
 namespace {
 std::string shapeOf(const cv::Mat& m) {
@@ -172,4 +172,4 @@ void paintInstances(const std::vector<YoloInstance>& instances, const std::vecto
   }
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

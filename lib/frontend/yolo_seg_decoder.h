@@ -16,7 +16,7 @@
 
 #include "frontend/rgbd_segmenter.h"
 
-namespace slide {
+namespace slide::frontend {
 
 // image -> network input: x_in = x * scale + pad_x, y_in = y * scale + pad_y.
 struct Letterbox {
@@ -58,4 +58,4 @@ void paintInstances(const std::vector<YoloInstance>& instances, const std::vecto
 // Intersection over union of two boxes (0 for empty ones).
 double boxIou(const cv::Rect2d& a, const cv::Rect2d& b);
 
-}  // namespace slide
+}  // namespace slide::frontend

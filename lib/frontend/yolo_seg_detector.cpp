@@ -6,7 +6,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::frontend {
 
 YoloSegConfig loadYoloSegConfig(const std::string& path, const ClassTable& classes) {
   const ConfigNode root = ConfigNode::load(path);
@@ -107,4 +107,4 @@ void YoloSegDetector::detect(RgbdFrame& f) const {
                  config_.class_of_model, f);
 }
 
-}  // namespace slide
+}  // namespace slide::frontend

@@ -20,7 +20,7 @@
 #include "frontend/yolo_seg_decoder.h"
 #include "objects/class_table.h"
 
-namespace slide {
+namespace slide::frontend {
 
 struct YoloSegConfig {
   std::string file, model_path;
@@ -51,4 +51,4 @@ class YoloSegDetector : public MaskDetector {
   std::unique_ptr<Net> net_;
 };
 
-}  // namespace slide
+}  // namespace slide::frontend

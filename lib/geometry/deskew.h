@@ -5,6 +5,7 @@
 // Poses are looked up on a grid of `resolution_s` over the sweep's time span (nearest grid
 // time; 0.1 ms moves a point 5 mm at 1 rad/s and 50 m). Points whose time has no pose are
 // flagged, not moved by a guess.
+// Vocabulary: in namespace slide itself, not slide::geometry, as every area uses it (README).
 #include <cstdint>
 #include <functional>
 #include <vector>

@@ -4,6 +4,7 @@
 // indices refer to the input order. Copies share the (immutable) index.
 // nanoflann won over the project's own tree on real stem layouts and a laser scan: 2.6-4.2x
 // faster radius queries, 1.8-6.3x faster 8-NN (slide-bench-kdtree, see BENCHMARKS.md).
+// Vocabulary: in namespace slide itself, not slide::geometry, as every area uses it (README).
 #include <Eigen/Core>
 #include <nanoflann.hpp>
 

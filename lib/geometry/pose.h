@@ -1,6 +1,7 @@
 #pragma once
 // Rigid-body helpers. Poses are Eigen::Isometry3d; T_a_b maps points of frame b into frame a.
 // Roll and pitch come from the IMU and are trusted; 4-DoF helpers handle x, y, z, yaw.
+// Vocabulary: in namespace slide itself, not slide::geometry, as every area uses it (README).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 

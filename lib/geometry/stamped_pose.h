@@ -3,6 +3,7 @@
 // two samples: linear in translation, slerp in rotation (interpolatePose). A time outside the
 // samples' span, or between two samples further apart than a limit, has no pose: the caller
 // drops what needs it, it never gets a guessed one.
+// Vocabulary: in namespace slide itself, not slide::geometry, as every area uses it (README).
 #include <vector>
 
 #include "geometry/pose.h"

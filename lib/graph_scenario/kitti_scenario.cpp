@@ -8,7 +8,7 @@
 #include "io/kitti_poses.h"
 #include "graph_scenario/scenario.h"
 
-namespace slide {
+namespace slide::graph_scenario {
 
 namespace {
 std::vector<Eigen::Vector2d> readPoles(const std::string& path) {
@@ -34,7 +34,7 @@ GraphScenario makeKittiScenario(const std::string& name, const std::string& pose
                            int num_robots, double spacing, std::uint32_t seed) {
   if (num_robots < 1) throw std::invalid_argument("makeKittiScenario: num_robots must be at least 1");
   std::mt19937 rng(seed);
-  const std::vector<Pose> lidar = kittiLidarPoses(readKittiPoses(poses_file), kittiVeloToCamTr0410());
+  const std::vector<Pose> lidar = io::kittiLidarPoses(io::readKittiPoses(poses_file), io::kittiVeloToCamTr0410());
   std::vector<Pose> keyposes{lidar.front()};
   for (const Pose& T : lidar)
     if ((T.translation() - keyposes.back().translation()).norm() >= spacing) keyposes.push_back(T);
@@ -68,4 +68,4 @@ GraphScenario makeKittiScenario(const std::string& name, const std::string& pose
   return s;
 }
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::graph_scenario {
 
 std::string ScenarioRealism::describe() const {
   std::ostringstream s;
@@ -110,4 +110,4 @@ GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& r, cons
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

@@ -10,7 +10,7 @@
 #include "objects/class_table.h"
 #include "graph_scenario/scenario.h"
 
-namespace slide {
+namespace slide::graph_scenario {
 
 struct ScenarioRealism {
   double miss_rate = 0.0;           // each detection of a true landmark is dropped with this probability
@@ -27,4 +27,4 @@ struct ScenarioRealism {
 GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& realism, const ClassTable& classes,
                           std::uint32_t seed = 17);
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

@@ -11,7 +11,7 @@
 #include "objects/keypose_bundle.h"
 #include "objects/object.h"
 
-namespace slide {
+namespace slide::graph_scenario {
 
 // Measurement and odometry noise of a simulated robot.
 // Cuboids and ellipsoids: range, azimuth and elevation noise on the centre. Cylinders (trunk
@@ -95,4 +95,4 @@ GraphScenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed = 3)
 GraphScenario makeKittiScenario(const std::string& name, const std::string& poses_file, const std::string& poles_file,
                            int num_robots = 3, double spacing = 2.0, std::uint32_t seed = 5);
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

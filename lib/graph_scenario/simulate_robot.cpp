@@ -4,7 +4,7 @@
 
 #include "graph_scenario/scenario.h"
 
-namespace slide {
+namespace slide::graph_scenario {
 
 std::vector<Pose> pathAlongWaypoints(const std::vector<Eigen::Vector2d>& wp, int num_poses, double z) {
   std::vector<double> cumulative{0.0};
@@ -149,4 +149,4 @@ std::vector<ScenarioLoopClosure> simulateLoopClosures(const ScenarioRobot& robot
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

@@ -5,7 +5,7 @@
 
 #include "graph_scenario/scenario.h"
 
-namespace slide {
+namespace slide::graph_scenario {
 
 namespace {
 double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
@@ -202,4 +202,4 @@ GraphScenario makeForestReturnScenario(int num_keyposes, std::uint32_t seed) {
   return forestScenario("forest_return", std::move(lms), pathAlongWaypoints(route, n, 0.0), rng);
 }
 
-}  // namespace slide
+}  // namespace slide::graph_scenario

@@ -7,7 +7,7 @@
 
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::io {
 
 void writeFileAtomically(const std::string& path, const std::string& contents) {
   const std::string tmp = path + ".tmp";
@@ -28,4 +28,4 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
   }
 }
 
-}  // namespace slide
+}  // namespace slide::io

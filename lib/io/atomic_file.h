@@ -4,9 +4,9 @@
 // then). A <path>.tmp left by a killed writer is overwritten by the next write.
 #include <string>
 
-namespace slide {
+namespace slide::io {
 
 // Throws IoError naming the file when it cannot be written or renamed (the old file stays).
 void writeFileAtomically(const std::string& path, const std::string& contents);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -8,7 +8,7 @@
 #include "io/io_error.h"
 #include "io/numbers.h"
 
-namespace slide {
+namespace slide::io {
 
 CalibEntries readCalibFile(const std::string& path) {
   std::ifstream in(path);
@@ -67,4 +67,4 @@ std::vector<double> poseToCalib(const Pose& T) {
   return v;
 }
 
-}  // namespace slide
+}  // namespace slide::io

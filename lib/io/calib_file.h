@@ -10,7 +10,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::io {
 
 using CalibEntries = std::map<std::string, std::vector<double>>;
 
@@ -24,4 +24,4 @@ std::vector<double> calibValues(const CalibEntries& calib, const std::string& pa
 Pose calibPose(const CalibEntries& calib, const std::string& path, const std::string& key);
 std::vector<double> poseToCalib(const Pose& T);
 
-}  // namespace slide
+}  // namespace slide::io

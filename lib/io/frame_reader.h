@@ -10,7 +10,7 @@
 #include "io/kitti_scan.h"
 #include "io/rgbd_files.h"
 
-namespace slide {
+namespace slide::io {
 
 // One RGBD frame: colour 8-bit BGR, depth CV_16UC1 in the dataset's depth_scale units
 // (0 = no depth), an instance mask when the recording has one.
@@ -30,4 +30,4 @@ class FrameReader {
   virtual std::string dropSummary() const { return {}; }
 };
 
-}  // namespace slide
+}  // namespace slide::io

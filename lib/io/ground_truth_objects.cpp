@@ -11,7 +11,7 @@
 #include "io/numbers.h"
 #include "io/object_map_text.h"
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 const char* kHeader = "id,class_id,shape,x,y,z,yaw,length,width,height,radius,axis_x,axis_y,axis_z,semantic,vx,vy";
@@ -171,4 +171,4 @@ std::vector<GroundTruthObject> readGroundTruthObjects(const std::string& path) {
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::io

@@ -23,8 +23,10 @@
 #include "objects/object.h"
 
 namespace slide {
-
 class ClassTable;
+}  // namespace slide
+
+namespace slide::io {
 
 struct GroundTruthObject {
   Object object;                                      // object.id = instance id (index + 1)
@@ -56,4 +58,4 @@ std::vector<Object> readObjectsCsv(const std::string& path, const ClassTable* cl
                                    const std::vector<std::string>& extra = {},
                                    std::vector<std::vector<double>>* extra_values = nullptr);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -2,7 +2,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace slide {
+namespace slide::io {
 
 // A dataset file that is missing, truncated or unparsable; the message names the file.
 class IoError : public std::runtime_error {
@@ -10,4 +10,4 @@ class IoError : public std::runtime_error {
   IoError(const std::string& path, const std::string& problem) : std::runtime_error(path + ": " + problem) {}
 };
 
-}  // namespace slide
+}  // namespace slide::io

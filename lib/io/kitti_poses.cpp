@@ -7,7 +7,7 @@
 
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 std::ifstream openOrThrow(const std::string& path) {
@@ -81,4 +81,4 @@ std::vector<Pose> kittiLidarPoses(const std::vector<Pose>& cam_poses, const Pose
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::io

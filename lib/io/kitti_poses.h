@@ -5,7 +5,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::io {
 
 std::vector<Pose> readKittiPoses(const std::string& path);
 void writeKittiPoses(const std::string& path, const std::vector<Pose>& poses);
@@ -17,4 +17,4 @@ Pose kittiVeloToCamTr0410();
 // inv(Tr) * P(i) * Tr for camera poses P(i).
 std::vector<Pose> kittiLidarPoses(const std::vector<Pose>& cam_poses, const Pose& Tr);
 
-}  // namespace slide
+}  // namespace slide::io

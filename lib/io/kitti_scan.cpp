@@ -5,7 +5,7 @@
 
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 std::vector<char> readAll(const std::string& path) {
@@ -80,4 +80,4 @@ void writeLabels(const std::string& path, const LabelledScan& scan) {
   if (!out) throw IoError(path, "write failed");
 }
 
-}  // namespace slide
+}  // namespace slide::io

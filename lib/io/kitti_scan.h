@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::io {
 
 struct LabelledScan {
   std::vector<Eigen::Vector3f> xyz;
@@ -27,4 +27,4 @@ LabelledScan readLabelledScan(const std::string& bin_path);
 void writeVelodyneBin(const std::string& path, const LabelledScan& scan);
 void writeLabels(const std::string& path, const LabelledScan& scan);
 
-}  // namespace slide
+}  // namespace slide::io

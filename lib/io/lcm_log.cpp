@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 constexpr std::uint32_t kSync = 0xEDA1DA01u;
@@ -93,4 +93,4 @@ bool writeLcmLogEvent(std::FILE* f, const LcmLogEvent& ev) {
   return std::fwrite(out.data(), 1, out.size(), f) == out.size() && std::fflush(f) == 0;
 }
 
-}  // namespace slide
+}  // namespace slide::io

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::io {
 
 struct LcmLogEvent {
   std::int64_t event_number = 0;
@@ -59,4 +59,4 @@ class LcmLogReader {
 // Appends one event to `f` (lcm-logger's layout); false when the write failed.
 bool writeLcmLogEvent(std::FILE* f, const LcmLogEvent& ev);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -11,7 +11,7 @@
 
 namespace fs = std::filesystem;
 
-namespace slide {
+namespace slide::io {
 
 LidarFolderReport writeLidarFolder(const RobotDataset& d, const std::string& dir) {
   if (d.sensor != RobotDataset::Sensor::Lidar)
@@ -46,4 +46,4 @@ LidarFolderReport writeLidarFolder(const RobotDataset& d, const std::string& dir
   return report;
 }
 
-}  // namespace slide
+}  // namespace slide::io

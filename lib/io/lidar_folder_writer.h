@@ -9,7 +9,7 @@
 
 #include "io/robot_dataset.h"
 
-namespace slide {
+namespace slide::io {
 
 struct LidarFolderReport {
   std::size_t written = 0;
@@ -21,4 +21,4 @@ struct LidarFolderReport {
 // dataset or a file that cannot be written, and when no frame could be read.
 LidarFolderReport writeLidarFolder(const RobotDataset& d, const std::string& dir);
 
-}  // namespace slide
+}  // namespace slide::io

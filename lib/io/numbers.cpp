@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::io {
 
 std::optional<double> parseNumber(const std::string& token) {
   if (token.empty()) return std::nullopt;
@@ -25,4 +25,4 @@ std::vector<double> parseNumberList(const std::string& text) {
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::io

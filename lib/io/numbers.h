@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::io {
 
 // nullopt unless the whole token is a number.
 std::optional<double> parseNumber(const std::string& token);
@@ -14,4 +14,4 @@ std::optional<double> parseNumber(const std::string& token);
 // a number") at the first token that is not one; callers prefix where it stands.
 std::vector<double> parseNumberList(const std::string& text);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -12,7 +12,7 @@
 #include "io/io_error.h"
 #include "io/numbers.h"
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 IoError lineError(const std::string& name, int line, const std::string& what) {
@@ -143,4 +143,4 @@ std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable&
   return text.map.objects();
 }
 
-}  // namespace slide
+}  // namespace slide::io

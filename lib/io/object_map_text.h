@@ -15,7 +15,7 @@
 #include "objects/class_table.h"
 #include "objects/object_map.h"
 
-namespace slide {
+namespace slide::io {
 
 // The size of an object whose line has none: zero (unknown; place recognition's maps) or the
 // class's typical size (ClassInfo::typicalSize(); what evaluation and plots draw).
@@ -57,4 +57,4 @@ std::string formatObjectMapText(const ObjectMap& map, const ClassTable& classes)
 // error). Throws IoError naming file and line.
 std::vector<Object> readObjectMapFile(const std::string& path, const ClassTable& classes, int default_class = -1);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -8,7 +8,7 @@
 #include "io/io_error.h"
 #include "io/point_cloud2.h"
 
-namespace slide {
+namespace slide::io {
 
 LabelledScan readPcdFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw IoError(path, "cannot open file");
@@ -35,4 +35,4 @@ LabelledScan readPcdFile(const std::string& path) {
   }
 }
 
-}  // namespace slide
+}  // namespace slide::io

@@ -6,10 +6,10 @@
 
 #include "io/kitti_scan.h"
 
-namespace slide {
+namespace slide::io {
 
 // Throws IoError naming the file when it cannot be opened or parsed or lacks x, y or z.
 // Non-finite points are skipped.
 LabelledScan readPcdFile(const std::string& path);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -11,7 +11,7 @@
 
 namespace fs = std::filesystem;
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 std::vector<std::string> pcdFiles(const std::string& dir) {
@@ -76,4 +76,4 @@ RobotDataset openPcdFolder(const std::string& dir, const DatasetOptions& options
   return d;
 }
 
-}  // namespace slide
+}  // namespace slide::io

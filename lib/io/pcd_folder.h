@@ -10,7 +10,7 @@
 
 #include "io/robot_dataset.h"
 
-namespace slide {
+namespace slide::io {
 
 // True when `dir` holds .pcd files.
 bool isPcdFolder(const std::string& dir);
@@ -18,4 +18,4 @@ bool isPcdFolder(const std::string& dir);
 // Throws IoError naming the file: unreadable .pcd, times that do not match, no odometry.
 RobotDataset openPcdFolder(const std::string& dir, const DatasetOptions& options);
 
-}  // namespace slide
+}  // namespace slide::io

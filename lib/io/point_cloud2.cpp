@@ -4,7 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 std::size_t typeSize(uint8_t t) {
@@ -110,4 +110,4 @@ DecodedCloud decodeCloud(const CloudLayout& l, const uint8_t* data, std::size_t 
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::io

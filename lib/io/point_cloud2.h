@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::io {
 
 struct CloudField {
   std::string name;
@@ -48,4 +48,4 @@ constexpr std::size_t kMaxCloudPoints = 4'000'000;
 // that does not fit (missing x/y/z, field past point_step, rows past the data, big-endian).
 DecodedCloud decodeCloud(const CloudLayout& layout, const uint8_t* data, std::size_t size, double stamp_s);
 
-}  // namespace slide
+}  // namespace slide::io

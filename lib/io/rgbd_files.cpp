@@ -10,7 +10,7 @@
 #include "io/calib_file.h"
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 bool skip(const std::string& line) {
@@ -128,4 +128,4 @@ void writeInstanceMask(const std::string& png_path, const InstanceMask& m) {
   if (!out) throw IoError(txt, "write failed");
 }
 
-}  // namespace slide
+}  // namespace slide::io

@@ -14,7 +14,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::io {
 
 // One line of a TUM RGB-D associations.txt: an RGB image and the depth image taken with it.
 struct TumAssociation {
@@ -54,4 +54,4 @@ void writePng(const std::string& path, const cv::Mat& image);
 InstanceMask readInstanceMask(const std::string& png_path);
 void writeInstanceMask(const std::string& png_path, const InstanceMask& mask);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -12,7 +12,7 @@
 
 namespace fs = std::filesystem;
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 void checkCount(const std::string& path, const char* what, std::size_t got, std::size_t frames) {
@@ -132,4 +132,4 @@ RobotDataset openRobotDataset(const std::string& path, const DatasetOptions& opt
   return d;
 }
 
-}  // namespace slide
+}  // namespace slide::io

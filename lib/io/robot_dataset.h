@@ -24,7 +24,7 @@
 #include "io/frame_reader.h"
 #include "io/ros_bag_options.h"
 
-namespace slide {
+namespace slide::io {
 
 struct DatasetOptions {
   double max_odometry_gap_s = 0.5;  // odometry samples further apart than this give no pose between them
@@ -68,4 +68,4 @@ void keepFramesWithOdometry(RobotDataset& d, const std::vector<double>& times, c
 // file and problem (missing, count mismatch, unparsable line, no odometry).
 RobotDataset openRobotDataset(const std::string& path, const DatasetOptions& options = {});
 
-}  // namespace slide
+}  // namespace slide::io

@@ -25,7 +25,7 @@
 #include "io/io_error.h"
 #include "io/point_cloud2.h"
 
-namespace slide {
+namespace slide::io {
 // Any message, as its serialized bytes (or only their first kStampBytes for MessageStamp).
 struct RawMessage {
   std::vector<uint8_t> bytes;
@@ -33,7 +33,7 @@ struct RawMessage {
 struct MessageStamp {
   std::vector<uint8_t> bytes;
 };
-}  // namespace slide
+}  // namespace slide::io
 
 namespace ros {
 namespace message_traits {
@@ -42,32 +42,32 @@ struct AnyType {
   static const char* value() { return "*"; }
   static const char* value(const M&) { return value(); }
 };
-template <> struct MD5Sum<slide::RawMessage> : AnyType<slide::RawMessage> {};
-template <> struct DataType<slide::RawMessage> : AnyType<slide::RawMessage> {};
-template <> struct Definition<slide::RawMessage> : AnyType<slide::RawMessage> {};
-template <> struct MD5Sum<slide::MessageStamp> : AnyType<slide::MessageStamp> {};
-template <> struct DataType<slide::MessageStamp> : AnyType<slide::MessageStamp> {};
-template <> struct Definition<slide::MessageStamp> : AnyType<slide::MessageStamp> {};
+template <> struct MD5Sum<slide::io::RawMessage> : AnyType<slide::io::RawMessage> {};
+template <> struct DataType<slide::io::RawMessage> : AnyType<slide::io::RawMessage> {};
+template <> struct Definition<slide::io::RawMessage> : AnyType<slide::io::RawMessage> {};
+template <> struct MD5Sum<slide::io::MessageStamp> : AnyType<slide::io::MessageStamp> {};
+template <> struct DataType<slide::io::MessageStamp> : AnyType<slide::io::MessageStamp> {};
+template <> struct Definition<slide::io::MessageStamp> : AnyType<slide::io::MessageStamp> {};
 }  // namespace message_traits
 namespace serialization {
 template <>
-struct Serializer<slide::RawMessage> {
+struct Serializer<slide::io::RawMessage> {
   template <class Stream>
-  static void read(Stream& s, slide::RawMessage& m) {
+  static void read(Stream& s, slide::io::RawMessage& m) {
     m.bytes.assign(s.getData(), s.getData() + s.getLength());
   }
 };
 template <>
-struct Serializer<slide::MessageStamp> {
+struct Serializer<slide::io::MessageStamp> {
   template <class Stream>
-  static void read(Stream& s, slide::MessageStamp& m) {
+  static void read(Stream& s, slide::io::MessageStamp& m) {
     m.bytes.assign(s.getData(), s.getData() + std::min<uint32_t>(12, s.getLength()));  // seq, stamp
   }
 };
 }  // namespace serialization
 }  // namespace ros
 
-namespace slide {
+namespace slide::io {
 
 namespace {
 constexpr const char* kTf = "/tf";
@@ -700,4 +700,4 @@ RobotDataset openBagDataset(const std::string& path, const DatasetOptions& optio
   return d;
 }
 
-}  // namespace slide
+}  // namespace slide::io

@@ -8,7 +8,7 @@
 
 #include "io/robot_dataset.h"
 
-namespace slide {
+namespace slide::io {
 
 struct BagTopicInfo {
   std::string topic, type;
@@ -26,4 +26,4 @@ std::vector<BagTopicInfo> listBagTopics(const std::string& path);
 // extrinsic) or message index (corrupt message, unsupported encoding).
 RobotDataset openBagDataset(const std::string& path, const DatasetOptions& options);
 
-}  // namespace slide
+}  // namespace slide::io

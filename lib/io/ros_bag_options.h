@@ -6,7 +6,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::io {
 
 struct BagOptions {
   // LiDAR: a sensor_msgs/PointCloud2 topic. RGBD: sensor_msgs/Image colour (bgr8/rgb8) and
@@ -25,4 +25,4 @@ struct BagOptions {
   double max_color_depth_dt = 0.02;  // seconds between a colour and a depth image of one frame
 };
 
-}  // namespace slide
+}  // namespace slide::io

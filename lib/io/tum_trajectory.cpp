@@ -8,7 +8,7 @@
 #include "io/atomic_file.h"
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::io {
 
 std::vector<StampedPose> readTum(const std::string& path) {
   std::ifstream in(path);
@@ -44,4 +44,4 @@ void writeTum(const std::string& path, const std::vector<StampedPose>& trajector
   writeFileAtomically(path, out.str());
 }
 
-}  // namespace slide
+}  // namespace slide::io

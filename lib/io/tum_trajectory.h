@@ -5,10 +5,10 @@
 
 #include "geometry/stamped_pose.h"
 
-namespace slide {
+namespace slide::io {
 
 std::vector<StampedPose> readTum(const std::string& path);
 // Written whole or not at all (io/atomic_file.h); throws IoError.
 void writeTum(const std::string& path, const std::vector<StampedPose>& trajectory);
 
-}  // namespace slide
+}  // namespace slide::io

@@ -13,7 +13,7 @@
 #include "simulator/scenario.h"
 #include "mapped_robot/sensor_rig.h"
 
-namespace slide {
+namespace slide::mapped_robot {
 
 struct RobotMapping {
   std::vector<Object> objects;       // confirmed landmarks, robot's odometry frame
@@ -25,16 +25,16 @@ struct RobotMapping {
 
 struct MappingSetup {
   ClassTable classes;
-  FrontendConfig frontend;
-  BackendConfig backend;
+  frontend::FrontendConfig frontend;
+  backend::BackendConfig backend;
   std::uint64_t seed = 1;            // sensor noise (frameRng(seed, robot, frame))
   // Detections the front-end sees: the emulator's (a learned detector's errors; the default
   // of the benchmarks) when set, else the simulator's ground-truth labels / masks (an oracle).
-  std::optional<DetectionEmulatorConfig> emulator;
+  std::optional<emulator::DetectionEmulatorConfig> emulator;
 };
 
 // Maps robot `robot` (index into sc.robots) carrying `rig`. Throws std::out_of_range for a
 // bad index and std::invalid_argument for an unknown sensor model.
-RobotMapping mapRobot(const Scenario& sc, int robot, const SensorRig& rig, const MappingSetup& setup);
+RobotMapping mapRobot(const simulator::Scenario& sc, int robot, const SensorRig& rig, const MappingSetup& setup);
 
-}  // namespace slide
+}  // namespace slide::mapped_robot

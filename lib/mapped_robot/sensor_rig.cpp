@@ -5,7 +5,7 @@
 
 #include "simulator/lidar.h"
 
-namespace slide {
+namespace slide::mapped_robot {
 
 SensorRig parseSensorRig(const std::string& spec) {
   const auto colon = spec.find(':');
@@ -14,10 +14,10 @@ SensorRig parseSensorRig(const std::string& spec) {
   rig.model = model;
   if (kind == "lidar") {
     rig.kind = SensorRig::Kind::Lidar;
-    lidarModel(model);  // throws naming the known models
+    simulator::lidarModel(model);  // throws naming the known models
   } else if (kind == "rgbd") {
     rig.kind = SensorRig::Kind::Rgbd;
-    cameraModel(model);
+    simulator::cameraModel(model);
   } else {
     throw std::invalid_argument("sensor '" + spec + "': expected lidar:<model> or rgbd:<model>");
   }
@@ -32,8 +32,8 @@ Pose pitchedMount(double pitch_down_deg, double up) {
   return T;
 }
 
-RgbdFrame rgbdFrameOf(const RgbdImage& img, const CameraModel& camera) {
-  RgbdFrame f;
+frontend::RgbdFrame rgbdFrameOf(const simulator::RgbdImage& img, const simulator::CameraModel& camera) {
+  frontend::RgbdFrame f;
   f.intrinsics = {camera.width, camera.height, camera.fx, camera.fy, camera.cx, camera.cy, 0.001};
   f.depth.assign(img.depth.begin<std::uint16_t>(), img.depth.end<std::uint16_t>());
   f.mask.assign(img.instance.begin<std::uint16_t>(), img.instance.end<std::uint16_t>());
@@ -42,4 +42,4 @@ RgbdFrame rgbdFrameOf(const RgbdImage& img, const CameraModel& camera) {
   return f;
 }
 
-}  // namespace slide
+}  // namespace slide::mapped_robot

@@ -8,7 +8,7 @@
 #include "geometry/pose.h"
 #include "simulator/rgbd_camera.h"
 
-namespace slide {
+namespace slide::mapped_robot {
 
 struct SensorRig {
   enum class Kind { Lidar, Rgbd };
@@ -25,6 +25,6 @@ SensorRig parseSensorRig(const std::string& spec);
 Pose pitchedMount(double pitch_down_deg, double up = 0.0);
 
 // The front-end's view of a rendered frame: depth, instance mask and classes (confidence 1).
-RgbdFrame rgbdFrameOf(const RgbdImage& img, const CameraModel& camera);
+frontend::RgbdFrame rgbdFrameOf(const simulator::RgbdImage& img, const simulator::CameraModel& camera);
 
-}  // namespace slide
+}  // namespace slide::mapped_robot

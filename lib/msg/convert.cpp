@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace slide {
+namespace slide::msg {
 
 namespace {
 template <typename T>
@@ -130,4 +130,4 @@ KeyPoseBundle fromLcm(const keypose_bundle_t& m, std::vector<std::string>* dropp
   return b;
 }
 
-}  // namespace slide
+}  // namespace slide::msg

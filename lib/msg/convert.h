@@ -10,7 +10,7 @@
 #include "slide/object_t.hpp"
 #include "slide/pose3_t.hpp"
 
-namespace slide {
+namespace slide::msg {
 
 pose3_t toLcm(const Pose& T);
 Pose fromLcm(const pose3_t& m);
@@ -29,4 +29,4 @@ keypose_bundle_t toLcm(const KeyPoseBundle& b);
 // Checks nothing else: the optimizer checks what it adds, peer sync what it shares.
 KeyPoseBundle fromLcm(const keypose_bundle_t& m, std::vector<std::string>* dropped);
 
-}  // namespace slide
+}  // namespace slide::msg

@@ -4,10 +4,10 @@
 
 #include "msg/convert.h"
 
-namespace slide {
+namespace slide::msg {
 
-LabelledScan fromLcm(const lidar_scan_t& m, InputIssues& issues) {
-  LabelledScan s;
+io::LabelledScan fromLcm(const lidar_scan_t& m, frontend::InputIssues& issues) {
+  io::LabelledScan s;
   const std::size_t n = std::min<std::size_t>(m.xyz.size(), static_cast<std::size_t>(std::max(0, m.num_points)));
   s.xyz.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -30,7 +30,7 @@ LabelledScan fromLcm(const lidar_scan_t& m, InputIssues& issues) {
   return s;
 }
 
-lidar_scan_t toLcm(const LabelledScan& scan, const header_t& header) {
+lidar_scan_t toLcm(const io::LabelledScan& scan, const header_t& header) {
   lidar_scan_t m;
   m.header = header;
   m.num_points = static_cast<int32_t>(scan.size());
@@ -50,8 +50,8 @@ lidar_scan_t toLcm(const LabelledScan& scan, const header_t& header) {
   return m;
 }
 
-std::optional<RgbdFrame> fromLcm(const rgbd_frame_t& m, InputIssues& issues) {
-  RgbdFrame f;
+std::optional<frontend::RgbdFrame> fromLcm(const rgbd_frame_t& m, frontend::InputIssues& issues) {
+  frontend::RgbdFrame f;
   const camera_intrinsics_t& k = m.intrinsics;
   f.intrinsics = {k.width, k.height, k.fx, k.fy, k.cx, k.cy, k.depth_scale};
   if (k.width <= 0 || k.height <= 0) {
@@ -80,7 +80,7 @@ std::optional<RgbdFrame> fromLcm(const rgbd_frame_t& m, InputIssues& issues) {
   return f;
 }
 
-frame_instances_t toLcm(const FrameInstances& f, const header_t& header) {
+frame_instances_t toLcm(const frontend::FrameInstances& f, const header_t& header) {
   frame_instances_t m;
   m.header = header;
   m.odom_pose = toLcm(f.odom_pose);
@@ -99,12 +99,12 @@ frame_instances_t toLcm(const FrameInstances& f, const header_t& header) {
   return m;
 }
 
-FrameInstances fromLcm(const frame_instances_t& m) {
-  FrameInstances f;
+frontend::FrameInstances fromLcm(const frame_instances_t& m) {
+  frontend::FrameInstances f;
   f.utime = m.header.utime;
   f.odom_pose = fromLcm(m.odom_pose);
   for (const auto& o : m.instances) {
-    Instance inst;
+    frontend::Instance inst;
     inst.id = o.instance_id;
     inst.class_id = o.class_id;
     inst.confidence = o.confidence;
@@ -116,4 +116,4 @@ FrameInstances fromLcm(const frame_instances_t& m) {
   return f;
 }
 
-}  // namespace slide
+}  // namespace slide::msg

@@ -11,17 +11,17 @@
 #include "slide/lidar_scan_t.hpp"
 #include "slide/rgbd_frame_t.hpp"
 
-namespace slide {
+namespace slide::msg {
 
 // Labels are dropped (and "label count mismatch" counted) unless num_labels == num_points.
-LabelledScan fromLcm(const lidar_scan_t& m, InputIssues& issues);
+io::LabelledScan fromLcm(const lidar_scan_t& m, frontend::InputIssues& issues);
 // Labels when the scan has them; instance ids 0 when it has classes only; intensity 0 where missing.
-lidar_scan_t toLcm(const LabelledScan& scan, const header_t& header);
+lidar_scan_t toLcm(const io::LabelledScan& scan, const header_t& header);
 
 // nullopt (and a counted issue) when image byte sizes do not match the intrinsics.
-std::optional<RgbdFrame> fromLcm(const rgbd_frame_t& m, InputIssues& issues);
+std::optional<frontend::RgbdFrame> fromLcm(const rgbd_frame_t& m, frontend::InputIssues& issues);
 
-frame_instances_t toLcm(const FrameInstances& f, const header_t& header);
-FrameInstances fromLcm(const frame_instances_t& m);
+frame_instances_t toLcm(const frontend::FrameInstances& f, const header_t& header);
+frontend::FrameInstances fromLcm(const frame_instances_t& m);
 
-}  // namespace slide
+}  // namespace slide::msg

@@ -1,6 +1,6 @@
 #include "msg/procman_convert.h"
 
-namespace slide {
+namespace slide::msg {
 
 procman_lcm::cmd_t toLcm(const procman::CommandSpec& s) {
   procman_lcm::cmd_t m;
@@ -102,4 +102,4 @@ procman_lcm::output_t makeOutput(const std::string& deputy_id, int64_t utime,
   return m;
 }
 
-}  // namespace slide
+}  // namespace slide::msg

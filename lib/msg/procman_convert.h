@@ -13,7 +13,7 @@
 #include "procman_lcm/orders_t.hpp"
 #include "procman_lcm/output_t.hpp"
 
-namespace slide {
+namespace slide::msg {
 
 procman_lcm::cmd_t toLcm(const procman::CommandSpec& s);
 procman::CommandSpec fromLcm(const procman_lcm::cmd_t& m);
@@ -31,4 +31,4 @@ std::vector<procman::CommandReport> commandReports(const procman_lcm::deputy_inf
 procman_lcm::output_t makeOutput(const std::string& deputy_id, int64_t utime,
                                  const std::vector<std::pair<std::string, std::string>>& batch);
 
-}  // namespace slide
+}  // namespace slide::msg

@@ -17,7 +17,7 @@ void StatusBeacon::tick(std::int64_t published, std::int64_t dropped_messages, s
   if (!now && last_.time_since_epoch().count() != 0 && t - last_ < period_) return;
   last_ = t;
   daemon_status_t s;
-  s.utime = wallMicros();
+  s.utime = app::wallMicros();
   s.robot = robot_;
   s.daemon = daemon_;
   s.published = published;

@@ -1,6 +1,7 @@
 #pragma once
 // How far apart two objects of the map are, in position and in model, and whether one
 // observation may be the other landmark under the class table's thresholds.
+// Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include "objects/class_table.h"
 
 namespace slide {

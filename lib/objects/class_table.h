@@ -1,6 +1,7 @@
 #pragma once
 // The one table of object classes (config/classes.yaml) shared by every stage: shape model,
 // association thresholds, plausible sizes and the external labels that mean each class.
+// Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include <map>
 #include <optional>
 #include <string>

@@ -3,6 +3,7 @@
 // it, the back-end adds it to the graph; keypose_bundle_t without LCM, msg/convert.h): (robot,
 // seq) identifies it team-wide; relative_odom is the motion since key pose seq-1 in that pose's
 // body frame; objects are in this key pose's body frame.
+// Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include <cstdint>
 #include <vector>
 

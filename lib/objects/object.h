@@ -1,5 +1,6 @@
 #pragma once
 // The three object models of the sparse map and the operations every stage shares.
+// Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include <cstdint>
 #include <variant>
 

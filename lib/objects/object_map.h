@@ -1,6 +1,7 @@
 #pragma once
 // A set of objects with a spatial index on their positions, overall and per class.
 // The index is rebuilt lazily on the first query after a change.
+// Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include <map>
 #include <memory>
 #include <vector>

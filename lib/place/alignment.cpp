@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 void fillResiduals(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b, Alignment& al) {
@@ -68,4 +68,4 @@ Alignment alignXyzYawRobust(const std::vector<Eigen::Vector3d>& a, const std::ve
   return al;
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -5,7 +5,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::place {
 
 struct Alignment {
   bool ok = false;               // false for fewer than two distinct points or zero weights
@@ -24,4 +24,4 @@ Alignment alignXyzYaw(const std::vector<Eigen::Vector3d>& a, const std::vector<E
 Alignment alignXyzYawRobust(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
                             double c = 0.3, int iterations = 10);
 
-}  // namespace slide
+}  // namespace slide::place

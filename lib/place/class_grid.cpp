@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 ClassGrid::ClassGrid(const std::vector<Landmark>& lms, double cell) : lms_(lms), cell_(cell), x0_(0), y0_(0) {
   if (lms.empty()) return;
@@ -63,4 +63,4 @@ long ClassGrid::nearestWithin(int class_id, double x, double y, double r, const 
   return best;
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -6,7 +6,7 @@
 
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::place {
 
 class ClassGrid {
  public:
@@ -29,4 +29,4 @@ class ClassGrid {
   std::map<int, Buckets> classes_;
 };
 
-}  // namespace slide
+}  // namespace slide::place

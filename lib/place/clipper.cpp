@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 using Vec = std::vector<double>;
@@ -135,4 +135,4 @@ ClipperResult clipper(const std::vector<Eigen::Vector3d>& pa, const std::vector<
   return solveClipper(g, params);
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -10,7 +10,7 @@
 
 #include "place/consistency_graph.h"
 
-namespace slide {
+namespace slide::place {
 
 struct ClipperParams {
   ConsistencyParams consistency;
@@ -38,4 +38,4 @@ ClipperResult solveClipper(const ConsistencyGraph& graph, const ClipperParams& p
 ClipperResult clipper(const std::vector<Eigen::Vector3d>& pa, const std::vector<Eigen::Vector3d>& pb,
                       const std::vector<Association>& assoc, const ClipperParams& params);
 
-}  // namespace slide
+}  // namespace slide::place

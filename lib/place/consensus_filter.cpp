@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 Pose ConsensusFilter::Cluster::mean() const {
   const Eigen::Vector3d t = t_sum / weight;
@@ -73,4 +73,4 @@ const char* outcomeName(ConsensusFilter::Outcome o) {
   return "unknown";
 }
 
-}  // namespace slide
+}  // namespace slide::place

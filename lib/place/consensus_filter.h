@@ -10,7 +10,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::place {
 
 struct ConsensusParams {
   double trans_tol = 1.0;         // metres: two results agree within this translation...
@@ -58,4 +58,4 @@ class ConsensusFilter {
 
 const char* outcomeName(ConsensusFilter::Outcome o);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 ConsistencyGraph::ConsistencyGraph(const std::vector<Eigen::Vector3d>& pa, const std::vector<Eigen::Vector3d>& pb,
                                    const std::vector<Association>& assoc, const ConsistencyParams& params) {
@@ -54,4 +54,4 @@ bool ConsistencyGraph::consistent(std::size_t u, std::size_t v) const {
   return std::binary_search(neighborsBegin(u), neighborsEnd(u), static_cast<std::uint32_t>(v));
 }
 
-}  // namespace slide
+}  // namespace slide::place

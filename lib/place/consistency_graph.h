@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::place {
 
 struct Association {
   std::uint32_t a = 0;  // landmark index in map A
@@ -44,4 +44,4 @@ class ConsistencyGraph {
   std::size_t peak_bytes_ = 0;
 };
 
-}  // namespace slide
+}  // namespace slide::place

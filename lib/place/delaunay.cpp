@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <unordered_map>
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 std::uint64_t cellKey(double x, double y, double cell) {
@@ -127,4 +127,4 @@ std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts, const 
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::place {
 
 using Triangle = std::array<std::uint32_t, 3>;  // indices into the input points
 
@@ -18,4 +18,4 @@ using Triangle = std::array<std::uint32_t, 3>;  // indices into the input points
 std::vector<Triangle> delaunay2d(const std::vector<Eigen::Vector2d>& pts,
                                  const std::function<bool()>& out_of_time = nullptr);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace slide {
+namespace slide::place {
 
 std::vector<Landmark> landmarksOf(const ObjectMap& map) {
   std::vector<Landmark> out;
@@ -64,4 +64,4 @@ Eigen::Vector3d centroidOf(const std::vector<Landmark>& lms) {
   return lms.empty() ? c : Eigen::Vector3d(c / static_cast<double>(lms.size()));
 }
 
-}  // namespace slide
+}  // namespace slide::place

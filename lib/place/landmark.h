@@ -7,7 +7,7 @@
 
 #include "objects/object_map.h"
 
-namespace slide {
+namespace slide::place {
 
 struct Landmark {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();     // centre; a cylinder's foot
@@ -40,4 +40,4 @@ std::vector<Landmark> byShapeFamily(std::vector<Landmark> lms);
 // Centroid of the positions (zero for an empty set).
 Eigen::Vector3d centroidOf(const std::vector<Landmark>& lms);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 LandmarkIndex::LandmarkIndex(const std::vector<Landmark>& lms) {
   std::map<int, std::vector<Eigen::Vector3d>> pts;
@@ -84,4 +84,4 @@ std::size_t LandmarkIndex::count(int class_id) const {
   return it == trees_.end() ? 0 : it->second.members.size();
 }
 
-}  // namespace slide
+}  // namespace slide::place

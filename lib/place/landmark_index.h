@@ -8,7 +8,7 @@
 #include "geometry/kdtree.h"
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::place {
 
 class LandmarkIndex {
  public:
@@ -65,4 +65,4 @@ void LandmarkIndex::forEachWithin(const Eigen::Vector3d& p, double r, int class_
     }
 }
 
-}  // namespace slide
+}  // namespace slide::place

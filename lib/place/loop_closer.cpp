@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 std::vector<Landmark> subset(const ObjectMap& map, const std::vector<std::size_t>& idx) {
@@ -192,4 +192,4 @@ std::vector<LoopClosure> LoopCloser::poll(double now_s) {
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::place

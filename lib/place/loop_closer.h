@@ -14,7 +14,7 @@
 #include "place/consensus_filter.h"
 #include "place/place_config.h"
 
-namespace slide {
+namespace slide::place {
 
 struct LoopCloserParams {
   int robot = 0;
@@ -118,4 +118,4 @@ class LoopCloser {
   LoopCloserCounts counts_;
 };
 
-}  // namespace slide
+}  // namespace slide::place

@@ -2,7 +2,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::place {
 
 LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
   const std::string& path = root.file();
@@ -67,4 +67,4 @@ LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
   return p;
 }
 
-}  // namespace slide
+}  // namespace slide::place

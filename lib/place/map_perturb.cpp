@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::place {
 
 std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& T_a_b, const PerturbParams& p,
                                     std::mt19937& rng) {
@@ -21,4 +21,4 @@ std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& 
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::place

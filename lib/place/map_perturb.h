@@ -5,7 +5,7 @@
 
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::place {
 
 struct PerturbParams {
   double position_sigma = 0.05;  // metres, per axis
@@ -18,4 +18,4 @@ struct PerturbParams {
 std::vector<Landmark> perturbedCopy(const std::vector<Landmark>& a, const Pose& T_a_b, const PerturbParams& p,
                                     std::mt19937& rng);
 
-}  // namespace slide
+}  // namespace slide::place

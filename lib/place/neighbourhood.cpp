@@ -7,7 +7,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 std::int64_t cellOf(double v, double cell) { return static_cast<std::int64_t>(std::floor(v / cell)); }
@@ -121,4 +121,4 @@ LocalYaw localYaw(const Neighbourhoods& na, std::size_t i, const Neighbourhoods&
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::place

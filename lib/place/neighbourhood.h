@@ -9,7 +9,7 @@
 
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::place {
 
 // Rings of the descriptor; each gives the neighbour count and the magnitudes of the first two
 // angular harmonics (|sum e^{i theta}|, |sum e^{2 i theta}|), which a yaw does not change.
@@ -57,4 +57,4 @@ struct LocalYaw {
 LocalYaw localYaw(const Neighbourhoods& na, std::size_t i, const Neighbourhoods& nb, std::size_t j, double dist_tol,
                   double min_dist, double bin);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -4,7 +4,7 @@
 
 #include "config/config.h"
 
-namespace slide {
+namespace slide::place {
 
 PlaceConfig loadPlaceConfig(const std::string& path) {
   const ConfigNode root = ConfigNode::load(path);
@@ -105,4 +105,4 @@ PlaceResult recognizePlace(PlaceMethod method, const std::vector<Landmark>& a, c
   return method == PlaceMethod::SlideGraph ? slideGraph(a, b, config.slidegraph) : slideMatch(a, b, config.slidematch);
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -5,7 +5,7 @@
 #include "place/slidegraph.h"
 #include "place/slidematch.h"
 
-namespace slide {
+namespace slide::place {
 
 struct PlaceConfig {
   SlideGraphParams slidegraph;
@@ -32,4 +32,4 @@ PlaceMethod parsePlaceMethod(const std::string& name);
 PlaceResult recognizePlace(PlaceMethod method, const std::vector<Landmark>& a, const std::vector<Landmark>& b,
                            const PlaceConfig& config);
 
-}  // namespace slide
+}  // namespace slide::place

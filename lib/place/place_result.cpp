@@ -1,7 +1,7 @@
 #include "place/place_result.h"
 
-namespace slide {
+namespace slide::place {
 
 const char* methodName(PlaceMethod m) { return m == PlaceMethod::SlideGraph ? "slidegraph" : "slidematch"; }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -8,7 +8,7 @@
 #include "clock/thread_cpu.h"
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::place {
 
 enum class PlaceMethod { SlideGraph, SlideMatch };
 const char* methodName(PlaceMethod m);
@@ -38,4 +38,4 @@ struct PlaceResult {
   bool by_shape = false;              // matched by shape family: the maps' classes barely overlap
 };
 
-}  // namespace slide
+}  // namespace slide::place

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace slide {
+namespace slide::place {
 
 std::vector<SimplexDescriptor> describeTriangles(const std::vector<Landmark>& lms, const std::vector<Triangle>& tris) {
   std::vector<SimplexDescriptor> out;
@@ -27,4 +27,4 @@ std::vector<SimplexDescriptor> describeTriangles(const std::vector<Landmark>& lm
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -8,7 +8,7 @@
 #include "place/delaunay.h"
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::place {
 
 struct SimplexDescriptor {
   Eigen::Vector3d distances = Eigen::Vector3d::Zero();  // ascending, metres (xy)
@@ -19,4 +19,4 @@ struct SimplexDescriptor {
 // One descriptor per triangle (ties broken by class, then landmark index).
 std::vector<SimplexDescriptor> describeTriangles(const std::vector<Landmark>& lms, const std::vector<Triangle>& tris);
 
-}  // namespace slide
+}  // namespace slide::place

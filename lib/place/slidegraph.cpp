@@ -9,7 +9,7 @@
 #include "place/alignment.h"
 #include "place/simplex_descriptor.h"
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 std::vector<Triangle> triangulate(const std::vector<Landmark>& lms, const std::function<bool()>& out_of_time) {
@@ -118,21 +118,21 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
 
 PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params) {
   const auto t0 = std::chrono::steady_clock::now();
-  const double cpu0 = threadCpuMs();
+  const double cpu0 = clock::threadCpuMs();
   double cpu_mark = cpu0;
   PlaceResult res;
   auto stage = [&](const char* name) {
-    const double now = threadCpuMs();
+    const double now = clock::threadCpuMs();
     res.stage_cpu_ms.emplace_back(name, now - cpu_mark);
     cpu_mark = now;
   };
   auto finish = [&]() {
     res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    res.cpu_ms = threadCpuMs() - cpu0;
+    res.cpu_ms = clock::threadCpuMs() - cpu0;
     return res;
   };
   // The budget is the calling thread's CPU time: other processes' load does not eat it.
-  const std::function<bool()> out_of_time = [&] { return threadCpuMs() - cpu0 > params.budget_ms; };
+  const std::function<bool()> out_of_time = [&] { return clock::threadCpuMs() - cpu0 > params.budget_ms; };
   auto budgetExceeded = [&](const char* where) {  // no result: the budget ran out first
     res.found = false;
     res.inliers.clear();
@@ -230,4 +230,4 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   return finish();
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -8,7 +8,7 @@
 #include "place/clipper.h"
 #include "place/verify.h"
 
-namespace slide {
+namespace slide::place {
 
 struct SlideGraphParams {
   double descriptor_radius = 0.4;         // metres in descriptor space
@@ -34,4 +34,4 @@ PlaceResult slideGraph(const std::vector<Landmark>& a, const std::vector<Landmar
 // One attempt with exactly these tolerances (slideGraph() adds the small-map retry).
 PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideGraphParams& params);
 
-}  // namespace slide
+}  // namespace slide::place

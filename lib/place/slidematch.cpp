@@ -12,7 +12,7 @@
 #include "place/class_grid.h"
 #include "place/neighbourhood.h"
 
-namespace slide {
+namespace slide::place {
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -174,21 +174,21 @@ std::vector<Candidate> prunedPeaks(const std::vector<Landmark>& a, const std::ve
 PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Landmark>& b_in,
                        const SlideMatchParams& params) {
   const auto t0 = Clock::now();
-  const double cpu0 = threadCpuMs();
+  const double cpu0 = clock::threadCpuMs();
   PlaceResult res;
   double cpu_mark = cpu0;
   auto stage = [&](const char* name) {
-    const double now = threadCpuMs();
+    const double now = clock::threadCpuMs();
     res.stage_cpu_ms.emplace_back(name, now - cpu_mark);
     cpu_mark = now;
   };
   auto finish = [&]() {
     res.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    res.cpu_ms = threadCpuMs() - cpu0;
+    res.cpu_ms = clock::threadCpuMs() - cpu0;
     return res;
   };
   // The budget is the calling thread's CPU time: other processes' load does not eat it.
-  const std::function<bool()> out_of_time = [&] { return threadCpuMs() - cpu0 > params.budget_ms; };
+  const std::function<bool()> out_of_time = [&] { return clock::threadCpuMs() - cpu0 > params.budget_ms; };
   for (const auto& [lms, name] : {std::pair{&a_in, "map A"}, std::pair{&b_in, "map B"}}) {
     res.reason = unusableReason(*lms, std::max<std::size_t>(2, params.min_landmarks), name);
     if (!res.reason.empty()) return finish();
@@ -364,4 +364,4 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
   return finish();
 }
 
-}  // namespace slide
+}  // namespace slide::place

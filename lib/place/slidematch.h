@@ -22,7 +22,7 @@
 // a query out of time still decides on the votes of a sample of the whole map.
 #include "place/verify.h"
 
-namespace slide {
+namespace slide::place {
 
 struct SlideMatchParams {
   double budget_ms = 5000;        // thread CPU time budget of the coarse search
@@ -46,4 +46,4 @@ struct SlideMatchParams {
 
 PlaceResult slideMatch(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideMatchParams& params);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -5,7 +5,7 @@
 
 #include "place/alignment.h"
 
-namespace slide {
+namespace slide::place {
 
 std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const LandmarkIndex& index_a,
                                          const std::vector<Landmark>& b, const Pose& T_a_b,
@@ -147,4 +147,4 @@ bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, Pl
   return false;
 }
 
-}  // namespace slide
+}  // namespace slide::place

@@ -4,7 +4,7 @@
 #include "place/landmark_index.h"
 #include "place/place_result.h"
 
-namespace slide {
+namespace slide::place {
 
 struct VerifyParams {
   // A landmark of A and one of B moved by T match when their horizontal distance is within
@@ -60,4 +60,4 @@ const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResul
 // falls short; true when best stands (or has no rival).
 bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best);
 
-}  // namespace slide
+}  // namespace slide::place

@@ -10,7 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace slide {
+namespace slide::plot {
 
 namespace {
 constexpr int kShift = 4;  // OpenCV fixed-point sub-pixel bits
@@ -264,4 +264,4 @@ void Canvas::write(const std::string& path) const {
   throw std::runtime_error(path + ": output must end in .png or .svg");
 }
 
-}  // namespace slide
+}  // namespace slide::plot

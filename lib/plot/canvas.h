@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace slide {
+namespace slide::plot {
 
 struct Rgb {
   int r = 0, g = 0, b = 0;
@@ -65,4 +65,4 @@ class Canvas {
   std::vector<Item> items_;
 };
 
-}  // namespace slide
+}  // namespace slide::plot

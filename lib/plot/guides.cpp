@@ -5,7 +5,7 @@
 
 #include "plot/palette.h"
 
-namespace slide {
+namespace slide::plot {
 
 namespace {
 const Rgb kInk{40, 40, 40};
@@ -116,4 +116,4 @@ void drawTitle(Canvas& c, const std::string& title, const std::string& subtitle)
   if (!subtitle.empty()) c.text({20, 46}, subtitle, 11, {100, 100, 100});
 }
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -6,7 +6,7 @@
 #include "plot/canvas.h"
 #include "plot/viewport.h"
 
-namespace slide {
+namespace slide::plot {
 
 // Frame around the viewport's area, ticks and labels on the left and bottom, a light grid.
 void drawAxes(Canvas& c, const Viewport& vp, const std::string& x_label, const std::string& y_label);
@@ -30,4 +30,4 @@ void drawColourBar(Canvas& c, double x, double y, double w, double h, double lo,
 
 void drawTitle(Canvas& c, const std::string& title, const std::string& subtitle = "");
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -12,7 +12,7 @@
 #include "plot/palette.h"
 #include "plot/viewport.h"
 
-namespace slide {
+namespace slide::plot {
 
 namespace {
 constexpr double kLegendWidth = 250;
@@ -397,4 +397,4 @@ Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajector
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -11,7 +11,7 @@
 #include "plot/canvas.h"
 #include "plot/view.h"
 
-namespace slide {
+namespace slide::plot {
 
 struct PlotMap {
   std::string name;  // shown in the legend, e.g. "robot0 map"
@@ -53,4 +53,4 @@ struct MapPlotOptions {
 Canvas plotMap(const std::vector<PlotMap>& maps, const std::vector<PlotTrajectory>& trajectories,
                const ClassTable& classes, const MapPlotOptions& opts);
 
-}  // namespace slide
+}  // namespace slide::plot

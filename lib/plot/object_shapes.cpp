@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::plot {
 
 namespace {
 template <class... Fs>
@@ -117,4 +117,4 @@ ObjectFacets objectFacets(const Object& o, const View& view) {
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::plot

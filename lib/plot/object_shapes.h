@@ -6,7 +6,7 @@
 #include "objects/object.h"
 #include "plot/view.h"
 
-namespace slide {
+namespace slide::plot {
 
 struct Facet {
   std::vector<Eigen::Vector2d> uv;  // polygon in picture-plane metres
@@ -24,4 +24,4 @@ ObjectFacets objectFacets(const Object& o, const View& view);
 // Convex hull (counter-clockwise) of 2D points; Andrew's monotone chain.
 std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> pts);
 
-}  // namespace slide
+}  // namespace slide::plot

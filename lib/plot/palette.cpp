@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-namespace slide {
+namespace slide::plot {
 
 Rgb robotColour(int robot) {
   static const std::array<Rgb, 8> kRobots{{{0, 90, 200},
@@ -37,4 +37,4 @@ Rgb rampColour(double t) {
   return {mix(kStops[i].r, kStops[i + 1].r), mix(kStops[i].g, kStops[i + 1].g), mix(kStops[i].b, kStops[i + 1].b)};
 }
 
-}  // namespace slide
+}  // namespace slide::plot

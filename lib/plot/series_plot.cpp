@@ -8,7 +8,7 @@
 #include "plot/guides.h"
 #include "plot/viewport.h"
 
-namespace slide {
+namespace slide::plot {
 
 Canvas plotSeries(const std::vector<Series>& series, const SeriesPlotOptions& opts) {
   Eigen::AlignedBox2d frame;
@@ -61,4 +61,4 @@ Canvas plotSeries(const std::vector<Series>& series, const SeriesPlotOptions& op
   return c;
 }
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -6,7 +6,7 @@
 
 #include "plot/canvas.h"
 
-namespace slide {
+namespace slide::plot {
 
 struct Series {
   std::string name;
@@ -24,4 +24,4 @@ struct SeriesPlotOptions {
 // Throws std::invalid_argument when a series' x and y differ in length.
 Canvas plotSeries(const std::vector<Series>& series, const SeriesPlotOptions& opts);
 
-}  // namespace slide
+}  // namespace slide::plot

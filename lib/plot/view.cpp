@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::plot {
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
@@ -20,4 +20,4 @@ Eigen::Vector2d View::project(const Eigen::Vector3d& p) const {
   return {right.dot(p), up.dot(p)};
 }
 
-}  // namespace slide
+}  // namespace slide::plot

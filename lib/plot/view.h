@@ -3,7 +3,7 @@
 // given by azimuth and elevation. The top view looks straight down (x right, y up).
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::plot {
 
 struct View {
   double azimuth_deg = -90;   // direction of the viewer around z, from +x (top view: -90)
@@ -21,4 +21,4 @@ struct View {
   double depth(const Eigen::Vector3d& p) const { return -towardsViewer().dot(p); }
 };
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-namespace slide {
+namespace slide::plot {
 
 Viewport::Viewport(Eigen::AlignedBox2d world, PixelRect area, bool equal_aspect) : area_(area) {
   if (world.isEmpty()) world = Eigen::AlignedBox2d(Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(0.5, 0.5));
@@ -50,4 +50,4 @@ std::string tickLabel(double v, double step) {
   return s.str();
 }
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-namespace slide {
+namespace slide::plot {
 
 struct PixelRect {
   double x = 0, y = 0, w = 0, h = 0;
@@ -35,4 +35,4 @@ std::vector<double> ticks(double lo, double hi, double step);
 // A tick label without needless digits ("0", "2.5", "-10", "0.05").
 std::string tickLabel(double v, double step);
 
-}  // namespace slide
+}  // namespace slide::plot

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace slide {
+namespace slide::report {
 
 Json parseJson(const std::string& text, const std::string& source) {
   try {
@@ -38,4 +38,4 @@ void writeJsonFile(const std::string& path, const Json& value) {
   if (!out) throw JsonError(path + ": write failed");
 }
 
-}  // namespace slide
+}  // namespace slide::report

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace slide {
+namespace slide::report {
 
 using Json = nlohmann::ordered_json;
 
@@ -29,4 +29,4 @@ Json readJsonFile(const std::string& path);
 // Written with an indent of 2 and a final newline.
 void writeJsonFile(const std::string& path, const Json& value);
 
-}  // namespace slide
+}  // namespace slide::report

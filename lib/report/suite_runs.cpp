@@ -7,7 +7,7 @@
 
 #include "io/io_error.h"
 
-namespace slide {
+namespace slide::report {
 
 const char* statusName(SuiteRun::Status s) {
   switch (s) {
@@ -19,10 +19,10 @@ const char* statusName(SuiteRun::Status s) {
   return "?";
 }
 
-std::vector<BenchResult> parseSuiteResults(const Json& doc, const std::string& source) {
+std::vector<bench::BenchResult> parseSuiteResults(const Json& doc, const std::string& source) {
   const Json* results = member(doc, "results");
   if (!results || !results->is_array()) throw JsonError(source + ": no \"results\" array");
-  std::vector<BenchResult> out;
+  std::vector<bench::BenchResult> out;
   for (std::size_t i = 0; i < results->size(); ++i) {
     const Json& r = (*results)[i];
     const std::string where = source + ": results[" + std::to_string(i) + "]";
@@ -31,7 +31,7 @@ std::vector<BenchResult> parseSuiteResults(const Json& doc, const std::string& s
     if (!name || !name->is_string()) throw JsonError(where + ": \"name\" must be a string");
     if (!value || !(value->is_number() || value->is_null()))
       throw JsonError(where + " (" + name->get<std::string>() + "): \"value\" must be a number or null");
-    BenchResult b;
+    bench::BenchResult b;
     b.name = name->get<std::string>();
     b.value = value->is_null() ? std::nan("") : value->get<double>();
     if (const Json* u = member(r, "unit"); u && u->is_string()) b.unit = u->get<std::string>();
@@ -50,7 +50,7 @@ std::vector<BenchResult> parseSuiteResults(const Json& doc, const std::string& s
 
 std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
   std::ifstream in(manifest_path);
-  if (!in) throw IoError(manifest_path, "cannot open manifest");
+  if (!in) throw io::IoError(manifest_path, "cannot open manifest");
   std::vector<SuiteRun> runs;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -59,7 +59,8 @@ std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
     std::stringstream s(line);
     std::string cell;
     while (std::getline(s, cell, '\t')) f.push_back(cell);
-    if (f.size() < 3) throw IoError(manifest_path, "line " + std::to_string(n) + ": expected suite, exit code, wall ms");
+    if (f.size() < 3)
+      throw io::IoError(manifest_path, "line " + std::to_string(n) + ": expected suite, exit code, wall ms");
     SuiteRun r;
     r.suite = f[0];
     if (f.size() > 3) r.json_path = f[3];
@@ -67,7 +68,7 @@ std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
     try {
       r.wall_s = std::stod(f[2]) / 1000.0;
     } catch (const std::exception&) {
-      throw IoError(manifest_path, "line " + std::to_string(n) + ": wall time '" + f[2] + "' is not a number");
+      throw io::IoError(manifest_path, "line " + std::to_string(n) + ": wall time '" + f[2] + "' is not a number");
     }
     if (f[1] == "missing") {
       r.status = SuiteRun::Status::Missing;
@@ -79,7 +80,7 @@ std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
     try {
       r.exit_code = std::stoi(f[1]);
     } catch (const std::exception&) {
-      throw IoError(manifest_path, "line " + std::to_string(n) + ": exit code '" + f[1] + "' is not a number");
+      throw io::IoError(manifest_path, "line " + std::to_string(n) + ": exit code '" + f[1] + "' is not a number");
     }
     if (r.exit_code != 0) {
       r.status = SuiteRun::Status::Failed;
@@ -105,7 +106,7 @@ std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path) {
 }
 
 namespace {
-Json resultJson(const BenchResult& r) {
+Json resultJson(const bench::BenchResult& r) {
   Json j;
   j["name"] = r.name;
   j["value"] = r.value;
@@ -113,7 +114,7 @@ Json resultJson(const BenchResult& r) {
   if (r.target) j["target"] = *r.target;
   if (r.paper) j["paper"] = *r.paper;
   j["better"] = r.lower_is_better ? "lower" : "higher";
-  if (r.target) j["pass"] = BenchReport::meetsTarget(r);
+  if (r.target) j["pass"] = bench::BenchReport::meetsTarget(r);
   if (!r.note.empty()) j["note"] = r.note;
   return j;
 }
@@ -153,7 +154,7 @@ Totals totals(const std::vector<SuiteRun>& runs) {
     t.figures += r.results.size();
     for (const auto& b : r.results) {
       t.targets += b.target.has_value();
-      t.met += BenchReport::meetsTarget(b);
+      t.met += bench::BenchReport::meetsTarget(b);
     }
   }
   return t;
@@ -210,7 +211,7 @@ std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummary
     std::size_t targets = 0, met = 0;
     for (const auto& b : r.results) {
       targets += b.target.has_value();
-      met += BenchReport::meetsTarget(b);
+      met += bench::BenchReport::meetsTarget(b);
     }
     md << "| " << cell(r.suite) << " | " << statusName(r.status) << " | "
        << (r.status == SuiteRun::Status::Missing ? "-" : std::to_string(r.exit_code)) << " | " << num(r.wall_s) << " | "
@@ -220,7 +221,7 @@ std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummary
   std::ostringstream missed;
   for (const auto& r : runs)
     for (const auto& b : r.results)
-      if (b.target && !BenchReport::meetsTarget(b))
+      if (b.target && !bench::BenchReport::meetsTarget(b))
         missed << "| " << cell(r.suite) << " | " << cell(b.name) << " | " << num(b.value) << " | " << cell(b.unit) << " | "
                << (b.lower_is_better ? "<= " : ">= ") << num(*b.target) << " | " << opt(b.paper) << " |\n";
   if (!missed.str().empty())
@@ -237,7 +238,7 @@ std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummary
     }
     md << "| name | value | unit | target | paper | pass | note |\n|---|---|---|---|---|---|---|\n";
     for (const auto& b : r.results) {
-      const std::string pass = !b.target ? "-" : BenchReport::meetsTarget(b) ? "pass" : "**FAIL**";
+      const std::string pass = !b.target ? "-" : bench::BenchReport::meetsTarget(b) ? "pass" : "**FAIL**";
       md << "| " << cell(b.name) << " | " << num(b.value) << " | " << cell(b.unit) << " | "
          << (b.target ? (b.lower_is_better ? "<= " : ">= ") + num(*b.target) : "-") << " | " << opt(b.paper) << " | "
          << pass << " | " << cell(b.note) << " |\n";
@@ -246,4 +247,4 @@ std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummary
   return md.str();
 }
 
-}  // namespace slide
+}  // namespace slide::report

@@ -10,7 +10,7 @@
 #include "bench/report.h"
 #include "report/json.h"
 
-namespace slide {
+namespace slide::report {
 
 struct SuiteRun {
   enum class Status { Passed, Failed, Missing, NoResults };
@@ -19,7 +19,7 @@ struct SuiteRun {
   int exit_code = 0;
   double wall_s = 0;
   std::string json_path, log_path;
-  std::vector<BenchResult> results;
+  std::vector<bench::BenchResult> results;
   std::string problem;  // why the suite failed or has no results
 };
 
@@ -31,7 +31,7 @@ const char* statusName(SuiteRun::Status s);
 std::vector<SuiteRun> readSuiteRuns(const std::string& manifest_path);
 
 // Parses one suite's JSON; throws JsonError naming the file and the bad field.
-std::vector<BenchResult> parseSuiteResults(const Json& doc, const std::string& source);
+std::vector<bench::BenchResult> parseSuiteResults(const Json& doc, const std::string& source);
 
 struct BenchSummaryInfo {
   double total_wall_s = 0;
@@ -49,4 +49,4 @@ Json combinedJson(const std::vector<SuiteRun>& runs, const BenchSummaryInfo& inf
 // unit, target, paper and pass/fail ("-" without a target).
 std::string markdownReport(const std::vector<SuiteRun>& runs, const BenchSummaryInfo& info);
 
-}  // namespace slide
+}  // namespace slide::report

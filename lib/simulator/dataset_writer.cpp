@@ -18,7 +18,7 @@
 
 namespace fs = std::filesystem;
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 std::string frameName(int i, const char* ext) {
@@ -28,14 +28,14 @@ std::string frameName(int i, const char* ext) {
 }
 
 bool hasMovingObjects(const World& w) {
-  for (const GroundTruthObject& g : w.objects)
+  for (const io::GroundTruthObject& g : w.objects)
     if (g.moving()) return true;
   return false;
 }
 
 void writeRobotYaml(const std::string& path, const Scenario& sc, const RobotRun& r, const SensorOptions& s) {
   std::ofstream out(path);
-  if (!out) throw IoError(path, "cannot write file");
+  if (!out) throw io::IoError(path, "cannot write file");
   const Eigen::Vector4d o = xyzYawOf(r.T_world_odom);
   const std::string& sensor = s.sensorOf(r.id);
   out << "robot: " << r.id << "\nworld: " << sc.world.name << "\nseed: " << sc.spec.seed << "\nsensor: " << sensor
@@ -62,10 +62,10 @@ std::mt19937_64 frameRng(uint64_t seed, int robot, int frame) {
 
 void writeWorldFiles(const Scenario& sc, const std::string& out_dir) {
   fs::create_directories(out_dir);
-  writeGroundTruthObjects((fs::path(out_dir) / "objects.csv").string(), sc.world.objects);
+  io::writeGroundTruthObjects((fs::path(out_dir) / "objects.csv").string(), sc.world.objects);
   const std::string path = (fs::path(out_dir) / "world.yaml").string();
   std::ofstream out(path);
-  if (!out) throw IoError(path, "cannot write file");
+  if (!out) throw io::IoError(path, "cannot write file");
   out << "world: " << sc.world.name << "\nseed: " << sc.spec.seed << "\nrobots: " << sc.robots.size()
       << "\nobjects: " << sc.world.objects.size() << "\noverlap: " << sc.spec.overlap << "\n";
 }
@@ -83,32 +83,32 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
     odom.push_back({gt.times[i], r.odometry[i]});
     truth.push_back({gt.times[i], gt.poses[i]});
   }
-  writeTum((root / "odom.txt").string(), odom);
-  writeTum((root / "groundtruth.txt").string(), truth);
+  io::writeTum((root / "odom.txt").string(), odom);
+  io::writeTum((root / "groundtruth.txt").string(), truth);
   writeRobotYaml((root / "robot.yaml").string(), sc, r, s);
 
   GenerationStats stats;
-  std::vector<TumAssociation> assoc;
+  std::vector<io::TumAssociation> assoc;
   std::vector<std::string> rgb_files, depth_files;
   if (lidar) {
     fs::create_directories(root / "velodyne");
     fs::create_directories(root / "labels");
-    writeKittiPoses((root / "poses.txt").string(), gt.poses);
+    io::writeKittiPoses((root / "poses.txt").string(), gt.poses);
     {
       std::ofstream t(root / "times.txt");
       t.setf(std::ios::fixed);  // microseconds, as odom.txt: frame and odometry times match exactly
       t.precision(6);
       for (double v : gt.times) t << v << '\n';
-      if (!t) throw IoError((root / "times.txt").string(), "write failed");
+      if (!t) throw io::IoError((root / "times.txt").string(), "write failed");
     }
-    writeCalibFile((root / "calib.txt").string(), {{"Tr", poseToCalib(Pose::Identity())}});
+    io::writeCalibFile((root / "calib.txt").string(), {{"Tr", io::poseToCalib(Pose::Identity())}});
   } else {
     for (const char* sub : {"rgb", "depth", "instances"}) fs::create_directories(root / sub);
-    CameraCalib calib;
+    io::CameraCalib calib;
     calib.width = s.camera.width, calib.height = s.camera.height;
     calib.fx = s.camera.fx, calib.fy = s.camera.fy, calib.cx = s.camera.cx, calib.cy = s.camera.cy;
     calib.T_body_camera.linear() = R_body_optical();
-    writeCameraCalib((root / "calib.txt").string(), calib);
+    io::writeCameraCalib((root / "calib.txt").string(), calib);
   }
 
   const bool moving = hasMovingObjects(sc.world);
@@ -119,17 +119,17 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
     if (!caster || moving) caster = std::make_unique<RayCaster>(sc.world, t);
     std::mt19937_64 rng = frameRng(sc.spec.seed, r.id, i);
     if (lidar) {
-      const LabelledScan scan = simulateLidarScan(*caster, gt.poses[i], s.lidar, rng);
-      writeVelodyneBin((root / "velodyne" / frameName(i, ".bin")).string(), scan);
-      writeLabels((root / "labels" / frameName(i, ".label")).string(), scan);
+      const io::LabelledScan scan = simulateLidarScan(*caster, gt.poses[i], s.lidar, rng);
+      io::writeVelodyneBin((root / "velodyne" / frameName(i, ".bin")).string(), scan);
+      io::writeLabels((root / "labels" / frameName(i, ".label")).string(), scan);
       stats.points += scan.size();
     } else {
       const RgbdImage img = renderRgbd(*caster, gt.poses[i], s.camera, rng);
       const std::string rgb = "rgb/" + frameName(i, ".png"), depth = "depth/" + frameName(i, ".png");
-      writePng((root / rgb).string(), img.color);
-      writePng((root / depth).string(), img.depth);
-      writeInstanceMask((root / "instances" / frameName(i, ".png")).string(),
-                        InstanceMask{img.instance, img.instance_class, img.instance_object});
+      io::writePng((root / rgb).string(), img.color);
+      io::writePng((root / depth).string(), img.depth);
+      io::writeInstanceMask((root / "instances" / frameName(i, ".png")).string(),
+                        io::InstanceMask{img.instance, img.instance_class, img.instance_object});
       assoc.push_back({gt.times[i], rgb, gt.times[i], depth});
       rgb_files.push_back(rgb);
       depth_files.push_back(depth);
@@ -139,9 +139,9 @@ GenerationStats writeRobotDataset(const Scenario& sc, const RobotRun& r, const S
     if (progress) progress(r.id, i, n);
   }
   if (!lidar) {
-    writeAssociations((root / "associations.txt").string(), assoc);
-    writeTumImageList((root / "rgb.txt").string(), gt.times, rgb_files);
-    writeTumImageList((root / "depth.txt").string(), gt.times, depth_files);
+    io::writeAssociations((root / "associations.txt").string(), assoc);
+    io::writeTumImageList((root / "rgb.txt").string(), gt.times, rgb_files);
+    io::writeTumImageList((root / "depth.txt").string(), gt.times, depth_files);
   }
   return stats;
 }
@@ -184,4 +184,4 @@ GenerationStats writeScenarioDataset(const Scenario& sc, const SensorOptions& s,
   return total;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

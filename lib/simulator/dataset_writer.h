@@ -18,7 +18,7 @@
 #include "simulator/rgbd_camera.h"
 #include "simulator/scenario.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct SensorOptions {
   std::string sensor = "lidar";  // lidar | rgbd
@@ -51,4 +51,4 @@ GenerationStats writeRobotDataset(const Scenario& scenario, const RobotRun& robo
 GenerationStats writeScenarioDataset(const Scenario& scenario, const SensorOptions& sensor, const std::string& out_dir,
                                      const ProgressFn& progress = {}, unsigned threads = 0);
 
-}  // namespace slide
+}  // namespace slide::simulator

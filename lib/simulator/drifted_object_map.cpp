@@ -6,7 +6,7 @@
 
 #include "place/alignment.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 // Index of the pose of closest approach on the first pass within `range` (-1: never seen).
@@ -73,7 +73,7 @@ std::vector<Pose> driftedOdometry(const std::vector<Pose>& truth, double yaw_rat
   return out;
 }
 
-DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<Eigen::Vector2d>& route,
+DriftedMap mapAlongRoute(const std::vector<place::Landmark>& world, const std::vector<Eigen::Vector2d>& route,
                          const MapErrorParams& p, const ClassConfusions& confusions, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::normal_distribution<double> n(0.0, 1.0);
@@ -88,7 +88,7 @@ DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<E
   for (std::size_t k = 1; k < m.truth.size(); ++k)
     m.s[k] = m.s[k - 1] + (m.truth[k].translation() - m.truth[k - 1].translation()).norm();
   const Eigen::Vector3d sigma3 = Eigen::Vector3d::Constant(p.position_sigma);
-  const auto place = [&](Landmark l, std::size_t k, int true_class) {
+  const auto place = [&](place::Landmark l, std::size_t k, int true_class) {
     // Seen from pose k: body-frame position, placed with the odometry's pose.
     l.p = m.odometry[k] * (m.truth[k].inverse() * l.p) + sigma3.cwiseProduct(Eigen::Vector3d(n(rng), n(rng), n(rng)));
     l.size = noisySize(l.size, p.size_sigma, n, rng);
@@ -102,7 +102,7 @@ DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<E
   for (std::size_t i = 0; i < world.size(); ++i) {
     const long k = firstPassClosest(world[i].p.head<2>(), m.truth, p.range);
     if (k < 0 || u(rng) < p.missed) continue;
-    Landmark l = world[i];
+    place::Landmark l = world[i];
     l.index = i;
     place(l, static_cast<std::size_t>(k), world[i].class_id);
   }
@@ -116,7 +116,7 @@ DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<E
     const std::size_t k = pick_pose(rng);
     const std::size_t t = pick_template(rng);
     const double r = p.range * std::sqrt(u(rng)), phi = 2 * M_PI * u(rng);
-    Landmark l;
+    place::Landmark l;
     l.class_id = m.true_class[t];
     l.size = m.lms[t].size.isZero() ? m.lms[t].size : (m.lms[t].size * (1.0 + 0.15 * n(rng))).cwiseMax(0.05);
     const Eigen::Vector3d template_body = m.truth[k].inverse() * world[m.lms[t].index].p;
@@ -127,20 +127,20 @@ DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<E
   return m;
 }
 
-std::vector<Landmark> mapUpTo(const DriftedMap& m, double s_max) {
-  std::vector<Landmark> out;
+std::vector<place::Landmark> mapUpTo(const DriftedMap& m, double s_max) {
+  std::vector<place::Landmark> out;
   for (std::size_t i = 0; i < m.lms.size(); ++i)
     if (m.seen_at[i] <= s_max) out.push_back(m.lms[i]);
   return out;
 }
 
-SharedTruth sharedObjectTruth(const std::vector<Landmark>& a, const std::vector<Landmark>& b) {
+SharedTruth sharedObjectTruth(const std::vector<place::Landmark>& a, const std::vector<place::Landmark>& b) {
   std::unordered_map<std::size_t, std::size_t> in_a;
   for (std::size_t i = 0; i < a.size(); ++i)
     if (a[i].index != kSpuriousObject) in_a.emplace(a[i].index, i);
   std::vector<Eigen::Vector3d> pa, pb;
   std::unordered_map<std::size_t, bool> used;
-  for (const Landmark& l : b) {
+  for (const place::Landmark& l : b) {
     const auto it = in_a.find(l.index);
     if (l.index == kSpuriousObject || it == in_a.end() || !used.emplace(l.index, true).second) continue;
     pa.push_back(a[it->second].p);
@@ -149,7 +149,7 @@ SharedTruth sharedObjectTruth(const std::vector<Landmark>& a, const std::vector<
   SharedTruth t;
   t.shared = pa.size();
   if (pa.size() < 3) return t;
-  const Alignment al = alignXyzYaw(pa, pb);
+  const place::Alignment al = place::alignXyzYaw(pa, pb);
   t.ok = al.ok;
   t.T_a_b = al.T_a_b;
   t.rms = al.rms;
@@ -157,4 +157,4 @@ SharedTruth sharedObjectTruth(const std::vector<Landmark>& a, const std::vector<
   return t;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

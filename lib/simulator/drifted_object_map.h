@@ -12,7 +12,7 @@
 
 #include "place/landmark.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct MapErrorParams {
   double yaw_drift_deg_per_100m = 1.5;   // odometry yaw bias; its sign is drawn per map
@@ -34,7 +34,7 @@ using ClassConfusions = std::map<int, std::vector<int>>;
 inline constexpr std::size_t kSpuriousObject = static_cast<std::size_t>(-1);
 
 struct DriftedMap {
-  std::vector<Landmark> lms;      // in the odometry frame
+  std::vector<place::Landmark> lms;      // in the odometry frame
   std::vector<int> true_class;    // per landmark: the world object's class (false ones: the class given)
   std::vector<double> seen_at;    // per landmark: metres along the route when it was placed
   Pose T_w_r = Pose::Identity();  // world pose of the odometry frame (the route's first pose)
@@ -54,11 +54,11 @@ std::vector<Pose> posesAlong(const std::vector<Eigen::Vector2d>& route, double s
 std::vector<Pose> driftedOdometry(const std::vector<Pose>& truth, double yaw_rate, double scale_error, double dz_per_m);
 
 // The map of `world` (landmarks with world indices) made by a robot driving `route`.
-DriftedMap mapAlongRoute(const std::vector<Landmark>& world, const std::vector<Eigen::Vector2d>& route,
+DriftedMap mapAlongRoute(const std::vector<place::Landmark>& world, const std::vector<Eigen::Vector2d>& route,
                          const MapErrorParams& params, const ClassConfusions& confusions, std::mt19937& rng);
 
 // The landmarks of `m` placed within the first `s_max` metres of its route (the map then).
-std::vector<Landmark> mapUpTo(const DriftedMap& m, double s_max);
+std::vector<place::Landmark> mapUpTo(const DriftedMap& m, double s_max);
 
 // Truth between two maps of one world: the least-squares 4-DoF (x, y, z, yaw) transform T_a_b over
 // the world objects both hold, at the positions the maps give them (spurious objects excluded;
@@ -70,6 +70,6 @@ struct SharedTruth {
   Eigen::Vector3d centroid_b = Eigen::Vector3d::Zero();  // of the shared objects, in B's frame
   double rms = 0;                                        // residual of the fit, metres
 };
-SharedTruth sharedObjectTruth(const std::vector<Landmark>& a, const std::vector<Landmark>& b);
+SharedTruth sharedObjectTruth(const std::vector<place::Landmark>& a, const std::vector<place::Landmark>& b);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -10,7 +10,7 @@
 #include "io/io_error.h"
 #include "simulator/route_lattice.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 struct Stem {
@@ -23,7 +23,7 @@ struct Stem {
 // for longleaf/finpines and in m for spruces.
 std::vector<Stem> readInventory(const std::string& path, double diameter_scale) {
   std::ifstream in(path);
-  if (!in) throw IoError(path, "cannot open file");
+  if (!in) throw io::IoError(path, "cannot open file");
   std::string line;
   std::getline(in, line);
   std::vector<Stem> stems;
@@ -32,12 +32,13 @@ std::vector<Stem> readInventory(const std::string& path, double diameter_scale) 
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream s(line);
     Stem st{};
-    if (!(s >> st.xy.x() >> st.xy.y() >> st.dbh)) throw IoError(path, "line " + std::to_string(n) + ": expected x,y,diameter");
+    if (!(s >> st.xy.x() >> st.xy.y() >> st.dbh))
+      throw io::IoError(path, "line " + std::to_string(n) + ": expected x,y,diameter");
     if (!(s >> st.height)) st.height = 0;
     st.dbh *= diameter_scale;
     stems.push_back(st);
   }
-  if (stems.empty()) throw IoError(path, "no trees");
+  if (stems.empty()) throw io::IoError(path, "no trees");
   return stems;
 }
 
@@ -115,7 +116,7 @@ World makeForestWorld(const ForestParams& p, uint64_t seed) {
     const Eigen::Vector3d axis(std::sin(lean) * std::cos(lean_dir), std::sin(lean) * std::sin(lean_dir), std::cos(lean));
     const Eigen::Vector3d root(s.xy.x(), s.xy.y(), w.terrain.height(s.xy.x(), s.xy.y()) - 0.3);
     const double crown_base = height * (0.45 + 0.2 * u(rng));
-    GroundTruthObject g;
+    io::GroundTruthObject g;
     g.object.class_id = 71;
     g.semantic = label::kTrunk;
     g.object.model = Cylinder{root, axis, radius, p.crowns ? crown_base + 1.0 : height};
@@ -139,4 +140,4 @@ World makeForestWorld(const ForestParams& p, uint64_t seed) {
   return w;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -6,7 +6,7 @@
 
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct ForestParams {
   // "procedural", or a plot of forest_inventory: "longleaf", "finpines", "spruces".
@@ -26,4 +26,4 @@ struct ForestParams {
 
 World makeForestWorld(const ForestParams& params, uint64_t seed);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -6,11 +6,11 @@
 
 #include "simulator/semantic_labels.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
-GroundTruthObject item(int class_id, const Eigen::Vector3d& centroid, double radius, double height) {
-  GroundTruthObject g;
+io::GroundTruthObject item(int class_id, const Eigen::Vector3d& centroid, double radius, double height) {
+  io::GroundTruthObject g;
   g.object.class_id = class_id;
   g.semantic = label::labelOfClassId(class_id);
   g.object.model = Ellipsoid{centroid, radius, height};
@@ -119,4 +119,4 @@ World makeIndoorWorld(const IndoorParams& p, uint64_t seed) {
   return w;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

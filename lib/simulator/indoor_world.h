@@ -5,7 +5,7 @@
 // through the doors and along the corridor.
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct IndoorParams {
   int rooms_per_row = 6;
@@ -15,4 +15,4 @@ struct IndoorParams {
 
 World makeIndoorWorld(const IndoorParams& params, uint64_t seed);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -10,7 +10,7 @@
 #include "io/io_error.h"
 #include "simulator/semantic_labels.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 constexpr double kSensorHeight = 1.73;
@@ -70,7 +70,7 @@ double distanceToPath(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2
 
 std::vector<Eigen::Vector2d> readPoleMap(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw IoError(path, "cannot open file");
+  if (!in) throw io::IoError(path, "cannot open file");
   std::string line;
   std::getline(in, line);
   std::vector<Eigen::Vector2d> poles;
@@ -79,7 +79,7 @@ std::vector<Eigen::Vector2d> readPoleMap(const std::string& path) {
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream s(line);
     double x, y;
-    if (!(s >> x >> y)) throw IoError(path, "line " + std::to_string(n) + ": expected x,y");
+    if (!(s >> x >> y)) throw io::IoError(path, "line " + std::to_string(n) + ": expected x,y");
     poles.emplace_back(x, y);
   }
   return poles;
@@ -105,7 +105,7 @@ World makeKittiWorld(const std::vector<Pose>& lidar_poses, const std::string& po
 
   for (const auto& p : poles) {
     const double zg = w.terrain.height(p.x(), p.y());
-    GroundTruthObject g;
+    io::GroundTruthObject g;
     if (u(rng) < 0.55) {
       g.object.class_id = 80;
       g.semantic = label::kPole;
@@ -137,7 +137,7 @@ World makeKittiWorld(const std::vector<Pose>& lidar_poses, const std::string& po
       for (const auto& q : poles) ok = ok && (q - c).norm() > 3.0;
       if (ok) {
         const double L = 3.9 + 1.0 * u(rng), W = 1.7 + 0.25 * u(rng), H = 1.4 + 0.3 * u(rng);
-        GroundTruthObject g;
+        io::GroundTruthObject g;
         g.object.class_id = 10;
         g.semantic = label::kCar;
         g.object.model = Cuboid{poseFromXyzYaw(c.x(), c.y(), w.terrain.height(c.x(), c.y()) + 0.5 * H,
@@ -166,4 +166,4 @@ World makeKittiWorld(const std::vector<Pose>& lidar_poses, const std::string& po
   return w;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

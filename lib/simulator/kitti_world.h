@@ -7,7 +7,7 @@
 
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 // Reads a pole map CSV (header "x,y", then one pole per line); throws IoError naming the file.
 std::vector<Eigen::Vector2d> readPoleMap(const std::string& path);
@@ -15,4 +15,4 @@ std::vector<Eigen::Vector2d> readPoleMap(const std::string& path);
 // lidar_poses: LiDAR poses in the first scan's frame (kittiLidarPoses()).
 World makeKittiWorld(const std::vector<Pose>& lidar_poses, const std::string& pole_csv, uint64_t seed);
 
-}  // namespace slide
+}  // namespace slide::simulator

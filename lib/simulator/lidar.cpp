@@ -6,7 +6,7 @@
 
 #include "emulator/fast_rng.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 std::vector<double> uniformBeams(int n, double top, double bottom) {
@@ -58,11 +58,11 @@ LidarModel lidarModel(const std::string& name) {
   return m;
 }
 
-LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sensor, const LidarModel& model,
+io::LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sensor, const LidarModel& model,
                                std::mt19937_64& rng) {
-  FastRng fast(rng());  // per-point noise: a cheap generator seeded from the frame's
-  auto u = [&](FastRng& f) { return f.uniform(); };
-  auto noise = [&](FastRng& f) { return model.range_noise * f.normal(); };
+  emulator::FastRng fast(rng());  // per-point noise: a cheap generator seeded from the frame's
+  auto u = [&](emulator::FastRng& f) { return f.uniform(); };
+  auto noise = [&](emulator::FastRng& f) { return model.range_noise * f.normal(); };
   const Eigen::Matrix3d R = T_world_sensor.linear();
   const Eigen::Vector3d o = T_world_sensor.translation();
   std::vector<double> ce(model.beams()), se(model.beams());
@@ -71,7 +71,7 @@ LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sens
     ce[b] = std::cos(e);
     se[b] = std::sin(e);
   }
-  LabelledScan scan;
+  io::LabelledScan scan;
   const std::size_t capacity = static_cast<std::size_t>(model.beams()) * model.columns;
   scan.xyz.reserve(capacity);
   scan.intensity.reserve(capacity);
@@ -101,4 +101,4 @@ LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sens
   return scan;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

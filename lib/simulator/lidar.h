@@ -8,7 +8,7 @@
 #include "io/kitti_scan.h"
 #include "simulator/ray_caster.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct LidarModel {
   std::string name;
@@ -38,7 +38,7 @@ std::vector<std::string> lidarModelNames();
 // One sweep from sensor pose T_world_sensor (x forward, y left, z up): points in the sensor
 // frame with range noise and dropouts, each labelled with semantic class and instance id.
 // Intensity in [0, 1] depends on the surface class and range.
-LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sensor, const LidarModel& model,
+io::LabelledScan simulateLidarScan(const RayCaster& caster, const Pose& T_world_sensor, const LidarModel& model,
                                std::mt19937_64& rng);
 
-}  // namespace slide
+}  // namespace slide::simulator

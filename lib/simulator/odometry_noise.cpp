@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::simulator {
 
 Pose odometryOrigin(const Pose& T0) {
   const Eigen::Vector3d t = T0.translation();
@@ -52,4 +52,4 @@ std::vector<Pose> simulateOdometry(const std::vector<Pose>& gt, const OdometryNo
   return out;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -8,7 +8,7 @@
 
 #include "geometry/pose.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct OdometryNoise {
   double translation_drift = 0.01;    // position error std as a fraction of distance (1 %)
@@ -27,4 +27,4 @@ std::vector<Pose> simulateOdometry(const std::vector<Pose>& ground_truth, const 
 // its position and yaw).
 Pose odometryOrigin(const Pose& T0);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -6,14 +6,14 @@
 
 #include "simulator/ray_shapes.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
 RayCaster::RayCaster(const World& world, double t, double cell_size) : terrain_(world.terrain), cell_(cell_size) {
-  for (const GroundTruthObject& g : world.objects)
+  for (const io::GroundTruthObject& g : world.objects)
     add(g.at(t).model, g.semantic, static_cast<uint16_t>(g.object.id));
   for (const Structure& s : world.structures) add(s.model, s.semantic, 0);
 
@@ -398,4 +398,4 @@ bool OriginView::cast(const Eigen::Vector3d& d, double max_range, RayHit* hit) c
   return true;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

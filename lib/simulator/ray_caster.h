@@ -7,7 +7,7 @@
 
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct RayHit {
   double range = 0;       // metres along the ray
@@ -84,4 +84,4 @@ class OriginView {
   std::vector<float> ground_slope_max_;  // ground_bins_ x radii_.size()
 };
 
-}  // namespace slide
+}  // namespace slide::simulator

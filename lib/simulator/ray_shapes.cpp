@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -63,4 +63,4 @@ double intersectRayEllipsoid(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
   return t > t_min ? t : kInf;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -3,7 +3,7 @@
 // unit vector; each returns the smallest t > t_min where the ray enters the shape, or +inf.
 #include <Eigen/Core>
 
-namespace slide {
+namespace slide::simulator {
 
 // Finite cylinder with end caps: bottom centre `root`, unit `axis`, `radius`, `length`.
 double intersectRayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& root,
@@ -16,4 +16,4 @@ double intersectRayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const
 double intersectRayEllipsoid(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& centre,
                              const Eigen::Vector3d& semi, double t_min = 0);
 
-}  // namespace slide
+}  // namespace slide::simulator

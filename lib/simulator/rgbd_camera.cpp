@@ -7,7 +7,7 @@
 
 #include "simulator/semantic_labels.h"
 
-namespace slide {
+namespace slide::simulator {
 
 std::vector<std::string> cameraModelNames() { return {"d435", "d455"}; }
 
@@ -101,4 +101,4 @@ RgbdImage renderRgbd(const RayCaster& caster, const Pose& T_world_body, const Ca
   return img;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -11,7 +11,7 @@
 #include "geometry/pose.h"
 #include "simulator/ray_caster.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct CameraModel {
   std::string name;
@@ -43,4 +43,4 @@ struct RgbdImage {
 RgbdImage renderRgbd(const RayCaster& caster, const Pose& T_world_body, const CameraModel& camera,
                      std::mt19937_64& rng);
 
-}  // namespace slide
+}  // namespace slide::simulator

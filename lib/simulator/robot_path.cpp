@@ -6,7 +6,7 @@
 #include <map>
 #include <queue>
 
-namespace slide {
+namespace slide::simulator {
 
 double Trajectory::length() const {
   double s = 0;
@@ -203,4 +203,4 @@ Trajectory followRoute(const std::vector<Eigen::Vector2d>& polyline, const Terra
   return traj;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -6,7 +6,7 @@
 #include "geometry/pose.h"
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct MotionParams {
   bool aerial = false;
@@ -41,4 +41,4 @@ std::vector<std::vector<Eigen::Vector2d>> planRoutes(const RouteGraph& graph, in
 Trajectory followRoute(const std::vector<Eigen::Vector2d>& polyline, const Terrain& terrain, const MotionParams& motion,
                        double max_length, int max_frames = 0, double t0 = 0);
 
-}  // namespace slide
+}  // namespace slide::simulator

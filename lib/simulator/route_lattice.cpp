@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace slide {
+namespace slide::simulator {
 
 RouteGraph routeLattice(const Eigen::AlignedBox2d& bounds, double spacing, double jitter, std::mt19937_64& rng) {
   RouteGraph g;
@@ -22,4 +22,4 @@ RouteGraph routeLattice(const Eigen::AlignedBox2d& bounds, double spacing, doubl
   return g;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

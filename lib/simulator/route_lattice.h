@@ -4,8 +4,8 @@
 
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 RouteGraph routeLattice(const Eigen::AlignedBox2d& bounds, double spacing, double jitter, std::mt19937_64& rng);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -8,7 +8,7 @@
 #include "simulator/kitti_world.h"
 #include "simulator/urban_world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 std::vector<std::string> worldNames() { return {"forest", "urban", "indoor", "kitti05", "kitti07"}; }
 
@@ -33,8 +33,8 @@ Scenario buildKitti(const ScenarioSpec& spec) {
   const std::string seq = spec.world.substr(5);
   const std::string dir = dataDir(spec) + "/kitti";
   const std::vector<Pose> lidar =
-      kittiLidarPoses(readKittiPoses(dir + "/poses/" + seq + ".txt"), kittiVeloToCamTr0410());
-  const std::vector<double> times = readKittiTimes(dir + "/poses/times_" + seq + ".txt");
+      io::kittiLidarPoses(io::readKittiPoses(dir + "/poses/" + seq + ".txt"), io::kittiVeloToCamTr0410());
+  const std::vector<double> times = io::readKittiTimes(dir + "/poses/times_" + seq + ".txt");
   if (times.size() != lidar.size()) throw std::invalid_argument("KITTI " + seq + ": times and poses differ in length");
   Scenario sc;
   sc.spec = spec;
@@ -119,4 +119,4 @@ Scenario buildScenario(const ScenarioSpec& spec) {
   return sc;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

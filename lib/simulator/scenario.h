@@ -8,7 +8,7 @@
 #include "simulator/odometry_noise.h"
 #include "simulator/robot_path.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct ScenarioSpec {
   std::string world = "forest";  // forest | urban | indoor | kitti05 | kitti07
@@ -55,4 +55,4 @@ std::vector<std::pair<int, int>> kittiSplits(const std::string& world);
 // odometry. Throws std::invalid_argument for a bad spec, IoError for missing real data.
 Scenario buildScenario(const ScenarioSpec& spec);
 
-}  // namespace slide
+}  // namespace slide::simulator

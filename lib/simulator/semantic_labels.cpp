@@ -1,6 +1,6 @@
 #include "simulator/semantic_labels.h"
 
-namespace slide::label {
+namespace slide::simulator::label {
 
 int classIdOfLabel(uint16_t semantic) {
   switch (semantic) {
@@ -27,4 +27,4 @@ uint16_t labelOfClassId(int class_id) {
   }
 }
 
-}  // namespace slide::label
+}  // namespace slide::simulator::label

@@ -6,7 +6,7 @@
 // 100-102 for them (chair, table, monitor) so a segmenter can still tell them apart.
 #include <cstdint>
 
-namespace slide::label {
+namespace slide::simulator::label {
 
 constexpr uint16_t kUnlabeled = 0;
 constexpr uint16_t kCar = 10;
@@ -33,4 +33,4 @@ int classIdOfLabel(uint16_t semantic);
 // SemanticKITTI-style label the simulator writes for points of an object of class `class_id`.
 uint16_t labelOfClassId(int class_id);
 
-}  // namespace slide::label
+}  // namespace slide::simulator::label

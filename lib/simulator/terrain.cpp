@@ -5,7 +5,7 @@
 #include <limits>
 #include <random>
 
-namespace slide {
+namespace slide::simulator {
 
 Eigen::Vector2d HeightGrid::gradient(double x, double y) const {
   const double h = 0.25 * cell;
@@ -148,4 +148,4 @@ Terrain unevenTerrain(double amplitude, uint64_t seed, uint16_t semantic) {
   return t;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -10,7 +10,7 @@
 
 #include "simulator/semantic_labels.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct TerrainWave {
   double amplitude = 0;  // metres
@@ -72,4 +72,4 @@ struct Terrain {
 // Gentle random hills: `amplitude` metres peak, wavelengths between 30 and 80 m.
 Terrain unevenTerrain(double amplitude, uint64_t seed, uint16_t semantic = label::kTerrain);
 
-}  // namespace slide
+}  // namespace slide::simulator

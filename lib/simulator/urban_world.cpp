@@ -5,16 +5,16 @@
 
 #include "simulator/semantic_labels.h"
 
-namespace slide {
+namespace slide::simulator {
 
 namespace {
-GroundTruthObject car(double x, double y, double yaw, std::mt19937_64& rng) {
+io::GroundTruthObject car(double x, double y, double yaw, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const bool van = u(rng) < 0.15;
   const double L = van ? 5.0 + 0.4 * u(rng) : 3.9 + 1.0 * u(rng);
   const double W = van ? 1.9 + 0.1 * u(rng) : 1.7 + 0.25 * u(rng);
   const double H = van ? 1.9 + 0.3 * u(rng) : 1.4 + 0.25 * u(rng);
-  GroundTruthObject g;
+  io::GroundTruthObject g;
   g.object.class_id = 10;
   g.semantic = label::kCar;
   g.object.model = Cuboid{poseFromXyzYaw(x, y, 0.5 * H, yaw), {L, W, H}};
@@ -24,7 +24,7 @@ GroundTruthObject car(double x, double y, double yaw, std::mt19937_64& rng) {
 void tree(World& w, double x, double y, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const double r = 0.12 + 0.15 * u(rng), h = 6 + 4 * u(rng);
-  GroundTruthObject g;
+  io::GroundTruthObject g;
   g.object.class_id = 71;
   g.semantic = label::kTrunk;
   g.object.model = Cylinder{{x, y, -0.1}, Eigen::Vector3d::UnitZ(), r, 0.6 * h + 0.5};
@@ -34,7 +34,7 @@ void tree(World& w, double x, double y, std::mt19937_64& rng) {
 
 void pole(World& w, double x, double y, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
-  GroundTruthObject g;
+  io::GroundTruthObject g;
   g.object.class_id = 80;
   g.semantic = label::kPole;
   g.object.model = Cylinder{{x, y, -0.1}, Eigen::Vector3d::UnitZ(), 0.09 + 0.05 * u(rng), 7 + 2 * u(rng)};
@@ -75,7 +75,7 @@ World makeUrbanWorld(const UrbanParams& p, uint64_t seed) {
         if (u(rng) < 0.5) tree(w, xe, yc, rng);
         else pole(w, xe, yc, rng);
         if (u(rng) < 0.4) {
-          GroundTruthObject bin;
+          io::GroundTruthObject bin;
           bin.object.class_id = 0;
           bin.semantic = label::kOtherObject;
           bin.object.model = Ellipsoid{{xe, yc + 1.2, 0.5}, 0.35, 1.0};
@@ -104,7 +104,7 @@ World makeUrbanWorld(const UrbanParams& p, uint64_t seed) {
     const int dir = i % 2 ? -1 : 1;
     const double speed = 3 + 5 * u(rng);
     const double x0 = (dir > 0 ? xl : xr) - dir * 60 * u(rng);
-    GroundTruthObject c = car(x0, road_y - dir * 1.8, dir > 0 ? 0 : M_PI, rng);
+    io::GroundTruthObject c = car(x0, road_y - dir * 1.8, dir > 0 ? 0 : M_PI, rng);
     c.velocity = {dir * speed, 0};
     w.objects.push_back(c);
   }
@@ -126,4 +126,4 @@ World makeUrbanWorld(const UrbanParams& p, uint64_t seed) {
   return w;
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -5,7 +5,7 @@
 // outside it. Robots drive the aisles (route graph: aisles x three cross lanes).
 #include "simulator/world.h"
 
-namespace slide {
+namespace slide::simulator {
 
 struct UrbanParams {
   int double_rows = 4;        // back-to-back parking rows
@@ -17,4 +17,4 @@ struct UrbanParams {
 
 World makeUrbanWorld(const UrbanParams& params, uint64_t seed);
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace slide {
+namespace slide::simulator {
 
 std::vector<std::vector<int>> RouteGraph::neighbours() const {
   std::vector<std::vector<int>> n(nodes.size());
@@ -49,9 +49,10 @@ bool nearPolyline(const ObjectModel& m, const std::vector<Eigen::Vector2d>& line
 
 void World::clearAlong(const std::vector<Eigen::Vector2d>& polyline, double clearance,
                        const std::vector<uint16_t>& keep_semantic) {
-  objects.erase(std::remove_if(objects.begin(), objects.end(),
-                               [&](const GroundTruthObject& g) { return nearPolyline(g.object.model, polyline, clearance); }),
-                objects.end());
+  objects.erase(
+      std::remove_if(objects.begin(), objects.end(),
+                     [&](const io::GroundTruthObject& g) { return nearPolyline(g.object.model, polyline, clearance); }),
+      objects.end());
   structures.erase(std::remove_if(structures.begin(), structures.end(),
                                   [&](const Structure& s) {
                                     if (std::find(keep_semantic.begin(), keep_semantic.end(), s.semantic) !=
@@ -63,4 +64,4 @@ void World::clearAlong(const std::vector<Eigen::Vector2d>& polyline, double clea
   renumber();
 }
 
-}  // namespace slide
+}  // namespace slide::simulator

@@ -11,7 +11,7 @@
 #include "io/ground_truth_objects.h"
 #include "simulator/terrain.h"
 
-namespace slide {
+namespace slide::simulator {
 
 // Scenery: a shape with a per-point label and no instance (instance id 0).
 struct Structure {
@@ -28,7 +28,7 @@ struct RouteGraph {
 
 struct World {
   std::string name;
-  std::vector<GroundTruthObject> objects;  // objects[i].object.id == i + 1 == instance id
+  std::vector<io::GroundTruthObject> objects;  // objects[i].object.id == i + 1 == instance id
   std::vector<Structure> structures;
   Terrain terrain;
   RouteGraph routes;
@@ -49,4 +49,4 @@ double footprintRadius(const ObjectModel& m);
 // Horizontal centre of a model's footprint.
 Eigen::Vector2d footprintCentre(const ObjectModel& m);
 
-}  // namespace slide
+}  // namespace slide::simulator

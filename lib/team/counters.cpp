@@ -11,7 +11,7 @@
 
 namespace slide::team {
 
-WallClock systemWallClock() { return wallMicros; }
+WallClock systemWallClock() { return app::wallMicros; }
 
 CounterStore::CounterStore(std::string path, WallClock clock, std::int64_t max_ahead)
     : path_(std::move(path)), clock_(std::move(clock)), max_ahead_(max_ahead) {

@@ -29,9 +29,9 @@
 namespace slide::team {
 
 struct TeamChannels {
-  std::string heartbeat = channels::kTeamHeartbeat;
-  std::string chunk = channels::kTeamChunk;
-  std::string ack = channels::kTeamAck;
+  std::string heartbeat = app::channels::kTeamHeartbeat;
+  std::string chunk = app::channels::kTeamChunk;
+  std::string ack = app::channels::kTeamAck;
 };
 
 struct TickOutput {

@@ -50,7 +50,7 @@ TEST(Hungarian, MatchesBruteForceOnRandomSquareAndRectangular) {
     const int rows = 1 + trial % 6, cols = 1 + (trial / 6) % 6;
     Eigen::MatrixXd c(rows, cols);
     for (int i = 0; i < c.size(); ++i) c.data()[i] = std::round(u(rng) * 4) / 4;  // ties happen
-    const auto a = solveAssignment(c);
+    const auto a = assignment::solveAssignment(c);
     ASSERT_EQ(static_cast<int>(a.size()), rows);
     const auto s = score(c, a, 1e9);
     const auto b = bruteForce(c, 1e9);
@@ -67,7 +67,7 @@ TEST(Hungarian, GatedMatchesBruteForce) {
     Eigen::MatrixXd c(rows, cols);
     for (int i = 0; i < c.size(); ++i) c.data()[i] = u(rng);
     const double gate = 4.0;
-    const auto s = score(c, solveGatedAssignment(c, gate), gate);
+    const auto s = score(c, assignment::solveGatedAssignment(c, gate), gate);
     const auto b = bruteForce(c, gate);
     EXPECT_EQ(s.first, b.first) << "trial " << trial;
     EXPECT_NEAR(s.second, b.second, 1e-9) << "trial " << trial;
@@ -77,14 +77,14 @@ TEST(Hungarian, GatedMatchesBruteForce) {
 TEST(Hungarian, KnownCaseAndEdgeCases) {
   Eigen::MatrixXd c(3, 3);
   c << 4, 1, 3, 2, 0, 5, 3, 2, 2;
-  EXPECT_EQ(solveAssignment(c), (std::vector<int>{1, 0, 2}));  // 1 + 2 + 2 = 5
-  EXPECT_TRUE(solveAssignment(Eigen::MatrixXd(0, 3)).empty());
-  EXPECT_EQ(solveAssignment(Eigen::MatrixXd(2, 0)), (std::vector<int>{-1, -1}));
+  EXPECT_EQ(assignment::solveAssignment(c), (std::vector<int>{1, 0, 2}));  // 1 + 2 + 2 = 5
+  EXPECT_TRUE(assignment::solveAssignment(Eigen::MatrixXd(0, 3)).empty());
+  EXPECT_EQ(assignment::solveAssignment(Eigen::MatrixXd(2, 0)), (std::vector<int>{-1, -1}));
   Eigen::MatrixXd bad(1, 1);
   bad << std::nan("");
-  EXPECT_THROW(solveAssignment(bad), std::invalid_argument);
+  EXPECT_THROW(assignment::solveAssignment(bad), std::invalid_argument);
   // Gated: everything forbidden gives no pairs; infinities count as forbidden.
   Eigen::MatrixXd far(2, 2);
   far << 9, std::numeric_limits<double>::infinity(), 9, 9;
-  EXPECT_EQ(solveGatedAssignment(far, 1.0), (std::vector<int>{-1, -1}));
+  EXPECT_EQ(assignment::solveGatedAssignment(far, 1.0), (std::vector<int>{-1, -1}));
 }

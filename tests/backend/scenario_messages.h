@@ -26,16 +26,17 @@ std::vector<uint8_t> encodeMsg(const M& m) {
 
 // Robot 0 drives the indoor scenario's poses [0, a_end), robot 1 [b_begin, b_end).
 inline std::vector<RawMessage> twoRobotMessages(int a_end = 80, int b_begin = 50, int b_end = 130) {
-  GraphScenario s = makeIndoorScenario(6);
+  graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(6);
   const std::vector<Pose> path = s.robots[0].truth;
   std::mt19937 rng(3);
-  const ScenarioRobot a = simulateRobot(0, {path.begin(), path.begin() + a_end}, s.landmarks, s.noise, rng);
-  const ScenarioRobot b =
-      simulateRobot(1, {path.begin() + b_begin, path.begin() + b_end}, s.landmarks, s.noise, rng, 7000000);
+  const graph_scenario::ScenarioRobot a =
+      graph_scenario::simulateRobot(0, {path.begin(), path.begin() + a_end}, s.landmarks, s.noise, rng);
+  const graph_scenario::ScenarioRobot b = graph_scenario::simulateRobot(
+      1, {path.begin() + b_begin, path.begin() + b_end}, s.landmarks, s.noise, rng, 7000000);
   std::vector<RawMessage> out;
   for (std::size_t k = 0; k < std::max(a.bundles.size(), b.bundles.size()); ++k) {
-    if (k < a.bundles.size()) out.push_back({"KEYPOSE_BUNDLE", encodeMsg(toLcm(a.bundles[k]))});
-    if (k < b.bundles.size()) out.push_back({"PEER_BUNDLE", encodeMsg(toLcm(b.bundles[k]))});
+    if (k < a.bundles.size()) out.push_back({"KEYPOSE_BUNDLE", encodeMsg(msg::toLcm(a.bundles[k]))});
+    if (k < b.bundles.size()) out.push_back({"PEER_BUNDLE", encodeMsg(msg::toLcm(b.bundles[k]))});
     if (k == 40) {
       const Pose T = a.truth[0].inverse() * b.truth[0];
       loop_closure_t lc{};

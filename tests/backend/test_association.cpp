@@ -23,26 +23,26 @@ Object table(double x, double y) {
 
 TEST(BackendAssociation, GatesOnClassDistanceAndModel) {
   const ClassTable classes = ClassTable::loadDefault();
-  EXPECT_GE(associationCost(chair(0, 0), chair(0.3, 0), classes), 0.0);
-  EXPECT_LT(associationCost(chair(0, 0), chair(0.9, 0), classes), 0.0);        // chair threshold 0.6 m
-  EXPECT_GE(associationCost(chair(0, 0), chair(0.9, 0), classes, 0.5), 0.0);   // widened by slack
-  EXPECT_LT(associationCost(chair(0, 0), table(0.1, 0), classes), 0.0);        // other class
-  EXPECT_LT(associationCost(chair(0, 0, 0.3), chair(0, 0, 1.0), classes), 0.0);  // model differs by 0.7 > 0.5
+  EXPECT_GE(backend::associationCost(chair(0, 0), chair(0.3, 0), classes), 0.0);
+  EXPECT_LT(backend::associationCost(chair(0, 0), chair(0.9, 0), classes), 0.0);        // chair threshold 0.6 m
+  EXPECT_GE(backend::associationCost(chair(0, 0), chair(0.9, 0), classes, 0.5), 0.0);   // widened by slack
+  EXPECT_LT(backend::associationCost(chair(0, 0), table(0.1, 0), classes), 0.0);        // other class
+  EXPECT_LT(backend::associationCost(chair(0, 0, 0.3), chair(0, 0, 1.0), classes), 0.0);  // model differs by 0.7 > 0.5
 }
 
 TEST(BackendAssociation, OneDetectionPerLandmarkOptimally) {
   const ClassTable classes = ClassTable::loadDefault();
   const Object l0 = chair(0, 0), l1 = chair(1.0, 0);
-  const std::vector<LandmarkCandidate> landmarks = {{10, &l0}, {11, &l1}};
+  const std::vector<backend::LandmarkCandidate> landmarks = {{10, &l0}, {11, &l1}};
   // Detection a is nearest to landmark 10 but b can only be landmark 10; the optimum gives
   // a to 11 and b to 10 (greedy first-match would leave b unmatched).
-  const std::vector<Detection> dets = {{chair(0.45, 0), 0}, {chair(-0.2, 0), 0}};
-  const std::vector<int> m = associateDetections(dets, landmarks, classes);
+  const std::vector<backend::Detection> dets = {{chair(0.45, 0), 0}, {chair(-0.2, 0), 0}};
+  const std::vector<int> m = backend::associateDetections(dets, landmarks, classes);
   EXPECT_EQ(m[0], 11);
   EXPECT_EQ(m[1], 10);
   // Two detections of one landmark: only one gets it, the other starts a new landmark.
-  const std::vector<LandmarkCandidate> one = {{5, &l0}};
-  const std::vector<int> m2 = associateDetections({{chair(0.05, 0), 0}, {chair(0.2, 0), 0}}, one, classes);
+  const std::vector<backend::LandmarkCandidate> one = {{5, &l0}};
+  const std::vector<int> m2 = backend::associateDetections({{chair(0.05, 0), 0}, {chair(0.2, 0), 0}}, one, classes);
   EXPECT_EQ(m2[0], 5);
   EXPECT_EQ(m2[1], -1);
 }

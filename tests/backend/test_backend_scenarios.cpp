@@ -7,7 +7,7 @@
 using namespace slide;
 
 TEST(BackendScenarios, UrbanBeatsOdometryAndMapsEachObjectOnce) {
-  const ScenarioRunResult r = runScenario(makeUrbanScenario(), BackendConfig{});
+  const ScenarioRunResult r = runScenario(graph_scenario::makeUrbanScenario(), backend::BackendConfig{});
   EXPECT_LT(r.ate_m, r.odom_ate_m / 3.0);
   EXPECT_LT(r.batch_ate_m, r.odom_ate_m / 3.0);
   EXPECT_NEAR(r.incremental_cost, r.batch_cost, 1e-6 * r.batch_cost);
@@ -16,7 +16,7 @@ TEST(BackendScenarios, UrbanBeatsOdometryAndMapsEachObjectOnce) {
 }
 
 TEST(BackendScenarios, ForestClosesItsLoops) {
-  const ScenarioRunResult r = runScenario(makeForestScenario(), BackendConfig{}, false);
+  const ScenarioRunResult r = runScenario(graph_scenario::makeForestScenario(), backend::BackendConfig{}, false);
   EXPECT_LT(r.ate_m, r.odom_ate_m / 3.0);
   EXPECT_NEAR(r.landmarks, r.true_landmarks_seen, 0.1 * r.true_landmarks_seen);
 }
@@ -24,7 +24,8 @@ TEST(BackendScenarios, ForestClosesItsLoops) {
 TEST(BackendScenarios, Kitti07ThreeRobotsMerge) {
   const std::string data = SLIDE_DATA_DIR;
   const ScenarioRunResult r = runScenario(
-      makeKittiScenario("kitti07", data + "/kitti/poses/07.txt", data + "/kitti/poles/07.csv", 3), BackendConfig{}, false);
+      graph_scenario::makeKittiScenario("kitti07", data + "/kitti/poses/07.txt", data + "/kitti/poles/07.csv", 3),
+      backend::BackendConfig{}, false);
   EXPECT_EQ(r.keyposes, 292);
   EXPECT_LT(r.ate_m, r.odom_ate_m);
   EXPECT_LT(r.ate_m, 0.962);  // the paper's figure on 07

@@ -43,8 +43,8 @@ struct Gate {
   }
 };
 
-BackendConfig backgroundConfig() {
-  BackendConfig c;
+backend::BackendConfig backgroundConfig() {
+  backend::BackendConfig c;
   c.background_solves = true;
   c.full_every = 40;
   return c;
@@ -56,7 +56,7 @@ std::string tempDir(const std::string& name) {
   return dir.string();
 }
 
-int tumLines(const std::string& path) { return static_cast<int>(readTum(path).size()); }
+int tumLines(const std::string& path) { return static_cast<int>(io::readTum(path).size()); }
 
 void feedOwn(OptimizerNode& node, const std::vector<slide::testing::RawMessage>& msgs, int count) {
   int n = 0;
@@ -67,9 +67,9 @@ void feedOwn(OptimizerNode& node, const std::vector<slide::testing::RawMessage>&
 }  // namespace
 
 TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
-  const GraphScenario s = makeUrbanScenario();
+  const graph_scenario::GraphScenario s = graph_scenario::makeUrbanScenario();
   const auto& bundles = s.robots[0].bundles;
-  Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
+  backend::Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
   Gate gate;
   opt.setSolveHook([&gate] { gate.pass(); });
   std::size_t k = 0;
@@ -79,18 +79,18 @@ TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
   const std::size_t held_from = k;
   // The solve is held: updates still return, each with its local solve, none with a full one.
   for (; k < held_from + 30; ++k) {
-    const UpdateResult u = opt.addBundle(bundles[k]);
+    const backend::UpdateResult u = opt.addBundle(bundles[k]);
     EXPECT_TRUE(u.accepted);
     EXPECT_FALSE(u.full_solve);
     EXPECT_TRUE(opt.solving());
   }
-  const std::vector<TrajectoryPose> before = opt.trajectory(0);
+  const std::vector<backend::TrajectoryPose> before = opt.trajectory(0);
   gate.release();
-  UpdateResult r;
+  backend::UpdateResult r;
   while (!opt.poll(&r)) std::this_thread::yield();
   EXPECT_TRUE(r.full_solve);
   // The key poses added while it ran moved rigidly with the last solved one.
-  const std::vector<TrajectoryPose> after = opt.trajectory(0);
+  const std::vector<backend::TrajectoryPose> after = opt.trajectory(0);
   ASSERT_EQ(after.size(), before.size());
   const std::size_t last = held_from - 1;
   for (std::size_t i = held_from; i < after.size(); ++i) {
@@ -102,7 +102,7 @@ TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
   // within the scenario's noise.
   for (; k < bundles.size(); ++k) EXPECT_TRUE(opt.addBundle(bundles[k]).accepted);
   opt.fullSolve();
-  Optimizer sync(BackendConfig{}, ClassTable::loadDefault(), 0);
+  backend::Optimizer sync(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (const auto& b : bundles) sync.addBundle(b);
   sync.fullSolve();
   const auto ta = opt.trajectory(0), tb = sync.trajectory(0);
@@ -117,19 +117,19 @@ TEST(BackgroundSolves, UpdatesGoOnWhileAFullSolveRunsAndItsResultIsTakenIn) {
 // its error is spread along its loop: they would pull the newest key poses alone onto it and
 // bend the trajectory there by the whole accumulated drift.
 TEST(BackgroundSolves, ALoopClosureWaitingForASolveNeverBendsTheNewestKeyPoses) {
-  const GraphScenario s = makeUrbanScenario();
-  const ScenarioRobot& robot = s.robots[0];
-  const std::vector<ScenarioLoopClosure> closures = simulateLoopClosures(robot);
+  const graph_scenario::GraphScenario s = graph_scenario::makeUrbanScenario();
+  const graph_scenario::ScenarioRobot& robot = s.robots[0];
+  const std::vector<graph_scenario::ScenarioLoopClosure> closures = graph_scenario::simulateLoopClosures(robot);
   ASSERT_FALSE(closures.empty());
-  const ScenarioLoopClosure& lc = closures.front();
-  Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
+  const graph_scenario::ScenarioLoopClosure& lc = closures.front();
+  backend::Optimizer opt(backgroundConfig(), ClassTable::loadDefault(), 0);
   Gate gate;
   opt.setSolveHook([&gate] { gate.pass(); });
   int k = 0;
   for (; k <= lc.seq_b; ++k) {
     ASSERT_TRUE(opt.addBundle(robot.bundles[k]).accepted);
     if (opt.solving()) gate.release();  // earlier solves run freely ...
-    UpdateResult ignored;
+    backend::UpdateResult ignored;
     while (opt.solving() && !opt.poll(&ignored)) std::this_thread::yield();
   }
   // The closure says the estimate misses the loop by 1 m sideways (as drift would; well inside
@@ -145,7 +145,7 @@ TEST(BackgroundSolves, ALoopClosureWaitingForASolveNeverBendsTheNewestKeyPoses) 
   ASSERT_TRUE(opt.addLoopClosure(0, lc.seq_a, lc.seq_b, T_a_b).accepted);
   ASSERT_LE(k + 5, static_cast<int>(robot.bundles.size()));
   for (const int until = k + 5; k < until; ++k) ASSERT_TRUE(opt.addBundle(robot.bundles[k]).accepted);
-  const std::vector<TrajectoryPose> live = opt.trajectory(0);
+  const std::vector<backend::TrajectoryPose> live = opt.trajectory(0);
   for (int i = lc.seq_b - 2; i < k; ++i) {
     const Pose est = live[i - 1].pose.inverse() * live[i].pose;
     const Pose odom = robot.bundles[i - 1].odom_pose.inverse() * robot.bundles[i].odom_pose;
@@ -154,12 +154,12 @@ TEST(BackgroundSolves, ALoopClosureWaitingForASolveNeverBendsTheNewestKeyPoses) 
   held.release();
   // The held solve (brought no closure: cancelled by it, or taken in) and then the one that
   // takes the loop closure in, spread along its loop.
-  UpdateResult r;
+  backend::UpdateResult r;
   for (int taken = 0; taken == 0 || opt.solving();) {
     if (opt.poll(&r)) ++taken;
     else std::this_thread::yield();
   }
-  const std::vector<TrajectoryPose> after = opt.trajectory(0);
+  const std::vector<backend::TrajectoryPose> after = opt.trajectory(0);
   const Pose gap_after = after[lc.seq_a].pose.inverse() * after[lc.seq_b].pose;
   EXPECT_LT((gap_after.translation() - T_a_b.translation()).norm(), 0.8 * miss) << "the loop closure never came in";
 }
@@ -176,7 +176,8 @@ TEST(BackgroundSolves, StopWritesTheOutputsWithoutWaitingForARunningSolve) {
   gate.waitEntered(1);
   node.stop(0.5);  // returns while the solve is still held at its start
   EXPECT_EQ(tumLines(dir + "/trajectory_robot0.txt"), 60);
-  const ObjectMap map = readObjectMapText(dir + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map;
+  const ObjectMap map =
+      io::readObjectMapText(dir + "/map_robot0.txt", ClassTable::loadDefault(), io::MissingSize::Zero).map;
   EXPECT_EQ(static_cast<int>(map.size()), node.optimizer().numLandmarks());
   EXPECT_GT(map.size(), 10u);
   gate.release();  // the cancelled solve ends; its result is never taken in
@@ -186,7 +187,7 @@ TEST(BackgroundSolves, StopWritesTheOutputsWithoutWaitingForARunningSolve) {
 
 TEST(BackgroundSolves, OutputsAreWrittenOncePerPeriodWhenTheEstimateChanged) {
   const auto msgs = slide::testing::twoRobotMessages();
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
   const std::string dir = tempDir("periodic");
   const auto t0 = std::chrono::steady_clock::now();
   node.setOutputs(dir, 1.0);

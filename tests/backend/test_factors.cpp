@@ -56,8 +56,8 @@ double residualNorm(ceres::CostFunction* f, const std::vector<const double*>& bl
   return std::sqrt(s);
 }
 
-PoseSigma sigma(double t, double r) {
-  PoseSigma s;
+backend::PoseSigma sigma(double t, double r) {
+  backend::PoseSigma s;
   s << t, t, t, r, r, r;
   return s;
 }
@@ -68,23 +68,24 @@ TEST(BackendFactors, RelativePoseMatchesNumeric) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 5; ++trial) {
     const Pose A = randomPose(rng), B = randomPose(rng);
-    const PoseBlock a = toPoseBlock(A), b = toPoseBlock(B);
+    const backend::PoseBlock a = backend::toPoseBlock(A), b = backend::toPoseBlock(B);
     const Pose M = A.inverse() * B;
-    EXPECT_LT(residualNorm(relativePoseFactor(M, sigma(0.1, 0.01)), {a.data(), b.data()}), 1e-9);
+    EXPECT_LT(residualNorm(backend::relativePoseFactor(M, sigma(0.1, 0.01)), {a.data(), b.data()}), 1e-9);
     const Pose Mn = M * poseFromXyzRpy({0.3, -0.2, 0.1}, 0.05, -0.1, 0.2);
-    expectSameJacobians(relativePoseFactor(Mn, sigma(0.1, 0.01)),
-                        relativePoseFactor(Mn, sigma(0.1, 0.01), Differentiation::Numeric), {a.data(), b.data()});
+    expectSameJacobians(backend::relativePoseFactor(Mn, sigma(0.1, 0.01)),
+                        backend::relativePoseFactor(Mn, sigma(0.1, 0.01), backend::Differentiation::Numeric),
+                        {a.data(), b.data()});
   }
 }
 
 TEST(BackendFactors, PosePriorMatchesNumeric) {
   std::mt19937 rng(2);
   const Pose T = randomPose(rng);
-  const PoseBlock t = toPoseBlock(T);
-  EXPECT_LT(residualNorm(posePriorFactor(T, sigma(0.01, 0.01)), {t.data()}), 1e-9);
+  const backend::PoseBlock t = backend::toPoseBlock(T);
+  EXPECT_LT(residualNorm(backend::posePriorFactor(T, sigma(0.01, 0.01)), {t.data()}), 1e-9);
   const Pose M = randomPose(rng);
-  expectSameJacobians(posePriorFactor(M, sigma(0.01, 0.02)), posePriorFactor(M, sigma(0.01, 0.02), Differentiation::Numeric),
-                      {t.data()});
+  expectSameJacobians(backend::posePriorFactor(M, sigma(0.01, 0.02)),
+                      backend::posePriorFactor(M, sigma(0.01, 0.02), backend::Differentiation::Numeric), {t.data()});
 }
 
 TEST(BackendFactors, GravityHoldsRollAndPitchNotYawNorPosition) {
@@ -92,15 +93,16 @@ TEST(BackendFactors, GravityHoldsRollAndPitchNotYawNorPosition) {
   for (int trial = 0; trial < 5; ++trial) {
     const Pose T = randomPose(rng);
     const Eigen::Quaterniond q(T.linear());
-    const PoseBlock t = toPoseBlock(T);
-    EXPECT_LT(residualNorm(gravityFactor(q, 0.01), {t.data()}), 1e-9);
+    const backend::PoseBlock t = backend::toPoseBlock(T);
+    EXPECT_LT(residualNorm(backend::gravityFactor(q, 0.01), {t.data()}), 1e-9);
     // Another heading and position, the same tilt: still no residual.
-    const PoseBlock turned = toPoseBlock(poseFromXyzRpy({5, -3, 2}, 0, 0, 1.3) * T);
-    EXPECT_LT(residualNorm(gravityFactor(q, 0.01), {turned.data()}), 1e-9);
+    const backend::PoseBlock turned = backend::toPoseBlock(poseFromXyzRpy({5, -3, 2}, 0, 0, 1.3) * T);
+    EXPECT_LT(residualNorm(backend::gravityFactor(q, 0.01), {turned.data()}), 1e-9);
     // Tilted by 0.02 rad about a level axis: 2 sin(0.01) / sigma.
-    const PoseBlock tilted = toPoseBlock(poseFromXyzRpy({0, 0, 0}, 0.02, 0, 0) * T);
-    EXPECT_NEAR(residualNorm(gravityFactor(q, 0.01), {tilted.data()}), 200 * std::sin(0.01), 1e-9);
-    expectSameJacobians(gravityFactor(q, 0.01), gravityFactor(q, 0.01, Differentiation::Numeric), {tilted.data()});
+    const backend::PoseBlock tilted = backend::toPoseBlock(poseFromXyzRpy({0, 0, 0}, 0.02, 0, 0) * T);
+    EXPECT_NEAR(residualNorm(backend::gravityFactor(q, 0.01), {tilted.data()}), 200 * std::sin(0.01), 1e-9);
+    expectSameJacobians(backend::gravityFactor(q, 0.01),
+                        backend::gravityFactor(q, 0.01, backend::Differentiation::Numeric), {tilted.data()});
   }
 }
 
@@ -108,16 +110,16 @@ TEST(BackendFactors, CuboidMatchesNumeric) {
   std::mt19937 rng(3);
   const Pose body = randomPose(rng), box = randomPose(rng, 10);
   const Eigen::Vector3d dims(4.5, 1.8, 1.5);
-  const PoseBlock b = toPoseBlock(body), c = toPoseBlock(box);
+  const backend::PoseBlock b = backend::toPoseBlock(body), c = backend::toPoseBlock(box);
   const Pose measured = body.inverse() * box;
-  EXPECT_LT(residualNorm(cuboidFactor(measured, dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2)),
+  EXPECT_LT(residualNorm(backend::cuboidFactor(measured, dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2)),
                          {b.data(), c.data(), dims.data()}),
             1e-9);
   const Pose noisy = measured * poseFromXyzRpy({0.2, 0.1, -0.1}, 0.02, 0.01, 0.1);
   const Eigen::Vector3d noisy_dims(4.2, 2.0, 1.4);
-  expectSameJacobians(cuboidFactor(noisy, noisy_dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2)),
-                      cuboidFactor(noisy, noisy_dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2),
-                                   Differentiation::Numeric),
+  expectSameJacobians(backend::cuboidFactor(noisy, noisy_dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2)),
+                      backend::cuboidFactor(noisy, noisy_dims, sigma(0.3, 0.1), Eigen::Vector3d::Constant(0.2),
+                                   backend::Differentiation::Numeric),
                       {b.data(), c.data(), dims.data()});
 }
 
@@ -126,31 +128,33 @@ TEST(BackendFactors, CylinderMatchesNumeric) {
   const Pose body = randomPose(rng);
   const Eigen::Vector3d root(8, 3, -1), axis = Eigen::Vector3d(0.05, -0.02, 1).normalized();
   const double cyl[7] = {root.x(), root.y(), root.z(), axis.x(), axis.y(), axis.z(), 0.3};
-  const PoseBlock b = toPoseBlock(body);
-  CylinderNoise n;
+  const backend::PoseBlock b = backend::toPoseBlock(body);
+  backend::CylinderNoise n;
   n.position_sqrt_info = Eigen::Vector3d(10, 2, 5).asDiagonal();
   const Eigen::Vector3d root_b = body.inverse() * root, axis_b = body.linear().transpose() * axis;
-  EXPECT_LT(residualNorm(cylinderFactor(root_b, axis_b, 0.3, n), {b.data(), cyl}), 1e-9);
+  EXPECT_LT(residualNorm(backend::cylinderFactor(root_b, axis_b, 0.3, n), {b.data(), cyl}), 1e-9);
   // Sliding the measured root along the axis costs only the weak along-axis term.
-  const double slid = residualNorm(cylinderFactor(root_b + 1.0 * axis_b, axis_b, 0.3, n), {b.data(), cyl});
+  const double slid = residualNorm(backend::cylinderFactor(root_b + 1.0 * axis_b, axis_b, 0.3, n), {b.data(), cyl});
   EXPECT_NEAR(slid, 1.0 / n.along_axis_sigma, 1e-9);
   const Eigen::Vector3d noisy_root = root_b + Eigen::Vector3d(0.2, -0.1, 0.5);
   const Eigen::Vector3d noisy_axis = (axis_b + Eigen::Vector3d(0.03, 0.01, 0)).normalized();
-  expectSameJacobians(cylinderFactor(noisy_root, noisy_axis, 0.25, n),
-                      cylinderFactor(noisy_root, noisy_axis, 0.25, n, Differentiation::Numeric), {b.data(), cyl});
+  expectSameJacobians(backend::cylinderFactor(noisy_root, noisy_axis, 0.25, n),
+                      backend::cylinderFactor(noisy_root, noisy_axis, 0.25, n, backend::Differentiation::Numeric),
+                      {b.data(), cyl});
 }
 
 TEST(BackendFactors, EllipsoidMatchesNumeric) {
   std::mt19937 rng(5);
   const Pose body = randomPose(rng);
   const Eigen::Vector3d centroid(4, -2, 0.5);
-  const PoseBlock b = toPoseBlock(body);
+  const backend::PoseBlock b = backend::toPoseBlock(body);
   const Eigen::Vector3d seen = body.inverse() * centroid;
-  EXPECT_LT(residualNorm(ellipsoidFactor(seen, 0.1, 0.05), {b.data(), centroid.data()}), 1e-9);
+  EXPECT_LT(residualNorm(backend::ellipsoidFactor(seen, 0.1, 0.05), {b.data(), centroid.data()}), 1e-9);
   // One bearing sigma of azimuth error gives a whitened residual of one.
   const Eigen::Vector3d turned = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()) * seen;
-  EXPECT_NEAR(residualNorm(ellipsoidFactor(turned, 0.1, 0.05), {b.data(), centroid.data()}), 1.0, 0.02);
+  EXPECT_NEAR(residualNorm(backend::ellipsoidFactor(turned, 0.1, 0.05), {b.data(), centroid.data()}), 1.0, 0.02);
   const Eigen::Vector3d noisy = seen + Eigen::Vector3d(0.3, -0.2, 0.1);
-  expectSameJacobians(ellipsoidFactor(noisy, 0.1, 0.05), ellipsoidFactor(noisy, 0.1, 0.05, Differentiation::Numeric),
+  expectSameJacobians(backend::ellipsoidFactor(noisy, 0.1, 0.05),
+                      backend::ellipsoidFactor(noisy, 0.1, 0.05, backend::Differentiation::Numeric),
                       {b.data(), centroid.data()});
 }

@@ -20,9 +20,9 @@ TEST(LoopSpread, ClosesTheLoopAndKeepsItsStart) {
   const int b = 39;
   const Pose T_a_b = truth[0].inverse() * truth[b];
   const double before = (est[b].translation() - truth[b].translation()).norm();
-  PoseSigma loop;
+  backend::PoseSigma loop;
   loop << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
-  const std::vector<Pose> out = spreadLoopError(est, b, T_a_b, loop, LoopSpreadNoise{});
+  const std::vector<Pose> out = backend::spreadLoopError(est, b, T_a_b, loop, backend::LoopSpreadNoise{});
   ASSERT_EQ(out.size(), est.size());
   EXPECT_LT((out[0].translation() - est[0].translation()).norm(), 1e-12);
   const double after = ((out[0].inverse() * out[b]).translation() - T_a_b.translation()).norm();
@@ -37,8 +37,8 @@ TEST(LoopSpread, ClosesTheLoopAndKeepsItsStart) {
 
 TEST(LoopSpread, LeavesPosesAloneWithoutALoop) {
   const std::vector<Pose> one{Pose::Identity()};
-  PoseSigma s = PoseSigma::Constant(0.1);
-  EXPECT_EQ(spreadLoopError(one, 0, Pose::Identity(), s, LoopSpreadNoise{}).size(), 1u);
+  backend::PoseSigma s = backend::PoseSigma::Constant(0.1);
+  EXPECT_EQ(backend::spreadLoopError(one, 0, Pose::Identity(), s, backend::LoopSpreadNoise{}).size(), 1u);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 using namespace slide;
 
 TEST(MapSize, OwnMapEncodedAndFramesCounted) {
-  const GraphScenario s = makeIndoorScenario();
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario();
   ASSERT_EQ(s.robots.size(), 1u);
   const std::vector<Pose>& truth = s.robots[0].truth;
   std::vector<Pose> lidar;  // a frame between every two key poses, and one before the first
@@ -19,7 +19,7 @@ TEST(MapSize, OwnMapEncodedAndFramesCounted) {
     lidar.push_back(truth[k]);
     if (k + 1 < truth.size()) lidar.push_back(Eigen::Translation3d(0, 0, 0.01) * truth[k]);
   }
-  const BackendConfig cfg = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+  const backend::BackendConfig cfg = backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
   const std::vector<RobotMapSize> sizes = robotMapSizes(s, cfg, lidar, 1000.0);
   ASSERT_EQ(sizes.size(), 1u);
   EXPECT_EQ(sizes[0].frames, static_cast<long>(2 * truth.size() - 1));

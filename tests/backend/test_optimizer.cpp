@@ -17,17 +17,18 @@ namespace {
 
 // The indoor world, driven by two robots: robot 0 the first 90 key poses, robot 1 poses
 // 60..149 (their paths overlap), each in its own odometry frame.
-GraphScenario twoRobotIndoor() {
-  GraphScenario s = makeIndoorScenario(4);
+graph_scenario::GraphScenario twoRobotIndoor() {
+  graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(4);
   const std::vector<Pose> path = s.robots[0].truth;
   std::mt19937 rng(9);
   s.robots.clear();
-  s.robots.push_back(simulateRobot(0, {path.begin(), path.begin() + 90}, s.landmarks, s.noise, rng));
-  s.robots.push_back(simulateRobot(1, {path.begin() + 60, path.end()}, s.landmarks, s.noise, rng, 50000000));
+  s.robots.push_back(graph_scenario::simulateRobot(0, {path.begin(), path.begin() + 90}, s.landmarks, s.noise, rng));
+  s.robots.push_back(
+      graph_scenario::simulateRobot(1, {path.begin() + 60, path.end()}, s.landmarks, s.noise, rng, 50000000));
   return s;
 }
 
-double maxTranslationGap(const std::vector<TrajectoryPose>& a, const std::vector<TrajectoryPose>& b) {
+double maxTranslationGap(const std::vector<backend::TrajectoryPose>& a, const std::vector<backend::TrajectoryPose>& b) {
   double gap = 0;
   for (std::size_t i = 0; i < a.size(); ++i) gap = std::max(gap, (a[i].pose.translation() - b[i].pose.translation()).norm());
   return gap;
@@ -36,17 +37,17 @@ double maxTranslationGap(const std::vector<TrajectoryPose>& a, const std::vector
 }  // namespace
 
 TEST(BackendOptimizer, IncrementalEqualsBatchAfterFullSolve) {
-  const GraphScenario s = makeIndoorScenario(1);
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(1);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   int full = 0;
   for (const KeyPoseBundle& b : s.robots[0].bundles) {
-    const UpdateResult r = opt.addBundle(b);
+    const backend::UpdateResult r = opt.addBundle(b);
     ASSERT_TRUE(r.accepted) << r.reason;
     full += r.full_solve;
   }
   EXPECT_GE(full, 1);  // the lap closes: at least one full solve on the way
   opt.fullSolve();
-  const Optimizer::Batch batch = opt.solveBatch();
+  const backend::Optimizer::Batch batch = opt.solveBatch();
   EXPECT_NEAR(opt.cost(), batch.report.final_cost, 1e-6 * batch.report.final_cost);
   const auto inc = opt.trajectory(0);
   ASSERT_EQ(inc.size(), batch.trajectories.at(0).size());
@@ -60,9 +61,9 @@ TEST(BackendOptimizer, IncrementalEqualsBatchAfterFullSolve) {
 }
 
 TEST(BackendOptimizer, KeyPosesNeverReceivedAreCounted) {
-  const GraphScenario s = makeIndoorScenario(2);
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(2);
   const auto& in = s.robots[0].bundles;
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 5; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
   EXPECT_EQ(opt.missingKeyPoses(), 0);
   // A flood the daemon could not keep up with: it saw only every 10th bundle.
@@ -72,15 +73,15 @@ TEST(BackendOptimizer, KeyPosesNeverReceivedAreCounted) {
 }
 
 TEST(BackendOptimizer, RejectsBadInputAndStaysConsistent) {
-  const GraphScenario s = makeIndoorScenario(2);
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(2);
   const auto& in = s.robots[0].bundles;
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 10; ++k) ASSERT_TRUE(opt.addBundle(in[k]).accepted);
   const int poses = opt.numKeyPoses();
 
   KeyPoseBundle nan = in[10];
   nan.relative_odom.translation().x() = std::nan("");
-  UpdateResult r = opt.addBundle(nan);
+  backend::UpdateResult r = opt.addBundle(nan);
   EXPECT_FALSE(r.accepted);
   EXPECT_NE(r.reason.find("non-finite"), std::string::npos) << r.reason;
 
@@ -128,13 +129,13 @@ TEST(BackendOptimizer, RejectsBadInputAndStaysConsistent) {
 }
 
 TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
-  const GraphScenario s = twoRobotIndoor();
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const graph_scenario::GraphScenario s = twoRobotIndoor();
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   const auto& a = s.robots[0].bundles;
   const auto& b = s.robots[1].bundles;
   for (const auto& x : a) ASSERT_TRUE(opt.addBundle(x).accepted);
   for (std::size_t k = 0; k < 40; ++k) {
-    const UpdateResult r = opt.addBundle(b[k]);
+    const backend::UpdateResult r = opt.addBundle(b[k]);
     ASSERT_TRUE(r.accepted);
     EXPECT_TRUE(r.held);
   }
@@ -143,7 +144,7 @@ TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
   const int landmarks_before = opt.numLandmarks(false);
 
   const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
-  const UpdateResult m = opt.addRobotTransform(1, truth * poseFromXyzYaw(0.2, -0.1, 0, 0.01));
+  const backend::UpdateResult m = opt.addRobotTransform(1, truth * poseFromXyzYaw(0.2, -0.1, 0, 0.01));
   ASSERT_TRUE(m.accepted);
   EXPECT_TRUE(m.full_solve);
   EXPECT_EQ(opt.numHeld(), 0);
@@ -174,7 +175,7 @@ TEST(BackendOptimizer, MergesPeerThroughTransformAndRefinesWithoutDuplicating) {
 }
 
 TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
-  const BackendConfig c = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+  const backend::BackendConfig c = backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
   EXPECT_EQ(c.min_observations, 3);
   EXPECT_DOUBLE_EQ(c.bearing_sigma, 0.05);
   const std::string bad = ::testing::TempDir() + "/bad_backend.yaml";
@@ -183,7 +184,7 @@ TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
     out << "objects:\n  range_sigma: -1\n";
   }
   try {
-    loadBackendConfig(bad);
+    backend::loadBackendConfig(bad);
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("range_sigma"), std::string::npos) << e.what();
@@ -196,21 +197,21 @@ TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
 // again: its key poses land where they truly were, the host's own trajectory is as if the
 // wrong merge had never happened.
 TEST(BackendOptimizer, AliasedMergeIsUndoneWhenTheRightTransformArrives) {
-  const GraphScenario s = twoRobotIndoor();
+  const graph_scenario::GraphScenario s = twoRobotIndoor();
   const auto& a = s.robots[0].bundles;
   const auto& b = s.robots[1].bundles;
-  Optimizer solo(BackendConfig{}, ClassTable::loadDefault(), 0);
+  backend::Optimizer solo(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (const auto& x : a) ASSERT_TRUE(solo.addBundle(x).accepted);
   solo.fullSolve();
 
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (const auto& x : a) ASSERT_TRUE(opt.addBundle(x).accepted);
   for (std::size_t k = 0; k < 40; ++k) ASSERT_TRUE(opt.addBundle(b[k]).accepted);
   const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
   const Pose alias = poseFromXyzYaw(12.0, 8.0, 0, M_PI) * truth;
   ASSERT_TRUE(opt.addRobotTransform(1, alias).accepted);
   for (std::size_t k = 40; k < b.size(); ++k) ASSERT_TRUE(opt.addBundle(b[k]).accepted);
-  const UpdateResult r = opt.addRobotTransform(1, truth);
+  const backend::UpdateResult r = opt.addRobotTransform(1, truth);
   ASSERT_TRUE(r.accepted);
   opt.fullSolve();
   EXPECT_GE(opt.unmerged(), 1);
@@ -231,11 +232,11 @@ TEST(BackendOptimizer, AliasedMergeIsUndoneWhenTheRightTransformArrives) {
 // Issue 15, indoor: an intra-robot loop closure between look-alike rooms (10 m and a quarter
 // turn away from what odometry says) is refused; the true one is taken.
 TEST(BackendOptimizer, LoopClosureOutsideTheOdometryEnvelopeIsRefused) {
-  const GraphScenario s = twoRobotIndoor();
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const graph_scenario::GraphScenario s = twoRobotIndoor();
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (const auto& x : s.robots[0].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
   const Pose true_0_50 = s.robots[0].truth[0].inverse() * s.robots[0].truth[50];
-  const UpdateResult wrong = opt.addLoopClosure(0, 0, 50, poseFromXyzYaw(10.0, 3.0, 0, M_PI / 2) * true_0_50);
+  const backend::UpdateResult wrong = opt.addLoopClosure(0, 0, 50, poseFromXyzYaw(10.0, 3.0, 0, M_PI / 2) * true_0_50);
   EXPECT_FALSE(wrong.accepted);
   EXPECT_NE(wrong.reason.find("implausible loop closure"), std::string::npos) << wrong.reason;
   EXPECT_TRUE(opt.addLoopClosure(0, 0, 50, true_0_50).accepted);
@@ -251,20 +252,20 @@ TEST(BackendOptimizer, RefinementsStopMovingAPeerOnceSharedLandmarksAlignIt) {
   // Place recognition keeps re-detecting a merged peer's transform from maps that already hold
   // the merge; once the two robots share landmarks in the graph, such a refinement is the same
   // observations counted twice, and it leaves the estimate alone. Before that it moves the anchor.
-  const GraphScenario s = twoRobotIndoor();
+  const graph_scenario::GraphScenario s = twoRobotIndoor();
   const Pose truth = s.robots[0].truth[0].inverse() * s.robots[1].truth[0];
   const Pose off = truth * poseFromXyzYaw(0.8, -0.5, 0, 0.03);  // within the remerge limits
   for (int until : {1000000, 10}) {
-    BackendConfig cfg;
+    backend::BackendConfig cfg;
     cfg.refine_until_shared = until;
-    Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+    backend::Optimizer opt(cfg, ClassTable::loadDefault(), 0);
     for (const auto& x : s.robots[0].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
     for (const auto& x : s.robots[1].bundles) ASSERT_TRUE(opt.addBundle(x).accepted);
     ASSERT_TRUE(opt.addRobotTransform(1, truth).accepted);
     opt.fullSolve();
     ASSERT_GE(opt.sharedLandmarks(1), 10);
     const Pose before = opt.trajectory(1).front().pose;
-    const UpdateResult r = opt.addRobotTransform(1, off);
+    const backend::UpdateResult r = opt.addRobotTransform(1, off);
     EXPECT_TRUE(r.accepted);
     opt.fullSolve();
     const double moved = (opt.trajectory(1).front().pose.translation() - before.translation()).norm();
@@ -301,16 +302,16 @@ KeyPoseBundle stepBundle(int k, std::vector<Object> objects) {
 // A chair at (6, 2) beside a table 0.8 m away, both seen from 14 key poses; the chair is
 // reported as a table at key poses 3, 7 and 11. With `clutter`, key pose 13 also reports a false
 // table 0.3 m from the chair (a bin), which joins the confused detections' landmark.
-std::vector<Object> chairBesideTable(const BackendConfig& cfg, bool clutter) {
+std::vector<Object> chairBesideTable(const backend::BackendConfig& cfg, bool clutter) {
   const int chair = 1, table = 2;
-  Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+  backend::Optimizer opt(cfg, ClassTable::loadDefault(), 0);
   for (int k = 0; k < 14; ++k) {
     const Eigen::Vector3d o(0.5 * k, 0, 0);
     const bool confused = k % 4 == 3;
     std::vector<Object> seen{ellipsoidAt(0, confused ? table : chair, Eigen::Vector3d(6, 2, 0.45) - o, 0.3, 0.9),
                              ellipsoidAt(1, table, Eigen::Vector3d(6.8, 2, 0.4) - o, 0.7, 0.8)};
     if (clutter && k == 13) seen.push_back(ellipsoidAt(2, table, Eigen::Vector3d(6, 1.7, 0.45) - o, 0.3, 0.9));
-    const UpdateResult r = opt.addBundle(stepBundle(k, seen));
+    const backend::UpdateResult r = opt.addBundle(stepBundle(k, seen));
     EXPECT_TRUE(r.accepted) << r.reason;
   }
   opt.fullSolve();
@@ -323,10 +324,10 @@ std::vector<Object> chairBesideTable(const BackendConfig& cfg, bool clutter) {
 // (never seen from the chair's key poses, at the chair); the real table 0.8 m away, in view
 // with the chair every time, stays a landmark of its own.
 TEST(BackendOptimizer, MergesAConfusedClassIntoItsObjectButNotTheObjectBesideIt) {
-  BackendConfig apart;
+  backend::BackendConfig apart;
   apart.merge_within_shape = false;
   EXPECT_EQ(chairBesideTable(apart, false).size(), 3u);  // the confused detections' landmark is confirmed
-  const std::vector<Object> lms = chairBesideTable(BackendConfig{}, false);
+  const std::vector<Object> lms = chairBesideTable(backend::BackendConfig{}, false);
   ASSERT_EQ(lms.size(), 2u);
   std::map<int, Eigen::Vector3d> by_class;
   for (const Object& lm : lms) by_class[lm.class_id] = lm.position();
@@ -340,8 +341,8 @@ TEST(BackendOptimizer, MergesAConfusedClassIntoItsObjectButNotTheObjectBesideIt)
 // took a false object's detection) is merged all the same; that one observation stays behind,
 // unconfirmed. By default (0) it is not.
 TEST(BackendOptimizer, MergesADuplicateThatSharesAFewKeyPoses) {
-  EXPECT_EQ(chairBesideTable(BackendConfig{}, true).size(), 3u);
-  BackendConfig tolerant;
+  EXPECT_EQ(chairBesideTable(backend::BackendConfig{}, true).size(), 3u);
+  backend::BackendConfig tolerant;
   tolerant.merge_shared_fraction = 0.25;
   EXPECT_EQ(chairBesideTable(tolerant, true).size(), 2u);
 }

@@ -74,9 +74,9 @@ pid_t startOptimizer(const std::vector<std::string>& args) {
 
 // A long mission's own bundles (forest tiles chained) as LCM bytes.
 std::vector<std::vector<uint8_t>> longMission(int keyposes) {
-  const GraphScenario s = makeForestChainScenario(keyposes);
+  const graph_scenario::GraphScenario s = graph_scenario::makeForestChainScenario(keyposes);
   std::vector<std::vector<uint8_t>> out;
-  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(toLcm(b)));
+  for (const auto& b : s.robots[0].bundles) out.push_back(slide::testing::encodeMsg(msg::toLcm(b)));
   return out;
 }
 
@@ -208,8 +208,9 @@ TEST(OptimizerDaemon, StopDuringALongMissionWritesTheOutputsWithinTwoSeconds) {
   int status = 0;
   EXPECT_TRUE(waitExit(pid, 10, &status)) << "still running 10 s after SIGTERM";
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  EXPECT_EQ(readTum(tum).size(), 2000u);
-  EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map.size(), 1000u);
+  EXPECT_EQ(io::readTum(tum).size(), 2000u);
+  EXPECT_GT(io::readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), io::MissingSize::Zero).map.size(),
+            1000u);
   std::filesystem::remove_all(dir);
 }
 
@@ -239,10 +240,12 @@ TEST(OptimizerDaemon, SigkillLeavesTheLastPeriodicOutputWhole) {
     waitpid(pid, &status, 0);
     const std::string tum = out + "/trajectory_robot0.txt";
     ASSERT_TRUE(std::filesystem::exists(tum)) << "no periodic output in round " << round;
-    const std::size_t poses = readTum(tum).size();  // throws on a cut line
+    const std::size_t poses = io::readTum(tum).size();  // throws on a cut line
     EXPECT_GE(poses, 1000u);
     EXPECT_LE(poses, bundles.size());
-    EXPECT_GT(readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), MissingSize::Zero).map.size(), 500u);
+    EXPECT_GT(
+        io::readObjectMapText(out + "/map_robot0.txt", ClassTable::loadDefault(), io::MissingSize::Zero).map.size(),
+        500u);
   }
   std::filesystem::remove_all(dir);
 }

@@ -54,7 +54,7 @@ TEST(OptimizerJournal, DamagedTailIsCutAndInputsAfterItAreReplayedAtTheNextResta
   const std::string path = freshJournal("tail");
   const std::size_t first = 30, second = 60;
   {
-    OptimizerNode a(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode a(backend::BackendConfig{}, classes, 0, {}, {});
     a.openJournal(path);
     feed(a, msgs, 0, first);
   }
@@ -62,16 +62,16 @@ TEST(OptimizerJournal, DamagedTailIsCutAndInputsAfterItAreReplayedAtTheNextResta
   const std::string good = readFile(path);
   writeFile(path, good + good.substr(recordOffset(path, 1), 25));
   {
-    OptimizerNode b(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode b(backend::BackendConfig{}, classes, 0, {}, {});
     EXPECT_EQ(b.openJournal(path), static_cast<int>(first));
     EXPECT_EQ(b.journalRecovery().dropped_bytes, 25u);
     EXPECT_TRUE(fs::exists(b.journalRecovery().damaged_copy));
     feed(b, msgs, first, second);
   }
-  OptimizerNode c(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode c(backend::BackendConfig{}, classes, 0, {}, {});
   EXPECT_EQ(c.openJournal(path), static_cast<int>(second));  // appended after the last good record
   EXPECT_EQ(c.journalRecovery().dropped_bytes, 0u);
-  OptimizerNode clean(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode clean(backend::BackendConfig{}, classes, 0, {}, {});
   feed(clean, msgs, 0, second);
   EXPECT_EQ(c.optimizer().numKeyPoses(), clean.optimizer().numKeyPoses());
   fs::remove_all(fs::path(path).parent_path());
@@ -82,7 +82,7 @@ TEST(OptimizerJournal, AFlippedBitIsDetectedAndItsRecordNotReplayed) {
   const ClassTable classes = ClassTable::loadDefault();
   const std::string path = freshJournal("flip");
   {
-    OptimizerNode a(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode a(backend::BackendConfig{}, classes, 0, {}, {});
     a.openJournal(path);
     feed(a, msgs, 0, 20);
   }
@@ -90,11 +90,11 @@ TEST(OptimizerJournal, AFlippedBitIsDetectedAndItsRecordNotReplayed) {
   std::string bytes = readFile(path);
   bytes[recordOffset(path, 11) + 9 + 40] ^= 0x10;
   writeFile(path, bytes);
-  OptimizerNode b(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode b(backend::BackendConfig{}, classes, 0, {}, {});
   EXPECT_EQ(b.openJournal(path), 11);
   EXPECT_GT(b.journalRecovery().dropped_bytes, 0u);
   EXPECT_EQ(readFile(b.journalRecovery().damaged_copy), bytes.substr(recordOffset(path, 11)));
-  OptimizerNode clean(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode clean(backend::BackendConfig{}, classes, 0, {}, {});
   feed(clean, msgs, 0, 11);
   EXPECT_EQ(b.optimizer().numKeyPoses(), clean.optimizer().numKeyPoses());
   fs::remove_all(fs::path(path).parent_path());
@@ -105,7 +105,7 @@ TEST(OptimizerJournal, ARecordThatIsNoInputIsSkippedAndCountedAndTheRestReplayed
   const ClassTable classes = ClassTable::loadDefault();
   const std::string path = freshJournal("skip");
   {
-    OptimizerNode a(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode a(backend::BackendConfig{}, classes, 0, {}, {});
     a.openJournal(path);
     feed(a, msgs, 0, 10);
   }
@@ -114,11 +114,11 @@ TEST(OptimizerJournal, ARecordThatIsNoInputIsSkippedAndCountedAndTheRestReplayed
     j.append(77, team::Bytes{1, 2, 3});  // a record type of some other version
   }
   {
-    OptimizerNode a(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode a(backend::BackendConfig{}, classes, 0, {}, {});
     a.openJournal(path);
     feed(a, msgs, 10, 20);
   }
-  OptimizerNode b(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode b(backend::BackendConfig{}, classes, 0, {}, {});
   EXPECT_EQ(b.openJournal(path), 20);
   EXPECT_EQ(b.replaySkipped(), 1);
   EXPECT_NE(b.journalRecovery().first_skipped.find("record 11: unknown record type 77"), std::string::npos)
@@ -138,7 +138,7 @@ TEST(OptimizerJournal, TheLcmLogOfOlderVersionsIsRefusedWithAClearMessageAndLeft
     ASSERT_EQ(log.writeEvent(&e), 0);
   }
   const std::string before = readFile(path);
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
   try {
     node.openJournal(path);
     FAIL() << "an LCM log was taken as a journal";

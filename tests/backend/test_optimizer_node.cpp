@@ -34,13 +34,13 @@ int journalEvents(const std::string& path) { return static_cast<int>(OptimizerNo
 TEST(OptimizerNode, RestartFromJournalGivesTheSameMap) {
   const std::vector<RawMessage> msgs = slide::testing::twoRobotMessages();
   const ClassTable classes = ClassTable::loadDefault();
-  OptimizerNode clean(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode clean(backend::BackendConfig{}, classes, 0, {}, {});
   feed(clean, msgs, 0, msgs.size());
 
   const std::string journal = tempPath("optimizer.journal");
   const std::size_t cut = msgs.size() * 3 / 5;  // after the merge, before the loop closure
   {
-    OptimizerNode first(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode first(backend::BackendConfig{}, classes, 0, {}, {});
     EXPECT_EQ(first.openJournal(journal), 0);
     feed(first, msgs, 0, cut);
     // A duplicate is rejected and stays out of the journal.
@@ -49,13 +49,13 @@ TEST(OptimizerNode, RestartFromJournalGivesTheSameMap) {
   }  // killed here; every accepted input is already flushed to the journal
   EXPECT_EQ(journalEvents(journal), static_cast<int>(cut));
 
-  OptimizerNode second(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode second(backend::BackendConfig{}, classes, 0, {}, {});
   EXPECT_EQ(second.openJournal(journal), static_cast<int>(cut));
   feed(second, msgs, cut, msgs.size());
   EXPECT_EQ(journalEvents(journal), static_cast<int>(msgs.size()));
 
-  const Optimizer& a = clean.optimizer();
-  const Optimizer& b = second.optimizer();
+  const backend::Optimizer& a = clean.optimizer();
+  const backend::Optimizer& b = second.optimizer();
   EXPECT_EQ(b.robots(), (std::vector<int>{0, 1}));
   EXPECT_EQ(a.numKeyPoses(), b.numKeyPoses());
   const auto la = a.landmarks(), lb = b.landmarks();
@@ -75,7 +75,7 @@ TEST(OptimizerNode, RestartFromJournalGivesTheSameMap) {
 }
 
 TEST(OptimizerNode, CountsUndecodableAndMisroutedInput) {
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
   const std::vector<uint8_t> junk = {1, 2, 3, 4, 5};
   node.handle("KEYPOSE_BUNDLE", junk.data(), static_cast<int>(junk.size()));
   node.handle("LOOP_CLOSURE", junk.data(), static_cast<int>(junk.size()));
@@ -93,7 +93,7 @@ TEST(OptimizerNode, SettlesTheEstimateOnceWhenInputsStop) {
   // estimate to convergence once (and publishes it), and does not again until inputs change it.
   const std::vector<RawMessage> msgs = slide::testing::twoRobotMessages();
   int maps = 0;
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {},
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {},
                      [&](const std::string& channel, const std::vector<uint8_t>&) {
                        maps += channel == "OBJECT_MAP";
                        return true;
@@ -101,13 +101,13 @@ TEST(OptimizerNode, SettlesTheEstimateOnceWhenInputsStop) {
   node.setSettle(2.0);
   feed(node, msgs, 0, msgs.size());
   const auto t = std::chrono::steady_clock::now();
-  const std::vector<TrajectoryPose> before = node.optimizer().trajectory(0);
+  const std::vector<backend::TrajectoryPose> before = node.optimizer().trajectory(0);
   const int maps_before = maps;
   node.poll(t);  // inputs just came: nothing yet
   EXPECT_EQ(maps, maps_before);
   node.poll(t + std::chrono::seconds(3));
   EXPECT_EQ(maps, maps_before + 1) << "the settled estimate is published";
-  const std::vector<TrajectoryPose> after = node.optimizer().trajectory(0);
+  const std::vector<backend::TrajectoryPose> after = node.optimizer().trajectory(0);
   ASSERT_EQ(after.size(), before.size());
   double moved = 0;
   for (std::size_t i = 0; i < after.size(); ++i)

@@ -45,10 +45,10 @@ TEST(OptimizerPeers, FarObjectInAHeldPeerBundleIsDroppedAlsoAfterReplay) {
   for (std::size_t i = 0; i < msgs.size() && !far_at; ++i)
     if (msgs[i].channel == "PEER_BUNDLE" && ++peer_seen == 3) far_at = i;
   std::vector<std::string> warnings;
-  KeyPoseBundle b = fromLcm(decoded(msgs[far_at]), &warnings);
+  KeyPoseBundle b = msg::fromLcm(decoded(msgs[far_at]), &warnings);
   ASSERT_FALSE(b.objects.empty());
   b.objects.push_back(transformObject(poseFromXyzYaw(1e5, 0, 0, 0), b.objects[0]));
-  msgs[far_at].bytes = slide::testing::encodeMsg(toLcm(b));
+  msgs[far_at].bytes = slide::testing::encodeMsg(msg::toLcm(b));
   std::size_t merge_at = 0;
   for (std::size_t i = 0; i < msgs.size() && !merge_at; ++i)
     if (msgs[i].channel == "LOOP_CLOSURE") merge_at = i;
@@ -57,12 +57,12 @@ TEST(OptimizerPeers, FarObjectInAHeldPeerBundleIsDroppedAlsoAfterReplay) {
   const std::string dir = tempDir(), journal = dir + "/optimizer.journal";
   const ClassTable classes = ClassTable::loadDefault();
   {
-    OptimizerNode first(BackendConfig{}, classes, 0, {}, {});
+    OptimizerNode first(backend::BackendConfig{}, classes, 0, {}, {});
     first.openJournal(journal);
     for (std::size_t i = 0; i < merge_at; ++i) feed(first, msgs[i]);
     EXPECT_EQ(first.optimizer().rejected(), 0);  // the bundle is held (its other objects count)
   }
-  OptimizerNode second(BackendConfig{}, classes, 0, {}, {});
+  OptimizerNode second(backend::BackendConfig{}, classes, 0, {}, {});
   EXPECT_EQ(second.openJournal(journal), static_cast<int>(merge_at));
   for (std::size_t i = merge_at; i < msgs.size(); ++i) feed(second, msgs[i]);
   EXPECT_TRUE(second.optimizer().merged(1));
@@ -71,7 +71,7 @@ TEST(OptimizerPeers, FarObjectInAHeldPeerBundleIsDroppedAlsoAfterReplay) {
 }
 
 TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
-  BackendConfig cfg;
+  backend::BackendConfig cfg;
   cfg.max_peers = 2;
   cfg.max_held_bundles = 5;
   std::vector<std::vector<uint8_t>> status;
@@ -85,7 +85,7 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
   for (const auto& m : msgs)
     if (m.channel == "PEER_BUNDLE") {
       std::vector<std::string> w;
-      peer.push_back(fromLcm(decoded(m), &w));
+      peer.push_back(msg::fromLcm(decoded(m), &w));
     }
   ASSERT_GE(peer.size(), 8u);
   // 100 robot ids, 8 bundles each: 2 peers of 5 held bundles are kept.
@@ -93,7 +93,7 @@ TEST(OptimizerPeers, PeersAndHeldBundlesAreBoundedAndCounted) {
     for (int k = 0; k < 8; ++k) {
       KeyPoseBundle b = peer[static_cast<std::size_t>(k)];
       b.robot = id;
-      const auto bytes = slide::testing::encodeMsg(toLcm(b));
+      const auto bytes = slide::testing::encodeMsg(msg::toLcm(b));
       node.handle("PEER_BUNDLE", bytes.data(), static_cast<int>(bytes.size()));
     }
   EXPECT_EQ(node.optimizer().numHeld(), 10);
@@ -111,13 +111,13 @@ TEST(OptimizerPeers, OwnMapHoldsOnlyLandmarksTheRobotObservedItself) {
   // holds robot 1's landmarks too, the own map (place recognition's and the team's input) only
   // robot 0's.
   std::map<std::string, object_map_t> last;
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, {},
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {},
                      [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
                        object_map_t m;
                        if (m.decode(bytes.data(), 0, static_cast<int>(bytes.size())) >= 0) last[channel] = m;
                        return true;
                      });
-  OptimizerNode alone(BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
+  OptimizerNode alone(backend::BackendConfig{}, ClassTable::loadDefault(), 0, {}, {});
   for (const auto& m : slide::testing::twoRobotMessages(45, 25, 130)) {
     feed(node, m);
     if (m.channel == "KEYPOSE_BUNDLE") feed(alone, m);
@@ -130,7 +130,7 @@ TEST(OptimizerPeers, OwnMapHoldsOnlyLandmarksTheRobotObservedItself) {
   EXPECT_NEAR(own.num_objects, static_cast<int>(truth_own.size()), 3);
   // Every own-map landmark is one robot 0 maps on its own (same class, within 0.5 m).
   for (const object_t& o : own.objects) {
-    const Object mine = fromLcm(o);
+    const Object mine = msg::fromLcm(o);
     const bool found = std::any_of(truth_own.begin(), truth_own.end(), [&](const Object& t) {
       return t.class_id == mine.class_id && (t.position() - mine.position()).norm() < 0.5;
     });

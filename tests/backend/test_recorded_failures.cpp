@@ -40,9 +40,9 @@ TEST(RecordedFailures, AMergedPeersFrameKeepsItsHeight) {
   const std::string dir = kDir + "forest_peer_height/";
   std::map<int, Pose> T_world_odom;
   for (int r : {0, 1, 2}) T_world_odom[r] = odomFrame(dir, r);
-  const std::vector<StampedPose> truth = readTum(dir + "robot1_groundtruth.txt");
+  const std::vector<StampedPose> truth = io::readTum(dir + "robot1_groundtruth.txt");
   const int host = 1;
-  OptimizerNode node(loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"),
+  OptimizerNode node(backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"),
                      ClassTable::loadDefault(), host, {}, {});
   std::map<std::pair<int, int>, Pose> odom_of;  // (robot, seq) -> the bundle's odometry pose
   const auto inputs = OptimizerNode::readJournal(dir + "optimizer1.journal");
@@ -52,22 +52,22 @@ TEST(RecordedFailures, AMergedPeersFrameKeepsItsHeight) {
       keypose_bundle_t m;
       ASSERT_GE(m.decode(in.bytes.data(), 0, static_cast<int>(in.bytes.size())), 0);
       std::vector<std::string> warnings;
-      const KeyPoseBundle b = fromLcm(m, &warnings);
+      const KeyPoseBundle b = msg::fromLcm(m, &warnings);
       odom_of[{b.robot, b.seq}] = b.odom_pose;
     }
     node.handle(in.channel, in.bytes.data(), static_cast<int>(in.bytes.size()));
   }
   node.optimizer().fullSolve();
-  const Optimizer& opt = node.optimizer();
+  const backend::Optimizer& opt = node.optimizer();
 
   // Every merged peer's frame as the graph holds it, against the true one: within 1 m (it was
   // 1.92 m for robot 0, 1.7 m of it in height) and 2 degrees.
   for (int peer : {0, 2}) {
     ASSERT_TRUE(opt.merged(peer)) << "peer " << peer;
-    const TrajectoryPose first = opt.trajectory(peer).front();
+    const backend::TrajectoryPose first = opt.trajectory(peer).front();
     const Pose estimate = first.pose * odom_of.at({peer, first.seq}).inverse();
     const Pose T_true = T_world_odom.at(host).inverse() * T_world_odom.at(peer);
-    const TransformError e = transformError(estimate, T_true);
+    const eval::TransformError e = eval::transformError(estimate, T_true);
     EXPECT_LT(e.translation_m, 1.0) << "peer " << peer;
     EXPECT_LT(std::abs(estimate.translation().z() - T_true.translation().z()), 0.5) << "peer " << peer;
     EXPECT_LT(e.yaw_deg, 2.0) << "peer " << peer;
@@ -76,7 +76,7 @@ TEST(RecordedFailures, AMergedPeersFrameKeepsItsHeight) {
   double est_sq = 0, odom_sq = 0;
   int n = 0;
   const Pose T_odom_world = T_world_odom.at(host).inverse();
-  for (const TrajectoryPose& p : opt.trajectory(host)) {
+  for (const backend::TrajectoryPose& p : opt.trajectory(host)) {
     const StampedPose* g = nearest(truth, p.utime * 1e-6);
     if (!g) continue;
     const Eigen::Vector3d t = (T_odom_world * g->pose).translation();

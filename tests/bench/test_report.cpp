@@ -11,15 +11,15 @@
 using namespace slide;
 
 TEST(BenchStats, Quantiles) {
-  EXPECT_DOUBLE_EQ(median({3, 1, 2}), 2);
-  EXPECT_DOUBLE_EQ(median({4, 1, 2, 3}), 2.5);
-  EXPECT_DOUBLE_EQ(quantile({0, 10}, 0.99), 9.9);
-  EXPECT_TRUE(std::isnan(median({})));
-  EXPECT_DOUBLE_EQ(mean({1, 2, 3, 6}), 3);
+  EXPECT_DOUBLE_EQ(bench::median({3, 1, 2}), 2);
+  EXPECT_DOUBLE_EQ(bench::median({4, 1, 2, 3}), 2.5);
+  EXPECT_DOUBLE_EQ(bench::quantile({0, 10}, 0.99), 9.9);
+  EXPECT_TRUE(std::isnan(bench::median({})));
+  EXPECT_DOUBLE_EQ(bench::mean({1, 2, 3, 6}), 3);
 }
 
 TEST(BenchReport, JsonFollowsConvention) {
-  BenchReport r("backend");
+  bench::BenchReport r("backend");
   r.add("forest.update_ms.median", 3.2, "ms", true, 5.0, 36.46);
   r.add("forest.landmarks", 860, "", false).note = "confirmed \"landmarks\"";
   r.add("forest.bad", NAN, "m");
@@ -37,8 +37,8 @@ TEST(BenchReport, JsonFollowsConvention) {
   EXPECT_EQ(j.at("results").at(1).at("note"), "confirmed \"landmarks\"");
   EXPECT_FALSE(j.at("results").at(1).contains("target"));
   EXPECT_TRUE(j.at("results").at(2).at("value").is_null());
-  EXPECT_TRUE(BenchReport::meetsTarget(r.results()[0]));
-  EXPECT_FALSE(BenchReport::meetsTarget(r.results()[1]));
+  EXPECT_TRUE(bench::BenchReport::meetsTarget(r.results()[0]));
+  EXPECT_FALSE(bench::BenchReport::meetsTarget(r.results()[1]));
   std::ostringstream table;
   r.printTable(table);
   EXPECT_NE(table.str().find("forest.update_ms.median"), std::string::npos);

@@ -76,7 +76,9 @@ Object someChair() {
   o.model = Ellipsoid{{-1, 0.5, 0.4}, 0.3, 0.9};
   return o;
 }
-std::vector<object_t> someObjects() { return {toLcm(someCar()), toLcm(someTrunk()), toLcm(someChair())}; }
+std::vector<object_t> someObjects() {
+  return {msg::toLcm(someCar()), msg::toLcm(someTrunk()), msg::toLcm(someChair())};
+}
 
 origin_ranges_t ranges(int origin) {
   origin_ranges_t r;
@@ -124,9 +126,9 @@ TEST(Messages, RgbdFrame) {
 TEST(Messages, OdometryAndStatus) {
   odometry_t o;
   o.header = header(0, 1);
-  o.pose = toLcm(poseFromXyzYaw(1, 2, 3, 0.5));
+  o.pose = msg::toLcm(poseFromXyzYaw(1, 2, 3, 0.5));
   for (int i = 0; i < 3; ++i) o.linear_velocity[i] = o.angular_velocity[i] = i * 0.5f;
-  EXPECT_TRUE(fromLcm(roundTrip(o).pose).isApprox(poseFromXyzYaw(1, 2, 3, 0.5), 1e-12));
+  EXPECT_TRUE(msg::fromLcm(roundTrip(o).pose).isApprox(poseFromXyzYaw(1, 2, 3, 0.5), 1e-12));
 
   stream_status_t s;
   s.utime = 5;
@@ -152,7 +154,7 @@ TEST(Messages, OdometryAndStatus) {
 TEST(Messages, FrameInstances) {
   frame_instances_t m;
   m.header = header(0, 3);
-  m.odom_pose = toLcm(Pose::Identity());
+  m.odom_pose = msg::toLcm(Pose::Identity());
   object_instance_t inst;
   inst.instance_id = 4;
   inst.class_id = 10;
@@ -167,8 +169,8 @@ TEST(Messages, FrameInstances) {
 TEST(Messages, KeyPoseBundleTrajectoryMap) {
   keypose_bundle_t b;
   b.header = header(1, 17);
-  b.odom_pose = toLcm(poseFromXyzYaw(10, 0, 0, 0.1));
-  b.relative_odom = toLcm(poseFromXyzYaw(1, 0, 0, 0.01));
+  b.odom_pose = msg::toLcm(poseFromXyzYaw(10, 0, 0, 0.1));
+  b.relative_odom = msg::toLcm(poseFromXyzYaw(1, 0, 0, 0.01));
   for (int i = 0; i < 6; ++i) b.odom_sigma[i] = 0.01f * i;
   b.objects = someObjects();
   b.num_objects = 3;
@@ -181,7 +183,7 @@ TEST(Messages, KeyPoseBundleTrajectoryMap) {
   t.num_poses = 2;
   t.keypose_seq = {0, 1};
   t.pose_utime = {100, 200};
-  t.poses = {toLcm(Pose::Identity()), toLcm(poseFromXyzYaw(1, 0, 0, 0))};
+  t.poses = {msg::toLcm(Pose::Identity()), msg::toLcm(poseFromXyzYaw(1, 0, 0, 0))};
   EXPECT_EQ(roundTrip(t).pose_utime[1], 200);
 
   object_map_t map;
@@ -210,11 +212,11 @@ TEST(Messages, KeyPoseBundleConvertsBothWaysAndDropsModellessObjects) {
   trunk.class_id = 71;
   trunk.model = Cylinder{{1, 2, 0}, Eigen::Vector3d::UnitZ(), 0.2, 6};
   b.objects = {car, trunk};
-  keypose_bundle_t m = roundTrip(toLcm(b));
+  keypose_bundle_t m = roundTrip(msg::toLcm(b));
   EXPECT_EQ(m.header.robot, 2);
   EXPECT_EQ(m.num_objects, 2);
   std::vector<std::string> dropped;
-  const KeyPoseBundle back = fromLcm(m, &dropped);
+  const KeyPoseBundle back = msg::fromLcm(m, &dropped);
   EXPECT_TRUE(dropped.empty());
   EXPECT_EQ(back.robot, 2);
   EXPECT_EQ(back.seq, 7);
@@ -228,7 +230,7 @@ TEST(Messages, KeyPoseBundleConvertsBothWaysAndDropsModellessObjects) {
   // An object without a model is left out and named; the rest of the bundle stays.
   m.objects[0].num_cuboid = 0;
   m.objects[0].cuboid.clear();
-  const KeyPoseBundle rest = fromLcm(m, &dropped);
+  const KeyPoseBundle rest = msg::fromLcm(m, &dropped);
   ASSERT_EQ(rest.objects.size(), 1u);
   EXPECT_EQ(rest.objects[0].id, 5);
   ASSERT_EQ(dropped.size(), 1u);
@@ -292,15 +294,15 @@ TEST(Messages, PeerSync) {
 
 TEST(Messages, ObjectConversionRoundTrip) {
   for (const Object& o : {someCar(), someTrunk(), someChair()}) {
-    const Object back = fromLcm(roundTrip(toLcm(o)));
+    const Object back = msg::fromLcm(roundTrip(msg::toLcm(o)));
     EXPECT_EQ(back.id, o.id);
     EXPECT_EQ(back.class_id, o.class_id);
     EXPECT_EQ(back.shape(), o.shape());
     EXPECT_TRUE(back.position().isApprox(o.position(), 1e-5));
     EXPECT_TRUE(back.extent().isApprox(o.extent(), 1e-5));
   }
-  object_t empty = toLcm(someCar());
+  object_t empty = msg::toLcm(someCar());
   empty.num_cuboid = 0;
   empty.cuboid.clear();
-  EXPECT_THROW(fromLcm(empty), std::invalid_argument);
+  EXPECT_THROW(msg::fromLcm(empty), std::invalid_argument);
 }

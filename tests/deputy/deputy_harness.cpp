@@ -70,7 +70,7 @@ void SheriffStub::spin(double seconds) {
   do {
     const int64_t now = nowUs();
     if (!deputy_.empty() && now >= next_send_us_) {
-      const procman_lcm::orders_t m = makeOrders(deputy_, "test-sheriff", now + offset_us_, orders_);
+      const procman_lcm::orders_t m = msg::makeOrders(deputy_, "test-sheriff", now + offset_us_, orders_);
       lcm_.publish("PM_ORDERS", &m);
       next_send_us_ = now + 500000;
     }

@@ -38,14 +38,14 @@ TEST(BenchRunner, ReportsEverySuiteAndContinuesAfterFailures) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_NE(WEXITSTATUS(status), 0) << "a failing or missing suite must fail the run";
 
-  const Json doc = readJsonFile((dir / "all.json").string());
+  const report::Json doc = report::readJsonFile((dir / "all.json").string());
   const auto& suites = doc.at("suites");
   ASSERT_EQ(suites.size(), 5u);
-  auto suite = [&](std::size_t i, const char* field) -> const Json& { return *suites[i].find(field); };
+  auto suite = [&](std::size_t i, const char* field) -> const report::Json& { return *suites[i].find(field); };
   EXPECT_EQ(suite(0, "suite").get<std::string>(), "good");
   EXPECT_EQ(suite(0, "status").get<std::string>(), "ok");
   ASSERT_EQ(suite(0, "results").size(), 2u);
-  const Json& ate = suite(0, "results")[0];
+  const report::Json& ate = suite(0, "results")[0];
   EXPECT_DOUBLE_EQ(ate.at("value").get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(ate.at("paper").get<double>(), 0.54);
   EXPECT_TRUE(ate.at("pass").get<bool>());
@@ -87,7 +87,7 @@ TEST(BenchRunner, NamedOnlySuiteRunsItsProgramWithArgumentsAndOnlyWhenNamed) {
   const int named = run("place_scale", "named");
   ASSERT_TRUE(WIFEXITED(named));
   EXPECT_EQ(WEXITSTATUS(named), 0);
-  const Json doc = readJsonFile((dir / "named.json").string());
+  const report::Json doc = report::readJsonFile((dir / "named.json").string());
   ASSERT_EQ(doc.at("suites").size(), 1u);
   EXPECT_EQ(doc.at("suites")[0].at("suite").get<std::string>(), "place_scale");
   EXPECT_EQ(doc.at("suites")[0].at("status").get<std::string>(), "ok");
@@ -97,9 +97,9 @@ TEST(BenchRunner, NamedOnlySuiteRunsItsProgramWithArgumentsAndOnlyWhenNamed) {
   EXPECT_NE(out.str().find("slide-bench-place --only scale --json"), std::string::npos) << out.str();
 
   run("", "plain");  // every other known suite is missing here: the run fails, place runs
-  const Json all = readJsonFile((dir / "plain.json").string());
+  const report::Json all = report::readJsonFile((dir / "plain.json").string());
   bool place = false;
-  for (const Json& s : all.at("suites")) {
+  for (const report::Json& s : all.at("suites")) {
     EXPECT_NE(s.at("suite").get<std::string>(), "place_scale");
     place |= s.at("suite").get<std::string>() == "place";
   }

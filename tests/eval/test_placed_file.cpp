@@ -7,15 +7,15 @@
 using namespace slide;
 
 TEST(PlacedFile, PathWithAndWithoutPlacement) {
-  const PlacedFile plain = parsePlacedFile("maps/robot0.txt");
+  const eval::PlacedFile plain = eval::parsePlacedFile("maps/robot0.txt");
   EXPECT_EQ(plain.path, "maps/robot0.txt");
   EXPECT_TRUE(plain.placement.isApprox(Pose::Identity()));
-  const PlacedFile placed = parsePlacedFile("a@b/robot1.txt@1,2.5,-3,90");
+  const eval::PlacedFile placed = eval::parsePlacedFile("a@b/robot1.txt@1,2.5,-3,90");
   EXPECT_EQ(placed.path, "a@b/robot1.txt");
   EXPECT_TRUE(placed.placement.translation().isApprox(Eigen::Vector3d(1, 2.5, -3)));
   EXPECT_NEAR(yawOf(placed.placement.linear()), M_PI / 2, 1e-12);
-  EXPECT_EQ(parsePlacedFile("runs/a@b/map.txt").path, "runs/a@b/map.txt");
-  EXPECT_THROW(parsePlacedFile("robot.txt@1,2,3"), std::invalid_argument);
-  EXPECT_THROW(parsePlacedFile("robot.txt@1,2,3,x"), std::invalid_argument);
-  EXPECT_THROW(parsePlacedFile("@1,2,3,4"), std::invalid_argument);
+  EXPECT_EQ(eval::parsePlacedFile("runs/a@b/map.txt").path, "runs/a@b/map.txt");
+  EXPECT_THROW(eval::parsePlacedFile("robot.txt@1,2,3"), std::invalid_argument);
+  EXPECT_THROW(eval::parsePlacedFile("robot.txt@1,2,3,x"), std::invalid_argument);
+  EXPECT_THROW(eval::parsePlacedFile("@1,2,3,4"), std::invalid_argument);
 }

@@ -10,24 +10,24 @@
 using namespace slide;
 
 TEST(TrajectoryWarnings, ScaleOutsideHalfToTwoOrNotFiniteWarns) {
-  EXPECT_FALSE(scaleWarning(1.0));
-  EXPECT_FALSE(scaleWarning(0.6));
-  EXPECT_FALSE(scaleWarning(1.9));
-  ASSERT_TRUE(scaleWarning(1e-4));
-  EXPECT_NE(scaleWarning(1e-4)->find("shrank"), std::string::npos) << *scaleWarning(1e-4);
-  EXPECT_NE(scaleWarning(3.0)->find("stretched"), std::string::npos);
-  EXPECT_TRUE(scaleWarning(0.0));
-  EXPECT_TRUE(scaleWarning(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_FALSE(eval::scaleWarning(1.0));
+  EXPECT_FALSE(eval::scaleWarning(0.6));
+  EXPECT_FALSE(eval::scaleWarning(1.9));
+  ASSERT_TRUE(eval::scaleWarning(1e-4));
+  EXPECT_NE(eval::scaleWarning(1e-4)->find("shrank"), std::string::npos) << *eval::scaleWarning(1e-4);
+  EXPECT_NE(eval::scaleWarning(3.0)->find("stretched"), std::string::npos);
+  EXPECT_TRUE(eval::scaleWarning(0.0));
+  EXPECT_TRUE(eval::scaleWarning(std::numeric_limits<double>::quiet_NaN()));
 }
 
 TEST(TrajectoryWarnings, CoverageIsJudgedAgainstTheReferenceCount) {
   // 3 of 3 estimate poses matched, but the reference has 501: a warning naming both counts.
-  const auto w = coverageWarning(3, 3, 501);
+  const auto w = eval::coverageWarning(3, 3, 501);
   ASSERT_TRUE(w);
   EXPECT_NE(w->find("only 3 of 501 reference poses"), std::string::npos) << *w;
   // Stamps that do not line up: few pairs of two long trajectories.
-  ASSERT_TRUE(coverageWarning(10, 500, 501));
-  EXPECT_NE(coverageWarning(10, 500, 501)->find("matched in time"), std::string::npos);
-  EXPECT_FALSE(coverageWarning(480, 500, 501));
-  EXPECT_FALSE(coverageWarning(110, 110, 501));  // a key-pose estimate covering a fifth of the reference
+  ASSERT_TRUE(eval::coverageWarning(10, 500, 501));
+  EXPECT_NE(eval::coverageWarning(10, 500, 501)->find("matched in time"), std::string::npos);
+  EXPECT_FALSE(eval::coverageWarning(480, 500, 501));
+  EXPECT_FALSE(eval::coverageWarning(110, 110, 501));  // a key-pose estimate covering a fifth of the reference
 }

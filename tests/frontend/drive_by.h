@@ -20,7 +20,7 @@ inline header_t driveByHeader(int k) {
 inline odometry_t driveByOdometry(int k) {
   odometry_t m{};
   m.header = driveByHeader(k);
-  m.pose = toLcm(driveByPose(k));
+  m.pose = msg::toLcm(driveByPose(k));
   return m;
 }
 

@@ -21,12 +21,12 @@ struct SceneObject {
 
 // Scan seen from T_world_sensor (sensor 1.5 m above the ground at z = 0 of the world), points
 // in the sensor frame, spacing ~`step` metres on each surface (`ground_step` on the ground).
-inline LabelledScan syntheticScan(const std::vector<SceneObject>& objects, const Pose& T_world_sensor,
+inline io::LabelledScan syntheticScan(const std::vector<SceneObject>& objects, const Pose& T_world_sensor,
                                   double step = 0.05, unsigned seed = 1, double noise = 0.01,
                                   double ground_step = 0.2) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0.0, noise);
-  LabelledScan s;
+  io::LabelledScan s;
   const Pose T_sensor_world = T_world_sensor.inverse();
   const Eigen::Vector3d eye = T_world_sensor.translation();
   auto add = [&](const Eigen::Vector3d& p, int sem, int inst) {

@@ -102,12 +102,12 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyPoseBundles) {
     const odometry_t odom = slide::testing::driveByOdometry(k);
     lcm.publish("ODOM", &odom);
     if (k == 5) {  // bad input: an empty scan and one with non-finite points
-      lidar_scan_t empty = toLcm(LabelledScan{}, h);
+      lidar_scan_t empty = msg::toLcm(io::LabelledScan{}, h);
       lcm.publish("SCAN", &empty);
     } else {
-      LabelledScan scan = synth::syntheticScan(scene, T, 0.08, k + 1, 0.01, 0.6);
+      io::LabelledScan scan = synth::syntheticScan(scene, T, 0.08, k + 1, 0.01, 0.6);
       if (k == 8) scan.xyz[3] = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-      const lidar_scan_t m = toLcm(scan, h);
+      const lidar_scan_t m = msg::toLcm(scan, h);
       lcm.publish("SCAN", &m);
     }
     if (k == 10) {  // an RGBD frame whose images do not match its intrinsics
@@ -128,7 +128,7 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyPoseBundles) {
   // One more pose after the last scan (a driver keeps sending odometry).
   odometry_t last{};
   last.header.utime = 1000000 + frames * 100000;
-  last.pose = toLcm(poseFromXyzYaw(0.4 * frames, 0, 1.5, 0));
+  last.pose = msg::toLcm(poseFromXyzYaw(0.4 * frames, 0, 1.5, 0));
   lcm.publish("ODOM", &last);
   for (int i = 0; i < 200 && got.instances < expected; ++i) pump(lcm, 0.05);
   pump(lcm, 0.5);
@@ -155,8 +155,8 @@ TEST(FrontendDaemons, ReplayedDatasetGivesKeyPoseBundles) {
   for (const auto& [id, n] : seen_ids) repeated += n >= 3;
   EXPECT_GE(repeated, 2);
   for (const auto& o : final_bundle.objects) {
-    const Object obj = fromLcm(o);
-    const Eigen::Vector3d world = fromLcm(final_bundle.odom_pose) * obj.position();
+    const Object obj = msg::fromLcm(o);
+    const Eigen::Vector3d world = msg::fromLcm(final_bundle.odom_pose) * obj.position();
     double best = 1e9;
     for (const auto& s : scene) best = std::min(best, (world.head<2>() - s.center.head<2>()).norm());
     EXPECT_LT(best, obj.class_id == 10 ? 1.0 : 0.3) << "object " << obj.id << " of class " << obj.class_id;
@@ -181,8 +181,9 @@ TEST(FrontendDaemons, LearnedModeAnswersEveryScan) {
   for (int k = 0; k < frames; ++k) {
     const odometry_t odom = slide::testing::driveByOdometry(k);
     lcm.publish("ODOM", &odom);
-    const lidar_scan_t m = toLcm(synth::syntheticScan(scene, slide::testing::driveByPose(k), 0.08, k + 1, 0.01, 0.6),
-                                     slide::testing::driveByHeader(k));
+    const lidar_scan_t m =
+        msg::toLcm(synth::syntheticScan(scene, slide::testing::driveByPose(k), 0.08, k + 1, 0.01, 0.6),
+                   slide::testing::driveByHeader(k));
     lcm.publish("SCAN", &m);
     for (int i = 0; i < 250 && got.instances < k; ++i) pump(lcm, 0.02);
   }

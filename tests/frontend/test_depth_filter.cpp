@@ -20,7 +20,7 @@ TEST(DepthFilter, ReducesNoiseWithoutLeakingAcrossMasks) {
       depth[i] = static_cast<std::uint16_t>((u < 20 ? 5000 : 9000) + n(rng));
     }
   depth[5 * w + 5] = 0;  // missing depth stays missing
-  const auto out = medianDepthWithinMasks(depth, mask, w, h, 2);
+  const auto out = frontend::medianDepthWithinMasks(depth, mask, w, h, 2);
   double e_in = 0, e_out = 0;
   int count = 0;
   for (int v = 0; v < h; ++v)
@@ -35,5 +35,5 @@ TEST(DepthFilter, ReducesNoiseWithoutLeakingAcrossMasks) {
       EXPECT_LT(std::abs(out[i] - truth), 400);  // no pixel takes the other instance's depth
     }
   EXPECT_LT(std::sqrt(e_out / count), 0.5 * std::sqrt(e_in / count));
-  EXPECT_EQ(medianDepthWithinMasks(depth, mask, w, h, 0), depth);
+  EXPECT_EQ(frontend::medianDepthWithinMasks(depth, mask, w, h, 0), depth);
 }

@@ -27,7 +27,8 @@ M decoded(const std::vector<uint8_t>& bytes) {
 
 TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  const frontend::FrontendConfig cfg =
+      frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
   std::vector<keypose_bundle_t> bundles;
   TrackerNode tracker(0, "KEYPOSE_BUNDLE", classes, cfg, [&](const std::string& c, const std::vector<uint8_t>& b) {
     EXPECT_EQ(c, "KEYPOSE_BUNDLE");
@@ -46,8 +47,9 @@ TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
   const int frames = 12;
   for (int k = 0; k < frames; ++k) {
     // The scan comes before the odometry at its time: it waits for it. Frame 5 is empty.
-    const LabelledScan scan = k == 5 ? LabelledScan{} : synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6);
-    segmenter.onScan(toLcm(scan, driveByHeader(k)));
+    const io::LabelledScan scan =
+        k == 5 ? io::LabelledScan{} : synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6);
+    segmenter.onScan(msg::toLcm(scan, driveByHeader(k)));
     if (k == 0) {
       EXPECT_EQ(segmenter.published(), 0);
     }
@@ -76,9 +78,9 @@ TEST(FrontendNodes, ScansBecomeInstancesAndKeyPoseBundles) {
 // the car cluster one car instance, vegetation no object. The scan's own labels are ignored.
 TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
   const ClassTable classes = ClassTable::loadDefault();
-  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  frontend::FrontendConfig cfg = frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
   cfg.lidar_mode = "learned";
-  cfg.learned = LearnedLidarParams{};
+  cfg.learned = frontend::LearnedLidarParams{};
   cfg.learned.model = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/range3.yaml";
   cfg.learned.width = 512;
   std::vector<frame_instances_t> out;
@@ -86,7 +88,7 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
     out.push_back(decoded<frame_instances_t>(b));
     return true;
   });
-  LabelledScan scan;
+  io::LabelledScan scan;
   for (int i = 0; i < 20; ++i)      // a car-sized block of returns 5 m ahead ...
     for (int j = 0; j < 15; ++j) scan.xyz.emplace_back(5.0f + 0.1f * (i % 3), -1.0f + 0.1f * i, -1.2f + 0.1f * j);
   for (int i = 0; i < 200; ++i)     // ... and a hedge 15 m to the left
@@ -94,7 +96,7 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
   scan.intensity.assign(scan.size(), 0.5f);
   scan.semantic.assign(scan.size(), 71);  // labels on the bus (oracle): not used in learned mode
   scan.instance.assign(scan.size(), 0);
-  segmenter.onScan(toLcm(scan, driveByHeader(0)));
+  segmenter.onScan(msg::toLcm(scan, driveByHeader(0)));
   segmenter.onOdom(driveByOdometry(0));
   segmenter.onOdom(driveByOdometry(1));
   ASSERT_EQ(out.size(), 1u);
@@ -116,7 +118,7 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
 // rows 0-15 of a 64 x 32 image), not from the frame, and back-projects them with the depth.
 TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
   const ClassTable classes = ClassTable::loadDefault();
-  FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  frontend::FrontendConfig cfg = frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
   cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/yolo_seg.yaml";
   cfg.rgbd.erode_px = 0;
   std::vector<frame_instances_t> out;
@@ -147,7 +149,8 @@ TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
 // without a preview channel.
 TEST(FrontendNodes, PreviewIsAThinnedCopyOfAFrameEveryPeriod) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  const frontend::FrontendConfig cfg =
+      frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
   std::map<int, frame_instances_t> full, preview;  // by seq
   SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string& c, const std::vector<uint8_t>& b) {
     const auto m = decoded<frame_instances_t>(b);
@@ -158,7 +161,7 @@ TEST(FrontendNodes, PreviewIsAThinnedCopyOfAFrameEveryPeriod) {
   segmenter.setPreview({"INSTANCES_PREVIEW", 0.25, 40});
   const std::vector<synth::SceneObject> scene{{71, {6, 4, 0}, 0.25, 6.0}, {71, {12, -4, 0}, 0.35, 6.0}};
   for (int k = 0; k < 12; ++k) {  // frames 0.1 s apart
-    segmenter.onScan(toLcm(synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6), driveByHeader(k)));
+    segmenter.onScan(msg::toLcm(synth::syntheticScan(scene, driveByPose(k), 0.08, k + 1, 0.01, 0.6), driveByHeader(k)));
     segmenter.onOdom(driveByOdometry(k));
   }
   segmenter.onOdom(driveByOdometry(12));

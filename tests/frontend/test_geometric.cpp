@@ -28,14 +28,14 @@ namespace {
 const std::string kDir = std::string(SLIDE_DATA_DIR) + "/semantickitti/sequences/08/velodyne/";
 
 // Points on the near half of a vertical cylinder (seen from the origin), rings every 5 cm.
-void addPole(Cloud& c, const Eigen::Vector2d& xy, double r, double height, double ground = 0) {
+void addPole(frontend::Cloud& c, const Eigen::Vector2d& xy, double r, double height, double ground = 0) {
   const double facing = std::atan2(-xy.y(), -xy.x());
   for (double z = 0; z < height; z += 0.05)
     for (double a = -1.4; a <= 1.4; a += 0.12)
       c.emplace_back(xy.x() + r * std::cos(facing + a), xy.y() + r * std::sin(facing + a), ground + z);
 }
 // A vertical wall from a to b, up to height, points every 5 cm.
-void addWall(Cloud& c, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height) {
+void addWall(frontend::Cloud& c, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height) {
   const double len = (b - a).norm();
   for (double s = 0; s <= len; s += 0.05)
     for (double z = 0; z < height; z += 0.05) {
@@ -44,7 +44,7 @@ void addWall(Cloud& c, const Eigen::Vector2d& a, const Eigen::Vector2d& b, doubl
     }
 }
 // A bush: random points in an ellipsoid of radius r, height hgt, centred on xy.
-void addBush(Cloud& c, const Eigen::Vector2d& xy, double r, double hgt, unsigned seed) {
+void addBush(frontend::Cloud& c, const Eigen::Vector2d& xy, double r, double hgt, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int k = 0; k < 3000;) {
@@ -54,22 +54,24 @@ void addBush(Cloud& c, const Eigen::Vector2d& xy, double r, double hgt, unsigned
     ++k;
   }
 }
-void addGround(Cloud& c, double slope = 0) {
+void addGround(frontend::Cloud& c, double slope = 0) {
   for (double x = -15; x <= 15; x += 0.25)
     for (double y = -15; y <= 15; y += 0.25) c.emplace_back(x, y, slope * x);
 }
 
-std::vector<Column> columnsOf(const Cloud& cloud, const ColumnParams& p = loadDefaultFrontendConfig().geometric.column) {
-  GroundParams gp = loadDefaultFrontendConfig().geometric.ground;
-  const std::vector<float> h = heightAboveGround(cloud, gp);
+std::vector<frontend::Column> columnsOf(
+    const frontend::Cloud& cloud,
+    const frontend::ColumnParams& p = frontend::loadDefaultFrontendConfig().geometric.column) {
+  frontend::GroundParams gp = frontend::loadDefaultFrontendConfig().geometric.ground;
+  const std::vector<float> h = frontend::heightAboveGround(cloud, gp);
   std::vector<int> above;
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (std::isfinite(h[i]) && h[i] > gp.threshold) above.push_back(static_cast<int>(i));
   std::vector<char> taken(cloud.size(), 0);
-  return detectColumns(cloud, h, above, ScanLines(cloud, above), p, taken);
+  return frontend::detectColumns(cloud, h, above, frontend::ScanLines(cloud, above), p, taken);
 }
 
-bool columnNear(const std::vector<Column>& cols, const Eigen::Vector2d& xy, double d) {
+bool columnNear(const std::vector<frontend::Column>& cols, const Eigen::Vector2d& xy, double d) {
   for (const auto& c : cols)
     if ((c.base + c.slope * 1.0 - xy).norm() < d) return true;
   return false;
@@ -77,7 +79,7 @@ bool columnNear(const std::vector<Column>& cols, const Eigen::Vector2d& xy, doub
 }  // namespace
 
 TEST(ColumnDetection, PoleBesideAHedgeIsFoundTheHedgeAndWallAreNot) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c);
   addPole(c, {6, 2}, 0.06, 5.0);
   addBush(c, {6.0, 2.7}, 0.6, 1.4, 3);  // hedge against the pole's lower part
@@ -91,7 +93,7 @@ TEST(ColumnDetection, PoleBesideAHedgeIsFoundTheHedgeAndWallAreNot) {
 }
 
 TEST(ColumnDetection, ThickTrunkIsTrunkThinPoleIsPole) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c);
   addPole(c, {5, -3}, 0.25, 6.0);
   addPole(c, {-4, 6}, 0.05, 6.0);
@@ -104,36 +106,36 @@ TEST(ColumnDetection, ThickTrunkIsTrunkThinPoleIsPole) {
 }
 
 TEST(ColumnDetection, AThinColumnIsASurePoleOnlyWithOpenViewAboveItsTop) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c);
   addPole(c, {5, -3}, 0.25, 12.0);  // a thick trunk: a sure trunk call, and a high view
   addPole(c, {8, 0}, 0.05, 4.0);    // thin, its top seen with open view above: a sure pole
-  auto thin = [](const std::vector<Column>& cols) {
+  auto thin = [](const std::vector<frontend::Column>& cols) {
     for (const auto& col : cols)
       if ((col.base - Eigen::Vector2d(8, 0)).norm() < 0.3) return col;
     ADD_FAILURE() << "thin column not found";
-    return Column{};
+    return frontend::Column{};
   };
-  const Column open = thin(columnsOf(c));
+  const frontend::Column open = thin(columnsOf(c));
   EXPECT_FALSE(open.trunk);
   EXPECT_EQ(open.confidence, 1.0);
   // A few nearer returns just above its top in its direction (a nearer crown's edge): its top
   // may go on behind them, so the call is unsure and follows the scan's sure call (trunk).
   for (double y = -0.1; y <= 0.1; y += 0.05) c.emplace_back(4.0f, float(y), 2.15f);
-  const Column hidden = thin(columnsOf(c));
+  const frontend::Column hidden = thin(columnsOf(c));
   EXPECT_TRUE(hidden.trunk);
   EXPECT_LT(hidden.confidence, 1.0);
 }
 
 TEST(ColumnDetection, ArcTestRejectsAFlatPillar) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c);
   addWall(c, {7, -0.3}, {7, 0.3}, 4.0);  // a flat 0.6 m face standing alone
   addPole(c, {-6, 0}, 0.3, 4.0);          // a 0.6 m trunk
   const auto cols = columnsOf(c);
   EXPECT_TRUE(columnNear(cols, {-6, 0}, 0.5));
   EXPECT_FALSE(columnNear(cols, {7, 0}, 1.0));
-  ColumnParams off = loadDefaultFrontendConfig().geometric.column;
+  frontend::ColumnParams off = frontend::loadDefaultFrontendConfig().geometric.column;
   off.min_arc_fraction = 0;  // without the arc test the face passes: the test is what rejects it
   EXPECT_TRUE(columnNear(columnsOf(c, off), {7, 0}, 1.0));
 }
@@ -141,8 +143,8 @@ TEST(ColumnDetection, ArcTestRejectsAFlatPillar) {
 // A spinning LiDAR (64 beams over +-16.6 deg, 1024 azimuth steps) at 1 m above flat ground
 // scans a building face seen nearly edge-on (the plane x = 4 from y = 20 to 45 m, 8 m tall)
 // and a 0.12 m pole at (-6, 20): exact hits, no noise. Ground as a dense grid.
-Cloud scannedWallAndPole() {
-  Cloud c;
+frontend::Cloud scannedWallAndPole() {
+  frontend::Cloud c;
   for (double x = -50; x <= 50; x += 0.5)
     for (double y = -50; y <= 50; y += 0.5) c.emplace_back(x, y, -1.0);
   const Eigen::Vector2d pole(-6, 20);
@@ -171,8 +173,8 @@ Cloud scannedWallAndPole() {
 // scan line beyond each stack continues on the face's line: the wall-trace test turns them
 // down; the pole's scan line ends at its edges and it stays.
 TEST(ColumnDetection, AFaceSeenEdgeOnIsNoColumnThePoleBesideItIs) {
-  const Cloud c = scannedWallAndPole();
-  auto onWall = [](const std::vector<Column>& cols) {
+  const frontend::Cloud c = scannedWallAndPole();
+  auto onWall = [](const std::vector<frontend::Column>& cols) {
     int n = 0;
     for (const auto& col : cols) n += std::abs(col.base.x() - 4.0) < 0.5 && col.base.y() > 19;
     return n;
@@ -180,7 +182,7 @@ TEST(ColumnDetection, AFaceSeenEdgeOnIsNoColumnThePoleBesideItIs) {
   const auto cols = columnsOf(c);
   EXPECT_TRUE(columnNear(cols, {-6, 20}, 0.3));
   EXPECT_EQ(onWall(cols), 0);
-  ColumnParams off = loadDefaultFrontendConfig().geometric.column;
+  frontend::ColumnParams off = frontend::loadDefaultFrontendConfig().geometric.column;
   off.wall.min_fraction = 0;  // without the test the face's stacks pass
   const auto without = columnsOf(c, off);
   EXPECT_GE(onWall(without), 2);
@@ -190,8 +192,8 @@ TEST(ColumnDetection, AFaceSeenEdgeOnIsNoColumnThePoleBesideItIs) {
 // The same LiDAR scanning axis-aligned boxes [lo, hi] over flat ground at z = -1: exact hits
 // on the nearest box, no noise; the ground as a dense grid or (scanned_ground) scanned too,
 // so that it is missing where the boxes hide it.
-Cloud scannedBoxes(std::vector<Eigen::AlignedBox3d> boxes, bool scanned_ground = false) {
-  Cloud c;
+frontend::Cloud scannedBoxes(std::vector<Eigen::AlignedBox3d> boxes, bool scanned_ground = false) {
+  frontend::Cloud c;
   if (scanned_ground) boxes.emplace_back(Eigen::Vector3d(-60, -60, -1.1), Eigen::Vector3d(60, 60, -1));
   else
     for (double x = -30; x <= 30; x += 0.25)
@@ -221,12 +223,13 @@ Cloud scannedBoxes(std::vector<Eigen::AlignedBox3d> boxes, bool scanned_ground =
 }
 
 // Instances of class_id the segmenter finds in `c` whose point mean lies within d of xy.
-static int instancesNear(const Cloud& c, const GeometricSegmenterParams& p, int class_id, const Eigen::Vector2f& xy, float d) {
-  LabelledScan scan;
+static int instancesNear(const frontend::Cloud& c, const frontend::GeometricSegmenterParams& p, int class_id,
+                         const Eigen::Vector2f& xy, float d) {
+  io::LabelledScan scan;
   scan.xyz = c;
-  InputIssues issues;
+  frontend::InputIssues issues;
   int n = 0;
-  for (const auto& inst : GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
+  for (const auto& inst : frontend::GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
     Eigen::Vector3f m = Eigen::Vector3f::Zero();
     for (const auto& q : inst.points) m += q;
     m /= static_cast<float>(inst.points.size());
@@ -240,19 +243,19 @@ static int instancesNear(const Cloud& c, const GeometricSegmenterParams& p, int 
 // face, which the extent tests would call "other". Its scan lines end at the nearer box beside
 // it, so it is not seen whole and is not emitted; a free-standing bin is.
 TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
-  const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -1, -1), Eigen::Vector3d(12, 1, 0.5)),
+  const frontend::Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -1, -1), Eigen::Vector3d(12, 1, 0.5)),
                                 Eigen::AlignedBox3d(Eigen::Vector3d(14, 0.2, -1), Eigen::Vector3d(18, 2.2, 0.5)),
                                 Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
-  FrontendConfig cfg = loadDefaultFrontendConfig();
+  frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   // Cells of 0.3 m keep the strip at 14 m whole (the default finer cells split its sparse scan
   // lines into pieces too small to be an "other" with or without the occlusion test).
   cfg.geometric.other_cluster = {0.3, false, 30};
-  auto othersNear = [&](const GeometricSegmenterParams& p, const Eigen::Vector2f& xy) {
+  auto othersNear = [&](const frontend::GeometricSegmenterParams& p, const Eigen::Vector2f& xy) {
     return instancesNear(c, p, p.other_class, xy, 1.0f);
   };
   EXPECT_EQ(othersNear(cfg.geometric, {14, 2}), 0);
   EXPECT_EQ(othersNear(cfg.geometric, {6.3f, -5}), 1);
-  GeometricSegmenterParams off = cfg.geometric;
+  frontend::GeometricSegmenterParams off = cfg.geometric;
   off.other_max_occluded = 1;  // without the test the hidden box's strip is an "other"
   EXPECT_EQ(othersNear(off, {14, 2}), 1);
   EXPECT_EQ(othersNear(off, {6.3f, -5}), 1);
@@ -262,15 +265,16 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
 // is a free "other". The pillar is as tall as a column and no wider than one: it is no "other"
 // either (in the forest such clusters are trunks the column step turned down).
 TEST(GeometricSegmenter, AnUprightColumnTurnedDownIsNoOtherABinIs) {
-  const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -0.3, -1), Eigen::Vector3d(8.6, 0.3, 2.5)),
-                                Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  const GeometricSegmenterParams& p = cfg.geometric;
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -0.3, -1), Eigen::Vector3d(8.6, 0.3, 2.5)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenterParams& p = cfg.geometric;
   EXPECT_EQ(instancesNear(c, p, p.trunk_class, {8.3f, 0}, 1.0f) + instancesNear(c, p, p.pole_class, {8.3f, 0}, 1.0f), 0)
       << "flat faces: no column";
   EXPECT_EQ(instancesNear(c, p, p.other_class, {8.3f, 0}, 1.0f), 0);
   EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -5}, 1.0f), 1);
-  GeometricSegmenterParams off = p;
+  frontend::GeometricSegmenterParams off = p;
   off.other_not_column = false;  // without the rule the pillar is an "other"
   EXPECT_EQ(instancesNear(c, off, off.other_class, {8.3f, 0}, 1.0f), 1);
 }
@@ -281,17 +285,17 @@ TEST(GeometricSegmenter, AnUprightColumnTurnedDownIsNoOtherABinIs) {
 // the cap, a car's roof does not: the open-roof test turns the strip down. Several distances,
 // as whether the strip fits a car's height depends on where the beams cross it.
 TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  auto carsNear = [&](const Cloud& c, const GeometricSegmenterParams& p, const Eigen::Vector2f& xy, float d) {
-    return instancesNear(c, p, p.car_class, xy, d);
-  };
-  GeometricSegmenterParams off = cfg.geometric;
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  auto carsNear = [&](const frontend::Cloud& c, const frontend::GeometricSegmenterParams& p, const Eigen::Vector2f& xy,
+                      float d) { return instancesNear(c, p, p.car_class, xy, d); };
+  frontend::GeometricSegmenterParams off = cfg.geometric;
   off.car.max_covered = 1;  // without the test
   int face_cars_without = 0;
   for (double x = 26; x <= 36; x += 1.0) {
-    const Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(10, -2.5, -1), Eigen::Vector3d(12, 2.5, 0.5)),
-                                  Eigen::AlignedBox3d(Eigen::Vector3d(x, -1.6, -1), Eigen::Vector3d(x + 8, 1.6, 7))},
-                                 true);
+    const frontend::Cloud c =
+        scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(10, -2.5, -1), Eigen::Vector3d(12, 2.5, 0.5)),
+                      Eigen::AlignedBox3d(Eigen::Vector3d(x, -1.6, -1), Eigen::Vector3d(x + 8, 1.6, 7))},
+                     true);
     EXPECT_EQ(carsNear(c, cfg.geometric, {10, 0}, 1.0f), 1) << x;
     EXPECT_EQ(carsNear(c, cfg.geometric, {static_cast<float>(x), 0}, 2.0f), 0) << x;
     face_cars_without += carsNear(c, off, {static_cast<float>(x), 0}, 2.0f);
@@ -304,20 +308,20 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
 // cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart, and
 // the car is the face alone (the stripe is too short for a car).
 TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c);
   addWall(c, {5.0, 4.0}, {6.8, 4.0}, 1.5);
   addWall(c, {7.15, 4.2}, {7.15, 5.0}, 1.5);
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   ASSERT_GT(cfg.geometric.car.gap_cell, 0.0) << "on by default";
   for (double gap_cell : {cfg.geometric.car.gap_cell, 0.0}) {
-    GeometricSegmenterParams p = cfg.geometric;
+    frontend::GeometricSegmenterParams p = cfg.geometric;
     p.car.gap_cell = gap_cell;
-    LabelledScan scan;
+    io::LabelledScan scan;
     scan.xyz = c;
-    InputIssues issues;
+    frontend::InputIssues issues;
     int cars = 0;
-    for (const auto& inst : GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
+    for (const auto& inst : frontend::GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
       if (inst.class_id != p.car_class) continue;
       ++cars;
       float max_x = -1e9f;
@@ -335,20 +339,20 @@ TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
 // pole standing beside the sparse face) it is no face.
 TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
   auto stacks = [](double off) {  // metres the middle stack stands off the line (x = 5.13)
-    Cloud c;
+    frontend::Cloud c;
     for (const Eigen::Vector2d& xy : {Eigen::Vector2d(5.13, -46.25), Eigen::Vector2d(5.13 - off, -49.0), Eigen::Vector2d(5.13, -52.05)})
       for (int b = 40; b < 60; ++b) c.emplace_back(xy.x(), xy.y(), xy.norm() * std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180));
     return c;
   };
   for (const double off : {0.0, 0.5}) {
-    const Cloud c = stacks(off);
+    const frontend::Cloud c = stacks(off);
     std::vector<int> all(c.size()), middle;
     std::iota(all.begin(), all.end(), 0);
     std::vector<char> in_column(c.size(), 0);
     for (int i = 20; i < 40; ++i) middle.push_back(i), in_column[i] = 1;
-    WallTraceParams wp = loadDefaultFrontendConfig().geometric.column.wall;
+    frontend::WallTraceParams wp = frontend::loadDefaultFrontendConfig().geometric.column.wall;
     wp.min_fraction = 0;  // the exact share, no early stop
-    const double f = faceFraction(c, ScanLines(c, all), middle, in_column, wp);
+    const double f = frontend::faceFraction(c, frontend::ScanLines(c, all), middle, in_column, wp);
     if (off == 0) EXPECT_DOUBLE_EQ(f, 1.0);
     else EXPECT_DOUBLE_EQ(f, 0.0);
   }
@@ -358,30 +362,30 @@ TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
 // grown ground (max_step > 0, off by default: on the real scans it climbs hedges and costs
 // trunks) follows it.
 TEST(GroundRemoval, GrownGroundFollowsASlopeTheEnvelopeDoesNot) {
-  Cloud c;
+  frontend::Cloud c;
   addGround(c, 0.25);
   addPole(c, {8, 1}, 0.1, 5.0, 0.25 * 8);
   addPole(c, {-8, -2}, 0.1, 5.0, -0.25 * 8);
-  auto groundTakenForObjects = [&](const GroundParams& gp) {
-    const std::vector<float> h = heightAboveGround(c, gp);
+  auto groundTakenForObjects = [&](const frontend::GroundParams& gp) {
+    const std::vector<float> h = frontend::heightAboveGround(c, gp);
     int high = 0;
     for (std::size_t i = 0; i < c.size(); ++i)
       if (std::abs(c[i].z() - 0.25 * c[i].x()) < 1e-3 && h[i] > gp.threshold) ++high;
     return high;
   };
-  GroundParams envelope = loadDefaultFrontendConfig().geometric.ground;
+  frontend::GroundParams envelope = frontend::loadDefaultFrontendConfig().geometric.ground;
   envelope.max_step = 0;
-  GroundParams grown = envelope;
+  frontend::GroundParams grown = envelope;
   grown.max_step = 0.2;
   const int ground_points = 121 * 121;
   EXPECT_GT(groundTakenForObjects(envelope), ground_points / 2);
   EXPECT_LT(groundTakenForObjects(grown), ground_points / 100);
   // A car-like bump (0.8 m box) on flat ground stays an object with grown ground.
-  Cloud flat;
+  frontend::Cloud flat;
   addGround(flat);
   for (double x = 3; x <= 7; x += 0.1)
     for (double y = -1; y <= 1; y += 0.1) flat.emplace_back(x, y, 0.8);
-  const std::vector<float> h = heightAboveGround(flat, grown);
+  const std::vector<float> h = frontend::heightAboveGround(flat, grown);
   int bump_high = 0, bump = 0;
   for (std::size_t i = 0; i < flat.size(); ++i)
     if (flat[i].z() > 0.5) ++bump, bump_high += h[i] > 0.5;
@@ -390,19 +394,20 @@ TEST(GroundRemoval, GrownGroundFollowsASlopeTheEnvelopeDoesNot) {
 
 TEST(GeometricSegmenter, RealScansTrunksPolesAndCarsAgainstLabels) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  const GeometricSegmenter seg(classes, cfg.geometric);
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenter seg(classes, cfg.geometric);
   int found = 0, targets = 0;
   for (const char* name : {"000720", "001500"}) {
-    const LabelledScan labelled = readLabelledScan(kDir + name + ".bin");
-    LabelledScan scan = labelled;
+    const io::LabelledScan labelled = io::readLabelledScan(kDir + name + ".bin");
+    io::LabelledScan scan = labelled;
     scan.semantic.clear();
     scan.instance.clear();
-    InputIssues issues;
+    frontend::InputIssues issues;
     std::vector<Object> objects;
     for (const auto& inst : seg.segment(scan, issues))
-      if (auto o = fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) objects.push_back(*o);
-    const ScanScore s = scoreScanAgainstLabels(labelled, objects, classes);
+      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()))
+        objects.push_back(*o);
+    const eval::ScanScore s = eval::scoreScanAgainstLabels(labelled, objects, classes);
     found += s.columns.found;
     targets += s.columns.targets;
     EXPECT_EQ(s.cars.found, s.cars.targets) << name;
@@ -415,7 +420,7 @@ TEST(GeometricSegmenter, RealScansTrunksPolesAndCarsAgainstLabels) {
 
 TEST(ScanScore, VerdictsWithoutMerging) {
   const ClassTable classes = ClassTable::loadDefault();
-  LabelledScan scan;
+  io::LabelledScan scan;
   auto add = [&](const Eigen::Vector3f& p, int sem, int inst) {
     scan.xyz.push_back(p);
     scan.intensity.push_back(0);
@@ -430,15 +435,16 @@ TEST(ScanScore, VerdictsWithoutMerging) {
     o.model = Cylinder{{x, y, 0}, Eigen::Vector3d::UnitZ(), 0.05, 3.0};
     return o;
   };
-  const ScanScore s = scoreScanAgainstLabels(scan, {cyl(5.0, 0.1), cyl(5.2, -0.1), cyl(-5, 3), cyl(20, 20)}, classes);
+  const eval::ScanScore s =
+      eval::scoreScanAgainstLabels(scan, {cyl(5.0, 0.1), cyl(5.2, -0.1), cyl(-5, 3), cyl(20, 20)}, classes);
   ASSERT_EQ(s.targets.size(), 1u);
   EXPECT_EQ(s.columns.found, 1);
-  EXPECT_EQ(s.verdicts[0], EstimateVerdict::Matched);
-  EXPECT_EQ(s.verdicts[1], EstimateVerdict::Duplicate);
-  EXPECT_EQ(s.verdicts[2], EstimateVerdict::Small);
-  EXPECT_EQ(s.verdicts[3], EstimateVerdict::False);
+  EXPECT_EQ(s.verdicts[0], eval::EstimateVerdict::Matched);
+  EXPECT_EQ(s.verdicts[1], eval::EstimateVerdict::Duplicate);
+  EXPECT_EQ(s.verdicts[2], eval::EstimateVerdict::Small);
+  EXPECT_EQ(s.verdicts[3], eval::EstimateVerdict::False);
   scan.semantic.clear();
-  EXPECT_THROW(scoreScanAgainstLabels(scan, {}, classes), std::invalid_argument);
+  EXPECT_THROW(eval::scoreScanAgainstLabels(scan, {}, classes), std::invalid_argument);
 }
 
 // The top of the view is where the top beam hits something all around (walls, a ceiling): the
@@ -446,7 +452,7 @@ TEST(ScanScore, VerdictsWithoutMerging) {
 // at that elevation in a few directions only) there is none.
 TEST(ScanLines, ViewTopIsTheTopBeamWhenItHitsSomethingAllAround) {
   auto ring = [](int directions) {  // one return per direction at 16.6 deg, lower ones everywhere
-    Cloud c;
+    frontend::Cloud c;
     for (int k = 0; k < 1440; ++k) {
       const double a = 2 * M_PI * (k + 0.5) / 1440;
       c.emplace_back(5 * std::cos(a), 5 * std::sin(a), -0.5f);
@@ -454,7 +460,7 @@ TEST(ScanLines, ViewTopIsTheTopBeamWhenItHitsSomethingAllAround) {
     }
     std::vector<int> all(c.size());
     std::iota(all.begin(), all.end(), 0);
-    return ScanLines(c, all).viewTop(0.2, 0.1);
+    return frontend::ScanLines(c, all).viewTop(0.2, 0.1);
   };
   EXPECT_NEAR(ring(1000), 0.298f, 1e-4f);
   EXPECT_TRUE(std::isnan(ring(100))) << "a tenth of the bins or fewer: open sky";
@@ -468,38 +474,40 @@ struct IndoorCounts {
   int cars = 0, columns = 0, furniture_other = 0, frames = 0;
 };
 // The scans (labels kept for scoring), simulated once.
-const std::vector<LabelledScan>& indoorScans() {
-  static const std::vector<LabelledScan> scans = [] {
-    ScenarioSpec ss;
+const std::vector<io::LabelledScan>& indoorScans() {
+  static const std::vector<io::LabelledScan> scans = [] {
+    simulator::ScenarioSpec ss;
     ss.world = "indoor", ss.robots = 1, ss.seed = 1, ss.distance = 15, ss.rate = 2;
-    const Scenario sc = buildScenario(ss);
-    const RobotRun& robot = sc.robots.at(0);
-    const RayCaster caster(sc.world, 0.0);
-    std::vector<LabelledScan> out;
+    const simulator::Scenario sc = simulator::buildScenario(ss);
+    const simulator::RobotRun& robot = sc.robots.at(0);
+    const simulator::RayCaster caster(sc.world, 0.0);
+    std::vector<io::LabelledScan> out;
     for (std::size_t k = 0; k < robot.ground_truth.size(); k += 4) {
       std::mt19937_64 rng(k);
-      out.push_back(simulateLidarScan(caster, robot.ground_truth.poses[k], lidarModel("os1-64"), rng));
+      out.push_back(
+          simulator::simulateLidarScan(caster, robot.ground_truth.poses[k], simulator::lidarModel("os1-64"), rng));
     }
     return out;
   }();
   return scans;
 }
 
-IndoorCounts indoorInstances(const GeometricSegmenterParams& p) {
-  const GeometricSegmenter seg(ClassTable::loadDefault(), p);
+IndoorCounts indoorInstances(const frontend::GeometricSegmenterParams& p) {
+  const frontend::GeometricSegmenter seg(ClassTable::loadDefault(), p);
   IndoorCounts n;
-  for (const LabelledScan& truth : indoorScans()) {
+  for (const io::LabelledScan& truth : indoorScans()) {
     std::map<std::array<float, 3>, int> semantic;  // point -> label
     for (std::size_t i = 0; i < truth.size(); ++i) semantic[{truth.xyz[i].x(), truth.xyz[i].y(), truth.xyz[i].z()}] = truth.semantic[i];
-    LabelledScan scan;
+    io::LabelledScan scan;
     scan.xyz = truth.xyz;
-    InputIssues issues;
+    frontend::InputIssues issues;
     for (const auto& inst : seg.segment(scan, issues)) {
       int furniture = 0;
       for (const auto& q : inst.points) {
         const auto it = semantic.find({q.x(), q.y(), q.z()});
-        furniture += it != semantic.end() && (it->second == label::kChair || it->second == label::kTable ||
-                                              it->second == label::kMonitor || it->second == label::kOtherObject);
+        furniture += it != semantic.end() &&
+                     (it->second == simulator::label::kChair || it->second == simulator::label::kTable ||
+                      it->second == simulator::label::kMonitor || it->second == simulator::label::kOtherObject);
       }
       if (inst.class_id == p.car_class) ++n.cars;
       if (inst.class_id == p.trunk_class || inst.class_id == p.pole_class) ++n.columns;
@@ -520,9 +528,9 @@ IndoorCounts indoorInstances(const GeometricSegmenterParams& p) {
 // (column.wall.corner_run; 1.2 before): furniture is left as "other". Some doorway strips stay
 // columns (their near jamb shows less than 0.6 m of wall, or none in a straight run).
 TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
-  const GeometricSegmenterParams p = loadDefaultFrontendConfig().geometric;
+  const frontend::GeometricSegmenterParams p = frontend::loadDefaultFrontendConfig().geometric;
   const IndoorCounts with = indoorInstances(p);
-  GeometricSegmenterParams off = p;
+  frontend::GeometricSegmenterParams off = p;
   off.view_cut.tolerance_deg = 0, off.car.min_top = 1.0, off.column.wall.corner_run = 1.2, off.column.ceiling_max_spread = 0;
   const IndoorCounts without = indoorInstances(off);
   ASSERT_GE(with.frames, 5);
@@ -536,23 +544,23 @@ TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
 // ceiling spans above it: a flat layer of returns, where a tree's crown spreads over metres of
 // height. The pole under the ceiling is no column; the same pole under a crown is a trunk.
 TEST(GeometricSegmenter, AColumnUnderAFlatCeilingIsNoColumnUnderACrownItIs) {
-  Cloud base;
+  frontend::Cloud base;
   addGround(base);
   addPole(base, {8, 0}, 0.1, 2.8);
-  Cloud ceiling = base, crown = base;
+  frontend::Cloud ceiling = base, crown = base;
   for (double x = 6.5; x <= 9.5; x += 0.1)
     for (double y = -1.5; y <= 1.5; y += 0.1) ceiling.emplace_back(x, y, 2.8);
-  Cloud leaves;  // a crown 1.5 m wide from 2.8 m to 8.8 m
+  frontend::Cloud leaves;  // a crown 1.5 m wide from 2.8 m to 8.8 m
   addBush(leaves, {8, 0}, 1.5, 6.0, 3);
   for (const auto& q : leaves) crown.emplace_back(q.x(), q.y(), q.z() + 2.8f);
-  const ColumnParams p = loadDefaultFrontendConfig().geometric.column;
+  const frontend::ColumnParams p = frontend::loadDefaultFrontendConfig().geometric.column;
   ASSERT_GT(p.ceiling_max_spread, 0);
   EXPECT_EQ(columnsOf(base, p).size(), 1u) << "the pole alone is a column";
   EXPECT_EQ(columnsOf(ceiling, p).size(), 0u);
   const auto under_crown = columnsOf(crown, p);
   ASSERT_EQ(under_crown.size(), 1u);
   EXPECT_TRUE(under_crown[0].trunk);
-  ColumnParams off = p;
+  frontend::ColumnParams off = p;
   off.ceiling_max_spread = 0;
   EXPECT_EQ(columnsOf(ceiling, off).size(), 1u) << "without the rule the jamb is a column";
 }

@@ -31,8 +31,8 @@ Eigen::Vector3f polar(double r, double yaw_deg, double pitch_deg) {
   return Eigen::Vector3f(r * std::cos(p) * std::cos(y), r * std::cos(p) * std::sin(y), r * std::sin(p));
 }
 
-RangeProjection small() {
-  RangeProjection p;
+frontend::RangeProjection small() {
+  frontend::RangeProjection p;
   p.height = 4, p.width = 8, p.fov_up_deg = 20, p.fov_down_deg = -20, p.search_rows = 1, p.search_cols = 1;
   return p;
 }
@@ -41,23 +41,23 @@ using slide::test::errorText;
 }  // namespace
 
 TEST(RangeImage, ProjectsByTheRangeNetFormula) {
-  LabelledScan s;
+  io::LabelledScan s;
   // yaw 0 -> column floor(0.5 * 8) = 4; yaw +80 (left) -> 2; yaw -100 (right) -> 6; 10 deg a row.
   s.xyz = {polar(5, 0, 0), polar(5, 80, 0), polar(5, -100, 0), polar(5, 0, 15), polar(5, 0, -15), polar(5, 0, 35),
            polar(5, 0, -60), polar(5, 179.9, 0), Eigen::Vector3f(NAN, 0, 0), Eigen::Vector3f::Zero()};
-  const RangeImage img = projectScan(s, small());
+  const frontend::RangeImage img = frontend::projectScan(s, small());
   const std::vector<int> expected{2 * 8 + 4, 2 * 8 + 2, 2 * 8 + 6, 0 * 8 + 4, 3 * 8 + 4, 0 * 8 + 4, 3 * 8 + 4, 2 * 8 + 0, -1, -1};
   EXPECT_EQ(img.pixel_of_point, expected);  // above / below the field of view: first / last row
   EXPECT_EQ(img.point_of_pixel[2 * 8 + 4], 0);
   EXPECT_FLOAT_EQ(img.range_of_pixel[2 * 8 + 4], 5.0f);
   EXPECT_EQ(img.point_of_pixel[1 * 8 + 4], -1);
-  EXPECT_THROW(projectScan(s, RangeProjection{0, 8}), std::invalid_argument);
+  EXPECT_THROW(frontend::projectScan(s, frontend::RangeProjection{0, 8}), std::invalid_argument);
 }
 
 TEST(RangeImage, APixelShowsItsNearestPoint) {
-  LabelledScan s;
+  io::LabelledScan s;
   s.xyz = {polar(12, 1, 1), polar(5, 2, 2), polar(8, 3, 3)};
-  const RangeImage img = projectScan(s, small());
+  const frontend::RangeImage img = frontend::projectScan(s, small());
   ASSERT_EQ(img.pixel_of_point[0], img.pixel_of_point[1]);
   ASSERT_EQ(img.pixel_of_point[0], img.pixel_of_point[2]);
   EXPECT_EQ(img.point_of_pixel[img.pixel_of_point[0]], 1);
@@ -65,12 +65,13 @@ TEST(RangeImage, APixelShowsItsNearestPoint) {
 }
 
 TEST(RangeImage, InputIsNormalisedPerChannelAndZeroWhereEmpty) {
-  LabelledScan s;
+  io::LabelledScan s;
   s.xyz = {Eigen::Vector3f(3, 0, 0), Eigen::Vector3f(0, 6, 0.5f)};
   s.intensity = {0.25f, 0.75f};
-  const RangeImage img = projectScan(s, small());
-  const auto blob = rangeImageInput(s, img, {RangeChannel::Range, RangeChannel::Y, RangeChannel::Remission}, {1, 2, 0.5f},
-                                    {2, 4, 0.25f});
+  const frontend::RangeImage img = frontend::projectScan(s, small());
+  const auto blob = frontend::rangeImageInput(
+      s, img, {frontend::RangeChannel::Range, frontend::RangeChannel::Y, frontend::RangeChannel::Remission},
+      {1, 2, 0.5f}, {2, 4, 0.25f});
   const std::size_t n = 32;
   ASSERT_EQ(blob.size(), 3 * n);
   const int a = img.pixel_of_point[0], b = img.pixel_of_point[1];
@@ -82,34 +83,35 @@ TEST(RangeImage, InputIsNormalisedPerChannelAndZeroWhereEmpty) {
   int nonzero = 0;
   for (float v : blob) nonzero += v != 0;
   EXPECT_EQ(nonzero, 6);
-  EXPECT_THROW(rangeImageInput(s, img, {RangeChannel::Range}, {1, 2}, {1}), std::invalid_argument);
+  EXPECT_THROW(frontend::rangeImageInput(s, img, {frontend::RangeChannel::Range}, {1, 2}, {1}), std::invalid_argument);
 }
 
 // A pole at 5 m and a wall at 12 m behind it: the wall return hidden in the pole's pixel takes
 // the wall's label (its nearest shown point in 3-D, one column over), not the pixel's.
 TEST(RangeImage, HiddenPointsTakeTheirNearestShownNeighboursLabel) {
-  LabelledScan s;
+  io::LabelledScan s;
   s.xyz = {polar(5, 0, 0), polar(12, -44, 0), polar(12, -46, 0), polar(5.3, -1, -0.5)};
-  const RangeProjection p = small();
-  const RangeImage img = projectScan(s, p);
+  const frontend::RangeProjection p = small();
+  const frontend::RangeImage img = frontend::projectScan(s, p);
   ASSERT_EQ(img.pixel_of_point[1], img.pixel_of_point[0]);  // hidden behind the pole
   ASSERT_EQ(img.pixel_of_point[3], img.pixel_of_point[0]);  // hidden, but next to the pole
   ASSERT_NE(img.pixel_of_point[2], img.pixel_of_point[0]);
   std::vector<uint16_t> pixel(32, 0);
   pixel[img.pixel_of_point[0]] = 80;
   pixel[img.pixel_of_point[2]] = 50;
-  EXPECT_EQ(backProjectLabels(s, img, pixel, p), (std::vector<uint16_t>{80, 50, 50, 80}));
-  RangeProjection own = p;  // no window: only the pixel's own point is a candidate
+  EXPECT_EQ(frontend::backProjectLabels(s, img, pixel, p), (std::vector<uint16_t>{80, 50, 50, 80}));
+  frontend::RangeProjection own = p;  // no window: only the pixel's own point is a candidate
   own.search_cols = 0;
-  EXPECT_EQ(backProjectLabels(s, img, pixel, own), (std::vector<uint16_t>{80, 80, 50, 80}));
+  EXPECT_EQ(frontend::backProjectLabels(s, img, pixel, own), (std::vector<uint16_t>{80, 80, 50, 80}));
 }
 
 TEST(RangeModelConfig, ReadsTheModelsDescription) {
-  const RangeModelConfig c = loadRangeModelConfig(kModels + "range3.yaml");
+  const frontend::RangeModelConfig c = frontend::loadRangeModelConfig(kModels + "range3.yaml");
   EXPECT_EQ(c.model_path, kModels + "range3.onnx");
   EXPECT_EQ(c.projection.height, 4);
   EXPECT_EQ(c.projection.width, 8);
-  EXPECT_EQ(c.channels, (std::vector<RangeChannel>{RangeChannel::Range, RangeChannel::Z}));
+  EXPECT_EQ(c.channels,
+            (std::vector<frontend::RangeChannel>{frontend::RangeChannel::Range, frontend::RangeChannel::Z}));
   EXPECT_EQ(c.means, (std::vector<float>{10, 0}));
   ASSERT_EQ(c.classes.size(), 3u);
   EXPECT_EQ(c.classes[2].name, "near");
@@ -121,7 +123,7 @@ TEST(RangeModelConfig, BadFilesNameTheFileAndKey) {
   auto bad = [](const std::string& text) {
     const std::string path = testing::TempDir() + "/bad_model.yaml";
     std::ofstream(path) << text;
-    return errorText([&] { loadRangeModelConfig(path); });
+    return errorText([&] { frontend::loadRangeModelConfig(path); });
   };
   const std::string base = "model: m.onnx\nprojection: {height: 4, width: 8}\nscores: logits\n"
                            "classes: [{name: a, label: 0}, {name: b, label: 10}]\n";
@@ -131,14 +133,15 @@ TEST(RangeModelConfig, BadFilesNameTheFileAndKey) {
   const std::string msg = bad(base + "channels: [range]\nmeans: [0]\nstds: [1]\nmean: [0]\n");
   EXPECT_NE(msg.find("bad_model.yaml"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown key"), std::string::npos) << msg;
-  EXPECT_NE(errorText([] { loadRangeModelConfig(kModels + "nowhere.yaml"); }).find("nowhere.yaml"), std::string::npos);
+  EXPECT_NE(errorText([] { frontend::loadRangeModelConfig(kModels + "nowhere.yaml"); }).find("nowhere.yaml"),
+            std::string::npos);
 }
 
 // range3.onnx: class 1 ("far", label 70) when (r - 10) / 2 > 0.5, class 2 ("near", label 10)
 // when below -0.5, class 0 (label 0) between.
 TEST(RangeNetLabeler, LabelsEveryPointFromTheModelsScores) {
-  const RangeNetLabeler labeler(loadRangeModelConfig(kModels + "range3.yaml"));
-  LabelledScan s;
+  const frontend::RangeNetLabeler labeler(frontend::loadRangeModelConfig(kModels + "range3.yaml"));
+  io::LabelledScan s;
   s.xyz = {polar(5, 0, 0), polar(12, -44, 0), polar(12, -46, 0), polar(10, 90, 0), polar(8.9, -120, 0), polar(11.1, 180, 10),
            Eigen::Vector3f(NAN, 1, 1)};
   s.instance.assign(s.size(), 7);
@@ -149,15 +152,17 @@ TEST(RangeNetLabeler, LabelsEveryPointFromTheModelsScores) {
 
 TEST(RangeNetLabeler, ConfidenceGateLeavesUnsurePixelsUnlabelled) {
   // Normalised range 1 (12 m): logits (0.5, 1, -1), softmax 0.574; 2 (14 m): 0.805.
-  const RangeNetLabeler labeler(loadRangeModelConfig(kModels + "range3.yaml"), 0.6);
-  LabelledScan s;
+  const frontend::RangeNetLabeler labeler(frontend::loadRangeModelConfig(kModels + "range3.yaml"), 0.6);
+  io::LabelledScan s;
   s.xyz = {polar(12, 0, 0), polar(14, 90, 0)};
   labeler.label(s);
   EXPECT_EQ(s.semantic, (std::vector<uint16_t>{0, 70}));
 }
 
 TEST(RangeNetLabeler, BadModelsFailAtLoadNamingTheFileAndTheExpectation) {
-  auto load = [](const std::string& yaml) { return errorText([&] { RangeNetLabeler(loadRangeModelConfig(kModels + yaml)); }); };
+  auto load = [](const std::string& yaml) {
+    return errorText([&] { frontend::RangeNetLabeler(frontend::loadRangeModelConfig(kModels + yaml)); });
+  };
   const std::string missing = load("missing.yaml");
   EXPECT_NE(missing.find("missing.onnx: no such model file"), std::string::npos) << missing;
   const std::string corrupt = load("corrupt.yaml");
@@ -166,25 +171,26 @@ TEST(RangeNetLabeler, BadModelsFailAtLoadNamingTheFileAndTheExpectation) {
   EXPECT_NE(shape.find("range2.onnx: output [1, 2, 4, 8], expected float [1, 3 classes"), std::string::npos) << shape;
   const std::string input = load("three_channels.yaml");
   EXPECT_NE(input.find("range3.onnx: the model does not run on an input of [1, 3, 4, 8]"), std::string::npos) << input;
-  LearnedLidarParams none;
-  EXPECT_NE(errorText([&] { RangeNetLabeler::fromParams(none); }).find("segmenter.learned.model"), std::string::npos);
+  frontend::LearnedLidarParams none;
+  EXPECT_NE(errorText([&] { frontend::RangeNetLabeler::fromParams(none); }).find("segmenter.learned.model"),
+            std::string::npos);
 }
 
 TEST(RangeNetLabeler, FrontEndConfigOverridesTheProjection) {
   const std::string path = testing::TempDir() + "/frontend_learned.yaml";
   std::ofstream(path) << "segmenter:\n  lidar_mode: learned\n  learned:\n    model: " << kModels
                       << "range3.yaml\n    min_confidence: 0.6\n    width: 16\n    fov_up_deg: 30\n";
-  const FrontendConfig cfg = loadFrontendConfig(path);
+  const frontend::FrontendConfig cfg = frontend::loadFrontendConfig(path);
   EXPECT_EQ(cfg.lidar_mode, "learned");
   EXPECT_EQ(cfg.learned.model, kModels + "range3.yaml");
   EXPECT_DOUBLE_EQ(cfg.learned.min_confidence, 0.6);
   // The fixture is a 1x1 convolution: it runs on any image size.
-  const auto labeler = RangeNetLabeler::fromParams(cfg.learned);
+  const auto labeler = frontend::RangeNetLabeler::fromParams(cfg.learned);
   EXPECT_EQ(labeler->config().projection.width, 16);
   EXPECT_EQ(labeler->config().projection.height, 4);
   EXPECT_DOUBLE_EQ(labeler->config().projection.fov_up_deg, 30);
   std::ofstream(path) << "segmenter:\n  lidar_mode: learnt\n";
-  EXPECT_NE(errorText([&] { loadFrontendConfig(path); }).find("learned"), std::string::npos);
+  EXPECT_NE(errorText([&] { frontend::loadFrontendConfig(path); }).find("learned"), std::string::npos);
 }
 
 // The project's own model (config/models/slide_range_net, trained on simulated seeds 11-14)
@@ -193,19 +199,20 @@ TEST(RangeNetLabeler, FrontEndConfigOverridesTheProjection) {
 // bounds sit under the figures measured here (ground 0.92, car 0.90, trunk 0.65, vegetation
 // 0.63 for the model of 2026-12-02) with a margin; a retrained model must clear them too.
 TEST(ProjectRangeModel, LabelsHeldOutSimulatedScans) {
-  LearnedLidarParams params = loadDefaultFrontendConfig().learned;
+  frontend::LearnedLidarParams params = frontend::loadDefaultFrontendConfig().learned;
   params.min_confidence = 0;  // the model's own labels, every point
-  const auto labeler = RangeNetLabeler::fromParams(params);
-  LabelIou iou;
+  const auto labeler = frontend::RangeNetLabeler::fromParams(params);
+  eval::LabelIou iou;
   for (const char* world : {"urban", "forest"}) {
-    ScenarioSpec ss;
+    simulator::ScenarioSpec ss;
     ss.world = world, ss.robots = 1, ss.seed = 1, ss.distance = 20, ss.rate = 0.5;
-    const Scenario sc = buildScenario(ss);
-    const RobotRun& robot = sc.robots.at(0);
-    const RayCaster caster(sc.world, robot.ground_truth.times[0]);
+    const simulator::Scenario sc = simulator::buildScenario(ss);
+    const simulator::RobotRun& robot = sc.robots.at(0);
+    const simulator::RayCaster caster(sc.world, robot.ground_truth.times[0]);
     std::mt19937_64 rng(7);
-    const LabelledScan truth = simulateLidarScan(caster, robot.ground_truth.poses[0], lidarModel("os1-64"), rng);
-    LabelledScan scan;
+    const io::LabelledScan truth =
+        simulator::simulateLidarScan(caster, robot.ground_truth.poses[0], simulator::lidarModel("os1-64"), rng);
+    io::LabelledScan scan;
     scan.xyz = truth.xyz;
     scan.intensity = truth.intensity;
     labeler->label(scan);

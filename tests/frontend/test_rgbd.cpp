@@ -8,8 +8,8 @@ using namespace slide;
 namespace {
 // 64x48 frame: instance 1 is a 20x20 square at 2 m whose mask also covers 40 background pixels
 // at 6 m; instance 2 is a low-confidence square.
-RgbdFrame makeFrame() {
-  RgbdFrame f;
+frontend::RgbdFrame makeFrame() {
+  frontend::RgbdFrame f;
   f.intrinsics = {64, 48, 50, 50, 32, 24, 0.001};
   f.depth.assign(64 * 48, 6000);
   f.mask.assign(64 * 48, 0);
@@ -29,8 +29,8 @@ RgbdFrame makeFrame() {
 
 TEST(RgbdSegmenter, BackprojectsInsideTheDepthBand) {
   const ClassTable classes = ClassTable::loadDefault();
-  InputIssues issues;
-  const auto inst = segmentRgbd(makeFrame(), classes, {}, issues);
+  frontend::InputIssues issues;
+  const auto inst = frontend::segmentRgbd(makeFrame(), classes, {}, issues);
   ASSERT_EQ(inst.size(), 1u);  // the low-confidence instance is gated
   EXPECT_EQ(inst[0].class_id, 1);
   EXPECT_EQ(inst[0].points.size(), 400u);  // background pixels of the mask are dropped
@@ -47,21 +47,21 @@ TEST(RgbdSegmenter, BackprojectsInsideTheDepthBand) {
 
 TEST(RgbdSegmenter, BadInputIsCountedNotFatal) {
   const ClassTable classes = ClassTable::loadDefault();
-  RgbdFrame f = makeFrame();
+  frontend::RgbdFrame f = makeFrame();
   for (int u = 10; u < 20; ++u) f.depth[12 * 64 + u] = 0;
   f.instance_class[1] = 999;
-  InputIssues issues;
-  EXPECT_EQ(segmentRgbd(f, classes, {}, issues).size(), 1u);
+  frontend::InputIssues issues;
+  EXPECT_EQ(frontend::segmentRgbd(f, classes, {}, issues).size(), 1u);
   EXPECT_EQ(issues.get("zero depth in mask"), 10);
   EXPECT_EQ(issues.get("unknown class"), 1);
 
-  RgbdFrame small = makeFrame();
+  frontend::RgbdFrame small = makeFrame();
   small.depth.resize(100);
-  EXPECT_TRUE(segmentRgbd(small, classes, {}, issues).empty());
+  EXPECT_TRUE(frontend::segmentRgbd(small, classes, {}, issues).empty());
   EXPECT_EQ(issues.get("image size does not match intrinsics"), 1);
-  RgbdFrame no_k = makeFrame();
+  frontend::RgbdFrame no_k = makeFrame();
   no_k.intrinsics.fx = 0;
-  EXPECT_TRUE(segmentRgbd(no_k, classes, {}, issues).empty());
+  EXPECT_TRUE(frontend::segmentRgbd(no_k, classes, {}, issues).empty());
   EXPECT_EQ(issues.get("invalid intrinsics"), 1);
 }
 
@@ -70,10 +70,10 @@ TEST(RgbdSegmenter, BadInputIsCountedNotFatal) {
 // (the old behaviour) the square loses its 2-pixel rim and with it a fifth of its width.
 TEST(RgbdSegmenter, EdgePixelsOnTheObjectStaySpilledOnesGo) {
   const ClassTable classes = ClassTable::loadDefault();
-  RgbdSegmenterParams p;
+  frontend::RgbdSegmenterParams p;
   p.erode_px = 2;
-  InputIssues issues;
-  const auto inst = segmentRgbd(makeFrame(), classes, p, issues);
+  frontend::InputIssues issues;
+  const auto inst = frontend::segmentRgbd(makeFrame(), classes, p, issues);
   ASSERT_EQ(inst.size(), 1u);
   EXPECT_EQ(inst[0].points.size(), 400u);
   float lo = 1e9f, hi = -1e9f;
@@ -83,7 +83,7 @@ TEST(RgbdSegmenter, EdgePixelsOnTheObjectStaySpilledOnesGo) {
   }
   EXPECT_NEAR(hi - lo, 19 * 2.0 / 50, 0.01);  // columns 10-29 at 2.00-2.02 m, fx 50
   p.restore_edges = false;
-  const auto eroded = segmentRgbd(makeFrame(), classes, p, issues);
+  const auto eroded = frontend::segmentRgbd(makeFrame(), classes, p, issues);
   ASSERT_EQ(eroded.size(), 1u);
   lo = 1e9f, hi = -1e9f;
   for (const auto& q : eroded[0].points) lo = std::min(lo, q.y()), hi = std::max(hi, q.y());

@@ -23,11 +23,12 @@ using slide::synth::SceneObject;
 namespace {
 const std::string kScan720 = std::string(SLIDE_DATA_DIR) + "/semantickitti/sequences/08/velodyne/000720.bin";
 
-const Instance* nearest(const std::vector<Instance>& v, int class_id, const Eigen::Vector2d& xy, double max_d) {
-  const Instance* best = nullptr;
+const frontend::Instance* nearest(const std::vector<frontend::Instance>& v, int class_id, const Eigen::Vector2d& xy,
+                                  double max_d) {
+  const frontend::Instance* best = nullptr;
   for (const auto& i : v) {
     if (i.class_id != class_id) continue;
-    const double d = (centroidOf(i.points).head<2>() - xy).norm();
+    const double d = (frontend::centroidOf(i.points).head<2>() - xy).norm();
     if (d < max_d) max_d = d, best = &i;
   }
   return best;
@@ -35,23 +36,23 @@ const Instance* nearest(const std::vector<Instance>& v, int class_id, const Eige
 }  // namespace
 
 TEST(GridClustering, SplitsSeparatedBlobsAndDropsSmallOnes) {
-  Cloud c;
+  frontend::Cloud c;
   for (int i = 0; i < 50; ++i) c.emplace_back(0.02f * i, 0, 0);
   for (int i = 0; i < 30; ++i) c.emplace_back(5 + 0.02f * i, 0, 0);
   for (int i = 0; i < 3; ++i) c.emplace_back(-10, 0.01f * i, 0);
   c.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0, 0);
-  const auto cl = clusterGrid(c, {}, {0.3, false, 5});
+  const auto cl = frontend::clusterGrid(c, {}, {0.3, false, 5});
   ASSERT_EQ(cl.size(), 2u);
   EXPECT_EQ(cl[0].size(), 50u);
   EXPECT_EQ(cl[1].size(), 30u);
   // Planar clustering ignores height.
-  Cloud stack{{0, 0, 0}, {0, 0, 5}};
-  EXPECT_EQ(clusterGrid(stack, {}, {0.3, true, 1}).size(), 1u);
-  EXPECT_EQ(clusterGrid(stack, {}, {0.3, false, 1}).size(), 2u);
+  frontend::Cloud stack{{0, 0, 0}, {0, 0, 5}};
+  EXPECT_EQ(frontend::clusterGrid(stack, {}, {0.3, true, 1}).size(), 1u);
+  EXPECT_EQ(frontend::clusterGrid(stack, {}, {0.3, false, 1}).size(), 2u);
 }
 
 // Brute-force reference: points whose cells differ by at most one in every axis are joined.
-std::vector<std::vector<int>> clusterByPairs(const Cloud& c, double cell, int min_points) {
+std::vector<std::vector<int>> clusterByPairs(const frontend::Cloud& c, double cell, int min_points) {
   const int n = static_cast<int>(c.size());
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -72,7 +73,7 @@ std::vector<std::vector<int>> clusterByPairs(const Cloud& c, double cell, int mi
 TEST(GridClustering, MatchesPairwiseCellAdjacencyWithNegativeAndFarCoordinates) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Cloud c;
+  frontend::Cloud c;
   // Blobs around negative and positive coordinates, some touching only at cell corners.
   for (const Eigen::Vector3f& centre : {Eigen::Vector3f(-3.1f, -2.2f, -0.4f), Eigen::Vector3f(-2.5f, -1.6f, 0.2f),
                                        Eigen::Vector3f(4.0f, 0.0f, 1.0f), Eigen::Vector3f(0.0f, 6.0f, -1.0f)})
@@ -84,20 +85,20 @@ TEST(GridClustering, MatchesPairwiseCellAdjacencyWithNegativeAndFarCoordinates) 
     std::sort(v.begin(), v.end());
     return v;
   };
-  const auto near = clusterGrid(c, {}, {0.3, false, 3});
+  const auto near = frontend::clusterGrid(c, {}, {0.3, false, 3});
   EXPECT_EQ(sorted(near), reference);
   // Two lone points 100 km away in every axis widen the cell box past one 64-bit word (the
   // other sorting path); the clusters must not change.
-  Cloud wide = c;
+  frontend::Cloud wide = c;
   wide.emplace_back(1e5f, 1e5f, 1e5f);
   wide.emplace_back(-1e5f, -1e5f, -1e5f);
-  EXPECT_EQ(sorted(clusterGrid(wide, {}, {0.3, false, 3})), reference);
+  EXPECT_EQ(sorted(frontend::clusterGrid(wide, {}, {0.3, false, 3})), reference);
 }
 
 TEST(GroundRemoval, CarRoofIsNotGround) {
   const auto scan = synth::syntheticScan({{10, {8, 0, 0}, 0, 0, 0, {4.4, 1.8, 1.5}}},
                                            poseFromXyzYaw(0, 0, 1.5, 0));
-  const auto h = heightAboveGround(scan.xyz, {});
+  const auto h = frontend::heightAboveGround(scan.xyz, {});
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (scan.semantic[i] == 40) {
       EXPECT_LT(std::abs(h[i]), 0.1);
@@ -110,21 +111,21 @@ TEST(GroundRemoval, CarRoofIsNotGround) {
 
 TEST(LabelledSegmenter, InstancesFromClassesAloneAndBadInput) {
   const ClassTable classes = ClassTable::loadDefault();
-  const LabelledSegmenter seg(classes, {});
+  const frontend::LabelledSegmenter seg(classes, {});
   auto scan = synth::syntheticScan({{71, {6, 2, 0}}, {10, {9, -3, 0}, 0, 0, 0.3}}, poseFromXyzYaw(0, 0, 1.5, 0));
   scan.instance.clear();  // a detector gives classes only
   scan.xyz[0] = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
-  InputIssues issues;
+  frontend::InputIssues issues;
   const auto inst = seg.segment(scan, issues);
   ASSERT_EQ(inst.size(), 2u);
   EXPECT_TRUE(nearest(inst, 71, {6, 2}, 0.5));
   EXPECT_TRUE(nearest(inst, 10, {9, -3}, 1.0));
   EXPECT_EQ(issues.get("non-finite point"), 1);
 
-  InputIssues empty_issues;
-  EXPECT_TRUE(seg.segment(LabelledScan{}, empty_issues).empty());
+  frontend::InputIssues empty_issues;
+  EXPECT_TRUE(seg.segment(io::LabelledScan{}, empty_issues).empty());
   EXPECT_EQ(empty_issues.get("empty scan"), 1);
-  LabelledScan unlabelled;
+  io::LabelledScan unlabelled;
   unlabelled.xyz = scan.xyz;
   EXPECT_TRUE(seg.segment(unlabelled, empty_issues).empty());
   EXPECT_EQ(empty_issues.get("scan without labels"), 1);
@@ -133,7 +134,7 @@ TEST(LabelledSegmenter, InstancesFromClassesAloneAndBadInput) {
 // Two chairs 0.35 m apart (label 100): one 0.3 m grid joins them, the chair's own 0.15 m cell
 // keeps them apart; a cell for a class the table lacks is a configuration error.
 TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
-  LabelledScan scan;
+  io::LabelledScan scan;
   for (double x0 : {4.0, 4.75})  // 0.4 m wide seats: a 0.35 m gap between them
     for (double x = 0; x <= 0.4; x += 0.03)
       for (double z = -1.0; z <= -0.2; z += 0.05) {
@@ -143,40 +144,41 @@ TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
         scan.instance.push_back(0);
       }
   const ClassTable classes = ClassTable::loadDefault();
-  LabelledSegmenterParams p = loadDefaultFrontendConfig().labelled;
-  InputIssues issues;
-  EXPECT_EQ(LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u);
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  frontend::InputIssues issues;
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u);
   p.cluster_cell_by_class.clear();
-  EXPECT_EQ(LabelledSegmenter(classes, p).segment(scan, issues).size(), 1u) << "0.3 m cells join the chairs";
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 1u) << "0.3 m cells join the chairs";
   p.cluster_cell_by_class["sofa"] = 0.1;
-  EXPECT_THROW(LabelledSegmenter(classes, p), std::invalid_argument);
+  EXPECT_THROW(frontend::LabelledSegmenter(classes, p), std::invalid_argument);
 }
 
 TEST(LabelledSegmenter, RealScanCarBecomesCarSizedCuboid) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  const LabelledScan scan = readLabelledScan(kScan720);
-  InputIssues issues;
-  const auto inst = LabelledSegmenter(classes, cfg.labelled).segment(scan, issues);
-  const Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.0);
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const io::LabelledScan scan = io::readLabelledScan(kScan720);
+  frontend::InputIssues issues;
+  const auto inst = frontend::LabelledSegmenter(classes, cfg.labelled).segment(scan, issues);
+  const frontend::Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.0);
   ASSERT_TRUE(car);
   EXPECT_GT(car->points.size(), 500u);  // labelled instance: 600+ points; clustering of the class drops a few strays
-  const auto o = fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero());
+  const auto o = frontend::fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero());
   ASSERT_TRUE(o);
   EXPECT_TRUE(classes.sizePlausible(*o));
   int cylinders = 0;
   for (const auto& i : inst)
-    if (classes.at(i.class_id).shape == Shape::Cylinder) cylinders += fitObject(i.points, i.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()).has_value();
+    if (classes.at(i.class_id).shape == Shape::Cylinder)
+      cylinders += frontend::fitObject(i.points, i.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()).has_value();
   EXPECT_GE(cylinders, 7);
 }
 
 TEST(GeometricSegmenter, SyntheticTrunkAndCar) {
   const ClassTable classes = ClassTable::loadDefault();
-  const GeometricSegmenter seg(classes, loadDefaultFrontendConfig().geometric);
+  const frontend::GeometricSegmenter seg(classes, frontend::loadDefaultFrontendConfig().geometric);
   auto scan = synth::syntheticScan({{71, {6, 3, 0}, 0.25, 6.0}, {10, {9, -4, 0}, 0, 0, 0.2}}, poseFromXyzYaw(0, 0, 1.5, 0));
   scan.semantic.clear();
   scan.instance.clear();
-  InputIssues issues;
+  frontend::InputIssues issues;
   const auto inst = seg.segment(scan, issues);
   EXPECT_TRUE(nearest(inst, 71, {6, 3}, 0.5));
   EXPECT_TRUE(nearest(inst, 10, {9, -4}, 1.0));
@@ -185,30 +187,32 @@ TEST(GeometricSegmenter, SyntheticTrunkAndCar) {
 
 TEST(GeometricSegmenter, RealScanFindsTheLabelledCar) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  LabelledScan scan = readLabelledScan(kScan720);
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  io::LabelledScan scan = io::readLabelledScan(kScan720);
   scan.semantic.clear();
   scan.instance.clear();
-  InputIssues issues;
-  const auto inst = GeometricSegmenter(classes, cfg.geometric).segment(scan, issues);
-  const Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.5);
+  frontend::InputIssues issues;
+  const auto inst = frontend::GeometricSegmenter(classes, cfg.geometric).segment(scan, issues);
+  const frontend::Instance* car = nearest(inst, 10, {-14.7, -6.8}, 1.5);
   ASSERT_TRUE(car);
-  EXPECT_TRUE(fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero()));
+  EXPECT_TRUE(frontend::fitObject(car->points, 10, classes, cfg.fit, Eigen::Vector3d::Zero()));
 }
 
 // Emulated detector labels (config/detections.yaml: bled boundaries, point noise, confusions,
 // no instance ids) still give one trunk, one pole and one car where they stand, over many seeds.
 TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
   const ClassTable classes = ClassTable::loadDefault();
-  const LabelledSegmenter seg(classes, loadDefaultFrontendConfig().labelled);
-  const DetectionEmulatorConfig emu = loadDetectionEmulatorConfig(std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml");
+  const frontend::LabelledSegmenter seg(classes, frontend::loadDefaultFrontendConfig().labelled);
+  const emulator::DetectionEmulatorConfig emu =
+      emulator::loadDetectionEmulatorConfig(std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml");
   const auto truth = synth::syntheticScan({{71, {6, 2, 0}, 0.2, 6.0}, {80, {7, -5, 0}, 0.08, 5.0}, {10, {12, -1, 0}, 0, 0, 0.3}},
                                           poseFromXyzYaw(0, 0, 1.5, 0));
   int trunk = 0, pole_or_trunk = 0, car = 0, extra = 0;
   const int runs = 20;
   for (int k = 0; k < runs; ++k) {
-    const LabelledScan scan = emulateLidarLabels(truth, emu.lidar, detectionSeed(emu.seed, 0, k));
-    InputIssues issues;
+    const io::LabelledScan scan =
+        emulator::emulateLidarLabels(truth, emu.lidar, emulator::detectionSeed(emu.seed, 0, k));
+    frontend::InputIssues issues;
     const auto inst = seg.segment(scan, issues);
     const bool t = nearest(inst, 71, {6, 2}, 0.5), c = nearest(inst, 10, {12, -1}, 1.0);
     const bool p = nearest(inst, 80, {7, -5}, 0.5) || nearest(inst, 71, {7, -5}, 0.5);
@@ -228,20 +232,21 @@ TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
 // gives one instance, the geometric one none (too wide for a car).
 TEST(Segmenters, TwoCarsParkedCloseAreTwoCars) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   const std::vector<SceneObject> cars{{10, {9.0, -5, 0}, 0, 0, M_PI / 2, {4.4, 1.8, 1.5}},
                                       {10, {11.2, -5, 0}, 0, 0, M_PI / 2, {4.4, 1.8, 1.5}}};
-  const LabelledScan labelled = synth::syntheticScan(cars, poseFromXyzYaw(0, 0, 1.5, 0));
-  LabelledScan unlabelled = labelled;
+  const io::LabelledScan labelled = synth::syntheticScan(cars, poseFromXyzYaw(0, 0, 1.5, 0));
+  io::LabelledScan unlabelled = labelled;
   unlabelled.semantic.clear();
   unlabelled.instance.clear();
   for (bool split : {true, false}) {
-    FrontendConfig c = cfg;
+    frontend::FrontendConfig c = cfg;
     if (!split) c.labelled.min_split_cell = c.labelled.cluster.cell, c.geometric.car.min_split_cell = c.geometric.car.cell;
-    InputIssues issues;
+    frontend::InputIssues issues;
     int labelled_cars = 0, geometric_cars = 0;
-    for (const auto& i : LabelledSegmenter(classes, c.labelled).segment(labelled, issues)) labelled_cars += i.class_id == 10;
-    const auto geo = GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues);
+    for (const auto& i : frontend::LabelledSegmenter(classes, c.labelled).segment(labelled, issues))
+      labelled_cars += i.class_id == 10;
+    const auto geo = frontend::GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues);
     for (const auto& i : geo) geometric_cars += i.class_id == 10;
     EXPECT_EQ(labelled_cars, split ? 2 : 1) << split;
     EXPECT_EQ(geometric_cars, split ? 2 : 0) << split;
@@ -250,22 +255,23 @@ TEST(Segmenters, TwoCarsParkedCloseAreTwoCars) {
       EXPECT_TRUE(nearest(geo, 10, {11.2, -5}, 1.2));
     }
   }
-  FrontendConfig c = cfg;  // a cluster longer than max_split_length (a wall's base) is left whole
+  frontend::FrontendConfig c = cfg;  // a cluster longer than max_split_length (a wall's base) is left whole
   c.geometric.car.max_split_length = 3.0;
-  InputIssues issues;
-  for (const auto& i : GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues)) EXPECT_NE(i.class_id, 10);
+  frontend::InputIssues issues;
+  for (const auto& i : frontend::GeometricSegmenter(classes, c.geometric).segment(unlabelled, issues))
+    EXPECT_NE(i.class_id, 10);
 }
 
 namespace {
 // The car points of a synthetic scan seen from the origin, and their instance ids.
-std::pair<Cloud, std::vector<int>> carPoints(const std::vector<SceneObject>& cars) {
-  const LabelledScan s = synth::syntheticScan(cars, poseFromXyzYaw(0, 0, 1.5, 0));
-  std::pair<Cloud, std::vector<int>> out;
+std::pair<frontend::Cloud, std::vector<int>> carPoints(const std::vector<SceneObject>& cars) {
+  const io::LabelledScan s = synth::syntheticScan(cars, poseFromXyzYaw(0, 0, 1.5, 0));
+  std::pair<frontend::Cloud, std::vector<int>> out;
   for (std::size_t i = 0; i < s.xyz.size(); ++i)
     if (s.semantic[i] == 10) out.first.push_back(s.xyz[i]), out.second.push_back(s.instance[i]);
   return out;
 }
-std::vector<int> allOf(const Cloud& c) {
+std::vector<int> allOf(const frontend::Cloud& c) {
   std::vector<int> idx(c.size());
   std::iota(idx.begin(), idx.end(), 0);
   return idx;
@@ -273,12 +279,12 @@ std::vector<int> allOf(const Cloud& c) {
 }  // namespace
 
 TEST(ViewNotch, SplitsTwoCarsNoseOutAndKeepsOneCarWhole) {
-  const NotchSplitParams p;
+  const frontend::NotchSplitParams p;
   // Two cars parked nose out 0.3 m apart, seen from the aisle: the rays into the gap hit their
   // facing sides, metres beyond the two fronts.
   const auto [pair, inst] = carPoints({{10, {12.0, -1.05, 0}, 0, 0, 0, {4.4, 1.8, 1.5}},
                                        {10, {12.0, 1.05, 0}, 0, 0, 0, {4.4, 1.8, 1.5}}});
-  const auto parts = splitAtNotch(pair, allOf(pair), p);
+  const auto parts = frontend::splitAtNotch(pair, allOf(pair), p);
   ASSERT_TRUE(parts);
   for (const auto* part : {&parts->first, &parts->second}) {
     std::map<int, int> ids;
@@ -289,9 +295,9 @@ TEST(ViewNotch, SplitsTwoCarsNoseOutAndKeepsOneCarWhole) {
   // One car: seen at its corner (an L, nearest in the middle), broadside, or end on.
   for (const double yaw : {0.6, M_PI / 2, 0.0}) {
     const auto [one, ids] = carPoints({{10, {12.0, 2.0, 0}, 0, 0, yaw, {4.4, 1.8, 1.5}}});
-    EXPECT_FALSE(splitAtNotch(one, allOf(one), p)) << "yaw " << yaw;
+    EXPECT_FALSE(frontend::splitAtNotch(one, allOf(one), p)) << "yaw " << yaw;
   }
-  NotchSplitParams off = p;
+  frontend::NotchSplitParams off = p;
   off.depth = 0;
-  EXPECT_FALSE(splitAtNotch(pair, allOf(pair), off));
+  EXPECT_FALSE(frontend::splitAtNotch(pair, allOf(pair), off));
 }

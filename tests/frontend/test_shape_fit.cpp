@@ -11,12 +11,12 @@ using namespace slide;
 
 namespace {
 // Visible half of a cylinder along `axis` from root, seen from the origin (trunk along +x).
-Cloud cylinderCloud(const Eigen::Vector3d& root, const Eigen::Vector3d& axis, double r, double len, double arc,
-                    unsigned seed = 1, double noise = 0.005) {
+frontend::Cloud cylinderCloud(const Eigen::Vector3d& root, const Eigen::Vector3d& axis, double r, double len,
+                              double arc, unsigned seed = 1, double noise = 0.005) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0, noise);
   const Eigen::Vector3d a = axis.normalized();
-  Cloud c;
+  frontend::Cloud c;
   for (double t = 0; t <= len; t += 0.05)
     for (double ang = M_PI - arc / 2; ang <= M_PI + arc / 2; ang += 0.05) {
       const Eigen::Vector3d p = root + t * a + r * Eigen::Vector3d(std::cos(ang), std::sin(ang), 0);
@@ -29,13 +29,13 @@ Cloud cylinderCloud(const Eigen::Vector3d& root, const Eigen::Vector3d& axis, do
 // `dims`) that face `view`: the vertical sides whose outward normal points towards it and the
 // top when seen from above; `hide` keeps a side's points with |along-face coordinate| <= hide
 // times its half length (1: all).
-Cloud visibleBoxCloud(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector3d& dims, const Eigen::Vector3d& view,
-                      double step = 0.04) {
+frontend::Cloud visibleBoxCloud(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector3d& dims,
+                                const Eigen::Vector3d& view, double step = 0.04) {
   const Eigen::Matrix3d R = rotZ(yaw);
   const Eigen::Vector3d c(centre.x(), centre.y(), 0.5 * dims.z());
   const Eigen::Vector3d v = R.transpose() * (view - c);  // viewpoint in the box frame
   const Eigen::Vector3d h = 0.5 * dims;
-  Cloud out;
+  frontend::Cloud out;
   auto add = [&](const Eigen::Vector3d& q) { out.push_back((c + R * q).cast<float>()); };
   for (int axis = 0; axis < 2; ++axis)
     for (int sign : {-1, 1}) {
@@ -64,21 +64,21 @@ double longSideYawErrorDeg(const Cuboid& b, double true_yaw) {
 TEST(CircleFit, AlgebraicExactAndRansacWithOutliers) {
   std::vector<Eigen::Vector2d> pts;
   for (int i = 0; i < 40; ++i) pts.emplace_back(2 + 0.3 * std::cos(i * 0.1), -1 + 0.3 * std::sin(i * 0.1));
-  const auto c = fitCircleAlgebraic(pts);
+  const auto c = frontend::fitCircleAlgebraic(pts);
   ASSERT_TRUE(c);
   EXPECT_NEAR(c->radius, 0.3, 1e-9);
   EXPECT_NEAR((c->center - Eigen::Vector2d(2, -1)).norm(), 0, 1e-9);
   for (int i = 0; i < 20; ++i) pts.emplace_back(2.5 + 0.05 * i, -0.5);  // a branch
-  EXPECT_GT(std::abs(fitCircleAlgebraic(pts)->radius - 0.3), 0.02);
-  const auto r = fitCircleRansac(pts, {});
+  EXPECT_GT(std::abs(frontend::fitCircleAlgebraic(pts)->radius - 0.3), 0.02);
+  const auto r = frontend::fitCircleRansac(pts, {});
   ASSERT_TRUE(r);
   EXPECT_NEAR(r->radius, 0.3, 1e-3);
-  EXPECT_FALSE(fitCircleAlgebraic({{0, 0}, {1, 1}, {2, 2}}));  // collinear
+  EXPECT_FALSE(frontend::fitCircleAlgebraic({{0, 0}, {1, 1}, {2, 2}}));  // collinear
 }
 
 TEST(CylinderFit, UprightArcGivesRadiusAndAxis) {
-  const Cloud c = cylinderCloud({8, 1, -1.7}, {0, 0, 1}, 0.25, 4.0, 2.2);
-  const auto cyl = fitCylinder(c, {}, Eigen::Vector3d::Zero());
+  const frontend::Cloud c = cylinderCloud({8, 1, -1.7}, {0, 0, 1}, 0.25, 4.0, 2.2);
+  const auto cyl = frontend::fitCylinder(c, {}, Eigen::Vector3d::Zero());
   ASSERT_TRUE(cyl);
   EXPECT_NEAR(cyl->radius, 0.25, 0.02);
   EXPECT_NEAR((cyl->root.head<2>() - Eigen::Vector2d(8, 1)).norm(), 0, 0.03);
@@ -88,22 +88,22 @@ TEST(CylinderFit, UprightArcGivesRadiusAndAxis) {
 }
 
 TEST(CylinderFit, RejectsLeaningBeyondLimit) {
-  const Cloud slight = cylinderCloud({8, 0, 0}, {0.17, 0, 1}, 0.2, 4.0, 3.0);   // ~10 deg
-  const Cloud strong = cylinderCloud({8, 0, 0}, {0.7, 0, 1}, 0.2, 4.0, 3.0);    // ~35 deg
+  const frontend::Cloud slight = cylinderCloud({8, 0, 0}, {0.17, 0, 1}, 0.2, 4.0, 3.0);   // ~10 deg
+  const frontend::Cloud strong = cylinderCloud({8, 0, 0}, {0.7, 0, 1}, 0.2, 4.0, 3.0);    // ~35 deg
   std::string why;
-  const auto a = fitCylinder(slight, {}, Eigen::Vector3d::Zero(), &why);
+  const auto a = frontend::fitCylinder(slight, {}, Eigen::Vector3d::Zero(), &why);
   ASSERT_TRUE(a) << why;
   EXPECT_NEAR(std::acos(a->axis.z()) * 180 / M_PI, 9.7, 2.0);
-  EXPECT_FALSE(fitCylinder(strong, {}, Eigen::Vector3d::Zero(), &why));
+  EXPECT_FALSE(frontend::fitCylinder(strong, {}, Eigen::Vector3d::Zero(), &why));
   EXPECT_NE(why.find("leaning"), std::string::npos);
-  EXPECT_FALSE(fitCylinder(Cloud(5, Eigen::Vector3f::Zero()), {}, Eigen::Vector3d::Zero()));
+  EXPECT_FALSE(frontend::fitCylinder(frontend::Cloud(5, Eigen::Vector3f::Zero()), {}, Eigen::Vector3d::Zero()));
 }
 
 TEST(CylinderFit, RealTlsTrunkSliceWithinOneCentimetreOfLeastSquares) {
-  const Cloud slice = readXyzCloud(std::string(SLIDE_DATA_DIR) + "/tls/dbh_slice.xyz");
+  const frontend::Cloud slice = frontend::readXyzCloud(std::string(SLIDE_DATA_DIR) + "/tls/dbh_slice.xyz");
   ASSERT_EQ(slice.size(), 1369u);
-  const Eigen::Vector3d view = centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
-  const auto cyl = fitCylinder(slice, {}, view);
+  const Eigen::Vector3d view = frontend::centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
+  const auto cyl = frontend::fitCylinder(slice, {}, view);
   ASSERT_TRUE(cyl);
   std::vector<Eigen::Vector2d> bark;
   for (const auto& p : slice) {
@@ -111,7 +111,7 @@ TEST(CylinderFit, RealTlsTrunkSliceWithinOneCentimetreOfLeastSquares) {
     if (std::abs((q - cyl->root.head<2>()).norm() - cyl->radius) <= 0.05) bark.push_back(q);
   }
   EXPECT_GT(bark.size(), 900u);
-  const auto lsq = fitCircleAlgebraic(bark);
+  const auto lsq = frontend::fitCircleAlgebraic(bark);
   ASSERT_TRUE(lsq);
   EXPECT_NEAR(cyl->radius, lsq->radius, 0.01);
   EXPECT_NEAR(cyl->radius, 0.15, 0.02);
@@ -122,14 +122,14 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   const double yaw = 30 * M_PI / 180;
   const Eigen::Matrix3d R = rotZ(yaw);
   const Eigen::Vector3d centre(10, 4, -1.0);
-  Cloud pts;
+  frontend::Cloud pts;
   for (double z = -0.75; z <= 0.75; z += 0.05) {
     for (double x = -2.25; x <= 2.25; x += 0.05) pts.push_back((centre + R * Eigen::Vector3d(x, -0.9, z)).cast<float>());
     for (double y = -0.9; y <= 0.9; y += 0.05) pts.push_back((centre + R * Eigen::Vector3d(-2.25, y, z)).cast<float>());
   }
   const ClassTable classes = ClassTable::loadDefault();
   const ClassInfo& car = classes.at(10);
-  const auto box = fitCuboid(pts, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  const auto box = frontend::fitCuboid(pts, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(box);
   EXPECT_NEAR(std::abs(wrapAngle(2 * (yawOf(box->pose.linear()) - yaw))) / 2, 0, 0.03);
   EXPECT_NEAR(box->dims.x(), 4.5, 0.25);  // 2nd-98th percentile extents
@@ -137,25 +137,28 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   EXPECT_NEAR((box->pose.translation() - centre).head<2>().norm(), 0, 0.15);
 
   // Only one short side seen: completed to the class minimum away from the sensor.
-  Cloud face;
+  frontend::Cloud face;
   for (double z = -0.75; z <= 0.75; z += 0.05)
     for (double y = -0.9; y <= 0.9; y += 0.05) face.push_back(Eigen::Vector3f(10, y, z));
-  const auto completed = fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  const auto completed =
+      frontend::fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(completed);
   EXPECT_GE(completed->dims.x(), car.size_min.x() - 1e-9);
   EXPECT_GE(completed->dims.y(), car.size_min.y() - 1e-9);
   EXPECT_GT(completed->pose.translation().x(), 10.0) << "grown away from the sensor";
-  Cloud sliver;
+  frontend::Cloud sliver;
   for (double z = -0.75; z <= 0.75; z += 0.05)
     for (double y = -0.3; y <= 0.3; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
   std::string why;
-  EXPECT_FALSE(fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(), &why)) << "too little seen";
+  EXPECT_FALSE(
+      frontend::fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(), &why))
+      << "too little seen";
   EXPECT_NE(why.find("too short"), std::string::npos) << why;
   // A wall is not a car.
-  Cloud wall;
+  frontend::Cloud wall;
   for (double x = 0; x <= 12; x += 0.1)
     for (double z = 0; z <= 1.5; z += 0.1) wall.push_back(Eigen::Vector3f(x, 5, z));
-  EXPECT_FALSE(fitObject(wall, 10, classes, {}, Eigen::Vector3d::Zero(), &why));
+  EXPECT_FALSE(frontend::fitObject(wall, 10, classes, {}, Eigen::Vector3d::Zero(), &why));
   EXPECT_NE(why.find("exceed"), std::string::npos) << why;
 }
 
@@ -167,8 +170,9 @@ TEST(CuboidFit, EndFaceSeenHeadOnIsCompletedAlongTheViewingDirection) {
   const ClassInfo& car = classes.at(10);
   const Eigen::Vector3d dims(4.2, 1.8, 1.5);
   // From a parking aisle: the rear face only, sensor 1 m up (below the roof), 8 m away.
-  const Cloud rear = visibleBoxCloud({10.1, 0.3}, 0.0, dims, Eigen::Vector3d(0, 0, 1.0));
-  const auto box = fitCuboid(rear, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  const frontend::Cloud rear = visibleBoxCloud({10.1, 0.3}, 0.0, dims, Eigen::Vector3d(0, 0, 1.0));
+  const auto box =
+      frontend::fitCuboid(rear, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(box);
   EXPECT_LT(longSideYawErrorDeg(*box, 0.0), 2.0);
   EXPECT_NEAR(box->dims.x(), car.typicalSize().x(), 1e-9) << "length completed to the typical car";
@@ -178,8 +182,8 @@ TEST(CuboidFit, EndFaceSeenHeadOnIsCompletedAlongTheViewingDirection) {
   const Eigen::Vector2d centre(-3.0, 7.0);
   const Eigen::Vector2d back = centre - 2.1 * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
   const Eigen::Vector3d view(back.x() - 6 * std::cos(yaw), back.y() - 6 * std::sin(yaw), 1.0);
-  const Cloud front = visibleBoxCloud(centre, yaw, dims, view);
-  const auto turned = fitCuboid(front, {}, view, car.size_min, car.size_max, car.typicalSize());
+  const frontend::Cloud front = visibleBoxCloud(centre, yaw, dims, view);
+  const auto turned = frontend::fitCuboid(front, {}, view, car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(turned);
   EXPECT_LT(longSideYawErrorDeg(*turned, yaw), 2.0);
   EXPECT_NEAR((turned->pose.translation().head<2>() - centre).norm(), 0, 0.25);
@@ -192,8 +196,9 @@ TEST(CuboidFit, SideSeenBroadsideKeepsLengthAndGrowsWidthAway) {
   // Parked along a street, 7 m to the left of a LiDAR 1.7 m up (higher than the roof: the
   // roof is seen too), and at the same distance from a sensor below the roof.
   for (double view_z : {1.0, 1.7}) {
-    const Cloud side = visibleBoxCloud({0.5, 7.0}, 0.02, dims, Eigen::Vector3d(0, 0, view_z));
-    const auto box = fitCuboid(side, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+    const frontend::Cloud side = visibleBoxCloud({0.5, 7.0}, 0.02, dims, Eigen::Vector3d(0, 0, view_z));
+    const auto box =
+        frontend::fitCuboid(side, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
     ASSERT_TRUE(box) << view_z;
     EXPECT_LT(longSideYawErrorDeg(*box, 0.02), 2.0) << view_z;
     EXPECT_NEAR(box->dims.x(), 4.4, 0.2) << view_z;
@@ -208,49 +213,51 @@ TEST(CuboidFit, CornerViewOfBothFacesFitsHeadingAndCentre) {
   for (double yaw_deg : {-60.0, -20.0, 30.0, 75.0}) {
     const double yaw = yaw_deg * M_PI / 180;
     const Eigen::Vector2d centre(9.0, 6.0);
-    const Cloud corner = visibleBoxCloud(centre, yaw, dims, Eigen::Vector3d(0, 0, 1.0));
-    const auto box = fitCuboid(corner, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+    const frontend::Cloud corner = visibleBoxCloud(centre, yaw, dims, Eigen::Vector3d(0, 0, 1.0));
+    const auto box =
+        frontend::fitCuboid(corner, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
     ASSERT_TRUE(box) << yaw_deg;
     EXPECT_LT(longSideYawErrorDeg(*box, yaw), 2.0) << yaw_deg;
     EXPECT_NEAR((box->pose.translation().head<2>() - centre).norm(), 0, 0.15) << yaw_deg;
   }
   // A corner where only 1.2 m of the side is seen beside the whole front (the rest out of the
   // camera's view): the front is the width, the length grows away from the sensor.
-  Cloud part;
+  frontend::Cloud part;
   for (const auto& q : visibleBoxCloud({9.0, 6.0}, M_PI / 2, dims, Eigen::Vector3d(8.0, 0, 1.0)))
     if (q.y() < 3.7 + 1.2 + 1e-3) part.push_back(q);
-  const auto box = fitCuboid(part, {}, Eigen::Vector3d(8.0, 0, 1.0), car.size_min, car.size_max, car.typicalSize());
+  const auto box =
+      frontend::fitCuboid(part, {}, Eigen::Vector3d(8.0, 0, 1.0), car.size_min, car.size_max, car.typicalSize());
   ASSERT_TRUE(box);
   EXPECT_LT(longSideYawErrorDeg(*box, M_PI / 2), 2.0);
   EXPECT_NEAR((box->pose.translation().head<2>() - Eigen::Vector2d(9.0, 6.0)).norm(), 0, 0.2);
 }
 
 TEST(EllipsoidFit, CentroidRadiusHeight) {
-  Cloud pts;
+  frontend::Cloud pts;
   for (double a = 0; a < 2 * M_PI; a += 0.05)
     for (double z = 0; z <= 0.8; z += 0.05) pts.push_back(Eigen::Vector3f(3 + 0.4 * std::cos(a), 2 + 0.4 * std::sin(a), z));
-  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
+  const auto e = frontend::fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
   ASSERT_TRUE(e);
   EXPECT_NEAR((e->centroid - Eigen::Vector3d(3, 2, 0.4)).norm(), 0, 0.03);
   EXPECT_NEAR(e->radius, 0.4, 0.02);
   EXPECT_NEAR(e->height, 0.8, 0.08);
   const ClassTable classes = ClassTable::loadDefault();
-  const auto o = fitObject(pts, 1, classes, {}, Eigen::Vector3d::Zero());  // chair
+  const auto o = frontend::fitObject(pts, 1, classes, {}, Eigen::Vector3d::Zero());  // chair
   ASSERT_TRUE(o);
   EXPECT_EQ(o->shape(), Shape::Ellipsoid);
-  EXPECT_FALSE(fitObject(pts, 12345, classes, {}, Eigen::Vector3d::Zero()));
+  EXPECT_FALSE(frontend::fitObject(pts, 12345, classes, {}, Eigen::Vector3d::Zero()));
 }
 
 TEST(EllipsoidFit, PointsFarApartInHeightAreSlicedWithinABound) {
   // A received instance may hold finite points kilometres above the rest (a hostile or broken
   // message): the completion slices at most a bounded height, so the fit neither allocates a
   // slice per 10 cm of that span nor hangs, and still gives a finite body.
-  Cloud pts;
+  frontend::Cloud pts;
   for (double a = 0; a < M_PI; a += 0.05)
     for (double z = 0; z <= 0.8; z += 0.05) pts.push_back(Eigen::Vector3f(3 + 0.4 * std::cos(a), 2 + 0.4 * std::sin(a), z));
   const std::size_t body = pts.size();
   for (std::size_t i = 0; i < body / 5; ++i) pts.push_back(Eigen::Vector3f(3, 2, 1.0e8f));
-  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
+  const auto e = frontend::fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
   ASSERT_TRUE(e);
   EXPECT_TRUE(e->centroid.allFinite());
 }
@@ -259,13 +266,13 @@ TEST(EllipsoidFit, APartlySeenBodyIsCompletedAwayFromTheViewpoint) {
   // The half of a 0.4 m-radius drum that faces a sensor at the origin (centre 4 m away, at
   // 30 degrees).
   const Eigen::Vector2d c = 4.0 * Eigen::Vector2d(std::cos(M_PI / 6), std::sin(M_PI / 6));
-  Cloud pts;
+  frontend::Cloud pts;
   for (double a = M_PI / 2; a <= 3 * M_PI / 2; a += 0.05)
     for (double z = 0; z <= 0.8; z += 0.05) {
       const double t = a + M_PI / 6;
       pts.push_back(Eigen::Vector3f(c.x() + 0.4 * std::cos(t), c.y() + 0.4 * std::sin(t), z));
     }
-  const auto e = fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
+  const auto e = frontend::fitEllipsoid(pts, {}, Eigen::Vector3d::Zero());
   ASSERT_TRUE(e);
   EXPECT_LT((e->centroid.head<2>() - c).norm(), 0.05);
   EXPECT_NEAR(e->radius, 0.4, 0.03);
@@ -279,15 +286,16 @@ namespace {
 // The surface of an upright ellipsoid (horizontal radius r, height h, centre c) as a depth
 // camera at `eye` sees it: one point per ray on a grid of `step` radians in azimuth and
 // elevation, where the ray hits the body.
-Cloud visibleEllipsoidCloud(const Eigen::Vector3d& c, double r, double h, const Eigen::Vector3d& eye, double step = 0.004) {
+frontend::Cloud visibleEllipsoidCloud(const Eigen::Vector3d& c, double r, double h, const Eigen::Vector3d& eye,
+                                      double step = 0.004) {
   const Eigen::Vector3d to = c - eye;
   const double az0 = std::atan2(to.y(), to.x()), el0 = std::atan2(to.z(), to.head<2>().norm());
   const double span = std::asin(std::min(0.99, std::max(r, 0.5 * h) / to.norm())) + 0.05;
-  Cloud out;
+  frontend::Cloud out;
   for (double az = az0 - span; az <= az0 + span; az += step)
     for (double el = el0 - span; el <= el0 + span; el += step) {
       const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-      const double t = intersectRayEllipsoid(eye, d, c, Eigen::Vector3d(r, r, 0.5 * h));
+      const double t = simulator::intersectRayEllipsoid(eye, d, c, Eigen::Vector3d(r, r, 0.5 * h));
       if (std::isfinite(t)) out.push_back((eye + t * d).cast<float>());
     }
   return out;
@@ -311,8 +319,8 @@ TEST(EllipsoidFit, EachFurnitureShapeSeenFromOneSideIsCentredWithinThreeCentimet
       for (double bearing : {-0.5, 0.1, 0.6}) {
         const Eigen::Vector3d eye(1.0, -2.0, 0.5);
         const Eigen::Vector3d c = eye + Eigen::Vector3d(dist * std::cos(bearing), dist * std::sin(bearing), b.z - eye.z());
-        const Cloud pts = visibleEllipsoidCloud(c, b.r, b.h, eye);
-        const auto o = fitObject(pts, b.class_id, classes, {}, eye);
+        const frontend::Cloud pts = visibleEllipsoidCloud(c, b.r, b.h, eye);
+        const auto o = frontend::fitObject(pts, b.class_id, classes, {}, eye);
         ASSERT_TRUE(o) << "class " << b.class_id << " at " << dist << " m";
         const Eigen::Vector2d d = (o->position() - c).head<2>();
         EXPECT_LT(d.norm(), 0.03) << "class " << b.class_id << " at " << dist << " m, bearing " << bearing << ": off by ("
@@ -329,16 +337,16 @@ TEST(EllipsoidFit, AViewCutShortByAnOccluderKeepsTheClassTypicalHalfDepth) {
   const ClassTable classes = ClassTable::loadDefault();
   const Eigen::Vector3d eye(0, 0, 0.5), c(3.0, 0.4, 0.375);
   const Eigen::Vector2d ray = (c - eye).head<2>().normalized(), across(-ray.y(), ray.x());
-  Cloud strip;
+  frontend::Cloud strip;
   for (const auto& q : visibleEllipsoidCloud(c, 0.6, 0.75, eye))
     if (std::abs((q.head<2>().cast<double>() - c.head<2>()).dot(across)) < 0.12) strip.push_back(q);
   ASSERT_GT(strip.size(), 100u);
-  const auto o = fitObject(strip, 2, classes, {}, eye);
+  const auto o = frontend::fitObject(strip, 2, classes, {}, eye);
   ASSERT_TRUE(o);
   const Eigen::Vector2d d = (o->position() - c).head<2>();
   EXPECT_LT(d.norm(), 0.1) << "off by (" << d.transpose() << ")";
   // Without the class's half-depth the strip alone puts the centre 0.4 m short.
-  const auto bare = fitEllipsoid(strip, {}, eye);
+  const auto bare = frontend::fitEllipsoid(strip, {}, eye);
   ASSERT_TRUE(bare);
   EXPECT_LT((bare->centroid - c).head<2>().dot(ray), -0.3);
 }

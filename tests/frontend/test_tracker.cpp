@@ -18,17 +18,17 @@ using slide::synth::SceneObject;
 namespace {
 struct Pipeline {
   ClassTable classes = ClassTable::loadDefault();
-  FrontendConfig cfg = loadDefaultFrontendConfig();
-  LabelledSegmenter seg{classes, cfg.labelled};
-  KeyPoseBundler bundler{Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose};
-  InputIssues issues;
+  frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  frontend::LabelledSegmenter seg{classes, cfg.labelled};
+  frontend::KeyPoseBundler bundler{frontend::Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose};
+  frontend::InputIssues issues;
 
   // The robot drives along x at 0.5 m per frame; objects may move with `car_velocity` per frame.
   std::vector<KeyPoseBundle> run(std::vector<SceneObject> objects, int frames, double car_step = 0) {
     std::vector<KeyPoseBundle> out;
     for (int k = 0; k < frames; ++k) {
       const Pose T = poseFromXyzYaw(0.5 * k, 0, 1.5, 0.02 * k);
-      FrameInstances f;
+      frontend::FrameInstances f;
       f.utime = k * 100000;
       f.odom_pose = T;
       f.instances = seg.segment(synth::syntheticScan(objects, T, 0.08, k + 1), issues);
@@ -80,21 +80,21 @@ TEST(Tracker, MovingCarIsRejected) {
 
 TEST(Tracker, TracksAreDeletedAfterMissedFramesAndUnknownClassesCounted) {
   const ClassTable classes = ClassTable::loadDefault();
-  TrackerParams tp;
+  frontend::TrackerParams tp;
   tp.max_missed = 2;
-  Tracker tracker(classes, tp, {});
-  FrameInstances f;
-  Instance inst;
+  frontend::Tracker tracker(classes, tp, {});
+  frontend::FrameInstances f;
+  frontend::Instance inst;
   inst.class_id = 71;
   for (int i = 0; i < 30; ++i) inst.points.emplace_back(5 + 0.01f * i, 0, 0.1f * i);
   f.instances = {inst};
-  InputIssues issues;
+  frontend::InputIssues issues;
   tracker.update(f, issues);
   EXPECT_EQ(tracker.tracks().size(), 1u);
-  FrameInstances empty;
+  frontend::FrameInstances empty;
   for (int k = 0; k < 3; ++k) tracker.update(empty, issues);
   EXPECT_TRUE(tracker.tracks().empty());
-  Instance unknown = inst;
+  frontend::Instance unknown = inst;
   unknown.class_id = 4242;
   f.instances = {unknown};
   tracker.update(f, issues);
@@ -105,7 +105,7 @@ TEST(Tracker, TracksAreDeletedAfterMissedFramesAndUnknownClassesCounted) {
 }
 
 TEST(OdometryBuffer, InterpolatesAndKnowsWhenToGiveUp) {
-  OdometryBuffer buf(100, 20000);
+  frontend::OdometryBuffer buf(100, 20000);
   EXPECT_FALSE(buf.at(0));
   buf.add(1000000, poseFromXyzYaw(0, 0, 0, 0));
   buf.add(1100000, poseFromXyzYaw(1, 0, 0, 0.2));
@@ -120,7 +120,7 @@ TEST(OdometryBuffer, InterpolatesAndKnowsWhenToGiveUp) {
 }
 
 TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   EXPECT_EQ(cfg.lidar_mode, "auto");
   EXPECT_DOUBLE_EQ(cfg.keypose.distance, 1.0);
   const std::string path = std::string(SLIDE_BINARY_DIR) + "/bad_frontend.yaml";
@@ -128,7 +128,7 @@ TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
     std::ofstream(path) << "tracker:\n  min_age: many\n";
   }
   try {
-    loadFrontendConfig(path);
+    frontend::loadFrontendConfig(path);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("min_age"), std::string::npos) << e.what();
@@ -136,16 +136,16 @@ TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
   {
     std::ofstream(path) << "segmenter:\n  lidar_mode: magic\n";
   }
-  EXPECT_THROW(loadFrontendConfig(path), ConfigError);
+  EXPECT_THROW(frontend::loadFrontendConfig(path), ConfigError);
 }
 
 TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
   const ClassTable classes = ClassTable::loadDefault();
-  Tracker tracker(classes, {}, {});
-  InputIssues issues;
+  frontend::Tracker tracker(classes, {}, {});
+  frontend::InputIssues issues;
   for (int k = 0; k < 5; ++k) {
-    FrameInstances f;
-    Instance inst;
+    frontend::FrameInstances f;
+    frontend::Instance inst;
     inst.class_id = k == 2 ? 80 : 71;  // one frame calls the trunk a pole
     for (int i = 0; i < 30; ++i) inst.points.emplace_back(5 + 0.01f * i, 0, 0.1f * i);
     f.instances = {inst};
@@ -162,18 +162,18 @@ TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
 TEST(Tracker, TwoTracksOfOneTrunkAreMergedANeighbourIsNot) {
   const ClassTable classes = ClassTable::loadDefault();
   auto column = [](float x, float y, float z0) {
-    Instance inst;
+    frontend::Instance inst;
     inst.class_id = 71;
     for (int i = 0; i < 30; ++i) inst.points.emplace_back(x + 0.005f * (i % 3), y, z0 + 0.05f * i);
     return inst;
   };
   for (double merge : {0.25, 0.0}) {
-    TrackerParams p;
+    frontend::TrackerParams p;
     p.column_merge_distance = merge;
-    Tracker tracker(classes, p, {});
-    InputIssues issues;
+    frontend::Tracker tracker(classes, p, {});
+    frontend::InputIssues issues;
     for (int k = 0; k < 6; ++k) {
-      FrameInstances f;
+      frontend::FrameInstances f;
       f.instances = {column(5, 0, 0.3f), column(5.6f, 0, 0.3f)};
       if (k == 2) f.instances.push_back(column(5.1f, 0, 2.5f));  // upper half of the first trunk, apart
       tracker.update(f, issues);
@@ -191,18 +191,18 @@ TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
   // aisle at y = 0; the fit is asked for from a body pose past it, on the car's far side
   // (y = 10): the hidden width still grows away from the aisle.
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  Tracker tracker(classes, cfg.tracker, cfg.fit);
-  InputIssues issues;
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  frontend::Tracker tracker(classes, cfg.tracker, cfg.fit);
+  frontend::InputIssues issues;
   for (int k = 0; k < 4; ++k) {
     const Pose T = poseFromXyzYaw(8.0 + 0.5 * k, 0, 0, 0);
-    Instance inst;
+    frontend::Instance inst;
     inst.id = 1;
     inst.class_id = 10;
     inst.confidence = 1;
     for (double x = 7.8; x <= 12.2; x += 0.05)
       for (double z = 0.1; z <= 1.5; z += 0.1) inst.points.push_back((T.inverse() * Eigen::Vector3d(x, 5.0, z)).cast<float>());
-    FrameInstances f;
+    frontend::FrameInstances f;
     f.utime = k * 100000;
     f.odom_pose = T;
     f.instances.push_back(inst);
@@ -218,7 +218,7 @@ TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
 
 namespace {
 // Car-labelled points on an axis-aligned vertical face from (x0, y0) to (x1, y1), z 0.1 to 1.5.
-void addFace(Instance& inst, double x0, double y0, double x1, double y1) {
+void addFace(frontend::Instance& inst, double x0, double y0, double x1, double y1) {
   const double len = std::hypot(x1 - x0, y1 - y0);
   for (double s = 0; s <= len + 1e-9; s += 0.05)
     for (double z = 0.1; z <= 1.5; z += 0.1)
@@ -226,18 +226,18 @@ void addFace(Instance& inst, double x0, double y0, double x1, double y1) {
                                static_cast<float>(z));
 }
 
-Instance carInstance() {
-  Instance inst;
+frontend::Instance carInstance() {
+  frontend::Instance inst;
   inst.class_id = 10;
   inst.confidence = 1;
   return inst;
 }
 
 // Four frames at the odometry origin, each with the same instances.
-void feedFourFrames(Tracker& tracker, const std::vector<Instance>& instances) {
-  InputIssues issues;
+void feedFourFrames(frontend::Tracker& tracker, const std::vector<frontend::Instance>& instances) {
+  frontend::InputIssues issues;
   for (int k = 0; k < 4; ++k) {
-    FrameInstances f;
+    frontend::FrameInstances f;
     f.utime = k * 100000;
     f.instances = instances;
     tracker.update(f, issues);
@@ -252,12 +252,12 @@ void feedFourFrames(Tracker& tracker, const std::vector<Instance>& instances) {
 // are too wide for one car).
 TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   for (double width : {cfg.tracker.box_merge_width, 0.0}) {
-    TrackerParams p = cfg.tracker;
+    frontend::TrackerParams p = cfg.tracker;
     p.box_merge_width = width;
-    Tracker tracker(classes, p, cfg.fit);
-    Instance a = carInstance(), stripe = carInstance(), b = carInstance();
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), stripe = carInstance(), b = carInstance();
     addFace(a, 9.1, -2.8, 10.9, -2.8);
     addFace(a, 9.1, -2.8, 9.1, -5.0);
     addFace(stripe, 9.1, -5.0, 9.1, -5.4);
@@ -277,13 +277,13 @@ TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
 // the face, along y); with parallel neighbours within parallel_radius it takes their heading.
 TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   ASSERT_GT(cfg.tracker.parallel_radius, 0.0) << "on by default";
   for (double radius : {cfg.tracker.parallel_radius, 0.0}) {
-    TrackerParams p = cfg.tracker;
+    frontend::TrackerParams p = cfg.tracker;
     p.parallel_radius = radius;
-    Tracker tracker(classes, p, cfg.fit);
-    Instance a = carInstance(), b = carInstance(), c = carInstance();
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), b = carInstance(), c = carInstance();
     addFace(a, 8.0, 5.0, 12.4, 5.0);
     addFace(b, 28.0, 12.0, 32.4, 12.0);
     addFace(c, 20.0, 8.5, 21.8, 8.5);
@@ -308,18 +308,18 @@ TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
 // moving (no object); with it the instance is dropped and counted, the car stays.
 TEST(Tracker, AnInstanceLargerThanItsClassIsDroppedNotTakenAsMotion) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   for (bool drop : {true, false}) {
-    TrackerParams p = cfg.tracker;
+    frontend::TrackerParams p = cfg.tracker;
     p.drop_oversized = drop;
-    Tracker tracker(classes, p, cfg.fit);
-    InputIssues issues;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::InputIssues issues;
     for (int k = 0; k < 5; ++k) {
-      Instance car = carInstance();
+      frontend::Instance car = carInstance();
       addFace(car, 9.1, -2.8, 10.9, -2.8);
       addFace(car, 9.1, -2.8, 9.1, -7.2);
       if (k == 2) addFace(car, 11.1, -2.8, 12.9, -2.8);  // the end of the neighbour beside it joined in
-      FrameInstances f;
+      frontend::FrameInstances f;
       f.utime = k * 100000;
       f.instances = {car};
       tracker.update(f, issues);
@@ -331,8 +331,8 @@ TEST(Tracker, AnInstanceLargerThanItsClassIsDroppedNotTakenAsMotion) {
 
 namespace {
 // A solid upright disc of points (radius r, height h) around (x, y), class `class_id`.
-Instance discInstance(int class_id, double x, double y, double r, double h, double z0 = 0) {
-  Instance inst;
+frontend::Instance discInstance(int class_id, double x, double y, double r, double h, double z0 = 0) {
+  frontend::Instance inst;
   inst.class_id = class_id;
   for (double a = 0; a < 2 * M_PI; a += 0.2)
     for (double z = z0; z <= z0 + h; z += 0.1)
@@ -346,12 +346,12 @@ Instance discInstance(int class_id, double x, double y, double r, double h, doub
 // and counted; the chair's track is not judged moving and is still reported.
 TEST(Tracker, AnInstanceWiderThanItsClassIsDroppedNotMadeAMovingTrack) {
   const ClassTable classes = ClassTable::loadDefault();
-  Tracker tracker(classes, {}, {});
-  InputIssues issues;
-  FrameInstances f;
+  frontend::Tracker tracker(classes, {}, {});
+  frontend::InputIssues issues;
+  frontend::FrameInstances f;
   f.instances = {discInstance(1, 3.0, 0.0, 0.28, 0.9)};
   for (int k = 0; k < 3; ++k) tracker.update(f, issues);
-  Instance smear = discInstance(1, 3.0, 0.0, 0.28, 0.9);
+  frontend::Instance smear = discInstance(1, 3.0, 0.0, 0.28, 0.9);
   for (int i = 0; i <= 30; ++i) smear.points.emplace_back(1.5f + 0.1f * i, 0.3f, 0.5f);  // 1.5 .. 4.5 m
   f.instances = {smear};
   tracker.update(f, issues);
@@ -369,12 +369,12 @@ TEST(Tracker, AnInstanceWiderThanItsClassIsDroppedNotMadeAMovingTrack) {
 // it), and not again at frame 8.
 TEST(KeyPoseBundler, ATrackConfirmedBetweenKeyPosesIsReportedOnce) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig cfg = loadDefaultFrontendConfig();
-  KeyPoseBundler bundler(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
-  InputIssues issues;
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  frontend::KeyPoseBundler bundler(frontend::Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
+  frontend::InputIssues issues;
   std::vector<KeyPoseBundle> bundles;
   for (int k = 0; k <= 8; ++k) {
-    FrameInstances f;
+    frontend::FrameInstances f;
     f.utime = k * 100000;
     f.odom_pose = poseFromXyzYaw(0.25 * k, 0, 0.5, 0);
     if (k <= 2) f.instances = {discInstance(1, 4.0 - 0.25 * k, 1.0, 0.28, 0.9)};  // static at (4, 1) in odom

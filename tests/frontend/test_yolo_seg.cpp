@@ -41,25 +41,25 @@ int count(const cv::Mat& m) { return cv::countNonZero(m); }
 }  // namespace
 
 TEST(YoloSeg, LetterboxScalesCentresAndPads) {
-  const Letterbox a = letterboxOf(640, 480, 640, 640);
+  const frontend::Letterbox a = frontend::letterboxOf(640, 480, 640, 640);
   EXPECT_DOUBLE_EQ(a.scale, 1.0);
   EXPECT_EQ(a.pad_x, 0);
   EXPECT_EQ(a.pad_y, 80);
   EXPECT_EQ(a.height, 480);
-  const Letterbox b = letterboxOf(64, 32, 32, 32);
+  const frontend::Letterbox b = frontend::letterboxOf(64, 32, 32, 32);
   EXPECT_DOUBLE_EQ(b.scale, 0.5);
   EXPECT_EQ(b.width, 32);
   EXPECT_EQ(b.height, 16);
   EXPECT_EQ(b.pad_y, 8);
-  const cv::Mat img = letterboxImage(cv::Mat(32, 64, CV_8UC3, cv::Scalar(1, 2, 3)), b, 32, 32);
+  const cv::Mat img = frontend::letterboxImage(cv::Mat(32, 64, CV_8UC3, cv::Scalar(1, 2, 3)), b, 32, 32);
   EXPECT_EQ(img.at<cv::Vec3b>(0, 0), cv::Vec3b(114, 114, 114));
   EXPECT_EQ(img.at<cv::Vec3b>(8, 0), cv::Vec3b(1, 2, 3));
   EXPECT_EQ(img.at<cv::Vec3b>(24, 31), cv::Vec3b(114, 114, 114));
-  EXPECT_THROW(letterboxOf(0, 1, 1, 1), std::invalid_argument);
+  EXPECT_THROW(frontend::letterboxOf(0, 1, 1, 1), std::invalid_argument);
 }
 
 TEST(YoloSeg, DecodesBoxesAndSuppressesOverlapsWithinAClass) {
-  YoloSegParams p;
+  frontend::YoloSegParams p;
   p.input_width = p.input_height = 32;
   const cv::Mat out0 = outputs0({
       {10, 10, 8, 8, 0.9f, 0.0f, 1},    // A: class 0
@@ -68,7 +68,7 @@ TEST(YoloSeg, DecodesBoxesAndSuppressesOverlapsWithinAClass) {
       {24, 24, 8, 8, 0.2f, 0.1f, -1},   // D: below the score threshold
       {24, 24, 8, 8, 0.6f, 0.0f, -1},   // E: apart, class 0: kept
   });
-  const auto inst = decodeYoloSeg(out0, halves(), 2, letterboxOf(32, 32, 32, 32), 32, 32, p);
+  const auto inst = frontend::decodeYoloSeg(out0, halves(), 2, frontend::letterboxOf(32, 32, 32, 32), 32, 32, p);
   ASSERT_EQ(inst.size(), 3u);
   EXPECT_EQ(inst[0].model_class, 0);
   EXPECT_FLOAT_EQ(inst[0].score, 0.9f);
@@ -83,31 +83,34 @@ TEST(YoloSeg, DecodesBoxesAndSuppressesOverlapsWithinAClass) {
   EXPECT_EQ(count(inst[2].mask), 64);
   EXPECT_EQ(count(inst[2].mask(cv::Rect(20, 20, 8, 8))), 64);
   p.nms_iou = 0.8;  // B's overlap no longer suppresses it
-  EXPECT_EQ(decodeYoloSeg(out0, halves(), 2, letterboxOf(32, 32, 32, 32), 32, 32, p).size(), 4u);
+  EXPECT_EQ(frontend::decodeYoloSeg(out0, halves(), 2, frontend::letterboxOf(32, 32, 32, 32), 32, 32, p).size(), 4u);
   p.max_detections = 1;
-  EXPECT_EQ(decodeYoloSeg(out0, halves(), 2, letterboxOf(32, 32, 32, 32), 32, 32, p).size(), 1u);
+  EXPECT_EQ(frontend::decodeYoloSeg(out0, halves(), 2, frontend::letterboxOf(32, 32, 32, 32), 32, 32, p).size(), 1u);
 }
 
 TEST(YoloSeg, MaskIsCutToItsBoxAndTheMaskEdgeInImagePixels) {
-  YoloSegParams p;
+  frontend::YoloSegParams p;
   p.input_width = p.input_height = 32;
   // A box over both halves: only its left part (columns < 16) is mask.
-  const auto inst = decodeYoloSeg(outputs0({{16, 16, 16, 4, 0.9f, 0, 1}}), halves(), 2, letterboxOf(32, 32, 32, 32), 32, 32, p);
+  const auto inst = frontend::decodeYoloSeg(outputs0({{16, 16, 16, 4, 0.9f, 0, 1}}), halves(), 2,
+                                            frontend::letterboxOf(32, 32, 32, 32), 32, 32, p);
   ASSERT_EQ(inst.size(), 1u);
   EXPECT_EQ(count(inst[0].mask), 8 * 4);
   EXPECT_EQ(count(inst[0].mask(cv::Rect(8, 14, 8, 4))), 8 * 4);
 }
 
 TEST(YoloSeg, WrongOutputShapesNameWhatWasExpected) {
-  YoloSegParams p;
+  frontend::YoloSegParams p;
   const int bad0[3] = {1, 37, 5}, bad1[3] = {1, 32, 64};
   const std::string a = errorText([&] {
-    decodeYoloSeg(cv::Mat(3, bad0, CV_32F, cv::Scalar(0)), halves(), 2, letterboxOf(32, 32, 32, 32), 32, 32, p);
+    frontend::decodeYoloSeg(cv::Mat(3, bad0, CV_32F, cv::Scalar(0)), halves(), 2, frontend::letterboxOf(32, 32, 32, 32),
+                            32, 32, p);
   });
   EXPECT_NE(a.find("output0 [1, 37, 5]: expected float [1, 38 (4 box + 2 classes + 32 mask coefficients), anchors]"),
             std::string::npos) << a;
   const std::string b = errorText([&] {
-    decodeYoloSeg(outputs0({}), cv::Mat(3, bad1, CV_32F, cv::Scalar(0)), 2, letterboxOf(32, 32, 32, 32), 32, 32, p);
+    frontend::decodeYoloSeg(outputs0({}), cv::Mat(3, bad1, CV_32F, cv::Scalar(0)), 2,
+                            frontend::letterboxOf(32, 32, 32, 32), 32, 32, p);
   });
   EXPECT_NE(b.find("output1 [1, 32, 64]: expected float [1, 32, mask height, mask width]"), std::string::npos) << b;
 }
@@ -117,8 +120,8 @@ TEST(YoloSeg, WrongOutputShapesNameWhatWasExpected) {
 // above: the box is columns 16-47, rows 0-15 of the image.
 TEST(YoloSegDetector, RunsTheModelAndMapsClassesAndMasksToTheImage) {
   const ClassTable classes = ClassTable::loadDefault();
-  const YoloSegDetector det(loadYoloSegConfig(kModels + "yolo_seg.yaml", classes));
-  RgbdFrame f;
+  const frontend::YoloSegDetector det(frontend::loadYoloSegConfig(kModels + "yolo_seg.yaml", classes));
+  frontend::RgbdFrame f;
   f.intrinsics.width = 64, f.intrinsics.height = 32;
   f.color.assign(64 * 32 * 3, 50);
   det.detect(f);
@@ -131,7 +134,7 @@ TEST(YoloSegDetector, RunsTheModelAndMapsClassesAndMasksToTheImage) {
     for (int u = 0; u < 64; ++u) (u >= 16 && u < 48 && v < 16 ? inside : outside) += f.mask[v * 64 + u] == 1;
   EXPECT_EQ(inside, 32 * 16);
   EXPECT_EQ(outside, 0);
-  RgbdFrame no_colour;
+  frontend::RgbdFrame no_colour;
   no_colour.intrinsics.width = 4, no_colour.intrinsics.height = 4;
   det.detect(no_colour);
   EXPECT_TRUE(no_colour.instance_class.empty());
@@ -140,18 +143,21 @@ TEST(YoloSegDetector, RunsTheModelAndMapsClassesAndMasksToTheImage) {
 
 TEST(YoloSegDetector, BadModelsAndConfigsFailAtLoad) {
   const ClassTable classes = ClassTable::loadDefault();
-  const std::string shape = errorText([&] { YoloSegDetector(loadYoloSegConfig(kModels + "yolo_seg_37.yaml", classes)); });
+  const std::string shape =
+      errorText([&] { frontend::YoloSegDetector(frontend::loadYoloSegConfig(kModels + "yolo_seg_37.yaml", classes)); });
   EXPECT_NE(shape.find("yolo_seg_37.onnx: YOLOv8-seg output0 [1, 37, 16]: expected float [1, 38"), std::string::npos) << shape;
   EXPECT_NE(shape.find("2 classes in"), std::string::npos) << shape;
-  YoloSegConfig missing = loadYoloSegConfig(kModels + "yolo_seg.yaml", classes);
+  frontend::YoloSegConfig missing = frontend::loadYoloSegConfig(kModels + "yolo_seg.yaml", classes);
   missing.model_path = kModels + "nowhere.onnx";
-  EXPECT_NE(errorText([&] { YoloSegDetector{missing}; }).find("nowhere.onnx: no such model file"), std::string::npos);
-  YoloSegConfig corrupt = missing;
+  EXPECT_NE(errorText([&] { frontend::YoloSegDetector{missing}; }).find("nowhere.onnx: no such model file"),
+            std::string::npos);
+  frontend::YoloSegConfig corrupt = missing;
   corrupt.model_path = kModels + "corrupt.onnx";
-  EXPECT_NE(errorText([&] { YoloSegDetector{corrupt}; }).find("corrupt.onnx: not a readable ONNX model"), std::string::npos);
+  EXPECT_NE(errorText([&] { frontend::YoloSegDetector{corrupt}; }).find("corrupt.onnx: not a readable ONNX model"),
+            std::string::npos);
   const std::string path = testing::TempDir() + "/yolo_bad.yaml";
   std::ofstream(path) << "model: m.onnx\ninput: {width: 32, height: 32}\nclasses: [{name: x, class: spaceship}]\n";
-  const std::string cls = errorText([&] { loadYoloSegConfig(path, classes); });
+  const std::string cls = errorText([&] { frontend::loadYoloSegConfig(path, classes); });
   EXPECT_NE(cls.find("no class named 'spaceship'"), std::string::npos) << cls;
   EXPECT_NE(cls.find("yolo_bad.yaml"), std::string::npos) << cls;
 }

@@ -30,15 +30,15 @@ using slide::test::Watchdog;
 namespace {
 // A 4-frame simulated LiDAR dataset; returns the robot folder.
 fs::path smallDataset(const fs::path& work) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "forest";
   spec.robots = 1;
   spec.frames = 4;
   spec.forest.num_trees = 60;
   spec.forest.side = 40;
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
+  simulator::writeScenarioDataset(simulator::buildScenario(spec), sensors, (work / "data").string());
   return work / "data" / "robot0";
 }
 

@@ -40,9 +40,9 @@ TEST(HostileNumbers, PeerSyncRefusesBundlesWithAbsurdSigmasOrPositions) {
 
 TEST(HostileNumbers, DelaunayOfAMapWithAnObjectBillionsOfMetresAwayDoesNotThrow) {
   std::vector<Eigen::Vector2d> pts{{0, 0}, {10, 0}, {0, 10}, {10, 10}, {5, 3}};
-  ASSERT_FALSE(delaunay2d(pts).empty());
+  ASSERT_FALSE(place::delaunay2d(pts).empty());
   pts.push_back({3e9, 0});
-  EXPECT_NO_THROW(delaunay2d(pts));
+  EXPECT_NO_THROW(place::delaunay2d(pts));
   pts.back() = {0, -1e300};
-  EXPECT_NO_THROW(delaunay2d(pts));
+  EXPECT_NO_THROW(place::delaunay2d(pts));
 }

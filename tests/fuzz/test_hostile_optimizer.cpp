@@ -20,8 +20,8 @@
 using namespace slide;
 
 TEST(HostileOptimizer, AbsurdLoopClosuresAndTransformsAreRejectedAndTrueOnesAccepted) {
-  const GraphScenario s = makeIndoorScenario(1);
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(1);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   const auto& truth = s.robots[0].truth;
   for (int i = 0; i < 40; ++i) ASSERT_TRUE(opt.addBundle(s.robots[0].bundles[i]).accepted);
   const int a = s.robots[0].bundles[5].seq, b = s.robots[0].bundles[35].seq;
@@ -33,16 +33,16 @@ TEST(HostileOptimizer, AbsurdLoopClosuresAndTransformsAreRejectedAndTrueOnesAcce
   Pose huge = Pose::Identity();
   huge.translation() = Eigen::Vector3d(1e300, 0, 0);
   for (const Pose& bad : {far, turned, huge}) {
-    const UpdateResult r = opt.addLoopClosure(0, a, b, bad);
+    const backend::UpdateResult r = opt.addLoopClosure(0, a, b, bad);
     EXPECT_FALSE(r.accepted);
     EXPECT_NE(r.reason.find("implausible loop closure"), std::string::npos) << r.reason;
   }
   const double cost_before = opt.cost();
   EXPECT_TRUE(std::isfinite(cost_before));
-  const UpdateResult good = opt.addLoopClosure(0, a, b, T_true);
+  const backend::UpdateResult good = opt.addLoopClosure(0, a, b, T_true);
   EXPECT_TRUE(good.accepted) << good.reason;
   EXPECT_TRUE(std::isfinite(opt.cost()));
-  const UpdateResult t = opt.addRobotTransform(1, huge);
+  const backend::UpdateResult t = opt.addRobotTransform(1, huge);
   EXPECT_FALSE(t.accepted);
   EXPECT_NE(t.reason.find("absurd transform"), std::string::npos) << t.reason;
   for (const auto& lm : opt.landmarks()) ASSERT_TRUE(lm.isFinite());
@@ -61,7 +61,7 @@ TEST(HostileOptimizer, AJournalOnAFullDiskIsAnAlarmInTheStatus) {
     for (int i = 0; i < 64 && fill; ++i) fill << block << std::flush;
   }
   std::vector<optimizer_status_t> statuses;
-  OptimizerNode node(BackendConfig{}, ClassTable::loadDefault(), 0, OptimizerChannels{},
+  OptimizerNode node(backend::BackendConfig{}, ClassTable::loadDefault(), 0, OptimizerChannels{},
                      [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
                        optimizer_status_t st;
                        if (channel == "OPTIMIZER_STATUS" &&

@@ -51,15 +51,15 @@ TEST(HostileValues, LandmarkGridLookUpOfAFarObjectScansOnlyTheOccupiedCells) {
 
 TEST(HostileValues, OptimizerDropsObjectsBeyondTheSensorRangeAndStaysQuick) {
   Watchdog dog(60);
-  const GraphScenario s = makeIndoorScenario(1);
-  Optimizer opt(BackendConfig{}, ClassTable::loadDefault(), 0);
+  const graph_scenario::GraphScenario s = graph_scenario::makeIndoorScenario(1);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
   for (int i = 0; i < 5; ++i) ASSERT_TRUE(opt.addBundle(s.robots[0].bundles[i]).accepted);
   for (double far : {1e6, 1e7, 2e9}) {
     KeyPoseBundle b = s.robots[0].bundles[opt.numKeyPoses()];
     ASSERT_FALSE(b.objects.empty());
     b.objects[0] = transformObject(Pose(Eigen::Translation3d(far, 0, 0)), b.objects[0]);
     const auto t0 = std::chrono::steady_clock::now();
-    const UpdateResult r = opt.addBundle(b);
+    const backend::UpdateResult r = opt.addBundle(b);
     EXPECT_TRUE(r.accepted) << r.reason;
     EXPECT_LT(secondsSince(t0), 5.0) << "object at " << far << " m";
     bool warned = false;
@@ -83,7 +83,7 @@ TEST(HostileValues, FrontendConfigRefusesLoopBoundsOutsideTheirRange) {
     t.replace(at, key.size(), bad);
     std::ofstream((dir / "f.yaml").string()) << t;
     try {
-      loadFrontendConfig((dir / "f.yaml").string());
+      frontend::loadFrontendConfig((dir / "f.yaml").string());
       ADD_FAILURE() << bad << " was accepted";
     } catch (const std::exception& e) {
       EXPECT_NE(std::string(e.what()).find("ransac_iterations"), std::string::npos) << e.what();

@@ -46,10 +46,10 @@ TEST_F(Convert, BagToLcmLogReadsBackFrameByFrame) {
   const std::string log = (dir / "out.lcmlog").string();
   ASSERT_EQ(convert(bag, log, "--cloud-topic /velodyne_points --max-odom-gap 0.2"), 0);
 
-  DatasetOptions o;
+  io::DatasetOptions o;
   o.bag.cloud_topic = "/velodyne_points";
   o.max_odometry_gap_s = 0.2;
-  const RobotDataset d = openRobotDataset(bag, o);
+  const io::RobotDataset d = io::openRobotDataset(bag, o);
   ASSERT_EQ(d.size(), 5u);  // 10 sweeps, 5 without odometry (tests/io/test_ros_bag.cpp)
 
   lcm::LogFile in(log, "r");
@@ -86,17 +86,17 @@ TEST_F(Convert, BagToLcmLogReadsBackFrameByFrame) {
 TEST_F(Convert, LidarBagToFolderReadsBackTheSameFramesPointsAndPoses) {
   const std::string folder = (dir / "robot0").string();
   ASSERT_EQ(convert(bag, folder, "--cloud-topic /velodyne_points --max-odom-gap 0.2 --deskew"), 0);
-  DatasetOptions o;
+  io::DatasetOptions o;
   o.bag.cloud_topic = "/velodyne_points";
   o.bag.deskew = true;
   o.max_odometry_gap_s = 0.2;
-  const RobotDataset from_bag = openRobotDataset(bag, o), back = openRobotDataset(folder);
+  const io::RobotDataset from_bag = io::openRobotDataset(bag, o), back = io::openRobotDataset(folder);
   ASSERT_EQ(back.size(), 5u);
   ASSERT_EQ(back.size(), from_bag.size());
   for (std::size_t i = 0; i < back.size(); ++i) {
     EXPECT_NEAR(back.times[i], from_bag.times[i], 1e-6);
     EXPECT_TRUE(back.odometry[i].pose.isApprox(from_bag.odometry[i].pose, 1e-8)) << i;
-    const LabelledScan a = from_bag.scan(i), b = back.scan(i);  // sensor offset applied, deskewed
+    const io::LabelledScan a = from_bag.scan(i), b = back.scan(i);  // sensor offset applied, deskewed
     ASSERT_EQ(a.size(), b.size());
     EXPECT_TRUE(std::equal(a.xyz.begin(), a.xyz.end(), b.xyz.begin())) << i;
     EXPECT_EQ(a.intensity, b.intensity);

@@ -17,8 +17,8 @@ bool haveData() { return std::filesystem::exists(kData + "/semantickitti/sequenc
 TEST(KittiScan, RealSemanticKittiScans) {
   if (!haveData()) GTEST_SKIP() << "real data not found at " << kData;
   const std::string dir = kData + "/semantickitti/sequences/08/velodyne/";
-  const LabelledScan a = readLabelledScan(dir + "000720.bin");
-  const LabelledScan b = readLabelledScan(dir + "001500.bin");
+  const io::LabelledScan a = io::readLabelledScan(dir + "000720.bin");
+  const io::LabelledScan b = io::readLabelledScan(dir + "001500.bin");
   EXPECT_EQ(a.size(), 126661u);
   EXPECT_EQ(b.size(), 126458u);
   ASSERT_TRUE(a.hasLabels());
@@ -32,7 +32,7 @@ TEST(KittiScan, RealSemanticKittiScans) {
 }
 
 TEST(KittiScan, WriteReadRoundTripAndErrors) {
-  LabelledScan s;
+  io::LabelledScan s;
   s.xyz = {{1, 2, 3}, {-4, 5.5f, 6}};
   s.intensity = {0.25f, 0.5f};
   s.semantic = {10, 71};
@@ -40,32 +40,32 @@ TEST(KittiScan, WriteReadRoundTripAndErrors) {
   const std::string dir = testing::TempDir() + "kitti_rt/";
   std::filesystem::create_directories(dir + "velodyne");
   std::filesystem::create_directories(dir + "labels");
-  writeVelodyneBin(dir + "velodyne/000000.bin", s);
-  writeLabels(dir + "labels/000000.label", s);
-  const LabelledScan r = readLabelledScan(dir + "velodyne/000000.bin");
+  io::writeVelodyneBin(dir + "velodyne/000000.bin", s);
+  io::writeLabels(dir + "labels/000000.label", s);
+  const io::LabelledScan r = io::readLabelledScan(dir + "velodyne/000000.bin");
   EXPECT_EQ(r.xyz, s.xyz);
   EXPECT_EQ(r.semantic, s.semantic);
   EXPECT_EQ(r.instance, s.instance);
 
   std::ofstream(dir + "bad.bin", std::ios::binary) << "0123456789";
   try {
-    readVelodyneBin(dir + "bad.bin");
+    io::readVelodyneBin(dir + "bad.bin");
     FAIL();
-  } catch (const IoError& e) {
+  } catch (const io::IoError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.bin: truncated"), std::string::npos);
   }
-  LabelledScan three = s;
+  io::LabelledScan three = s;
   three.xyz.push_back({0, 0, 0});
-  EXPECT_THROW(readLabels(dir + "labels/000000.label", three), IoError);
-  EXPECT_THROW(readVelodyneBin(dir + "missing.bin"), IoError);
+  EXPECT_THROW(io::readLabels(dir + "labels/000000.label", three), io::IoError);
+  EXPECT_THROW(io::readVelodyneBin(dir + "missing.bin"), io::IoError);
 }
 
 TEST(KittiPoses, RealSequence07) {
   if (!haveData()) GTEST_SKIP();
-  const auto cam = readKittiPoses(kData + "/kitti/poses/07.txt");
+  const auto cam = io::readKittiPoses(kData + "/kitti/poses/07.txt");
   EXPECT_EQ(cam.size(), 1101u);
-  EXPECT_EQ(readKittiTimes(kData + "/kitti/poses/times_07.txt").size(), cam.size());
-  const auto lidar = kittiLidarPoses(cam, kittiVeloToCamTr0410());
+  EXPECT_EQ(io::readKittiTimes(kData + "/kitti/poses/times_07.txt").size(), cam.size());
+  const auto lidar = io::kittiLidarPoses(cam, io::kittiVeloToCamTr0410());
   EXPECT_LT((lidar[0].matrix() - Eigen::Matrix4d::Identity()).norm(), 1e-6);
   // 50 m driven by frame 100 (first forward along LiDAR x), staying near the ground plane.
   EXPECT_GT(lidar[100].translation().norm(), 40.0);
@@ -76,15 +76,15 @@ TEST(KittiPoses, RealSequence07) {
 TEST(KittiPoses, WriteReadAndErrors) {
   const std::string path = testing::TempDir() + "poses.txt";
   const std::vector<Pose> poses = {Pose::Identity(), poseFromXyzYaw(1, 2, 3, 0.4)};
-  writeKittiPoses(path, poses);
-  const auto back = readKittiPoses(path);
+  io::writeKittiPoses(path, poses);
+  const auto back = io::readKittiPoses(path);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_TRUE(back[1].isApprox(poses[1], 1e-8));
   std::ofstream(path) << "1 0 0 0 0 1 0 0 0 0 1\n";
   try {
-    readKittiPoses(path);
+    io::readKittiPoses(path);
     FAIL();
-  } catch (const IoError& e) {
+  } catch (const io::IoError& e) {
     EXPECT_NE(std::string(e.what()).find("line 1: expected 12"), std::string::npos);
   }
 }

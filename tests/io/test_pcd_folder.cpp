@@ -44,12 +44,12 @@ TEST(PcdFolder, ScansTimedByFileNameWithInterpolatedOdometry) {
   writeAsciiPcd(dir / "1700000009.000000.pcd", 2);  // after the odometry ends
   std::vector<StampedPose> odom;
   for (int k = 0; k <= 30; ++k) odom.push_back({1700000000.0 + 0.01 * k + 0.003, poseFromXyzYaw(0.03 * k + 0.009, 0, 0, 0)});
-  writeTum((dir / "odom.txt").string(), odom);
-  const RobotDataset d = openRobotDataset(dir.string());
+  io::writeTum((dir / "odom.txt").string(), odom);
+  const io::RobotDataset d = io::openRobotDataset(dir.string());
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d.dropped.outside_span, 1u);
   EXPECT_NEAR(d.odometry[1].pose.translation().x(), 3.0 * 0.2, 1e-5);  // x = 3 t
-  const LabelledScan a = d.scan(0), b = d.scan(1);
+  const io::LabelledScan a = d.scan(0), b = d.scan(1);
   EXPECT_EQ(a.size(), 3u);  // the NaN point skipped
   EXPECT_EQ(a.intensity[2], 30.f);
   EXPECT_EQ(b.size(), 5u);
@@ -59,10 +59,10 @@ TEST(PcdFolder, ScansTimedByFileNameWithInterpolatedOdometry) {
   try {
     d.scan(1);
     ADD_FAILURE() << "no IoError";
-  } catch (const IoError& e) {
+  } catch (const io::IoError& e) {
     EXPECT_NE(std::string(e.what()).find("1700000000.200000.pcd"), std::string::npos) << e.what();
   }
   std::ofstream(dir / "times.txt") << "0.1\n";
-  EXPECT_THROW(openRobotDataset(dir.string()), IoError);
+  EXPECT_THROW(io::openRobotDataset(dir.string()), io::IoError);
   fs::remove_all(dir);
 }

@@ -29,22 +29,22 @@ struct MapResult {
 
 // The recording's frames as the driver publishes them (raw points, odometry at the frame's
 // time, microsecond stamps relative to `t0`) through segmenter, tracker and optimizer.
-MapResult mapOf(const RobotDataset& d, double t0) {
+MapResult mapOf(const io::RobotDataset& d, double t0) {
   const ClassTable classes = ClassTable::loadDefault();
-  const FrontendConfig fe = loadDefaultFrontendConfig();
-  const GeometricSegmenter segmenter(classes, fe.geometric);
-  KeyPoseBundler bundler(Tracker(classes, fe.tracker, fe.fit), fe.keypose);
+  const frontend::FrontendConfig fe = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenter segmenter(classes, fe.geometric);
+  frontend::KeyPoseBundler bundler(frontend::Tracker(classes, fe.tracker, fe.fit), fe.keypose);
   // One solver thread: two-thread full solves sum in varying order and differ by ~1e-5 m from
   // run to run, which would hide whether the inputs were the same.
-  BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+  backend::BackendConfig backend = backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
   backend.num_threads = 1;
-  Optimizer optimizer(backend, classes, 0);
+  backend::Optimizer optimizer(backend, classes, 0);
   MapResult out;
   for (std::size_t i = 0; i < d.size(); ++i) {
-    LabelledScan scan = d.scan(i);
+    io::LabelledScan scan = d.scan(i);
     scan.semantic.clear(), scan.instance.clear();  // a real robot's input: no ground-truth labels
-    InputIssues issues;
-    FrameInstances fi;
+    frontend::InputIssues issues;
+    frontend::FrameInstances fi;
     fi.utime = std::llround((d.times[i] - t0) * 1e6);
     fi.odom_pose = d.odometry[i].pose;
     fi.instances = segmenter.segment(scan, issues);
@@ -60,27 +60,27 @@ MapResult mapOf(const RobotDataset& d, double t0) {
 }  // namespace
 
 TEST(BagMap, SimulatedMissionAsABagGivesTheSameMapAsItsFolder) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "forest";
   spec.robots = 1;
   spec.distance = 25;
   spec.rate = 2;
   spec.seed = 3;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   const fs::path out = fs::temp_directory_path() / ("slide_test_bag_map_" + std::to_string(::getpid()));
   fs::remove_all(out);
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(sc, sensors, out.string());
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
+  simulator::writeScenarioDataset(sc, sensors, out.string());
   const std::string bag = (out / "robot0.bag").string();
   const std::string cmd = "/usr/bin/python3 " + std::string(SLIDE_SOURCE_DIR) + "/tools/convert/folder_to_bag.py " +
                           (out / "robot0").string() + " " + bag + " --t0 " + std::to_string(kT0) + " > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  DatasetOptions o;
+  io::DatasetOptions o;
   o.bag.cloud_topic = "/points";
   o.bag.odom_topic = "/odom";
-  const RobotDataset folder = openRobotDataset((out / "robot0").string());
-  const RobotDataset from_bag = openRobotDataset(bag, o);
+  const io::RobotDataset folder = io::openRobotDataset((out / "robot0").string());
+  const io::RobotDataset from_bag = io::openRobotDataset(bag, o);
   ASSERT_EQ(from_bag.size(), folder.size());
   // The inputs agree to rounding: the same odometry at every frame ...
   for (std::size_t i = 0; i < folder.size(); ++i) {

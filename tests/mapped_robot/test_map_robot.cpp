@@ -7,7 +7,7 @@
 using namespace slide;
 
 namespace {
-int nearTrue(const std::vector<Object>& map, const Pose& T_world_odom, const World& world) {
+int nearTrue(const std::vector<Object>& map, const Pose& T_world_odom, const simulator::World& world) {
   int n = 0;
   for (const Object& o : map) {
     const Eigen::Vector3d p = T_world_odom * o.position();
@@ -20,23 +20,24 @@ int nearTrue(const std::vector<Object>& map, const Pose& T_world_odom, const Wor
   return n;
 }
 
-MappingSetup setup() {
-  return {ClassTable::loadDefault(), loadDefaultFrontendConfig(),
-          loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), 3, std::nullopt};  // ground-truth labels
+mapped_robot::MappingSetup setup() {
+  return {ClassTable::loadDefault(), frontend::loadDefaultFrontendConfig(),
+          backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), 3,
+          std::nullopt};  // ground-truth labels
 }
 }  // namespace
 
 TEST(MapRobot, LidarAndRgbdMapsLieOnTrueObjects) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "indoor";
   spec.robots = 1;
   spec.distance = 16;
   spec.rate = 2;
   spec.seed = 2;
-  const Scenario sc = buildScenario(spec);
-  const MappingSetup s = setup();
+  const simulator::Scenario sc = simulator::buildScenario(spec);
+  const mapped_robot::MappingSetup s = setup();
   for (const char* sensor : {"lidar:vlp-16", "rgbd:d455"}) {
-    const RobotMapping m = mapRobot(sc, 0, parseSensorRig(sensor), s);
+    const mapped_robot::RobotMapping m = mapped_robot::mapRobot(sc, 0, mapped_robot::parseSensorRig(sensor), s);
     EXPECT_EQ(m.frames, static_cast<int>(sc.robots[0].ground_truth.size())) << sensor;
     EXPECT_GE(m.keyposes, 5) << sensor;
     EXPECT_GT(m.raw_points, 0) << sensor;
@@ -44,5 +45,5 @@ TEST(MapRobot, LidarAndRgbdMapsLieOnTrueObjects) {
     EXPECT_GE(nearTrue(m.objects, sc.robots[0].T_world_odom, sc.world), static_cast<int>(0.8 * m.objects.size()))
         << sensor;
   }
-  EXPECT_THROW(mapRobot(sc, 1, parseSensorRig("lidar:vlp-16"), s), std::out_of_range);
+  EXPECT_THROW(mapped_robot::mapRobot(sc, 1, mapped_robot::parseSensorRig("lidar:vlp-16"), s), std::out_of_range);
 }

@@ -15,7 +15,7 @@ TEST(Alignment, RecoversKnownXyzYawExactly) {
   const auto a = square();
   std::vector<Eigen::Vector3d> b;
   for (const auto& p : a) b.push_back(T.inverse() * p);
-  const Alignment al = alignXyzYaw(a, b);
+  const place::Alignment al = place::alignXyzYaw(a, b);
   ASSERT_TRUE(al.ok);
   EXPECT_NEAR((al.T_a_b.matrix() - T.matrix()).norm(), 0, 1e-9);
   EXPECT_NEAR(al.rms, 0, 1e-9);
@@ -31,8 +31,8 @@ TEST(Alignment, RobustRefinementIgnoresAGrossOutlier) {
     b.push_back(T.inverse() * p);
   }
   a[3] += Eigen::Vector3d(6, -4, 0);  // a wrong match
-  const Alignment plain = alignXyzYaw(a, b);
-  const Alignment robust = alignXyzYawRobust(a, b, 0.3, 30);
+  const place::Alignment plain = place::alignXyzYaw(a, b);
+  const place::Alignment robust = place::alignXyzYawRobust(a, b, 0.3, 30);
   ASSERT_TRUE(robust.ok);
   EXPECT_GT((plain.T_a_b.translation() - T.translation()).norm(), 0.2);
   EXPECT_LT((robust.T_a_b.translation() - T.translation()).norm(), 0.01);
@@ -40,8 +40,8 @@ TEST(Alignment, RobustRefinementIgnoresAGrossOutlier) {
 }
 
 TEST(Alignment, DegenerateInputIsNotOk) {
-  EXPECT_FALSE(alignXyzYaw({}, {}).ok);
-  EXPECT_FALSE(alignXyzYaw({{1, 2, 3}}, {{1, 2, 3}}).ok);
-  EXPECT_FALSE(alignXyzYaw({{1, 2, 3}, {4, 5, 6}}, {{1, 1, 0}, {1, 1, 5}}).ok);  // B points stacked
-  EXPECT_FALSE(alignXyzYaw({{1, 2, 3}, {4, 5, 6}}, {{1, 1, 0}}).ok);
+  EXPECT_FALSE(place::alignXyzYaw({}, {}).ok);
+  EXPECT_FALSE(place::alignXyzYaw({{1, 2, 3}}, {{1, 2, 3}}).ok);
+  EXPECT_FALSE(place::alignXyzYaw({{1, 2, 3}, {4, 5, 6}}, {{1, 1, 0}, {1, 1, 5}}).ok);  // B points stacked
+  EXPECT_FALSE(place::alignXyzYaw({{1, 2, 3}, {4, 5, 6}}, {{1, 1, 0}}).ok);
 }

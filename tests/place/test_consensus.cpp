@@ -10,51 +10,51 @@ const Pose kAlias = poseFromXyzYaw(18, 5, 0.2, 0.5);  // the similar room 8 m fu
 }  // namespace
 
 TEST(ConsensusFilter, FirstResultIsHeldAndAgreeingOnesRefineIt) {
-  ConsensusFilter f;
+  place::ConsensusFilter f;
   EXPECT_FALSE(f.held());
   auto u = f.add(kTrue * poseFromXyzYaw(0.1, 0, 0, 0), 10);
-  EXPECT_EQ(u.outcome, ConsensusFilter::Outcome::Accepted);
+  EXPECT_EQ(u.outcome, place::ConsensusFilter::Outcome::Accepted);
   u = f.add(kTrue * poseFromXyzYaw(-0.1, 0, 0, 0), 10);
-  EXPECT_EQ(u.outcome, ConsensusFilter::Outcome::Refined);
+  EXPECT_EQ(u.outcome, place::ConsensusFilter::Outcome::Refined);
   EXPECT_EQ(u.support, 2);
   EXPECT_NEAR((u.T.translation() - kTrue.translation()).norm(), 0, 1e-9);  // the mean of +-0.1
 }
 
 TEST(ConsensusFilter, ADisagreeingResultIsHeldBackUntilRepeated) {
-  ConsensusFilter f(ConsensusParams{1.0, 3.0, 1, 3, 10});
+  place::ConsensusFilter f(place::ConsensusParams{1.0, 3.0, 1, 3, 10});
   f.add(kTrue, 20);
   // Alternating answers (aliasing): the alias reaches three confirmations, but the true
   // transform has as much recent support, so the alias stays held back.
   for (int k = 0; k < 2; ++k) {
-    EXPECT_EQ(f.add(kAlias, 30).outcome, ConsensusFilter::Outcome::Pending);
-    EXPECT_EQ(f.add(kTrue, 20).outcome, ConsensusFilter::Outcome::Refined);
+    EXPECT_EQ(f.add(kAlias, 30).outcome, place::ConsensusFilter::Outcome::Pending);
+    EXPECT_EQ(f.add(kTrue, 20).outcome, place::ConsensusFilter::Outcome::Refined);
   }
   const auto held_back = f.add(kAlias, 30);
-  EXPECT_EQ(held_back.outcome, ConsensusFilter::Outcome::Pending);
+  EXPECT_EQ(held_back.outcome, place::ConsensusFilter::Outcome::Pending);
   EXPECT_EQ(held_back.support, 3);
   EXPECT_NEAR((f.held()->translation() - kTrue.translation()).norm(), 0, 1e-9);
   // A fourth agreeing alias result outnumbers the true one in the window: replaced.
   const auto u = f.add(kAlias, 30);
-  EXPECT_EQ(u.outcome, ConsensusFilter::Outcome::Replaced);
+  EXPECT_EQ(u.outcome, place::ConsensusFilter::Outcome::Replaced);
   EXPECT_NEAR((u.T.translation() - kAlias.translation()).norm(), 0, 1e-9);
 }
 
 TEST(ConsensusFilter, InitialConfirmationsDelayTheFirstTransform) {
-  ConsensusFilter f(ConsensusParams{1.0, 3.0, 2, 3, 10});
-  EXPECT_EQ(f.add(kAlias, 5).outcome, ConsensusFilter::Outcome::Pending);
-  EXPECT_EQ(f.add(kTrue, 5).outcome, ConsensusFilter::Outcome::Pending);
+  place::ConsensusFilter f(place::ConsensusParams{1.0, 3.0, 2, 3, 10});
+  EXPECT_EQ(f.add(kAlias, 5).outcome, place::ConsensusFilter::Outcome::Pending);
+  EXPECT_EQ(f.add(kTrue, 5).outcome, place::ConsensusFilter::Outcome::Pending);
   EXPECT_FALSE(f.held());
-  EXPECT_EQ(f.add(kTrue, 5).outcome, ConsensusFilter::Outcome::Accepted);
+  EXPECT_EQ(f.add(kTrue, 5).outcome, place::ConsensusFilter::Outcome::Accepted);
 }
 
 TEST(ConsensusFilter, YawDifferenceAloneMeansDisagreement) {
-  ConsensusFilter f;
+  place::ConsensusFilter f;
   f.add(kTrue, 1);
-  EXPECT_EQ(f.add(kTrue * poseFromXyzYaw(0, 0, 0, 0.2), 1).outcome, ConsensusFilter::Outcome::Pending);
+  EXPECT_EQ(f.add(kTrue * poseFromXyzYaw(0, 0, 0, 0.2), 1).outcome, place::ConsensusFilter::Outcome::Pending);
   // Yaw averaging across the +-pi wrap stays near pi.
-  ConsensusFilter g;
+  place::ConsensusFilter g;
   g.add(poseFromXyzYaw(0, 0, 0, M_PI - 0.01), 1);
   const auto u = g.add(poseFromXyzYaw(0, 0, 0, -M_PI + 0.01), 1);
-  EXPECT_EQ(u.outcome, ConsensusFilter::Outcome::Refined);
+  EXPECT_EQ(u.outcome, place::ConsensusFilter::Outcome::Refined);
   EXPECT_NEAR(std::abs(yawOf(u.T.linear())), M_PI, 1e-9);
 }

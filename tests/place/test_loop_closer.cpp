@@ -40,11 +40,11 @@ ObjectMap movedCopy(const ObjectMap& m, const Pose& T_a_b, std::int64_t id_offse
 }  // namespace
 
 TEST(LoopCloser, InterRobotCheckIsStaggeredRepeatedOnChangeAndRefined) {
-  LoopCloserParams p;
+  place::LoopCloserParams p;
   p.robot = 0;
   p.inter_period_s = 5;
   p.stagger_s = 1;
-  LoopCloser lc(p);
+  place::LoopCloser lc(p);
   const ObjectMap own = sceneMap(80, 40, 1, 0);
   const Pose truth = poseFromXyzYaw(12, -7, 0.3, 1.2);
   lc.setOwnMap(own, 0.0);
@@ -52,20 +52,20 @@ TEST(LoopCloser, InterRobotCheckIsStaggeredRepeatedOnChangeAndRefined) {
   EXPECT_TRUE(lc.poll(0.0).empty());  // robot 0, peer 2: first check staggered to t = 2 s
   auto out = lc.poll(2.0);
   ASSERT_EQ(out.size(), 1u) << lc.lastReason();
-  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Accepted);
+  EXPECT_EQ(out[0].outcome, place::ConsensusFilter::Outcome::Accepted);
   EXPECT_EQ(out[0].robot_a, 0);
   EXPECT_EQ(out[0].robot_b, 2);
-  EXPECT_LT(transformError(out[0].T_a_b, truth).translation_m, 0.05);
+  EXPECT_LT(eval::transformError(out[0].T_a_b, truth).translation_m, 0.05);
   for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 1000);
   EXPECT_TRUE(lc.poll(8.0).empty());  // nothing changed: no re-check
   lc.setPeerMap(2, movedCopy(own, truth, 1000, 3), 8.0);
   out = lc.poll(9.0);  // changed and due (the period ran out at t = 7 s)
   ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Refined);
+  EXPECT_EQ(out[0].outcome, place::ConsensusFilter::Outcome::Refined);
 }
 
 TEST(LoopCloser, UnrelatedPeerGivesNoClosureAndAReason) {
-  LoopCloser lc(LoopCloserParams{});
+  place::LoopCloser lc(place::LoopCloserParams{});
   lc.setOwnMap(sceneMap(80, 40, 1, 0), 0);
   lc.setPeerMap(1, sceneMap(80, 40, 9, 500), 0);
   lc.setPeerMap(3, sceneMap(3, 40, 9, 900), 0);
@@ -74,13 +74,13 @@ TEST(LoopCloser, UnrelatedPeerGivesNoClosureAndAReason) {
 }
 
 TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
-  LoopCloserParams p;
+  place::LoopCloserParams p;
   p.intra_min_keypose_gap = 30;
   p.intra_trigger_radius_m = 5;
   p.intra_local_radius_m = 40;
-  LoopCloser lc(p);
+  place::LoopCloser lc(p);
   // The robot starts at (20, 20), maps the objects around it, drives away and comes back.
-  std::vector<KeyPose> traj;
+  std::vector<place::KeyPose> traj;
   for (int k = 0; k <= 10; ++k) traj.push_back({k, poseFromXyzYaw(20 + 0.1 * k, 20, 0, 0)});
   lc.setTrajectory(traj);
   const ObjectMap old = sceneMap(60, 40, 4, 0);
@@ -99,7 +99,7 @@ TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
   EXPECT_EQ(out[0].robot_a, out[0].robot_b);
   EXPECT_EQ(out[0].keypose_b, 61);
   EXPECT_LE(out[0].keypose_a, 61 - 30);
-  EXPECT_LT(transformError(out[0].result.T_a_b, drift).translation_m, 0.05);  // the match, in the robot's frame
+  EXPECT_LT(eval::transformError(out[0].result.T_a_b, drift).translation_m, 0.05);  // the match, in the robot's frame
   for (const auto& [ida, idb] : out[0].inliers) EXPECT_EQ(idb, ida + 5000);
 }
 
@@ -109,12 +109,12 @@ TEST(LoopCloser, IntraRobotMatchesRecentDuplicatesAgainstOldObjects) {
 // round, 400 m from the origin: a drift of 4.6 degrees about the place is a match that moves
 // the robot's origin by 34 m).
 TEST(LoopCloser, IntraRobotClosureIsTheBodyPoseOfKeyPoseBInKeyPoseA) {
-  LoopCloserParams p;
+  place::LoopCloserParams p;
   p.intra_min_keypose_gap = 30;
   p.intra_trigger_radius_m = 5;
   p.intra_local_radius_m = 40;
   p.consensus.initial_confirmations = 1;
-  LoopCloser lc(p);
+  place::LoopCloser lc(p);
   const Pose origin = poseFromXyzYaw(400, 0, 0, 0);  // the place, in the robot's frame
   const ObjectMap scene = sceneMap(60, 40, 4, 0);
   ObjectMap old;
@@ -125,7 +125,7 @@ TEST(LoopCloser, IntraRobotClosureIsTheBodyPoseOfKeyPoseBInKeyPoseA) {
   // it sees again (duplicates, new ids) by drift^-1.
   const Pose centre = origin * poseFromXyzYaw(22, 21, 0, 0);
   const Pose drift = poseFromXyzYaw(0.5, -0.3, 0, 0) * centre * poseFromXyzYaw(0, 0, 0, 0.08) * centre.inverse();
-  std::vector<KeyPose> traj;
+  std::vector<place::KeyPose> traj;
   for (int k = 0; k <= 10; ++k) traj.push_back({k, truth_a});
   lc.setTrajectory(traj);
   lc.setOwnMap(old, 1.0);
@@ -138,11 +138,11 @@ TEST(LoopCloser, IntraRobotClosureIsTheBodyPoseOfKeyPoseBInKeyPoseA) {
   lc.setOwnMap(both, 2.0);
   auto out = lc.poll(3.0);
   ASSERT_EQ(out.size(), 1u) << lc.lastReason();
-  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Accepted);
+  EXPECT_EQ(out[0].outcome, place::ConsensusFilter::Outcome::Accepted);
   const Pose truth_ab = truth_a.inverse() * truth_b;
   EXPECT_EQ(out[0].keypose_a, 10);
   EXPECT_EQ(out[0].keypose_b, 61);
-  TransformError e = transformError(out[0].T_a_b, truth_ab);
+  eval::TransformError e = eval::transformError(out[0].T_a_b, truth_ab);
   EXPECT_LT(e.translation_m, 0.1);
   EXPECT_LT(e.rotation_deg, 0.5);
 
@@ -159,7 +159,7 @@ TEST(LoopCloser, IntraRobotClosureIsTheBodyPoseOfKeyPoseBInKeyPoseA) {
   const Pose given = out[0].T_a_b;
   out = lc.poll(6.0);
   ASSERT_EQ(out.size(), 1u) << lc.lastReason();
-  EXPECT_EQ(out[0].outcome, ConsensusFilter::Outcome::Refined);
+  EXPECT_EQ(out[0].outcome, place::ConsensusFilter::Outcome::Refined);
   EXPECT_EQ(out[0].keypose_a, 10);
   EXPECT_EQ(out[0].keypose_b, 61);
   EXPECT_TRUE(out[0].T_a_b.isApprox(given));
@@ -174,13 +174,13 @@ TEST(LoopCloser, IntraRobotTriggerAllowsForDriftAlongThePath) {
   const ObjectMap duplicates = movedCopy(old, drift, 5000, 5);
   for (const Object& o : duplicates.objects()) both.add(o);
   for (const double fraction : {0.0, 0.02}) {
-    LoopCloserParams p;
+    place::LoopCloserParams p;
     p.intra_trigger_radius_m = 10;
     p.intra_local_radius_m = 25;
     p.intra_drift_fraction = fraction;
     p.consensus.initial_confirmations = 1;
-    LoopCloser lc(p);
-    std::vector<KeyPose> traj;
+    place::LoopCloser lc(p);
+    std::vector<place::KeyPose> traj;
     for (int k = 0; k <= 10; ++k) traj.push_back({k, poseFromXyzYaw(20, 20, 0, 0)});
     lc.setTrajectory(traj);
     lc.setOwnMap(old, 1.0);
@@ -194,7 +194,7 @@ TEST(LoopCloser, IntraRobotTriggerAllowsForDriftAlongThePath) {
       EXPECT_NE(lc.lastReason().find("no key pose"), std::string::npos) << lc.lastReason();
     } else {
       ASSERT_EQ(out.size(), 1u) << lc.lastReason();
-      EXPECT_LT(transformError(out[0].result.T_a_b, drift).translation_m, 0.05);
+      EXPECT_LT(eval::transformError(out[0].result.T_a_b, drift).translation_m, 0.05);
     }
   }
 }
@@ -202,12 +202,12 @@ TEST(LoopCloser, IntraRobotTriggerAllowsForDriftAlongThePath) {
 // A 200,000-object map: SlideGraph stops on its time budget (no transform, flagged and
 // counted); a map update over max_map_objects is dropped and counted, the previous map stays.
 TEST(LoopCloser, LargeMapsAreBoundedByTheTimeBudgetAndTheMapSizeLimit) {
-  LoopCloserParams p;
+  place::LoopCloserParams p;
   p.robot = 0;
   p.stagger_s = 0;
   p.place.slidegraph.budget_ms = 20;
   p.max_map_objects = 300000;
-  LoopCloser lc(p);
+  place::LoopCloser lc(p);
   const ObjectMap big = sceneMap(200000, 4000, 5, 0);
   ASSERT_TRUE(lc.setOwnMap(big, 0.0));
   ASSERT_TRUE(lc.setPeerMap(1, movedCopy(big, poseFromXyzYaw(5, 3, 0, 0.4), 1000000, 6), 0.0));
@@ -215,15 +215,15 @@ TEST(LoopCloser, LargeMapsAreBoundedByTheTimeBudgetAndTheMapSizeLimit) {
   EXPECT_EQ(lc.counts().budget_exceeded, 1);
   EXPECT_NE(lc.lastReason().find("time budget of 20 ms exceeded"), std::string::npos) << lc.lastReason();
 
-  const std::vector<Landmark> a = landmarksOf(big);
-  const PlaceResult r = slideGraph(a, a, p.place.slidegraph);
+  const std::vector<place::Landmark> a = place::landmarksOf(big);
+  const place::PlaceResult r = place::slideGraph(a, a, p.place.slidegraph);
   EXPECT_FALSE(r.found);
   EXPECT_TRUE(r.budget_exhausted);
   EXPECT_TRUE(r.inliers.empty());
 
-  LoopCloserParams q = p;
+  place::LoopCloserParams q = p;
   q.max_map_objects = 1000;
-  LoopCloser small(q);
+  place::LoopCloser small(q);
   const ObjectMap own = sceneMap(80, 40, 1, 0);
   ASSERT_TRUE(small.setOwnMap(own, 0.0));
   EXPECT_FALSE(small.setPeerMap(2, sceneMap(1001, 400, 2, 5000), 0.0));

@@ -25,8 +25,8 @@ struct Sent {
   }
 };
 
-LoopCloserParams params() {
-  LoopCloserParams p;
+place::LoopCloserParams params() {
+  place::LoopCloserParams p;
   p.robot = 0;
   p.inter_period_s = 0.5;
   p.stagger_s = 0;
@@ -61,7 +61,7 @@ TEST(LoopCloserNode, PublishesTheTransformBetweenTwoRobotsMapsOnceConfirmed) {
 
 TEST(LoopCloserNode, HostileMapsAreDroppedAndCounted) {
   const auto [own, peer] = twoRobotViews(poseFromXyzYaw(3, 4, 0, 0.5));
-  LoopCloserParams p = params();
+  place::LoopCloserParams p = params();
   p.max_map_objects = 60;
   Sent sent;
   LoopCloserNode node(p, {}, sent.publisher());

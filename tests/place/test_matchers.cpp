@@ -20,13 +20,13 @@ using namespace slide;
 
 namespace {
 // A small mixed-class scene: trunks, cars and other objects scattered over w x w metres.
-std::vector<Landmark> scene(int n, double w, unsigned seed) {
+std::vector<place::Landmark> scene(int n, double w, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, w), h(0, 1.5);
   const int classes[] = {71, 71, 10, 0};
-  std::vector<Landmark> out;
+  std::vector<place::Landmark> out;
   for (int i = 0; i < n; ++i) {
-    Landmark l;
+    place::Landmark l;
     l.p = {u(rng), u(rng), h(rng)};
     l.class_id = classes[i % 4];
     l.size = l.class_id == 10 ? Eigen::Vector3d(4.5, 1.8, 1.5) : Eigen::Vector3d(0.5, 0.5, 2.0);
@@ -37,7 +37,7 @@ std::vector<Landmark> scene(int n, double w, unsigned seed) {
 }
 
 struct Case {
-  std::vector<Landmark> a, b;
+  std::vector<place::Landmark> a, b;
   Pose truth;
 };
 
@@ -46,47 +46,47 @@ Case movedCopy(unsigned seed) {
   c.a = scene(120, 60, seed);
   c.truth = poseFromXyzYaw(25.0, -13.0, 0.4, 2.2);
   std::mt19937 rng(seed + 100);
-  c.b = perturbedCopy(c.a, c.truth, PerturbParams{0.05, 0.0, 0.2}, rng);
+  c.b = place::perturbedCopy(c.a, c.truth, place::PerturbParams{0.05, 0.0, 0.2}, rng);
   return c;
 }
 }  // namespace
 
 TEST(SlideGraph, RecoversAMovedNoisyCopyWithDrops) {
   const Case c = movedCopy(1);
-  const PlaceResult r = slideGraph(c.a, c.b, SlideGraphParams{});
+  const place::PlaceResult r = place::slideGraph(c.a, c.b, place::SlideGraphParams{});
   ASSERT_TRUE(r.found) << r.reason;
-  const TransformError e = transformError(r.T_a_b, c.truth);
+  const eval::TransformError e = eval::transformError(r.T_a_b, c.truth);
   EXPECT_LT(e.translation_m, 0.1);
   EXPECT_LT(e.yaw_deg, 0.2);
   EXPECT_GT(r.inliers.size(), 80u);
-  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);  // every inlier is right
+  for (const place::LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);  // every inlier is right
 }
 
 TEST(SlideMatch, RecoversAMovedNoisyCopyWithDrops) {
   const Case c = movedCopy(2);
-  const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
+  const place::PlaceResult r = place::slideMatch(c.a, c.b, place::SlideMatchParams{});
   ASSERT_TRUE(r.found) << r.reason;
-  const TransformError e = transformError(r.T_a_b, c.truth);
+  const eval::TransformError e = eval::transformError(r.T_a_b, c.truth);
   EXPECT_LT(e.translation_m, 0.1);
   EXPECT_LT(e.yaw_deg, 0.2);
-  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);
+  for (const place::LandmarkMatch& m : r.inliers) EXPECT_EQ(c.b[m.b].index, m.a);
 }
 
 TEST(PlaceRecognition, UnrelatedMapsGiveNoTransform) {
   const auto a = scene(120, 60, 5), b = scene(120, 60, 6);
-  const PlaceResult g = slideGraph(a, b, SlideGraphParams{});
+  const place::PlaceResult g = place::slideGraph(a, b, place::SlideGraphParams{});
   EXPECT_FALSE(g.found);
   EXPECT_FALSE(g.reason.empty());
-  const PlaceResult m = slideMatch(a, b, SlideMatchParams{});
+  const place::PlaceResult m = place::slideMatch(a, b, place::SlideMatchParams{});
   EXPECT_FALSE(m.found);
   EXPECT_FALSE(m.reason.empty());
 }
 
 TEST(PlaceRecognition, BadInputGivesAReasonNotACrash) {
   const auto good = scene(40, 30, 9);
-  std::vector<Landmark> empty, tiny(good.begin(), good.begin() + 2), line, same, nan = good;
+  std::vector<place::Landmark> empty, tiny(good.begin(), good.begin() + 2), line, same, nan = good;
   for (int i = 0; i < 20; ++i) {
-    Landmark l;
+    place::Landmark l;
     l.p = {1.0 * i, 2.0 * i, 0};
     line.push_back(l);
     l.p = {3, 3, 0};
@@ -94,15 +94,15 @@ TEST(PlaceRecognition, BadInputGivesAReasonNotACrash) {
   }
   nan[5].p.x() = std::numeric_limits<double>::quiet_NaN();
   struct Bad {
-    const std::vector<Landmark>* map;
+    const std::vector<place::Landmark>* map;
     const char* expect;
   };
   for (const Bad& bad : {Bad{&empty, "empty"}, Bad{&tiny, "fewer than"}, Bad{&line, "collinear"},
                          Bad{&same, "one point"}, Bad{&nan, "non-finite"}}) {
-    const PlaceResult g = slideGraph(good, *bad.map, SlideGraphParams{});
+    const place::PlaceResult g = place::slideGraph(good, *bad.map, place::SlideGraphParams{});
     EXPECT_FALSE(g.found);
     EXPECT_NE(g.reason.find(bad.expect), std::string::npos) << g.reason;
-    const PlaceResult m = slideMatch(*bad.map, good, SlideMatchParams{});
+    const place::PlaceResult m = place::slideMatch(*bad.map, good, place::SlideMatchParams{});
     EXPECT_FALSE(m.found);
     EXPECT_FALSE(m.reason.empty());
   }
@@ -110,9 +110,9 @@ TEST(PlaceRecognition, BadInputGivesAReasonNotACrash) {
 
 TEST(SlideMatch, AnytimeBudgetStillReturnsADecision) {
   const Case c = movedCopy(3);
-  SlideMatchParams p;
+  place::SlideMatchParams p;
   p.budget_ms = 0;  // only the first yaw (zero) is visited
-  const PlaceResult r = slideMatch(c.a, c.b, p);
+  const place::PlaceResult r = place::slideMatch(c.a, c.b, p);
   EXPECT_TRUE(r.budget_exhausted);
   EXPECT_FALSE(r.found);  // the true yaw is 2.2 rad away from the only yaw searched
   EXPECT_NE(r.reason.find("budget"), std::string::npos) << r.reason;
@@ -120,24 +120,26 @@ TEST(SlideMatch, AnytimeBudgetStillReturnsADecision) {
 
 TEST(PlaceRecognition, RealParkingMapAgainstAMovedCopy) {
   const ClassTable classes = ClassTable::loadDefault();
-  const std::vector<Landmark> a =
-      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt", classes, MissingSize::Zero).map);
+  const std::vector<place::Landmark> a =
+      place::landmarksOf(io::readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/parking/robot1.txt",
+                                               classes, io::MissingSize::Zero)
+                             .map);
   const Pose truth = poseFromXyzYaw(-31.0, 12.5, 1.0, -1.9);
   std::mt19937 rng(21);
-  const std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.15}, rng);
-  const PlaceConfig config = loadDefaultPlaceConfig();
-  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
-    const PlaceResult r = recognizePlace(m, a, b, config);
-    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
-    const TransformError e = transformError(r.T_a_b, truth);
-    EXPECT_LT(e.translation_m, 0.1) << methodName(m);
-    EXPECT_LT(e.yaw_deg, 0.2) << methodName(m);
-    for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
+  const std::vector<place::Landmark> b = place::perturbedCopy(a, truth, place::PerturbParams{0.05, 0.0, 0.15}, rng);
+  const place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
+    const place::PlaceResult r = place::recognizePlace(m, a, b, config);
+    ASSERT_TRUE(r.found) << place::methodName(m) << ": " << r.reason;
+    const eval::TransformError e = eval::transformError(r.T_a_b, truth);
+    EXPECT_LT(e.translation_m, 0.1) << place::methodName(m);
+    EXPECT_LT(e.yaw_deg, 0.2) << place::methodName(m);
+    for (const place::LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
   }
 }
 
 TEST(PlaceConfig, LoadsTheShippedFileAndNamesBadKeys) {
-  const PlaceConfig c = loadDefaultPlaceConfig();
+  const place::PlaceConfig c = place::loadDefaultPlaceConfig();
   EXPECT_EQ(c.slidegraph.neighbors_per_simplex, 3u);
   EXPECT_DOUBLE_EQ(c.slidematch.verify.match_radius, c.slidegraph.verify.match_radius);
   const std::string path = ::testing::TempDir() + "bad_place.yaml";
@@ -146,24 +148,24 @@ TEST(PlaceConfig, LoadsTheShippedFileAndNamesBadKeys) {
     f << "clipper:\n  sigma: -1\n";
   }
   try {
-    loadPlaceConfig(path);
+    place::loadPlaceConfig(path);
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("bad_place.yaml"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(parsePlaceMethod("icp"), std::invalid_argument);
+  EXPECT_THROW(place::parsePlaceMethod("icp"), std::invalid_argument);
 }
 
 TEST(SlideMatch, AHugeExtentCoarsensTheGridInsteadOfExhaustingMemory) {
   Case c = movedCopy(4);
-  Landmark far = c.a.front();
+  place::Landmark far = c.a.front();
   far.p = {2e6, -3e6, 0};  // one stray object thousands of kilometres away
   c.a.push_back(far);
-  const PlaceResult r = slideMatch(c.a, c.b, SlideMatchParams{});
+  const place::PlaceResult r = place::slideMatch(c.a, c.b, place::SlideMatchParams{});
   EXPECT_TRUE(r.found || !r.reason.empty());
   if (r.found) {
-    EXPECT_LT(transformError(r.T_a_b, c.truth).translation_m, 1.0);  // never a wrong transform
+    EXPECT_LT(eval::transformError(r.T_a_b, c.truth).translation_m, 1.0);  // never a wrong transform
   }
 }
 
@@ -172,45 +174,47 @@ TEST(PlaceRecognition, ALabelFreeMapMatchesALabelledOneByShapeFamily) {
   // classes are all "other", as a label-free LiDAR robot names furniture: no class in common,
   // so class-by-class matching cannot work; by shape family it finds the transform.
   const ClassTable classes = ClassTable::loadDefault();
-  const std::vector<Landmark> a =
-      landmarksOf(readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/indoor/robot1.txt", classes, MissingSize::Zero).map);
+  const std::vector<place::Landmark> a =
+      place::landmarksOf(io::readObjectMapText(std::string(SLIDE_DATA_DIR) + "/slideslam_maps/indoor/robot1.txt",
+                                               classes, io::MissingSize::Zero)
+                             .map);
   ASSERT_GE(a.size(), 30u);
   const Pose truth = poseFromXyzYaw(12.0, -4.0, 0.0, 1.1);
   std::mt19937 rng(5);
-  std::vector<Landmark> b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.1}, rng);
-  for (Landmark& l : b) l.class_id = 0;
-  EXPECT_EQ(sharedClassShare(a, b), 0.0);
-  PlaceConfig config = loadDefaultPlaceConfig();
-  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
-    const PlaceResult r = recognizePlace(m, a, b, config);
-    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+  std::vector<place::Landmark> b = place::perturbedCopy(a, truth, place::PerturbParams{0.05, 0.0, 0.1}, rng);
+  for (place::Landmark& l : b) l.class_id = 0;
+  EXPECT_EQ(place::sharedClassShare(a, b), 0.0);
+  place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
+    const place::PlaceResult r = place::recognizePlace(m, a, b, config);
+    ASSERT_TRUE(r.found) << place::methodName(m) << ": " << r.reason;
     EXPECT_TRUE(r.by_shape);
-    const TransformError e = transformError(r.T_a_b, truth);
-    EXPECT_LT(e.translation_m, 0.1) << methodName(m);
-    EXPECT_LT(e.yaw_deg, 0.5) << methodName(m);
-    for (const LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
+    const eval::TransformError e = eval::transformError(r.T_a_b, truth);
+    EXPECT_LT(e.translation_m, 0.1) << place::methodName(m);
+    EXPECT_LT(e.yaw_deg, 0.5) << place::methodName(m);
+    for (const place::LandmarkMatch& mt : r.inliers) EXPECT_EQ(b[mt.b].index, a[mt.a].index);
   }
   // The same furniture scattered at random (same count, same room size) matches nothing.
   std::uniform_real_distribution<double> ux(0, 8), uy(-5, 6);
-  for (Landmark& l : b) l.p = truth * Eigen::Vector3d(ux(rng), uy(rng), l.p.z());
-  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch})
-    EXPECT_FALSE(recognizePlace(m, a, b, config).found) << methodName(m);
+  for (place::Landmark& l : b) l.p = truth * Eigen::Vector3d(ux(rng), uy(rng), l.p.z());
+  for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch})
+    EXPECT_FALSE(place::recognizePlace(m, a, b, config).found) << place::methodName(m);
   // Class by class (share threshold 0) the two maps have nothing to match.
   config.min_shared_class_share = 0.0;
-  b = perturbedCopy(a, truth, PerturbParams{0.05, 0.0, 0.1}, rng);
-  for (Landmark& l : b) l.class_id = 0;
-  EXPECT_FALSE(recognizePlace(PlaceMethod::SlideGraph, a, b, config).found);
+  b = place::perturbedCopy(a, truth, place::PerturbParams{0.05, 0.0, 0.1}, rng);
+  for (place::Landmark& l : b) l.class_id = 0;
+  EXPECT_FALSE(place::recognizePlace(place::PlaceMethod::SlideGraph, a, b, config).found);
 }
 
 namespace {
 // Trunks (class 71) and a few poles (80) as a Poisson process over [x0, x0 + w] x [0, h].
-std::vector<Landmark> poissonForest(double x0, double w, double h, unsigned seed, std::size_t first_index) {
+std::vector<place::Landmark> poissonForest(double x0, double w, double h, unsigned seed, std::size_t first_index) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> ux(x0, x0 + w), uy(0, h);
-  std::vector<Landmark> out;
+  std::vector<place::Landmark> out;
   const int n = static_cast<int>(0.1 * w * h);
   for (int i = 0; i < n; ++i) {
-    Landmark l;
+    place::Landmark l;
     l.p = {ux(rng), uy(rng), 0};
     l.class_id = i % 10 ? 71 : 80;
     l.size = {0.4, 0.4, 3.0};
@@ -225,29 +229,29 @@ std::vector<Landmark> poissonForest(double x0, double w, double h, unsigned seed
 // strip of forest A and a map B that holds A's last 80 m (noisy, some dropped, moved) plus 320 m
 // of forest A never saw. Forced here by exhaustive_max_votes = 0 on 2,000-landmark maps.
 TEST(SlideMatch, PrunedSearchAlignsLargeMapsThatShareAStretch) {
-  const std::vector<Landmark> a = poissonForest(0, 400, 50, 11, 0);
-  std::vector<Landmark> shared;
-  for (const Landmark& l : a)
+  const std::vector<place::Landmark> a = poissonForest(0, 400, 50, 11, 0);
+  std::vector<place::Landmark> shared;
+  for (const place::Landmark& l : a)
     if (l.p.x() > 320) shared.push_back(l);
-  std::vector<Landmark> b_world = poissonForest(400, 320, 50, 12, 100000);
+  std::vector<place::Landmark> b_world = poissonForest(400, 320, 50, 12, 100000);
   b_world.insert(b_world.end(), shared.begin(), shared.end());
   const Pose truth = poseFromXyzYaw(-350.0, 40.0, 0.2, -2.5);  // maps B's frame into A's
   std::mt19937 rng(13);
-  const std::vector<Landmark> b = perturbedCopy(b_world, truth, PerturbParams{0.1, 0.0, 0.1}, rng);
-  SlideMatchParams p;
+  const std::vector<place::Landmark> b = place::perturbedCopy(b_world, truth, place::PerturbParams{0.1, 0.0, 0.1}, rng);
+  place::SlideMatchParams p;
   p.exhaustive_max_votes = 0;
-  const PlaceResult r = slideMatch(a, b, p);
+  const place::PlaceResult r = place::slideMatch(a, b, p);
   ASSERT_FALSE(r.stage_cpu_ms.empty());
   EXPECT_EQ(r.stage_cpu_ms.front().first, "pruned_voting");
   ASSERT_TRUE(r.found) << r.reason;
-  const TransformError e = transformError(r.T_a_b, truth);
+  const eval::TransformError e = eval::transformError(r.T_a_b, truth);
   EXPECT_LT(e.translation_m, 0.3);
   EXPECT_LT(e.yaw_deg, 0.3);
-  for (const LandmarkMatch& m : r.inliers) EXPECT_EQ(b[m.b].index, m.a);
+  for (const place::LandmarkMatch& m : r.inliers) EXPECT_EQ(b[m.b].index, m.a);
 
   // Two forests that share nothing: no transform.
-  const std::vector<Landmark> other = poissonForest(0, 400, 50, 14, 200000);
-  const PlaceResult none = slideMatch(a, other, p);
+  const std::vector<place::Landmark> other = poissonForest(0, 400, 50, 14, 200000);
+  const place::PlaceResult none = place::slideMatch(a, other, p);
   EXPECT_FALSE(none.found) << "found " << none.inliers.size() << " inliers";
 }
 
@@ -269,12 +273,12 @@ TEST(SlideMatch, BudgetIsTheQueryingThreadsCpuTime) {
     while (!stop.load(std::memory_order_relaxed)) {
     }
   });
-  const std::vector<Landmark> a = poissonForest(0, 200, 50, 21, 0);
-  const std::vector<Landmark> b = poissonForest(0, 200, 50, 22, 0);
-  SlideMatchParams p;
+  const std::vector<place::Landmark> a = poissonForest(0, 200, 50, 21, 0);
+  const std::vector<place::Landmark> b = poissonForest(0, 200, 50, 22, 0);
+  place::SlideMatchParams p;
   p.exhaustive_max_votes = 1e18;  // the exhaustive search: about 1,000 x 1,000 pairs per yaw, 700 yaws
   p.budget_ms = 150;
-  const PlaceResult r = slideMatch(a, b, p);
+  const place::PlaceResult r = place::slideMatch(a, b, p);
   stop = true;
   busy.join();
   pthread_setaffinity_np(pthread_self(), sizeof before, &before);
@@ -290,17 +294,19 @@ TEST(PlaceRecognition, RecordedIndoorLidarAndRgbdMapsAlignByShapeFamily) {
   // transform between these two robots' maps in a mixed-team demo.
   const ClassTable classes = ClassTable::loadDefault();
   const std::string dir = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/indoor_lidar_rgbd_maps/";
-  const std::vector<Landmark> lidar = landmarksOf(readObjectMapText(dir + "lidar_robot0.txt", classes, MissingSize::Zero).map);
-  const std::vector<Landmark> rgbd = landmarksOf(readObjectMapText(dir + "rgbd_robot1.txt", classes, MissingSize::Zero).map);
-  const PlaceConfig config = loadDefaultPlaceConfig();
-  ASSERT_LT(sharedClassShare(lidar, rgbd), config.min_shared_class_share);
+  const std::vector<place::Landmark> lidar =
+      place::landmarksOf(io::readObjectMapText(dir + "lidar_robot0.txt", classes, io::MissingSize::Zero).map);
+  const std::vector<place::Landmark> rgbd =
+      place::landmarksOf(io::readObjectMapText(dir + "rgbd_robot1.txt", classes, io::MissingSize::Zero).map);
+  const place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  ASSERT_LT(place::sharedClassShare(lidar, rgbd), config.min_shared_class_share);
   const Pose truth = poseFromXyzYaw(-18.38, 8.62, 0.0, -M_PI / 2);
-  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
-    const PlaceResult r = recognizePlace(m, lidar, rgbd, config);
-    ASSERT_TRUE(r.found) << methodName(m) << ": " << r.reason;
+  for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
+    const place::PlaceResult r = place::recognizePlace(m, lidar, rgbd, config);
+    ASSERT_TRUE(r.found) << place::methodName(m) << ": " << r.reason;
     EXPECT_TRUE(r.by_shape);
-    const TransformError e = transformError(r.T_a_b, truth);
-    EXPECT_LT(e.translation_m, 0.5) << methodName(m);
-    EXPECT_LT(e.yaw_deg, 1.0) << methodName(m);
+    const eval::TransformError e = eval::transformError(r.T_a_b, truth);
+    EXPECT_LT(e.translation_m, 0.5) << place::methodName(m);
+    EXPECT_LT(e.yaw_deg, 1.0) << place::methodName(m);
   }
 }

@@ -12,8 +12,8 @@
 using namespace slide;
 
 namespace {
-Landmark at(double x, double y, double z, int cls = 71, std::size_t index = 0) {
-  Landmark l;
+place::Landmark at(double x, double y, double z, int cls = 71, std::size_t index = 0) {
+  place::Landmark l;
   l.p = {x, y, z};
   l.class_id = cls;
   l.size = {0.4, 0.4, 2.0};
@@ -21,8 +21,8 @@ Landmark at(double x, double y, double z, int cls = 71, std::size_t index = 0) {
   return l;
 }
 
-PlaceResult withInliers(const Pose& T, std::vector<std::pair<std::size_t, std::size_t>> pairs) {
-  PlaceResult r;
+place::PlaceResult withInliers(const Pose& T, std::vector<std::pair<std::size_t, std::size_t>> pairs) {
+  place::PlaceResult r;
   r.found = true;
   r.T_a_b = T;
   for (const auto& [a, b] : pairs) r.inliers.push_back({a, b});
@@ -31,56 +31,56 @@ PlaceResult withInliers(const Pose& T, std::vector<std::pair<std::size_t, std::s
 }  // namespace
 
 TEST(Verify, MatchesAreGatedHorizontallyAndVerticallyApart) {
-  const std::vector<Landmark> a{at(0, 0, 0), at(10, 0, 0), at(20, 0, 0)};
-  const LandmarkIndex index(a);
-  const std::vector<Landmark> b{at(0.5, 0, 0.8),   // 0.94 m apart in 3-D: a match (0.5 m across, 0.8 m up)
+  const std::vector<place::Landmark> a{at(0, 0, 0), at(10, 0, 0), at(20, 0, 0)};
+  const place::LandmarkIndex index(a);
+  const std::vector<place::Landmark> b{at(0.5, 0, 0.8),   // 0.94 m apart in 3-D: a match (0.5 m across, 0.8 m up)
                                 at(10.1, 0, 1.2),  // 1.2 m higher: no match
                                 at(20.7, 0, 0)};   // 0.7 m across: no match
-  const VerifyParams p;  // 0.6 m horizontal, 1.0 m vertical
-  const std::vector<LandmarkMatch> m = guidedMatches(a, index, b, Pose::Identity(), p);
+  const place::VerifyParams p;  // 0.6 m horizontal, 1.0 m vertical
+  const std::vector<place::LandmarkMatch> m = place::guidedMatches(a, index, b, Pose::Identity(), p);
   ASSERT_EQ(m.size(), 1u);
   EXPECT_EQ(m[0].a, 0u);
   EXPECT_EQ(m[0].b, 0u);
 }
 
 TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
-  std::vector<Landmark> b;
+  std::vector<place::Landmark> b;
   for (int i = 0; i < 10; ++i) b.push_back(at(i, 0, 0));
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < 10; ++i) pairs.emplace_back(i, i);
-  PlaceResult best = withInliers(Pose::Identity(), pairs);
+  place::PlaceResult best = withInliers(Pose::Identity(), pairs);
   best.covered = 10;
-  const VerifyParams p;
+  const place::VerifyParams p;
   // The same alignment found again, and a variant 1 m off sharing none of the matches: no rival.
-  const PlaceResult same = best;
+  const place::PlaceResult same = best;
   std::vector<std::pair<std::size_t, std::size_t>> other;
   for (std::size_t i = 0; i < 6; ++i) other.emplace_back(100 + i, i);
-  PlaceResult near = withInliers(poseFromXyzYaw(1.0, 0, 0, 0), other);
+  place::PlaceResult near = withInliers(poseFromXyzYaw(1.0, 0, 0, 0), other);
   near.covered = 8;
-  EXPECT_EQ(rivalOf(best, {best, same, near}, b, p), nullptr);
+  EXPECT_EQ(place::rivalOf(best, {best, same, near}, b, p), nullptr);
   // 10 m off, or turned by 10 degrees about the matches' centroid: rivals, accepted or not.
-  PlaceResult far = near;
+  place::PlaceResult far = near;
   far.T_a_b = poseFromXyzYaw(10.0, 0, 0, 0);
-  const std::vector<PlaceResult> with_far{best, far};
-  ASSERT_NE(rivalOf(best, with_far, b, p), nullptr);
-  EXPECT_EQ(rivalOf(best, with_far, b, p)->inliers.size(), 6u);
-  PlaceResult rejected = far;
+  const std::vector<place::PlaceResult> with_far{best, far};
+  ASSERT_NE(place::rivalOf(best, with_far, b, p), nullptr);
+  EXPECT_EQ(place::rivalOf(best, with_far, b, p)->inliers.size(), 6u);
+  place::PlaceResult rejected = far;
   rejected.found = false;
-  EXPECT_NE(rivalOf(best, {best, rejected}, b, p), nullptr);
-  PlaceResult turned = near;
+  EXPECT_NE(place::rivalOf(best, {best, rejected}, b, p), nullptr);
+  place::PlaceResult turned = near;
   turned.T_a_b = poseFromXyzYaw(4.5, 0, 0, 0) * poseFromXyzYaw(0, 0, 0, 10 * M_PI / 180) * poseFromXyzYaw(-4.5, 0, 0, 0);
-  EXPECT_NE(rivalOf(best, {best, turned}, b, p), nullptr);
+  EXPECT_NE(place::rivalOf(best, {best, turned}, b, p), nullptr);
 
   // Strength: inliers times the inlier fraction of the covered landmarks.
-  EXPECT_DOUBLE_EQ(strengthOf(best), 10.0);
-  EXPECT_DOUBLE_EQ(strengthOf(far), 4.5);
-  PlaceResult stands = best;
-  EXPECT_TRUE(standsAgainstRival(&far, p, stands));  // 10 >= 2 x 4.5
-  EXPECT_TRUE(standsAgainstRival(nullptr, p, stands));
-  PlaceResult falls = best;
-  PlaceResult strong = far;
+  EXPECT_DOUBLE_EQ(place::strengthOf(best), 10.0);
+  EXPECT_DOUBLE_EQ(place::strengthOf(far), 4.5);
+  place::PlaceResult stands = best;
+  EXPECT_TRUE(place::standsAgainstRival(&far, p, stands));  // 10 >= 2 x 4.5
+  EXPECT_TRUE(place::standsAgainstRival(nullptr, p, stands));
+  place::PlaceResult falls = best;
+  place::PlaceResult strong = far;
   strong.covered = 6;  // 6 of 6: strength 6
-  EXPECT_FALSE(standsAgainstRival(&strong, p, falls));
+  EXPECT_FALSE(place::standsAgainstRival(&strong, p, falls));
   EXPECT_FALSE(falls.found);
   EXPECT_NE(falls.reason.find("ambiguous"), std::string::npos);
 }
@@ -89,29 +89,30 @@ TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
 TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 8);
-  std::vector<Landmark> room;
+  std::vector<place::Landmark> room;
   const int classes[] = {1, 1, 2, 3};
   for (int i = 0; i < 24; ++i) room.push_back(at(u(rng), u(rng), 0.5, classes[i % 4]));
-  std::vector<Landmark> a;
+  std::vector<place::Landmark> a;
   for (double dx : {0.0, 20.0})
-    for (Landmark l : room) {
+    for (place::Landmark l : room) {
       l.p.x() += dx;
       l.index = a.size();
       a.push_back(l);
     }
   const Pose truth = poseFromXyzYaw(3.0, -2.0, 0.1, 0.7);
-  std::vector<Landmark> first_room(a.begin(), a.begin() + 24);
-  const std::vector<Landmark> b = perturbedCopy(first_room, truth, PerturbParams{0.03, 0.0, 0.0}, rng);
-  const PlaceResult m = slideMatch(a, b, SlideMatchParams{});
-  EXPECT_FALSE(m.found) << transformError(m.T_a_b, truth).translation_m;
+  std::vector<place::Landmark> first_room(a.begin(), a.begin() + 24);
+  const std::vector<place::Landmark> b =
+      place::perturbedCopy(first_room, truth, place::PerturbParams{0.03, 0.0, 0.0}, rng);
+  const place::PlaceResult m = place::slideMatch(a, b, place::SlideMatchParams{});
+  EXPECT_FALSE(m.found) << eval::transformError(m.T_a_b, truth).translation_m;
   EXPECT_NE(m.reason.find("ambiguous"), std::string::npos) << m.reason;
-  const PlaceResult g = slideGraph(a, b, SlideGraphParams{});
-  EXPECT_FALSE(g.found) << transformError(g.T_a_b, truth).translation_m;
+  const place::PlaceResult g = place::slideGraph(a, b, place::SlideGraphParams{});
+  EXPECT_FALSE(g.found) << eval::transformError(g.T_a_b, truth).translation_m;
   // With most of the other room rearranged, the room B saw stands out: a transform, the right one.
   for (std::size_t k = 24; k < 42; ++k) a[k].p += Eigen::Vector3d(k % 2 ? 2.5 : -2.0, k % 3 ? 1.5 : -2.5, 0);
-  const PlaceResult m2 = slideMatch(a, b, SlideMatchParams{});
+  const place::PlaceResult m2 = place::slideMatch(a, b, place::SlideMatchParams{});
   ASSERT_TRUE(m2.found) << m2.reason;
-  EXPECT_LT(transformError(m2.T_a_b, truth).translation_m, 0.2);
+  EXPECT_LT(eval::transformError(m2.T_a_b, truth).translation_m, 0.2);
 }
 
 // The grid behind the radius queries returns exactly the landmarks a brute-force scan finds,
@@ -119,21 +120,22 @@ TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
 TEST(LandmarkIndex, RadiusQueriesMatchBruteForce) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-30, 30), h(-2, 2);
-  std::vector<Landmark> lms;
+  std::vector<place::Landmark> lms;
   for (int i = 0; i < 600; ++i) {
-    Landmark l = at(u(rng), u(rng), h(rng));
+    place::Landmark l = at(u(rng), u(rng), h(rng));
     l.class_id = i % 3;
     lms.push_back(l);
   }
   lms.push_back(at(5e6, -5e6, 0));
-  const LandmarkIndex index(lms);
+  const place::LandmarkIndex index(lms);
   for (int q = 0; q < 300; ++q) {
     const Eigen::Vector3d p(u(rng), u(rng), h(rng));
     const double r = q % 2 ? 1.2 : 4.5;
-    const int cls = q % 4 == 3 ? LandmarkIndex::kAnyClass : q % 4;
+    const int cls = q % 4 == 3 ? place::LandmarkIndex::kAnyClass : q % 4;
     std::vector<std::size_t> expect;
     for (std::size_t i = 0; i < lms.size(); ++i)
-      if ((cls == LandmarkIndex::kAnyClass || lms[i].class_id == cls) && (lms[i].p - p).norm() <= r) expect.push_back(i);
+      if ((cls == place::LandmarkIndex::kAnyClass || lms[i].class_id == cls) && (lms[i].p - p).norm() <= r)
+        expect.push_back(i);
     std::vector<std::size_t> got = index.radius(p, r, cls);
     std::sort(got.begin(), got.end());
     EXPECT_EQ(got, expect);

@@ -35,7 +35,7 @@ inline object_map_t mapMsg(int robot, const std::vector<Object>& objects) {
   object_map_t m;
   m.utime = 0;
   m.robot = m.frame_robot = robot;
-  for (const Object& o : objects) m.objects.push_back(toLcm(o));
+  for (const Object& o : objects) m.objects.push_back(msg::toLcm(o));
   m.num_objects = static_cast<int32_t>(m.objects.size());
   return m;
 }

@@ -35,11 +35,11 @@ double area(const std::vector<Eigen::Vector2d>& p) {
 }  // namespace
 
 TEST(View, TopAndObliqueProjections) {
-  const View top = View::top();
+  const plot::View top = plot::View::top();
   EXPECT_TRUE(top.project({3, 4, 9}).isApprox(Eigen::Vector2d(3, 4), 1e-12));
   EXPECT_TRUE(top.isTop());
   // Looking from -y (azimuth -90) at 30 degrees: x stays right, height z rises by cos 30.
-  const View ob = View::oblique(-90, 30);
+  const plot::View ob = plot::View::oblique(-90, 30);
   EXPECT_TRUE(ob.project({1, 0, 0}).isApprox(Eigen::Vector2d(1, 0), 1e-12));
   EXPECT_NEAR(ob.project({0, 0, 1}).y(), std::cos(M_PI / 6), 1e-12);
   EXPECT_NEAR(ob.project({0, 1, 0}).y(), std::sin(M_PI / 6), 1e-12);
@@ -48,19 +48,19 @@ TEST(View, TopAndObliqueProjections) {
 
 TEST(ObjectShapes, FacesSeenFromAboveAndAside) {
   // From above, a car is its footprint: one face, 4 x 2 m, rotated with the car.
-  const ObjectFacets top = objectFacets(car(5, 5, 0.3), View::top());
+  const plot::ObjectFacets top = plot::objectFacets(car(5, 5, 0.3), plot::View::top());
   ASSERT_EQ(top.facets.size(), 1u);
   EXPECT_NEAR(std::abs(area(top.facets[0].uv)), 8.0, 1e-9);
   EXPECT_NEAR(std::abs(area(top.silhouette)), 8.0, 1e-9);
   // Obliquely, three faces show (top and two sides), the top in full colour.
-  const ObjectFacets ob = objectFacets(car(5, 5, 0.3), View::oblique());
+  const plot::ObjectFacets ob = plot::objectFacets(car(5, 5, 0.3), plot::View::oblique());
   EXPECT_EQ(ob.facets.size(), 3u);
   // A trunk from above: body and cap are circles of radius 0.3.
-  const ObjectFacets t = objectFacets(trunk(0, 0), View::top());
+  const plot::ObjectFacets t = plot::objectFacets(trunk(0, 0), plot::View::top());
   ASSERT_EQ(t.facets.size(), 2u);
   EXPECT_NEAR(std::abs(area(t.silhouette)), M_PI * 0.09, 0.01);
   // Obliquely its outline is taller than wide.
-  const ObjectFacets tb = objectFacets(trunk(0, 0), View::oblique(-90, 30));
+  const plot::ObjectFacets tb = plot::objectFacets(trunk(0, 0), plot::View::oblique(-90, 30));
   Eigen::AlignedBox2d box;
   for (const auto& p : tb.silhouette) box.extend(p);
   EXPECT_NEAR(box.sizes().x(), 0.6, 1e-3);
@@ -68,22 +68,22 @@ TEST(ObjectShapes, FacesSeenFromAboveAndAside) {
 }
 
 TEST(ObjectShapes, ConvexHull) {
-  const auto h = convexHull({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}, {0.2, 0.8}});
+  const auto h = plot::convexHull({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}, {0.2, 0.8}});
   EXPECT_EQ(h.size(), 4u);
   EXPECT_NEAR(area(h), 1.0, 1e-12);  // counter-clockwise
 }
 
 TEST(MapPlot, DrawsObjectsTrajectoriesAndLegend) {
   const ClassTable classes = ClassTable::loadDefault();
-  PlotMap est{"robot0 map", {car(0, 0, 0), car(10, 0, 0.5), trunk(5, 5)}, 0, false};
-  PlotMap gt{"truth", {car(0.5, 0, 0), trunk(5, 5.5)}, 0, true};
-  PlotTrajectory traj{"robot0", {{-5, -5, 0}, {0, -5, 0}, {15, -5, 0}}, 0, false, {}};
-  PlotTrajectory gt_traj{"gt", {{-5, -5.5, 0}, {15, -5.5, 0}}, 0, true, {}};
-  for (View v : {View::top(), View::oblique()}) {
-    MapPlotOptions opts;
+  plot::PlotMap est{"robot0 map", {car(0, 0, 0), car(10, 0, 0.5), trunk(5, 5)}, 0, false};
+  plot::PlotMap gt{"truth", {car(0.5, 0, 0), trunk(5, 5.5)}, 0, true};
+  plot::PlotTrajectory traj{"robot0", {{-5, -5, 0}, {0, -5, 0}, {15, -5, 0}}, 0, false, {}};
+  plot::PlotTrajectory gt_traj{"gt", {{-5, -5.5, 0}, {15, -5.5, 0}}, 0, true, {}};
+  for (plot::View v : {plot::View::top(), plot::View::oblique()}) {
+    plot::MapPlotOptions opts;
     opts.view = v;
     opts.title = "test run";
-    const Canvas c = plotMap({est, gt}, {traj, gt_traj}, classes, opts);
+    const plot::Canvas c = plot::plotMap({est, gt}, {traj, gt_traj}, classes, opts);
     const std::string svg = c.toSvg();
     EXPECT_NE(svg.find(">car (2)</text>"), std::string::npos);
     EXPECT_NE(svg.find(">trunk (1)</text>"), std::string::npos);
@@ -97,44 +97,44 @@ TEST(MapPlot, DrawsObjectsTrajectoriesAndLegend) {
 }
 
 TEST(SeriesPlot, LinesLegendAndErrors) {
-  Series s{"robot0", {0, 1, 2}, {0.1, 0.3, 0.2}};
-  SeriesPlotOptions o;
+  plot::Series s{"robot0", {0, 1, 2}, {0.1, 0.3, 0.2}};
+  plot::SeriesPlotOptions o;
   o.title = "ATE";
   o.y_label = "ATE [m]";
-  const std::string svg = plotSeries({s}, o).toSvg();
+  const std::string svg = plot::plotSeries({s}, o).toSvg();
   EXPECT_NE(svg.find(">robot0 (mean 0.2)</text>"), std::string::npos) << svg;
   EXPECT_NE(svg.find(">ATE [m]</text>"), std::string::npos);
   s.y.pop_back();
-  EXPECT_THROW(plotSeries({s}, o), std::invalid_argument);
+  EXPECT_THROW(plot::plotSeries({s}, o), std::invalid_argument);
 }
 
 TEST(MapPlot, TrajectoryColouredByValueHasAColourBar) {
-  PlotTrajectory t{"robot0", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, 0, false, {0.0, 0.5, 1.0}};
-  MapPlotOptions opts;
+  plot::PlotTrajectory t{"robot0", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, 0, false, {0.0, 0.5, 1.0}};
+  plot::MapPlotOptions opts;
   opts.values_label = "ATE [m]";
-  const std::string svg = plotMap({}, {t}, ClassTable(), opts).toSvg();
+  const std::string svg = plot::plotMap({}, {t}, ClassTable(), opts).toSvg();
   EXPECT_NE(svg.find(">ATE [m]</text>"), std::string::npos);
   // Segment colours: the ramp at each segment's mean value (0.25 and 0.75 of the range).
   for (double v : {0.25, 0.75}) {
-    const Rgb c = rampColour(v);
+    const plot::Rgb c = plot::rampColour(v);
     const std::string stroke =
         "stroke=\"rgb(" + std::to_string(c.r) + "," + std::to_string(c.g) + "," + std::to_string(c.b) + ")\"";
     EXPECT_NE(svg.find(stroke), std::string::npos) << stroke;
   }
-  EXPECT_EQ(rampColour(0).r, 68);
-  EXPECT_EQ(rampColour(1).g, 231);
-  EXPECT_EQ(rampColour(std::nan("")).r, 68);
+  EXPECT_EQ(plot::rampColour(0).r, 68);
+  EXPECT_EQ(plot::rampColour(1).g, 231);
+  EXPECT_EQ(plot::rampColour(std::nan("")).r, 68);
 }
 
 TEST(MapPlot, ScoringOverlayIsDrawnAndExplained) {
   const ClassTable classes = ClassTable::loadDefault();
-  PlotMap est{"est", {car(0, 0, 0), car(30, 0, 0)}, 0, false};
-  PlotMap gt{"gt", {car(0.5, 0, 0), car(15, 0, 0)}, 0, true};
-  MapPlotOptions opts;
+  plot::PlotMap est{"est", {car(0, 0, 0), car(30, 0, 0)}, 0, false};
+  plot::PlotMap gt{"gt", {car(0.5, 0, 0), car(15, 0, 0)}, 0, true};
+  plot::MapPlotOptions opts;
   opts.overlay.matches.push_back({{0, 0, 0.75}, {0.5, 0, 0.75}});
   opts.overlay.false_positives.push_back({30, 0, 0.75});
   opts.overlay.missed.push_back({15, 0, 0.75});
-  const std::string svg = plotMap({est, gt}, {}, classes, opts).toSvg();
+  const std::string svg = plot::plotMap({est, gt}, {}, classes, opts).toSvg();
   EXPECT_NE(svg.find(">match (1)</text>"), std::string::npos);
   EXPECT_NE(svg.find(">x false positive (1)</text>"), std::string::npos);
   EXPECT_NE(svg.find(">o missed (1)</text>"), std::string::npos);

@@ -23,18 +23,18 @@ fs::path scratch(const std::string& name) {
 }  // namespace
 
 TEST(Dataset, LidarScenarioReadsBack) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "urban";
   spec.robots = 2;
   spec.frames = 4;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   const fs::path out = scratch("lidar");
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  const GenerationStats st = writeScenarioDataset(sc, sensors, out.string());
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
+  const simulator::GenerationStats st = simulator::writeScenarioDataset(sc, sensors, out.string());
   EXPECT_EQ(st.frames, 8u);
 
-  const std::vector<GroundTruthObject> objects = readGroundTruthObjects((out / "objects.csv").string());
+  const std::vector<io::GroundTruthObject> objects = io::readGroundTruthObjects((out / "objects.csv").string());
   ASSERT_EQ(objects.size(), sc.world.objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     EXPECT_EQ(objects[i].object.id, static_cast<int64_t>(i + 1));
@@ -44,14 +44,14 @@ TEST(Dataset, LidarScenarioReadsBack) {
     EXPECT_TRUE(objects[i].velocity.isApprox(sc.world.objects[i].velocity, 1e-5));
   }
   for (int r = 0; r < 2; ++r) {
-    const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
-    EXPECT_EQ(d.sensor, RobotDataset::Sensor::Lidar);
+    const io::RobotDataset d = io::openRobotDataset((out / ("robot" + std::to_string(r))).string());
+    EXPECT_EQ(d.sensor, io::RobotDataset::Sensor::Lidar);
     ASSERT_EQ(d.size(), 4u);
     ASSERT_EQ(d.odometry.size(), 4u);
     ASSERT_EQ(d.ground_truth.size(), 4u);
     EXPECT_TRUE(d.ground_truth[3].pose.isApprox(sc.robots[r].ground_truth.poses[3], 1e-6));
     EXPECT_TRUE(d.odometry[3].pose.isApprox(sc.robots[r].odometry[3], 1e-6));
-    const LabelledScan scan = d.scan(2);
+    const io::LabelledScan scan = d.scan(2);
     ASSERT_TRUE(scan.hasLabels());
     EXPECT_GT(scan.size(), 5000u);
     // Every instance id names an object of the CSV whose class matches the point label.
@@ -65,16 +65,16 @@ TEST(Dataset, LidarScenarioReadsBack) {
 }
 
 TEST(Dataset, OutputDoesNotDependOnThreads) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "urban";  // moving cars: frames depend on time
   spec.robots = 2;
   spec.frames = 3;
-  const Scenario sc = buildScenario(spec);
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
+  const simulator::Scenario sc = simulator::buildScenario(spec);
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
   const fs::path a = scratch("threads1"), b = scratch("threads2");
-  writeScenarioDataset(sc, sensors, a.string(), {}, 1);
-  writeScenarioDataset(sc, sensors, b.string(), {}, 2);
+  simulator::writeScenarioDataset(sc, sensors, a.string(), {}, 1);
+  simulator::writeScenarioDataset(sc, sensors, b.string(), {}, 2);
   for (const char* f : {"robot1/velodyne/000002.bin", "robot1/labels/000002.label", "robot0/odom.txt", "objects.csv"}) {
     std::ifstream fa(a / f, std::ios::binary), fb(b / f, std::ios::binary);
     const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
@@ -86,47 +86,47 @@ TEST(Dataset, OutputDoesNotDependOnThreads) {
 }
 
 TEST(Dataset, RgbdScenarioReadsBack) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "indoor";
   spec.robots = 1;
   spec.frames = 2;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   const fs::path out = scratch("rgbd");
-  SensorOptions sensors;
+  simulator::SensorOptions sensors;
   sensors.sensor = "rgbd";
-  writeScenarioDataset(sc, sensors, out.string());
-  const RobotDataset d = openRobotDataset((out / "robot0").string());
-  EXPECT_EQ(d.sensor, RobotDataset::Sensor::Rgbd);
+  simulator::writeScenarioDataset(sc, sensors, out.string());
+  const io::RobotDataset d = io::openRobotDataset((out / "robot0").string());
+  EXPECT_EQ(d.sensor, io::RobotDataset::Sensor::Rgbd);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d.camera.width, 640);
   EXPECT_NEAR(d.camera.depth_scale, 0.001, 1e-12);
-  const RgbdImages f = d.rgbd(1);
+  const io::RgbdImages f = d.rgbd(1);
   const cv::Mat &depth = f.depth, &color = f.color;
   ASSERT_TRUE(f.mask.has_value());
   EXPECT_EQ(depth.rows, 480);
   EXPECT_EQ(color.type(), CV_8UC3);
   EXPECT_GT(cv::countNonZero(depth), 640 * 480 / 2);
-  const InstanceMask mask = readInstanceMask((out / "robot0" / "instances" / "000001.png").string());
+  const io::InstanceMask mask = io::readInstanceMask((out / "robot0" / "instances" / "000001.png").string());
   EXPECT_EQ(mask.class_id.size(), mask.object_id.size());
   for (int obj : mask.object_id) EXPECT_GE(obj, 1);
   fs::remove_all(out);
 }
 
 TEST(Dataset, MixedTeamGivesEachRobotItsOwnSensorAndMotion) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "forest";
   spec.forest.num_trees = 150;
   spec.robots = 3;
   spec.frames = 2;
   spec.aerial_robots = {2};
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   const fs::path out = scratch("mixed");
-  SensorOptions sensors;
+  simulator::SensorOptions sensors;
   sensors.per_robot = {"lidar", "rgbd", "rgbd"};
-  writeScenarioDataset(sc, sensors, out.string());
-  EXPECT_EQ(openRobotDataset((out / "robot0").string()).sensor, RobotDataset::Sensor::Lidar);
-  EXPECT_EQ(openRobotDataset((out / "robot1").string()).sensor, RobotDataset::Sensor::Rgbd);
-  EXPECT_EQ(openRobotDataset((out / "robot2").string()).sensor, RobotDataset::Sensor::Rgbd);
+  simulator::writeScenarioDataset(sc, sensors, out.string());
+  EXPECT_EQ(io::openRobotDataset((out / "robot0").string()).sensor, io::RobotDataset::Sensor::Lidar);
+  EXPECT_EQ(io::openRobotDataset((out / "robot1").string()).sensor, io::RobotDataset::Sensor::Rgbd);
+  EXPECT_EQ(io::openRobotDataset((out / "robot2").string()).sensor, io::RobotDataset::Sensor::Rgbd);
   for (int r = 0; r < 3; ++r) {
     std::ifstream yaml(out / ("robot" + std::to_string(r)) / "robot.yaml");
     const std::string text((std::istreambuf_iterator<char>(yaml)), {});
@@ -134,7 +134,7 @@ TEST(Dataset, MixedTeamGivesEachRobotItsOwnSensorAndMotion) {
   }
   // A sensor list that does not cover the team is an error, not a silent default.
   sensors.per_robot = {"lidar", "rgbd"};
-  EXPECT_THROW(writeScenarioDataset(sc, sensors, scratch("mixed_short").string()), std::invalid_argument);
+  EXPECT_THROW(simulator::writeScenarioDataset(sc, sensors, scratch("mixed_short").string()), std::invalid_argument);
   fs::remove_all(out);
   fs::remove_all(scratch("mixed_short"));
 }
@@ -142,22 +142,22 @@ TEST(Dataset, MixedTeamGivesEachRobotItsOwnSensorAndMotion) {
 TEST(Dataset, EveryWorldForOneToThreeRobots) {
   const bool kitti = fs::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/05.txt");
   int robots = 1;
-  for (const std::string& world : worldNames()) {
+  for (const std::string& world : simulator::worldNames()) {
     if (world.rfind("kitti", 0) == 0 && !kitti) continue;
     SCOPED_TRACE(world);
-    ScenarioSpec spec;
+    simulator::ScenarioSpec spec;
     spec.world = world;
     spec.robots = robots;
     spec.frames = 2;
-    const Scenario sc = buildScenario(spec);
+    const simulator::Scenario sc = simulator::buildScenario(spec);
     ASSERT_EQ(sc.robots.size(), static_cast<std::size_t>(robots));
     const fs::path out = scratch("world_" + world);
-    SensorOptions sensors;
-    sensors.lidar = lidarModel("vlp-16");
-    writeScenarioDataset(sc, sensors, out.string());
-    EXPECT_EQ(readGroundTruthObjects((out / "objects.csv").string()).size(), sc.world.objects.size());
+    simulator::SensorOptions sensors;
+    sensors.lidar = simulator::lidarModel("vlp-16");
+    simulator::writeScenarioDataset(sc, sensors, out.string());
+    EXPECT_EQ(io::readGroundTruthObjects((out / "objects.csv").string()).size(), sc.world.objects.size());
     for (int r = 0; r < robots; ++r) {
-      const RobotDataset d = openRobotDataset((out / ("robot" + std::to_string(r))).string());
+      const io::RobotDataset d = io::openRobotDataset((out / ("robot" + std::to_string(r))).string());
       ASSERT_EQ(d.size(), 2u);
       EXPECT_GT(d.scan(1).size(), 1000u);
     }
@@ -169,29 +169,29 @@ TEST(Dataset, EveryWorldForOneToThreeRobots) {
 TEST(Dataset, SimulatedMissionAsABagGivesTheDriverTheSameFramesAndPoses) {
   // The folder written as a bag (tools/convert/folder_to_bag.py, python3-rosbag) must reach the
   // daemons unchanged: same frames, points and odometry, so the same map comes out of either.
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "forest";
   spec.robots = 1;
   spec.frames = 5;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   const fs::path out = scratch("asbag");
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(sc, sensors, out.string());
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
+  simulator::writeScenarioDataset(sc, sensors, out.string());
   const std::string bag = (out / "robot0.bag").string();
   const std::string cmd = "/usr/bin/python3 " + std::string(SLIDE_SOURCE_DIR) + "/tools/convert/folder_to_bag.py " +
                           (out / "robot0").string() + " " + bag + " --t0 1700000000 > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  const RobotDataset folder = openRobotDataset((out / "robot0").string());
-  DatasetOptions o;
+  const io::RobotDataset folder = io::openRobotDataset((out / "robot0").string());
+  io::DatasetOptions o;
   o.bag.cloud_topic = "/points";
   o.bag.odom_topic = "/odom";
-  const RobotDataset fromBag = openRobotDataset(bag, o);
+  const io::RobotDataset fromBag = io::openRobotDataset(bag, o);
   ASSERT_EQ(fromBag.size(), folder.size());
   for (std::size_t i = 0; i < folder.size(); ++i) {
     EXPECT_NEAR(fromBag.times[i] - 1700000000.0, folder.times[i], 1e-6);
     EXPECT_TRUE(fromBag.odometry[i].pose.isApprox(folder.odometry[i].pose, 1e-6));
-    const LabelledScan a = folder.scan(i), b = fromBag.scan(i);
+    const io::LabelledScan a = folder.scan(i), b = fromBag.scan(i);
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t k = 0; k < a.size(); ++k) {
       ASSERT_EQ(a.xyz[k], b.xyz[k]);

@@ -9,8 +9,8 @@
 using namespace slide;
 
 namespace {
-Landmark object(int cls, double x, double y, double z, const Eigen::Vector3d& size) {
-  Landmark l;
+place::Landmark object(int cls, double x, double y, double z, const Eigen::Vector3d& size) {
+  place::Landmark l;
   l.class_id = cls;
   l.p = {x, y, z};
   l.size = size;
@@ -18,10 +18,10 @@ Landmark object(int cls, double x, double y, double z, const Eigen::Vector3d& si
 }
 
 // Trunks, poles and cars scattered uniformly over [0, w] x [-h, h].
-std::vector<Landmark> scatter(int n, double w, double h, unsigned seed) {
+std::vector<place::Landmark> scatter(int n, double w, double h, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> x(0, w), y(-h, h), r(0.1, 0.4);
-  std::vector<Landmark> out;
+  std::vector<place::Landmark> out;
   for (int i = 0; i < n; ++i) {
     const int cls = i % 3 == 0 ? 10 : (i % 3 == 1 ? 71 : 80);
     const double d = 2 * r(rng);
@@ -32,42 +32,42 @@ std::vector<Landmark> scatter(int n, double w, double h, unsigned seed) {
 }
 
 // No drift, noise, misses, false objects or confusion.
-MapErrorParams exact() {
-  MapErrorParams p;
+simulator::MapErrorParams exact() {
+  simulator::MapErrorParams p;
   p.yaw_drift_deg_per_100m = p.scale_error = p.vertical_drift_per_100m = 0;
   p.position_sigma = p.size_sigma = 0;
   p.missed = p.spurious = p.confusion = 0;
   return p;
 }
 
-double sumSquares(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const Pose& T) {
+double sumSquares(const std::vector<place::Landmark>& a, const std::vector<place::Landmark>& b, const Pose& T) {
   double sum = 0;
-  for (const Landmark& la : a)
-    for (const Landmark& lb : b)
-      if (la.index == lb.index && la.index != kSpuriousObject) sum += (la.p - T * lb.p).squaredNorm();
+  for (const place::Landmark& la : a)
+    for (const place::Landmark& lb : b)
+      if (la.index == lb.index && la.index != simulator::kSpuriousObject) sum += (la.p - T * lb.p).squaredNorm();
   return sum;
 }
 }  // namespace
 
 TEST(DriftedObjectMap, PosesFollowTheRouteAtTheStep) {
-  const std::vector<Pose> poses = posesAlong({{0, 0}, {10, 0}, {10, 5.2}}, 0.5);
+  const std::vector<Pose> poses = simulator::posesAlong({{0, 0}, {10, 0}, {10, 5.2}}, 0.5);
   ASSERT_EQ(poses.size(), 32u);  // 0..9.5 on x, 10,0 .. 10,5 on y, and the end
   EXPECT_NEAR(poses[20].translation().x(), 10.0, 1e-9);
   EXPECT_NEAR(poses[20].translation().y(), 0.0, 1e-9);
   EXPECT_NEAR(yawOf(poses[20].linear()), M_PI / 2, 1e-9);
   EXPECT_NEAR(poses.back().translation().y(), 5.2, 1e-9);
-  EXPECT_TRUE(posesAlong({{1, 1}, {1, 1}}, 0.5).empty());
+  EXPECT_TRUE(simulator::posesAlong({{1, 1}, {1, 1}}, 0.5).empty());
 }
 
 TEST(DriftedObjectMap, YawAndHeightDriftGrowAsConfigured) {
-  MapErrorParams p = exact();
+  simulator::MapErrorParams p = exact();
   p.yaw_drift_deg_per_100m = 1.5;
   p.vertical_drift_per_100m = 0.3;
   p.range = 5;
   // One pole 2 m left of a straight 200 m route, passed at 150 m.
-  std::vector<Landmark> world{object(80, 150, 2, 0, {0.3, 0.3, 4})};
+  std::vector<place::Landmark> world{object(80, 150, 2, 0, {0.3, 0.3, 4})};
   std::mt19937 rng(3);
-  const DriftedMap m = mapAlongRoute(world, {{0, 0}, {200, 0}}, p, {}, rng);
+  const simulator::DriftedMap m = simulator::mapAlongRoute(world, {{0, 0}, {200, 0}}, p, {}, rng);
   const double b = m.yaw_rate;
   ASSERT_NEAR(std::abs(b), 1.5 * M_PI / 180 / 100, 1e-12);
   // Heading and height error at the end: rate times distance.
@@ -88,30 +88,30 @@ TEST(DriftedObjectMap, YawAndHeightDriftGrowAsConfigured) {
 }
 
 TEST(DriftedObjectMap, WithoutErrorsTheMapIsTheWorldInTheStartFrame) {
-  const std::vector<Landmark> world = scatter(400, 200, 30, 1);
+  const std::vector<place::Landmark> world = scatter(400, 200, 30, 1);
   std::mt19937 rng(4);
-  const DriftedMap m = mapAlongRoute(world, {{20, 5}, {180, -5}}, exact(), {}, rng);
+  const simulator::DriftedMap m = simulator::mapAlongRoute(world, {{20, 5}, {180, -5}}, exact(), {}, rng);
   ASSERT_GT(m.lms.size(), 150u);
-  for (const Landmark& l : m.lms) EXPECT_LT((m.T_w_r * l.p - world[l.index].p).norm(), 1e-9);
+  for (const place::Landmark& l : m.lms) EXPECT_LT((m.T_w_r * l.p - world[l.index].p).norm(), 1e-9);
 }
 
 TEST(DriftedObjectMap, MissedSpuriousAndConfusionRatesMatchTheConfiguration) {
-  const std::vector<Landmark> world = scatter(30000, 1000, 25, 2);
-  MapErrorParams p = exact();
+  const std::vector<place::Landmark> world = scatter(30000, 1000, 25, 2);
+  simulator::MapErrorParams p = exact();
   p.range = 15;
   p.missed = 0.2;
   p.spurious = 0.2;
   p.confusion = 0.1;
-  const ClassConfusions conf{{71, {80}}, {80, {71}}, {10, {0}}};
+  const simulator::ClassConfusions conf{{71, {80}}, {80, {71}}, {10, {0}}};
   const std::vector<Eigen::Vector2d> route{{0, 0}, {1000, 0}};
   std::size_t seen = 0;
-  for (const Landmark& l : world) seen += std::abs(l.p.y()) <= 15;
+  for (const place::Landmark& l : world) seen += std::abs(l.p.y()) <= 15;
   std::mt19937 rng(5);
-  const DriftedMap m = mapAlongRoute(world, route, p, conf, rng);
+  const simulator::DriftedMap m = simulator::mapAlongRoute(world, route, p, conf, rng);
   std::size_t mapped = 0, spurious = 0, confused = 0;
   for (std::size_t i = 0; i < m.lms.size(); ++i) {
-    const Landmark& l = m.lms[i];
-    if (l.index == kSpuriousObject) {
+    const place::Landmark& l = m.lms[i];
+    if (l.index == simulator::kSpuriousObject) {
       ++spurious;
       // Plausible: a class of the world with the size of one of its objects (within 4 sigma of 15 %).
       EXPECT_TRUE(l.class_id == 10 || l.class_id == 71 || l.class_id == 80 || l.class_id == 0) << l.class_id;
@@ -132,19 +132,20 @@ TEST(DriftedObjectMap, MissedSpuriousAndConfusionRatesMatchTheConfiguration) {
 }
 
 TEST(DriftedObjectMap, TruthIsTheLeastSquaresTransformOverSharedObjects) {
-  const std::vector<Landmark> world = scatter(3000, 400, 20, 3);
-  MapErrorParams p;  // drift, noise, misses, false objects, confusion
+  const std::vector<place::Landmark> world = scatter(3000, 400, 20, 3);
+  simulator::MapErrorParams p;  // drift, noise, misses, false objects, confusion
   p.range = 15;
   std::mt19937 rng(6);
-  const DriftedMap a = mapAlongRoute(world, {{0, 0}, {250, 0}}, p, {{71, {80}}}, rng);
-  const DriftedMap b = mapAlongRoute(world, {{400, 3}, {150, -3}}, p, {{71, {80}}}, rng);  // opposite direction
-  const SharedTruth t = sharedObjectTruth(a.lms, b.lms);
+  const simulator::DriftedMap a = simulator::mapAlongRoute(world, {{0, 0}, {250, 0}}, p, {{71, {80}}}, rng);
+  const simulator::DriftedMap b =
+      simulator::mapAlongRoute(world, {{400, 3}, {150, -3}}, p, {{71, {80}}}, rng);  // opposite direction
+  const simulator::SharedTruth t = simulator::sharedObjectTruth(a.lms, b.lms);
   ASSERT_TRUE(t.ok);
   std::set<std::size_t> ia, ib;
-  for (const Landmark& l : a.lms)
-    if (l.index != kSpuriousObject) ia.insert(l.index);
+  for (const place::Landmark& l : a.lms)
+    if (l.index != simulator::kSpuriousObject) ia.insert(l.index);
   std::size_t shared = 0;
-  for (const Landmark& l : b.lms) shared += l.index != kSpuriousObject && ia.count(l.index);
+  for (const place::Landmark& l : b.lms) shared += l.index != simulator::kSpuriousObject && ia.count(l.index);
   EXPECT_EQ(t.shared, shared);
   EXPECT_GT(shared, 50u);
   // A minimum of the squared residuals over the shared objects: every small step away costs.
@@ -162,41 +163,41 @@ TEST(DriftedObjectMap, TruthIsTheLeastSquaresTransformOverSharedObjects) {
   const double undistorted_ss = sumSquares(a.lms, b.lms, undistorted);
   EXPECT_GT(undistorted_ss, 2 * best) << best;
   // False objects do not count, even one carrying a shared object's place.
-  std::vector<Landmark> b2 = b.lms;
-  Landmark fake = b2.front();
-  fake.index = kSpuriousObject;
+  std::vector<place::Landmark> b2 = b.lms;
+  place::Landmark fake = b2.front();
+  fake.index = simulator::kSpuriousObject;
   fake.p += Eigen::Vector3d(50, 50, 5);
   b2.push_back(fake);
-  const SharedTruth t2 = sharedObjectTruth(a.lms, b2);
+  const simulator::SharedTruth t2 = simulator::sharedObjectTruth(a.lms, b2);
   EXPECT_EQ(t2.shared, t.shared);
   EXPECT_LT((t2.T_a_b.matrix() - t.T_a_b.matrix()).norm(), 1e-12);
 }
 
 TEST(DriftedObjectMap, WithoutErrorsTheTruthIsTheTransformBetweenTheFrames) {
-  const std::vector<Landmark> world = scatter(2000, 300, 20, 7);
+  const std::vector<place::Landmark> world = scatter(2000, 300, 20, 7);
   std::mt19937 rng(8);
-  const DriftedMap a = mapAlongRoute(world, {{0, 0}, {200, 10}}, exact(), {}, rng);
-  const DriftedMap b = mapAlongRoute(world, {{300, -10}, {100, 0}}, exact(), {}, rng);
-  const SharedTruth t = sharedObjectTruth(a.lms, b.lms);
+  const simulator::DriftedMap a = simulator::mapAlongRoute(world, {{0, 0}, {200, 10}}, exact(), {}, rng);
+  const simulator::DriftedMap b = simulator::mapAlongRoute(world, {{300, -10}, {100, 0}}, exact(), {}, rng);
+  const simulator::SharedTruth t = simulator::sharedObjectTruth(a.lms, b.lms);
   ASSERT_TRUE(t.ok);
   EXPECT_LT((t.T_a_b.matrix() - (a.T_w_r.inverse() * b.T_w_r).matrix()).norm(), 1e-9);
   EXPECT_LT(t.rms, 1e-9);
-  EXPECT_FALSE(sharedObjectTruth(a.lms, {}).ok);
+  EXPECT_FALSE(simulator::sharedObjectTruth(a.lms, {}).ok);
 }
 
 TEST(DriftedObjectMap, TheMapAtAMomentHoldsWhatWasPlacedBefore) {
-  const std::vector<Landmark> world = scatter(1000, 200, 20, 9);
+  const std::vector<place::Landmark> world = scatter(1000, 200, 20, 9);
   std::mt19937 rng(10);
-  MapErrorParams p;
-  const DriftedMap m = mapAlongRoute(world, {{0, 0}, {200, 0}}, p, {}, rng);
-  const std::vector<Landmark> half = mapUpTo(m, 100);
+  simulator::MapErrorParams p;
+  const simulator::DriftedMap m = simulator::mapAlongRoute(world, {{0, 0}, {200, 0}}, p, {}, rng);
+  const std::vector<place::Landmark> half = simulator::mapUpTo(m, 100);
   std::size_t expected = 0;
   for (double s : m.seen_at) expected += s <= 100;
   EXPECT_EQ(half.size(), expected);
   EXPECT_GT(half.size(), m.lms.size() / 3);
   EXPECT_LT(half.size(), 2 * m.lms.size() / 3);
-  for (const Landmark& l : half) {
-    if (l.index != kSpuriousObject) {
+  for (const place::Landmark& l : half) {
+    if (l.index != simulator::kSpuriousObject) {
       EXPECT_LT(world[l.index].p.x(), 100 + p.range + 1e-9);
     }
   }

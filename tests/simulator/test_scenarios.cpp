@@ -16,21 +16,21 @@ using namespace slide;
 namespace {
 bool haveData() { return std::filesystem::exists(std::string(SLIDE_DATA_DIR) + "/kitti/poses/07.txt"); }
 
-std::set<int> classesOf(const World& w) {
+std::set<int> classesOf(const simulator::World& w) {
   std::set<int> c;
   for (const auto& g : w.objects) c.insert(g.object.class_id);
   return c;
 }
 
-void expectIdsAreIndexPlusOne(const World& w) {
+void expectIdsAreIndexPlusOne(const simulator::World& w) {
   for (std::size_t i = 0; i < w.objects.size(); ++i) ASSERT_EQ(w.objects[i].object.id, static_cast<int64_t>(i + 1));
 }
 }  // namespace
 
 TEST(Worlds, ForestUrbanIndoorHoldTheirClasses) {
-  ForestParams fp;
+  simulator::ForestParams fp;
   fp.num_trees = 500;
-  const World forest = makeForestWorld(fp, 5);
+  const simulator::World forest = simulator::makeForestWorld(fp, 5);
   EXPECT_EQ(forest.objects.size(), 500u);
   EXPECT_EQ(classesOf(forest), std::set<int>{71});
   expectIdsAreIndexPlusOne(forest);
@@ -39,12 +39,12 @@ TEST(Worlds, ForestUrbanIndoorHoldTheirClasses) {
     EXPECT_GT(c.axis.z(), std::cos(fp.max_lean_deg * M_PI / 180) - 1e-9);
     EXPECT_GT(c.radius, 0.03);
   }
-  const World urban = makeUrbanWorld(UrbanParams{}, 5);
+  const simulator::World urban = simulator::makeUrbanWorld(simulator::UrbanParams{}, 5);
   EXPECT_EQ(classesOf(urban), (std::set<int>{0, 10, 71, 80}));
   int moving = 0;
   for (const auto& g : urban.objects) moving += g.moving();
-  EXPECT_EQ(moving, UrbanParams{}.moving_cars);
-  const World indoor = makeIndoorWorld(IndoorParams{}, 5);
+  EXPECT_EQ(moving, simulator::UrbanParams{}.moving_cars);
+  const simulator::World indoor = simulator::makeIndoorWorld(simulator::IndoorParams{}, 5);
   EXPECT_EQ(classesOf(indoor), (std::set<int>{0, 1, 2, 3}));
   EXPECT_TRUE(indoor.terrain.ceiling_z.has_value());
   expectIdsAreIndexPlusOne(indoor);
@@ -52,22 +52,22 @@ TEST(Worlds, ForestUrbanIndoorHoldTheirClasses) {
 
 TEST(Worlds, RealForestInventoryLayout) {
   if (!std::filesystem::exists(std::string(SLIDE_DATA_DIR) + "/forest_inventory/longleaf.csv")) GTEST_SKIP();
-  ForestParams fp;
+  simulator::ForestParams fp;
   fp.layout = "longleaf";
   fp.side = 200;
-  const World w = makeForestWorld(fp, 1);
+  const simulator::World w = simulator::makeForestWorld(fp, 1);
   EXPECT_NEAR(static_cast<double>(w.objects.size()), 584, 20);  // one 200 x 200 m plot
   fp.layout = "oak";
-  EXPECT_THROW(makeForestWorld(fp, 1), std::invalid_argument);
+  EXPECT_THROW(simulator::makeForestWorld(fp, 1), std::invalid_argument);
 }
 
 TEST(Worlds, KittiPolesAlongTheRealTrajectory) {
   if (!haveData()) GTEST_SKIP();
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "kitti07";
   spec.robots = 3;
   spec.frames = 20;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   int poles = 0, cars = 0;
   for (const auto& g : sc.world.objects) {
     poles += g.object.class_id == 71 || g.object.class_id == 80;
@@ -85,44 +85,47 @@ TEST(Worlds, KittiPolesAlongTheRealTrajectory) {
 }
 
 TEST(Scenario, SameSeedSameScenarioAndScans) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.robots = 2;
   spec.distance = 60;
   spec.forest.num_trees = 300;
   spec.forest.side = 100;
-  const Scenario a = buildScenario(spec), b = buildScenario(spec);
+  const simulator::Scenario a = simulator::buildScenario(spec), b = simulator::buildScenario(spec);
   ASSERT_EQ(a.world.objects.size(), b.world.objects.size());
   for (std::size_t i = 0; i < a.world.objects.size(); ++i)
     EXPECT_EQ(a.world.objects[i].object.position(), b.world.objects[i].object.position());
   ASSERT_EQ(a.robots[1].ground_truth.size(), b.robots[1].ground_truth.size());
   EXPECT_TRUE(a.robots[1].odometry.back().isApprox(b.robots[1].odometry.back()));
-  const RayCaster ca(a.world), cb(b.world);
-  std::mt19937_64 ra = frameRng(1, 0, 3), rb = frameRng(1, 0, 3);
-  const LabelledScan sa = simulateLidarScan(ca, a.robots[0].ground_truth.poses[3], lidarModel("vlp-16"), ra);
-  const LabelledScan sb = simulateLidarScan(cb, b.robots[0].ground_truth.poses[3], lidarModel("vlp-16"), rb);
+  const simulator::RayCaster ca(a.world), cb(b.world);
+  std::mt19937_64 ra = simulator::frameRng(1, 0, 3), rb = simulator::frameRng(1, 0, 3);
+  const io::LabelledScan sa =
+      simulator::simulateLidarScan(ca, a.robots[0].ground_truth.poses[3], simulator::lidarModel("vlp-16"), ra);
+  const io::LabelledScan sb =
+      simulator::simulateLidarScan(cb, b.robots[0].ground_truth.poses[3], simulator::lidarModel("vlp-16"), rb);
   ASSERT_EQ(sa.size(), sb.size());
   EXPECT_EQ(sa.xyz, sb.xyz);
   EXPECT_EQ(sa.instance, sb.instance);
 
   spec.seed = 2;
-  const Scenario c = buildScenario(spec);
+  const simulator::Scenario c = simulator::buildScenario(spec);
   EXPECT_NE(a.world.objects[0].object.position(), c.world.objects[0].object.position());
 }
 
 TEST(Scenario, RobotsStartApartAndDriveTheirDistanceClearOfObjects) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.robots = 3;
   spec.distance = 150;
   spec.overlap = 0.4;
-  const Scenario sc = buildScenario(spec);
+  const simulator::Scenario sc = simulator::buildScenario(spec);
   ASSERT_EQ(sc.robots.size(), 3u);
-  for (const RobotRun& r : sc.robots) {
+  for (const simulator::RobotRun& r : sc.robots) {
     EXPECT_NEAR(r.ground_truth.length(), 150, 5);
     EXPECT_EQ(r.odometry.size(), r.ground_truth.size());
     for (std::size_t k = 0; k < r.ground_truth.size(); k += 10) {
       const Eigen::Vector2d p = r.ground_truth.poses[k].translation().head<2>();
       for (const auto& g : sc.world.objects)
-        ASSERT_GT((footprintCentre(g.object.model) - p).norm(), footprintRadius(g.object.model) + 0.5);
+        ASSERT_GT((simulator::footprintCentre(g.object.model) - p).norm(),
+                  simulator::footprintRadius(g.object.model) + 0.5);
     }
   }
   const Eigen::Vector3d s0 = sc.robots[0].ground_truth.poses[0].translation();
@@ -137,16 +140,16 @@ TEST(Odometry, DriftGrowsWithDistanceWhileRollPitchStayExact) {
     const double s = 0.1 * k, yaw = 0.01 * s;
     gt.push_back(poseFromXyzRpy({40 * std::sin(yaw), 40 * (1 - std::cos(yaw)), 0.0}, 0.05, -0.03, yaw));
   }
-  OdometryNoise noise;
+  simulator::OdometryNoise noise;
   noise.translation_drift = 0.02;
   double mean_err = 0;
   const int runs = 20;
   for (int run = 0; run < runs; ++run) {
     std::mt19937_64 rng(run);
-    const std::vector<Pose> odom = simulateOdometry(gt, noise, rng);
+    const std::vector<Pose> odom = simulator::simulateOdometry(gt, noise, rng);
     ASSERT_EQ(odom.size(), gt.size());
     // Compare in the world: the odometry frame sits at the first ground-truth pose.
-    const Pose T = odometryOrigin(gt.front());
+    const Pose T = simulator::odometryOrigin(gt.front());
     const Pose last = T * odom.back();
     mean_err += (last.translation() - gt.back().translation()).norm() / runs;
     // Roll and pitch: a gravity direction within a fraction of a degree.
@@ -161,13 +164,13 @@ TEST(Odometry, DriftGrowsWithDistanceWhileRollPitchStayExact) {
 }
 
 TEST(Scenario, AerialRobotsChangeAltitudeGroundRobotsFollowTheGround) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.robots = 1;
   spec.distance = 100;
   spec.forest.num_trees = 200;
   for (bool aerial : {false, true}) {
     spec.aerial = aerial;
-    const Scenario sc = buildScenario(spec);
+    const simulator::Scenario sc = simulator::buildScenario(spec);
     double lo = 1e9, hi = -1e9;
     for (const Pose& p : sc.robots[0].ground_truth.poses) {
       const Eigen::Vector3d t = p.translation();
@@ -186,13 +189,13 @@ TEST(Scenario, AerialRobotsChangeAltitudeGroundRobotsFollowTheGround) {
 }
 
 TEST(Scenario, AMixedTeamFliesOnlyItsAerialRobots) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.robots = 3;
   spec.distance = 60;
   spec.forest.num_trees = 150;
   spec.aerial_robots = {1};
-  const Scenario sc = buildScenario(spec);
-  for (const RobotRun& r : sc.robots) {
+  const simulator::Scenario sc = simulator::buildScenario(spec);
+  for (const simulator::RobotRun& r : sc.robots) {
     EXPECT_EQ(r.aerial, r.id == 1);
     double hi = -1e9;
     for (const Pose& p : r.ground_truth.poses)
@@ -203,18 +206,18 @@ TEST(Scenario, AMixedTeamFliesOnlyItsAerialRobots) {
       EXPECT_NEAR(hi, 0.8, 1e-6);
   }
   spec.aerial_robots = {3};  // not in a team of three
-  EXPECT_THROW(buildScenario(spec), std::invalid_argument);
+  EXPECT_THROW(simulator::buildScenario(spec), std::invalid_argument);
 }
 
 TEST(Scenario, OverlapSharesTheRoutes) {
   // Share of robot 1's poses within 3 m of robot 0's path.
   auto shared = [](double overlap) {
-    ScenarioSpec spec;
+    simulator::ScenarioSpec spec;
     spec.robots = 2;
     spec.distance = 200;
     spec.overlap = overlap;
     spec.forest.num_trees = 200;
-    const Scenario sc = buildScenario(spec);
+    const simulator::Scenario sc = simulator::buildScenario(spec);
     int near = 0;
     const auto& a = sc.robots[0].ground_truth.poses;
     const auto& b = sc.robots[1].ground_truth.poses;
@@ -234,10 +237,10 @@ TEST(Scenario, OverlapSharesTheRoutes) {
 TEST(RobotPath, ARouteThatDoublesBackTurnsInPlaceAtTheYawRateLimit) {
   // 20 m east, then back west along the same street: the smoothed path reverses within a few
   // frames, which a robot cannot do; it stops and turns in place instead.
-  const Terrain flat = unevenTerrain(0.0, 1);
-  MotionParams m;
+  const simulator::Terrain flat = simulator::unevenTerrain(0.0, 1);
+  simulator::MotionParams m;
   m.rate = 5;
-  const Trajectory t = followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
+  const simulator::Trajectory t = simulator::followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
   ASSERT_GT(t.size(), 100u);
   double max_turn = 0, turned_in_place = 0;
   for (std::size_t i = 1; i < t.size(); ++i) {
@@ -251,7 +254,7 @@ TEST(RobotPath, ARouteThatDoublesBackTurnsInPlaceAtTheYawRateLimit) {
   EXPECT_GT(turned_in_place, 2.0) << "the half-turn was not made in place";
   // Limit off: the old behaviour, a reversal within a few frames.
   m.max_yaw_rate = 0;
-  const Trajectory fast = followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
+  const simulator::Trajectory fast = simulator::followRoute({{0, 0}, {20, 0}, {5, 0}}, flat, m, 1e9);
   double fast_max = 0;
   for (std::size_t i = 1; i < fast.size(); ++i)
     fast_max = std::max(fast_max, Eigen::AngleAxisd((fast.poses[i - 1].inverse() * fast.poses[i]).linear()).angle());

@@ -29,15 +29,15 @@ namespace fs = std::filesystem;
 namespace {
 // One VLP-16 robot in a small forest, `frames` frames, written to work/data/robot0.
 void writeSmallForest(const fs::path& work, int frames) {
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "forest";
   spec.robots = 1;
   spec.frames = frames;
   spec.forest.num_trees = 200;
   spec.forest.side = 80;
-  SensorOptions sensors;
-  sensors.lidar = lidarModel("vlp-16");
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  simulator::SensorOptions sensors;
+  sensors.lidar = simulator::lidarModel("vlp-16");
+  simulator::writeScenarioDataset(simulator::buildScenario(spec), sensors, (work / "data").string());
 }
 struct LogSummary {
   std::map<std::string, int> count;
@@ -131,7 +131,7 @@ TEST(SensorDriverNode, ReplaysIntoItsPublisherAndStopsWhenAsked) {
   const fs::path work = fs::temp_directory_path() / ("slide_test_driver_node_" + std::to_string(::getpid()));
   fs::remove_all(work);
   writeSmallForest(work, 4);
-  const RobotDataset d = openRobotDataset((work / "data" / "robot0").string(), DatasetOptions{});
+  const io::RobotDataset d = io::openRobotDataset((work / "data" / "robot0").string(), io::DatasetOptions{});
   ReplayOptions opt;
   opt.rate = 0;
   opt.progress = false;
@@ -165,13 +165,13 @@ TEST(SensorDriver, RgbdDatasetFrames) {
   if (!canRun()) GTEST_SKIP() << "needs root, unshare, ip and the LCM tools";
   const fs::path work = fs::temp_directory_path() / ("slide_test_driver_rgbd_" + std::to_string(::getpid()));
   fs::remove_all(work);
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "indoor";
   spec.robots = 1;
   spec.frames = 3;
-  SensorOptions sensors;
+  simulator::SensorOptions sensors;
   sensors.sensor = "rgbd";
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  simulator::writeScenarioDataset(simulator::buildScenario(spec), sensors, (work / "data").string());
   ASSERT_EQ(runInNamespace(work, work / "data" / "robot0", ""), 0) << std::ifstream(work / "run.log").rdbuf();
   for (const char* name : {"drv.lcm", "rec.lcm"}) {
     LogSummary s = readLog((work / name).string());
@@ -226,11 +226,11 @@ TEST(SensorDriver, PublishesNoGroundTruthUnlessAskedForOracle) {
   fs::remove_all(work);
   writeSmallForest(work, 4);
   const fs::path robot = work / "data" / "robot0";
-  std::vector<LabelledScan> truth;
+  std::vector<io::LabelledScan> truth;
   for (int k = 0; k < 4; ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "velodyne/%06d.bin", k);
-    truth.push_back(readLabelledScan((robot / name).string()));
+    truth.push_back(io::readLabelledScan((robot / name).string()));
     ASSERT_TRUE(truth.back().hasLabels());
   }
 
@@ -274,13 +274,13 @@ TEST(SensorDriver, PublishesNoGroundTruthUnlessAskedForOracle) {
 TEST(SensorDriver, RgbdMasksOnlyEmulatedOrOracle) {
   const fs::path work = fs::temp_directory_path() / ("slide_test_driver_masks_" + std::to_string(::getpid()));
   fs::remove_all(work);
-  ScenarioSpec spec;
+  simulator::ScenarioSpec spec;
   spec.world = "indoor";
   spec.robots = 1;
   spec.frames = 3;
-  SensorOptions sensors;
+  simulator::SensorOptions sensors;
   sensors.sensor = "rgbd";
-  writeScenarioDataset(buildScenario(spec), sensors, (work / "data").string());
+  simulator::writeScenarioDataset(simulator::buildScenario(spec), sensors, (work / "data").string());
   const fs::path robot = work / "data" / "robot0";
   Published none = runLogOnly(work, robot, "");
   ASSERT_EQ(none.frames.size(), 3u) << driverLog(work);

@@ -81,7 +81,7 @@ class RobotBus {
   const std::map<std::string, std::int64_t>& drops() const { return drops_; }
   bool good() { return lcm_.good(); }
   void publish(const KeyPoseBundle& b) {
-    const keypose_bundle_t m = toLcm(b);
+    const keypose_bundle_t m = msg::toLcm(b);
     lcm_.publish("KEYPOSE_BUNDLE", &m);
   }
   void poll() {

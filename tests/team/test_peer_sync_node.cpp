@@ -87,7 +87,7 @@ TEST(PeerSyncNode, OwnBundleAndMapReachThePeersRobotBusOnce) {
   run(a, b, now, 2);  // they hear each other
   std::mt19937 rng(5);
   const KeyPoseBundle sent = randomBundle(rng, 0, 0);
-  const std::vector<uint8_t> bytes = msg::encodeLcm(toLcm(sent));
+  const std::vector<uint8_t> bytes = msg::encodeLcm(msg::toLcm(sent));
   a.node.onOwnBundle("KEYPOSE_BUNDLE", bytes.data(), bytes.size(), now);
   SharedMap map;
   map.robot = map.frame_robot = 0;

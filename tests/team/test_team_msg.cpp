@@ -95,7 +95,7 @@ TEST(TeamMsg, MalformedInputIsRefusedWithAReason) {
   EXPECT_FALSE(fromLcm(c, &why));
   // Truncated or trailing bytes never decode.
   std::mt19937 rng(1);
-  const keypose_bundle_t kb = toLcm(randomBundle(rng, 1, 1));
+  const keypose_bundle_t kb = msg::toLcm(randomBundle(rng, 1, 1));
   std::vector<std::uint8_t> buf(static_cast<std::size_t>(kb.getEncodedSize()));
   kb.encode(buf.data(), 0, static_cast<int>(buf.size()));
   EXPECT_TRUE(decodeLcm<keypose_bundle_t>(buf.data(), buf.size()));

@@ -31,12 +31,12 @@ TEST(ViewerDemoLogs, EachRobotsLoggerKeepsEveryChannelTheViewerDraws) {
   const std::regex logger(R"re(cmd "logger-(\d)" \{ exec = "lcm-logger [^"]*-c \(([^)]*)\) [^"]*robot\1\.lcmlog")re");
   int loggers = 0;
   const ViewerChannels ch;
-  EXPECT_EQ(ch.instances, channels::kInstancesPreview);  // the segmenter's default preview channel
+  EXPECT_EQ(ch.instances, app::channels::kInstancesPreview);  // the segmenter's default preview channel
   for (std::sregex_iterator it(text.begin(), text.end(), logger), end; it != end; ++it) {
     ++loggers;
     const std::regex recorded("(" + (*it)[2].str() + ")");  // LCM matches a channel whole, as regex_match
     for (const std::string& c : ch.robotBus()) EXPECT_TRUE(std::regex_match(c, recorded)) << c << " not recorded";
-    for (const char* c : {channels::kInstances, channels::kScan, channels::kRgbd})
+    for (const char* c : {app::channels::kInstances, app::channels::kScan, app::channels::kRgbd})
       EXPECT_FALSE(std::regex_match(std::string(c), recorded)) << c << " recorded";
   }
   EXPECT_EQ(loggers, 2) << text;

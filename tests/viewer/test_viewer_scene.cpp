@@ -169,8 +169,8 @@ TEST(ViewerLcmLog, ReadsWhatIsWrittenFollowsGrowthAndSkipsCorruption) {
     w.write("OBJECT_MAP", mapMsg(0, {car(1, 1, 1)}), 10);
     w.write("SCAN", optimizerMsg(0, 1), 20);
   }
-  LcmLogReader r(path);
-  LcmLogEvent ev;
+  io::LcmLogReader r(path);
+  io::LcmLogEvent ev;
   ASSERT_TRUE(r.next(ev, [](const std::string& c) { return c != "SCAN"; }));
   EXPECT_EQ(ev.channel, "OBJECT_MAP");
   EXPECT_EQ(ev.utime, 10);
@@ -182,7 +182,7 @@ TEST(ViewerLcmLog, ReadsWhatIsWrittenFollowsGrowthAndSkipsCorruption) {
     std::FILE* f = std::fopen(path.c_str(), "ab");
     std::vector<std::uint8_t> buf;
     std::FILE* mem = std::fopen((dir + "/one").c_str(), "wb");
-    writeLcmLogEvent(mem, {7, 30, "OPTIMIZER_STATUS", whole});
+    io::writeLcmLogEvent(mem, {7, 30, "OPTIMIZER_STATUS", whole});
     std::fclose(mem);
     std::FILE* in = std::fopen((dir + "/one").c_str(), "rb");
     buf.resize(fs::file_size(dir + "/one"));
@@ -207,7 +207,7 @@ TEST(ViewerLcmLog, ReadsWhatIsWrittenFollowsGrowthAndSkipsCorruption) {
   ASSERT_TRUE(r.next(ev));
   EXPECT_EQ(ev.channel, "TRAJECTORY");
   EXPECT_GE(r.counts().corrupt_bytes, sizeof("not an event at all, just bytes"));
-  EXPECT_THROW(LcmLogReader(dir + "/absent.lcmlog"), std::runtime_error);
+  EXPECT_THROW(io::LcmLogReader(dir + "/absent.lcmlog"), std::runtime_error);
   fs::remove_all(dir);
 }
 
@@ -241,7 +241,7 @@ TEST(ViewerNode, KeyPoseAndInstancesFollowTheOptimizedTrajectory) {
   // Odometry says key pose 19 is at x 38; the optimizer moved it to (38, 2): later key poses
   // and instances are drawn with that correction.
   trajectory_t t = trajectoryMsg(0, 0, 20, 0, 0);
-  t.poses[19] = toLcm(poseFromXyzYaw(38, 2, 0, 0));
+  t.poses[19] = msg::toLcm(poseFromXyzYaw(38, 2, 0, 0));
   EXPECT_TRUE(feed(node, 0, "KEYPOSE_BUNDLE", bundleMsg(0, 19, 38, 0)));
   EXPECT_TRUE(feed(node, 0, "TRAJECTORY", t));
   EXPECT_TRUE(feed(node, 0, "KEYPOSE_BUNDLE", bundleMsg(0, 20, 40, 0)));

@@ -46,7 +46,7 @@ inline object_map_t mapMsg(int robot, const std::vector<Object>& objects, std::i
   object_map_t m;
   m.utime = utime;
   m.robot = m.frame_robot = robot;
-  for (const Object& o : objects) m.objects.push_back(toLcm(o));
+  for (const Object& o : objects) m.objects.push_back(msg::toLcm(o));
   m.num_objects = static_cast<int32_t>(m.objects.size());
   return m;
 }
@@ -60,7 +60,7 @@ inline trajectory_t trajectoryMsg(int robot, int frame, int n, double x0, double
   for (int i = 0; i < n; ++i) {
     m.keypose_seq.push_back(i);
     m.pose_utime.push_back(i * 100000);
-    m.poses.push_back(toLcm(poseFromXyzYaw(x0 + 2.0 * i, y0, 0.0, 0.0)));
+    m.poses.push_back(msg::toLcm(poseFromXyzYaw(x0 + 2.0 * i, y0, 0.0, 0.0)));
   }
   m.num_poses = n;
   return m;
@@ -70,8 +70,8 @@ inline keypose_bundle_t bundleMsg(int robot, int seq, double x, double y) {
   keypose_bundle_t m{};
   m.header.robot = robot;
   m.header.seq = seq;
-  m.odom_pose = toLcm(poseFromXyzYaw(x, y, 0.0, 0.0));
-  m.relative_odom = toLcm(Pose::Identity());
+  m.odom_pose = msg::toLcm(poseFromXyzYaw(x, y, 0.0, 0.0));
+  m.relative_odom = msg::toLcm(Pose::Identity());
   m.num_objects = 0;
   return m;
 }
@@ -81,7 +81,7 @@ inline frame_instances_t instancesMsg(int robot, int points) {
   m.header.robot = robot;
   m.header.seq = 1;
   m.header.utime = 0;
-  m.odom_pose = toLcm(Pose::Identity());
+  m.odom_pose = msg::toLcm(Pose::Identity());
   object_instance_t o;
   o.instance_id = 1;
   o.class_id = 10;
@@ -146,15 +146,15 @@ class LogWriter {
   bool good() const { return f_ != nullptr; }
   template <class M>
   bool write(const std::string& channel, const M& m, std::int64_t utime) {
-    LcmLogEvent ev;
+    io::LcmLogEvent ev;
     ev.event_number = n_++;
     ev.utime = utime;
     ev.channel = channel;
     ev.data = msg::encodeLcm(m);
-    return writeLcmLogEvent(f_, ev);
+    return io::writeLcmLogEvent(f_, ev);
   }
   bool writeRaw(const std::string& channel, const std::vector<std::uint8_t>& bytes, std::int64_t utime) {
-    return writeLcmLogEvent(f_, {n_++, utime, channel, bytes});
+    return io::writeLcmLogEvent(f_, {n_++, utime, channel, bytes});
   }
 
  private:

@@ -12,10 +12,10 @@ using namespace slide;
 
 int main(int argc, char** argv) {
   CLI::App app{"slide-benchmark-report: merge benchmark suite results into one JSON file and a Markdown report"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string manifest, json_out, md_out;
-  BenchSummaryInfo info;
+  report::BenchSummaryInfo info;
   app.add_option("--manifest", manifest, "Runner manifest: suite, exit code|missing, wall ms, json, log (tab-separated)")
       ->required();
   app.add_option("--json", json_out, "Merged JSON output")->required();
@@ -24,12 +24,12 @@ int main(int argc, char** argv) {
   app.add_option("--started", info.started_utc, "Start time (UTC, ISO 8601)");
   app.add_option("--host", info.host, "Host name");
   app.add_option("--command", info.command, "The command that was run");
-  return runApp(app, common, argc, argv, [&] {
-    const std::vector<SuiteRun> runs = readSuiteRuns(manifest);
-    writeJsonFile(json_out, combinedJson(runs, info));
+  return app::runApp(app, common, argc, argv, [&] {
+    const std::vector<report::SuiteRun> runs = report::readSuiteRuns(manifest);
+    report::writeJsonFile(json_out, report::combinedJson(runs, info));
     std::ofstream md(md_out);
     if (!md) throw std::runtime_error(md_out + ": cannot write Markdown report");
-    md << markdownReport(runs, info);
+    md << report::markdownReport(runs, info);
     if (!md) throw std::runtime_error(md_out + ": write failed");
     int bad = 0;
     std::cout << "\nbenchmark summary (" << info.total_wall_s << " s)\n";
@@ -37,11 +37,12 @@ int main(int argc, char** argv) {
       std::size_t targets = 0, met = 0;
       for (const auto& b : r.results) {
         targets += b.target.has_value();
-        met += BenchReport::meetsTarget(b);
+        met += bench::BenchReport::meetsTarget(b);
       }
-      std::printf("  %-10s %-10s %7.1f s  %3zu figures, targets met %zu/%zu%s%s\n", r.suite.c_str(), statusName(r.status),
-                  r.wall_s, r.results.size(), met, targets, r.problem.empty() ? "" : "  -- ", r.problem.c_str());
-      bad += r.status != SuiteRun::Status::Passed;
+      std::printf("  %-10s %-10s %7.1f s  %3zu figures, targets met %zu/%zu%s%s\n", r.suite.c_str(),
+                  report::statusName(r.status), r.wall_s, r.results.size(), met, targets,
+                  r.problem.empty() ? "" : "  -- ", r.problem.c_str());
+      bad += r.status != report::SuiteRun::Status::Passed;
     }
     std::cout << "wrote " << json_out << " and " << md_out << "\n";
     return bad ? 1 : 0;

@@ -41,14 +41,15 @@ struct Targets {
   std::string anchor;  // iSAM2 / paper timing figures quoted by the issue
 };
 
-void report(BenchReport& rep, const std::string& name, const ScenarioRunResult& r, const Targets& t) {
+void report(bench::BenchReport& rep, const std::string& name, const ScenarioRunResult& r, const Targets& t) {
   const std::string n = std::to_string(r.update_ms.size()) + " updates, one run";
-  rep.add(name + ".update_ms.median", median(r.update_ms), "ms", true, t.median).note = n + "; " + t.anchor;
-  rep.add(name + ".update_ms.p99", quantile(r.update_ms, 0.99), "ms", true, t.p99).note =
+  rep.add(name + ".update_ms.median", bench::median(r.update_ms), "ms", true, t.median).note = n + "; " + t.anchor;
+  rep.add(name + ".update_ms.p99", bench::quantile(r.update_ms, 0.99), "ms", true, t.p99).note =
       n + ", loop closures and merges included; " + t.anchor;
-  rep.add(name + ".update_ms.max", quantile(r.update_ms, 1.0), "ms");
-  rep.add(name + ".update_cpu_ms.median", median(r.update_cpu_ms), "ms").note = "thread CPU time of the same updates";
-  rep.add(name + ".update_cpu_ms.p99", quantile(r.update_cpu_ms, 0.99), "ms");
+  rep.add(name + ".update_ms.max", bench::quantile(r.update_ms, 1.0), "ms");
+  rep.add(name + ".update_cpu_ms.median", bench::median(r.update_cpu_ms), "ms").note =
+      "thread CPU time of the same updates";
+  rep.add(name + ".update_cpu_ms.p99", bench::quantile(r.update_cpu_ms, 0.99), "ms");
   const double total_cpu = std::accumulate(r.update_cpu_ms.begin(), r.update_cpu_ms.end(), 0.0);
   rep.add(name + ".update_cpu_total_s", total_cpu / 1000.0, "s");
   const double total = std::accumulate(r.update_ms.begin(), r.update_ms.end(), 0.0);
@@ -74,7 +75,8 @@ void report(BenchReport& rep, const std::string& name, const ScenarioRunResult& 
       std::to_string(r.objects_per_keypose).substr(0, 4) + " objects per key pose";
 }
 // Object map sizes as shared (team::encodeMap) per robot and in total, against raw scans.
-void reportMapSizes(BenchReport& rep, const std::string& name, const std::vector<RobotMapSize>& sizes, double points) {
+void reportMapSizes(bench::BenchReport& rep, const std::string& name, const std::vector<RobotMapSize>& sizes,
+                    double points) {
   double kb = 0, raw_mb = 0;
   int objects = 0;
   long frames = 0;
@@ -96,14 +98,14 @@ void reportMapSizes(BenchReport& rep, const std::string& name, const std::vector
 }
 // A realistic case: detections with misses, false objects, class confusion and noise the
 // estimator does not know; closures and transforms from place recognition on own maps.
-void reportRealistic(BenchReport& rep, const std::string& name, const RealisticRunResult& r,
-                     const ScenarioRealism& realism, std::optional<double> paper_ate) {
+void reportRealistic(bench::BenchReport& rep, const std::string& name, const RealisticRunResult& r,
+                     const graph_scenario::ScenarioRealism& realism, std::optional<double> paper_ate) {
   const std::string p = name + "_realistic.";
   const std::string cond = "REALISTIC: " + realism.describe() +
                            "; closures and transforms from place recognition on the robots' own maps";
-  rep.add(p + "update_ms.median", median(r.update_ms), "ms").note = cond;
-  rep.add(p + "update_ms.p99", quantile(r.update_ms, 0.99), "ms");
-  rep.add(p + "update_ms.max", quantile(r.update_ms, 1.0), "ms");
+  rep.add(p + "update_ms.median", bench::median(r.update_ms), "ms").note = cond;
+  rep.add(p + "update_ms.p99", bench::quantile(r.update_ms, 0.99), "ms");
+  rep.add(p + "update_ms.max", bench::quantile(r.update_ms, 1.0), "ms");
   rep.add(p + "ate_m", r.ate_m, "m", true, r.odom_ate_m / 3.0, paper_ate).note =
       "host and merged peers after a final solve; target: a third of odometry's" +
       std::string(paper_ate ? "; 'paper': the published figure, quoted" : "");
@@ -130,8 +132,8 @@ void reportRealistic(BenchReport& rep, const std::string& name, const RealisticR
       "inter-robot transforms given more than 1 m or 2 deg from the least-squares alignment of the two own maps over "
       "the true objects both hold (or between maps sharing none)";
   if (!r.map_error_m.empty()) {
-    rep.add(p + "transform_vs_maps_m.median", median(r.map_error_m), "m").note = "against that map alignment";
-    rep.add(p + "transform_vs_frames_m.median", median(r.frame_error_m), "m").note =
+    rep.add(p + "transform_vs_maps_m.median", bench::median(r.map_error_m), "m").note = "against that map alignment";
+    rep.add(p + "transform_vs_frames_m.median", bench::median(r.frame_error_m), "m").note =
         "against the robots' true start frames (drift included)";
   }
   rep.add(p + "landmarks", r.landmarks, "", false).note = "confirmed";
@@ -144,23 +146,23 @@ void reportRealistic(BenchReport& rep, const std::string& name, const RealisticR
 }
 // A long mission (forest tiles, makeForestReturnScenario or makeForestChainScenario) at one
 // size: the scale names of BENCHMARKS.md.
-void reportLong(BenchReport& rep, int keyposes, const std::string& route, const ScenarioRunResult& r, bool background,
-                double rate_hz) {
+void reportLong(bench::BenchReport& rep, int keyposes, const std::string& route, const ScenarioRunResult& r,
+                bool background, double rate_hz) {
   const std::string rate = std::to_string(static_cast<int>(rate_hz));
   const std::string p = "backend." + std::to_string(keyposes) + ".";
   const std::string n = std::to_string(r.update_ms.size()) + " updates, one run (forest tiles, route " + route + ", " +
                         (background ? "full solves in the background, key poses at <= " + rate + " Hz while one runs"
                                     : "full solves inside updates") + ")";
-  rep.add(p + "update_ms.median", median(r.update_ms), "ms").note = n;
-  rep.add(p + "update_ms.p99", quantile(r.update_ms, 0.99), "ms").note = n;
-  rep.add(p + "update_ms.max", quantile(r.update_ms, 1.0), "ms", true, 50.0).note =
+  rep.add(p + "update_ms.median", bench::median(r.update_ms), "ms").note = n;
+  rep.add(p + "update_ms.p99", bench::quantile(r.update_ms, 0.99), "ms").note = n;
+  rep.add(p + "update_ms.max", bench::quantile(r.update_ms, 1.0), "ms", true, 50.0).note =
       n + ", loop closures included; target: issue 21";
-  rep.add(p + "update_cpu_ms.max", quantile(r.update_cpu_ms, 1.0), "ms").note =
+  rep.add(p + "update_cpu_ms.max", bench::quantile(r.update_cpu_ms, 1.0), "ms").note =
       "thread CPU time of the slowest update (wall time on a shared machine includes waiting for a core)";
   rep.add(p + "full_solves", r.full_solves, "").note = "full-solve results taken into the estimate during updates";
-  rep.add(p + "full_solve_ms.median", median(r.full_solve_ms), "ms").note =
+  rep.add(p + "full_solve_ms.median", bench::median(r.full_solve_ms), "ms").note =
       std::string("wall time of each full solve taken in") + (background ? ", on the worker thread" : ", inside an update");
-  rep.add(p + "full_solve_ms.max", quantile(r.full_solve_ms, 1.0), "ms");
+  rep.add(p + "full_solve_ms.max", bench::quantile(r.full_solve_ms, 1.0), "ms");
   rep.add(p + "loops_during_solve", r.loops_during_solve, "", false).note =
       "loop closures that arrived while a background solve ran";
   rep.add(p + "update_total_s", std::accumulate(r.update_ms.begin(), r.update_ms.end(), 0.0) / 1000.0, "s").note =
@@ -190,7 +192,7 @@ void reportLong(BenchReport& rep, int keyposes, const std::string& route, const 
 int main(int argc, char** argv) {
   CLI::App app{"Back-end benchmark: incremental update time, batch baseline, ATE and landmarks per scenario; for KITTI\n"
                "05/07 also each robot's object map size as shared (KB) against its raw scans (MB)"};
-  CommonOptions common;
+  app::CommonOptions common;
   std::string json, config_path = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   std::string data_dir = SLIDE_DATA_DIR;
   std::vector<std::string> only;
@@ -200,7 +202,7 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", only,
                  "run only these scenarios (indoor urban forest kitti05 kitti07, idealised; each with _realistic "
                  "appended: the realistic case)");
-  ScenarioRealism realism{0.2, 0.15, 2, 0.1, 2.0};
+  graph_scenario::ScenarioRealism realism{0.2, 0.15, 2, 0.1, 2.0};
   app.add_option("--miss", realism.miss_rate, "realistic cases: missed-detection rate")->capture_default_str();
   app.add_option("--clutter", realism.clutter_fraction, "realistic cases: fraction of detections that are false objects")
       ->capture_default_str();
@@ -233,13 +235,15 @@ int main(int argc, char** argv) {
   app.add_flag("--background-solves", background_solves,
                "long mission: full solves on a worker thread, as slide-optimizer does by default (the other "
                "scenarios always solve inside the updates)");
-  addCommonOptions(app, common);
-  return runApp(app, common, argc, argv, [&]() {
-    BackendConfig cfg = loadBackendConfig(config_path);
-    BenchReport rep("backend");
+  app::addCommonOptions(app, common);
+  return app::runApp(app, common, argc, argv, [&]() {
+    backend::BackendConfig cfg = backend::loadBackendConfig(config_path);
+    bench::BenchReport rep("backend");
     if (long_keyposes > 0) {
       cfg.background_solves = background_solves;
-      const GraphScenario s = route == "chain" ? makeForestChainScenario(long_keyposes) : makeForestReturnScenario(long_keyposes);
+      const graph_scenario::GraphScenario s = route == "chain"
+                                                  ? graph_scenario::makeForestChainScenario(long_keyposes)
+                                                  : graph_scenario::makeForestReturnScenario(long_keyposes);
       spdlog::info("long mission ({}): {} key poses, {} landmarks", s.name, s.robots[0].bundles.size(), s.landmarks.size());
       reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz, final_seconds), cfg.background_solves, rate_hz);
       rep.printTable(std::cout);
@@ -247,37 +251,39 @@ int main(int argc, char** argv) {
       return 0;
     }
     auto wanted = [&](const std::string& s) { return only.empty() || std::find(only.begin(), only.end(), s) != only.end(); };
-    const LoopCloserParams closer =
-        loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml"));
+    const place::LoopCloserParams closer =
+        place::loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml"));
     const ClassTable classes = ClassTable::loadDefault();
-    auto run = [&](const std::string& name, const GraphScenario& s, const Targets& t) {
+    auto run = [&](const std::string& name, const graph_scenario::GraphScenario& s, const Targets& t) {
       if (wanted(name)) {
         spdlog::info("scenario {}: {} robots, {} landmarks", name, s.robots.size(), s.landmarks.size());
         report(rep, name, runScenario(s, cfg), t);
       }
       if (wanted(name + "_realistic")) {
         spdlog::info("scenario {}_realistic ({})", name, realism.describe());
-        reportRealistic(rep, name, runRealistic(withRealism(s, realism, classes), cfg, closer), realism, t.paper_ate);
+        reportRealistic(rep, name, runRealistic(graph_scenario::withRealism(s, realism, classes), cfg, closer), realism,
+                        t.paper_ate);
       }
     };
     auto any = [&](const std::string& name) { return wanted(name) || wanted(name + "_realistic"); };
     if (any("indoor"))
-      run("indoor", makeIndoorScenario(),
+      run("indoor", graph_scenario::makeIndoorScenario(),
           {0.5, 4.0, std::nullopt, "iSAM2 anchor (same machine): 0.5 ms median, 3-4 ms p99"});
     if (any("urban"))
-      run("urban", makeUrbanScenario(), {0.5, 10.0, std::nullopt, "iSAM2 anchor: 0.43 ms median, 14 ms p99"});
+      run("urban", graph_scenario::makeUrbanScenario(),
+          {0.5, 10.0, std::nullopt, "iSAM2 anchor: 0.43 ms median, 14 ms p99"});
     if (any("forest"))
-      run("forest", makeForestScenario(),
+      run("forest", graph_scenario::makeForestScenario(),
           {1.0, 20.0, std::nullopt, "iSAM2 anchor: 0.9 ms median, ~90 ms p99, ~110 ms max, ~8 s total"});
     for (const std::string seq : {"05", "07"}) {
       if (!any("kitti" + seq)) continue;
-      const GraphScenario s = makeKittiScenario("kitti" + seq, data_dir + "/kitti/poses/" + seq + ".txt",
-                                           data_dir + "/kitti/poles/" + seq + ".csv", 3);
+      const graph_scenario::GraphScenario s = graph_scenario::makeKittiScenario(
+          "kitti" + seq, data_dir + "/kitti/poses/" + seq + ".txt", data_dir + "/kitti/poles/" + seq + ".csv", 3);
       run("kitti" + seq, s, {std::nullopt, std::nullopt, seq == "05" ? 0.998 : 0.962, "3 robots, paper ATE in 'paper'"});
       if (!wanted("kitti" + seq)) continue;
       const double points = meanPointsPerScan(data_dir + "/semantickitti/sequences/08/velodyne");
-      const std::vector<Pose> lidar =
-          kittiLidarPoses(readKittiPoses(data_dir + "/kitti/poses/" + seq + ".txt"), kittiVeloToCamTr0410());
+      const std::vector<Pose> lidar = io::kittiLidarPoses(io::readKittiPoses(data_dir + "/kitti/poses/" + seq + ".txt"),
+                                                          io::kittiVeloToCamTr0410());
       reportMapSizes(rep, "kitti" + seq, robotMapSizes(s, cfg, lidar, points), points);
     }
     rep.printTable(std::cout);

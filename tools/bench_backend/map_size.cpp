@@ -17,11 +17,11 @@ std::size_t frameOf(const std::vector<Pose>& lidar, const Pose& T, std::size_t f
 }
 }  // namespace
 
-std::vector<RobotMapSize> robotMapSizes(const GraphScenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
-                                        double points_per_scan) {
+std::vector<RobotMapSize> robotMapSizes(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                                        const std::vector<Pose>& lidar, double points_per_scan) {
   std::vector<RobotMapSize> out;
-  for (const ScenarioRobot& r : s.robots) {
-    Optimizer opt(cfg, ClassTable::loadDefault(), r.id);
+  for (const graph_scenario::ScenarioRobot& r : s.robots) {
+    backend::Optimizer opt(cfg, ClassTable::loadDefault(), r.id);
     for (const KeyPoseBundle& b : r.bundles) opt.addBundle(b);
     opt.fullSolve();
     team::SharedMap m;

@@ -21,8 +21,8 @@ struct RobotMapSize {
 // Each robot's own map; frames counted on the sequence's LiDAR poses (`lidar`, from which the
 // robot's key poses were taken). Throws std::runtime_error when a robot's key poses are not
 // found among them.
-std::vector<RobotMapSize> robotMapSizes(const GraphScenario& s, const BackendConfig& cfg, const std::vector<Pose>& lidar,
-                                        double points_per_scan);
+std::vector<RobotMapSize> robotMapSizes(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                                        const std::vector<Pose>& lidar, double points_per_scan);
 
 // Mean points per scan of the KITTI-format scans (float32 x, y, z, intensity) in `dir`.
 // Throws std::runtime_error naming the folder when it holds no .bin scan.

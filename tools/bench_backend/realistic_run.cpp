@@ -18,13 +18,13 @@ namespace {
 // One robot's own stack: its optimizer (own bundles only; the host's also takes the peers')
 // and its loop closer.
 struct Stack {
-  std::unique_ptr<Optimizer> optimizer;
-  std::unique_ptr<LoopCloser> closer;
+  std::unique_ptr<backend::Optimizer> optimizer;
+  std::unique_ptr<place::LoopCloser> closer;
 };
 
-std::vector<KeyPose> keyPoses(const Optimizer& opt, int robot) {
-  std::vector<KeyPose> out;
-  for (const TrajectoryPose& p : opt.trajectory(robot)) out.push_back({p.seq, p.pose});
+std::vector<place::KeyPose> keyPoses(const backend::Optimizer& opt, int robot) {
+  std::vector<place::KeyPose> out;
+  for (const backend::TrajectoryPose& p : opt.trajectory(robot)) out.push_back({p.seq, p.pose});
   return out;
 }
 
@@ -53,18 +53,18 @@ std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const
       pb.push_back(o.position());
     }
   if (pa.size() < 3) return std::nullopt;
-  return align(pb, pa, TrajectoryAlignment::Yaw4Dof).T;
+  return eval::align(pb, pa, eval::TrajectoryAlignment::Yaw4Dof).T;
 }
 
 // The host's ATE (SE3-aligned) over the key poses it holds so far; with `odometry`, its
 // odometry's over the same key poses.
-double hostAteSoFar(const Optimizer& opt, const ScenarioRobot& r, bool odometry = false) {
+double hostAteSoFar(const backend::Optimizer& opt, const graph_scenario::ScenarioRobot& r, bool odometry = false) {
   std::vector<Pose> est, ref;
-  for (const TrajectoryPose& p : opt.trajectory(r.id)) {
+  for (const backend::TrajectoryPose& p : opt.trajectory(r.id)) {
     est.push_back(odometry ? r.bundles[p.seq].odom_pose : p.pose);
     ref.push_back(r.truth[p.seq]);
   }
-  return est.size() < 3 ? 0.0 : absoluteTrajectoryError(est, ref, TrajectoryAlignment::Se3).rmse;
+  return est.size() < 3 ? 0.0 : eval::absoluteTrajectoryError(est, ref, eval::TrajectoryAlignment::Se3).rmse;
 }
 
 double horizontalError(const Object& est, const Object& truth) {
@@ -74,18 +74,18 @@ double horizontalError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
-                                double period_s, int map_every) {
+RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                                const place::LoopCloserParams& closer, double period_s, int map_every) {
   RealisticRunResult out;
   const ClassTable classes = ClassTable::loadDefault();
   const int host = s.robots[0].id;
   std::map<int, Stack> stacks;
-  for (const ScenarioRobot& r : s.robots) {
-    LoopCloserParams p = closer;
+  for (const graph_scenario::ScenarioRobot& r : s.robots) {
+    place::LoopCloserParams p = closer;
     p.robot = r.id;
-    stacks[r.id] = {std::make_unique<Optimizer>(cfg, classes, r.id), std::make_unique<LoopCloser>(p)};
+    stacks[r.id] = {std::make_unique<backend::Optimizer>(cfg, classes, r.id), std::make_unique<place::LoopCloser>(p)};
   }
-  Optimizer& opt = *stacks[host].optimizer;
+  backend::Optimizer& opt = *stacks[host].optimizer;
   out.peers = static_cast<int>(s.robots.size()) - 1;
   std::map<int, Votes> votes;             // per robot's optimizer
   std::map<int, ObjectMap> published;     // each robot's own map as last given to the loop closers
@@ -93,18 +93,18 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
   std::size_t longest = 0;
   for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
   auto timed = [&](auto&& update) {
-    const double c0 = threadCpuMs();
-    const UpdateResult u = update();
+    const double c0 = clock::threadCpuMs();
+    const backend::UpdateResult u = update();
     if (!u.held) {
       out.update_ms.push_back(u.update_ms);
-      out.update_cpu_ms.push_back(threadCpuMs() - c0);
+      out.update_cpu_ms.push_back(clock::threadCpuMs() - c0);
     }
     return u;
   };
   for (std::size_t k = 0; k < longest; ++k) {
-    for (const ScenarioRobot& r : s.robots) {
+    for (const graph_scenario::ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
-      auto vote = [&](const UpdateResult& u, Votes& v) {
+      auto vote = [&](const backend::UpdateResult& u, Votes& v) {
         for (std::size_t i = 0; i < u.landmark_ids.size() && i < r.seen[k].size(); ++i)
           if (u.landmark_ids[i] >= 0) ++v[u.landmark_ids[i]][r.seen[k][i]];
       };
@@ -123,27 +123,28 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
       }
     }
     for (auto& [id, st] : stacks) {
-      const double c0 = threadCpuMs();
-      const std::vector<LoopClosure> found = st.closer->poll(now);
-      out.place_cpu_s += (threadCpuMs() - c0) / 1000.0;
+      const double c0 = clock::threadCpuMs();
+      const std::vector<place::LoopClosure> found = st.closer->poll(now);
+      out.place_cpu_s += (clock::threadCpuMs() - c0) / 1000.0;
       if (id == host && found.empty() && !st.closer->lastReason().empty())
         spdlog::debug("key pose {}: host loop closer: {}", k, st.closer->lastReason());
-      for (const LoopClosure& lc : found)
+      for (const place::LoopClosure& lc : found)
         if (id == host && lc.robot_a == lc.robot_b)
           spdlog::debug("key pose {}: host loop closer: {} -> {} {} ({} inliers)", k, lc.keypose_a, lc.keypose_b,
-                        outcomeName(lc.outcome), lc.inliers.size());
-      for (const LoopClosure& lc : found) {
-        if (lc.outcome == ConsensusFilter::Outcome::Pending) continue;
+                        place::outcomeName(lc.outcome), lc.inliers.size());
+      for (const place::LoopClosure& lc : found) {
+        if (lc.outcome == place::ConsensusFilter::Outcome::Pending) continue;
         if (lc.robot_a == lc.robot_b) {
           if (id != host) {
             st.optimizer->addLoopClosure(lc.robot_a, lc.keypose_a, lc.keypose_b, lc.T_a_b);
             continue;
           }
-          const ScenarioRobot& hr = s.robots[0];
+          const graph_scenario::ScenarioRobot& hr = s.robots[0];
           RealisticRunResult::IntraClosure c;
           c.seq_a = lc.keypose_a;
           c.seq_b = lc.keypose_b;
-          const TransformError e = transformError(lc.T_a_b, hr.truth[c.seq_a].inverse() * hr.truth[c.seq_b]);
+          const eval::TransformError e =
+              eval::transformError(lc.T_a_b, hr.truth[c.seq_a].inverse() * hr.truth[c.seq_b]);
           c.error_m = e.translation_m;
           c.error_deg = e.rotation_deg;
           c.host_ate_m = hostAteSoFar(opt, hr);
@@ -155,17 +156,17 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
           out.wrong_intra_accepted += wrong && c.accepted;
           out.intra.push_back(c);
         } else if (id == host && lc.robot_a == host) {
-          const ScenarioRobot* peer = nullptr;
-          for (const ScenarioRobot& r : s.robots)
+          const graph_scenario::ScenarioRobot* peer = nullptr;
+          for (const graph_scenario::ScenarioRobot& r : s.robots)
             if (r.id == lc.robot_b) peer = &r;
           if (!peer) continue;
           const Pose frames = s.robots[0].truth.front().inverse() * peer->truth.front();
-          const TransformError f = transformError(lc.T_a_b, frames);
+          const eval::TransformError f = eval::transformError(lc.T_a_b, frames);
           out.frame_error_m.push_back(f.translation_m);
           const std::optional<Pose> maps =
               mapAlignmentTruth(published[host], votes[host], published[lc.robot_b], votes[lc.robot_b]);
           if (maps) {
-            const TransformError e = transformError(lc.T_a_b, *maps);
+            const eval::TransformError e = eval::transformError(lc.T_a_b, *maps);
             out.map_error_m.push_back(e.translation_m);
             out.wrong_inter += e.translation_m > 1.0 || e.yaw_deg > 2.0;
           } else {
@@ -185,10 +186,10 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
   // transforms it was given, against the truth in the host's frame.
   const Pose host0_inv = s.robots[0].truth.front().inverse();
   std::vector<Pose> est, ref, odom, odom_ref;
-  for (const ScenarioRobot& r : s.robots) {
+  for (const graph_scenario::ScenarioRobot& r : s.robots) {
     if (r.id != host && !opt.merged(r.id)) continue;
     out.peers_merged += r.id != host;
-    for (const TrajectoryPose& p : opt.trajectory(r.id)) {
+    for (const backend::TrajectoryPose& p : opt.trajectory(r.id)) {
       est.push_back(p.pose);
       ref.push_back(host0_inv * r.truth[p.seq]);
     }
@@ -204,12 +205,12 @@ RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg
     const std::vector<Pose> e(est.begin(), est.begin() + n), t(ref.begin(), ref.begin() + n);
     const std::size_t m = s.robots[0].bundles.size();
     const std::vector<Pose> o(odom.begin(), odom.begin() + m), ot(odom_ref.begin(), odom_ref.begin() + m);
-    out.host_ate_m = absoluteTrajectoryError(e, t, TrajectoryAlignment::Se3).rmse;
-    out.host_odom_ate_m = absoluteTrajectoryError(o, ot, TrajectoryAlignment::Se3).rmse;
+    out.host_ate_m = eval::absoluteTrajectoryError(e, t, eval::TrajectoryAlignment::Se3).rmse;
+    out.host_odom_ate_m = eval::absoluteTrajectoryError(o, ot, eval::TrajectoryAlignment::Se3).rmse;
   }
-  const AteResult ate = absoluteTrajectoryError(est, ref, TrajectoryAlignment::Se3);
+  const eval::AteResult ate = eval::absoluteTrajectoryError(est, ref, eval::TrajectoryAlignment::Se3);
   out.ate_m = ate.rmse;
-  out.odom_ate_m = absoluteTrajectoryError(odom, odom_ref, TrajectoryAlignment::Se3).rmse;
+  out.odom_ate_m = eval::absoluteTrajectoryError(odom, odom_ref, eval::TrajectoryAlignment::Se3).rmse;
 
   // Confirmed landmarks against the object most of their detections came from.
   const Pose to_world = s.robots[0].truth.front() * ate.alignment.T;

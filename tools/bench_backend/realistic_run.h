@@ -46,7 +46,8 @@ struct RealisticRunResult {
 
 // keypose_period_s: the simulated time between key poses (the loop closer's periods are in
 // seconds); map_every: key poses between own-map publications.
-RealisticRunResult runRealistic(const GraphScenario& s, const BackendConfig& cfg, const LoopCloserParams& closer,
-                                double keypose_period_s = 1.0, int map_every = 5);
+RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                                const place::LoopCloserParams& closer, double keypose_period_s = 1.0,
+                                int map_every = 5);
 
 }  // namespace slide

@@ -25,12 +25,13 @@ struct Pairs {
   std::vector<Pose> est, ref;
 };
 
-void collect(const GraphScenario& s, const std::map<int, std::vector<TrajectoryPose>>& est, Pairs& out) {
+void collect(const graph_scenario::GraphScenario& s, const std::map<int, std::vector<backend::TrajectoryPose>>& est,
+             Pairs& out) {
   const Pose host0_inv = s.robots[0].truth.front().inverse();
-  for (const ScenarioRobot& r : s.robots) {
+  for (const graph_scenario::ScenarioRobot& r : s.robots) {
     const auto it = est.find(r.id);
     if (it == est.end()) continue;
-    for (const TrajectoryPose& p : it->second) {
+    for (const backend::TrajectoryPose& p : it->second) {
       out.est.push_back(p.pose);
       out.ref.push_back(host0_inv * r.truth[p.seq]);
     }
@@ -44,20 +45,21 @@ double landmarkError(const Object& est, const Object& truth) {
 }
 }  // namespace
 
-ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, bool with_batch, double pace_hz,
-                              double final_seconds) {
+ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                              bool with_batch, double pace_hz, double final_seconds) {
   ScenarioRunResult out;
-  Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
+  backend::Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
   std::mt19937 rng(11);
   std::map<std::int64_t, std::map<int, int>> votes;  // landmark id -> true index -> count
   std::size_t longest = 0;
   for (const auto& r : s.robots) longest = std::max(longest, r.bundles.size());
   std::map<int, Pose> given;  // last transform given per peer
-  std::map<int, std::map<int, std::vector<ScenarioLoopClosure>>> closures;  // robot -> seq_b -> closures
+  std::map<int, std::map<int, std::vector<graph_scenario::ScenarioLoopClosure>>>
+      closures;  // robot -> seq_b -> closures
   for (const auto& r : s.robots)
-    for (const auto& lc : simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
+    for (const auto& lc : graph_scenario::simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
   int objects = 0;
-  auto tally = [&](const UpdateResult& u) {
+  auto tally = [&](const backend::UpdateResult& u) {
     if (!u.full_solve) return;
     ++out.full_solves;
     out.full_solve_ms.push_back(u.full_solve_ms);
@@ -69,12 +71,12 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
     last_input = Clock::now();
   };
   for (std::size_t k = 0; k < longest; ++k) {
-    for (const ScenarioRobot& r : s.robots) {
+    for (const graph_scenario::ScenarioRobot& r : s.robots) {
       if (k >= r.bundles.size()) continue;
       pace();
-      const double c0 = threadCpuMs();
-      const UpdateResult u = opt.addBundle(r.bundles[k]);
-      const double cpu = threadCpuMs() - c0;
+      const double c0 = clock::threadCpuMs();
+      const backend::UpdateResult u = opt.addBundle(r.bundles[k]);
+      const double cpu = clock::threadCpuMs() - c0;
       objects += static_cast<int>(r.bundles[k].objects.size());
       if (!u.accepted) ++out.rejected;
       if (!u.held) {
@@ -85,12 +87,12 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
       if (!opt.merged(r.id)) continue;
-      for (const ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
+      for (const graph_scenario::ScenarioLoopClosure& lc : closures[r.id][static_cast<int>(k)]) {
         pace();
         out.loops_during_solve += opt.solving();
-        const double c1 = threadCpuMs();
-        const UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
-        out.update_cpu_ms.push_back(threadCpuMs() - c1);
+        const double c1 = clock::threadCpuMs();
+        const backend::UpdateResult l = opt.addLoopClosure(lc.robot, lc.seq_a, lc.seq_b, lc.T_a_b);
+        out.update_cpu_ms.push_back(clock::threadCpuMs() - c1);
         out.update_ms.push_back(l.update_ms);
         tally(l);
         ++out.loop_closures;
@@ -101,9 +103,9 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
       if (!first && !refine) continue;
       const Pose truth = s.robots[0].truth.front().inverse() * s.robots[p].truth.front();
       given[s.robots[p].id] = first ? perturb(truth, 0.3, 1.0, rng) : perturb(truth, 0.05, 0.2, rng);
-      const double c0 = threadCpuMs();
-      const UpdateResult u = opt.addRobotTransform(s.robots[p].id, given[s.robots[p].id]);
-      out.update_cpu_ms.push_back(threadCpuMs() - c0);
+      const double c0 = clock::threadCpuMs();
+      const backend::UpdateResult u = opt.addRobotTransform(s.robots[p].id, given[s.robots[p].id]);
+      out.update_cpu_ms.push_back(clock::threadCpuMs() - c0);
       // Ids of landmarks the merged bundles joined are not reported per object; votes come
       // from later updates.
       out.update_ms.push_back(u.update_ms);
@@ -111,40 +113,40 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
     }
   }
   {
-    std::map<int, std::vector<TrajectoryPose>> live;
+    std::map<int, std::vector<backend::TrajectoryPose>> live;
     for (int r : opt.robots()) live[r] = opt.trajectory(r);
     Pairs pairs;
     collect(s, live, pairs);
-    out.live_ate_m = absoluteTrajectoryError(pairs.est, pairs.ref, TrajectoryAlignment::Se3).rmse;
-    for (const ScenarioRobot& r : s.robots) {
+    out.live_ate_m = eval::absoluteTrajectoryError(pairs.est, pairs.ref, eval::TrajectoryAlignment::Se3).rmse;
+    for (const graph_scenario::ScenarioRobot& r : s.robots) {
       const auto it = live.find(r.id);
       if (it == live.end()) continue;
       for (std::size_t k = 1; k < it->second.size(); ++k) {
-        const TrajectoryPose &a = it->second[k - 1], &b = it->second[k];
+        const backend::TrajectoryPose &a = it->second[k - 1], &b = it->second[k];
         const Pose est = a.pose.inverse() * b.pose, truth = r.truth[a.seq].inverse() * r.truth[b.seq];
         out.live_max_step_error_m = std::max(out.live_max_step_error_m, (est.translation() - truth.translation()).norm());
       }
     }
   }
   const auto t0 = Clock::now();
-  const double c0 = threadCpuMs();
+  const double c0 = clock::threadCpuMs();
   opt.fullSolve(final_seconds);
-  out.final_solve_cpu_ms = threadCpuMs() - c0;
+  out.final_solve_cpu_ms = clock::threadCpuMs() - c0;
   out.final_solve_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.incremental_cost = opt.cost();
   out.keyposes = opt.numKeyPoses();
   out.objects_per_keypose = static_cast<double>(objects) / std::max(1, out.keyposes);
 
-  std::map<int, std::vector<TrajectoryPose>> est;
+  std::map<int, std::vector<backend::TrajectoryPose>> est;
   for (int r : opt.robots()) est[r] = opt.trajectory(r);
   Pairs pairs;
   collect(s, est, pairs);
-  const AteResult ate = absoluteTrajectoryError(pairs.est, pairs.ref, TrajectoryAlignment::Se3);
+  const eval::AteResult ate = eval::absoluteTrajectoryError(pairs.est, pairs.ref, eval::TrajectoryAlignment::Se3);
   out.ate_m = ate.rmse;
 
   // Raw odometry, each robot placed by the transform it was given.
   Pairs odom;
-  for (const ScenarioRobot& r : s.robots) {
+  for (const graph_scenario::ScenarioRobot& r : s.robots) {
     const Pose T = r.id == s.robots[0].id ? Pose::Identity() : given.count(r.id) ? given[r.id] : Pose::Identity();
     if (r.id != s.robots[0].id && !given.count(r.id)) continue;
     for (std::size_t k = 0; k < r.bundles.size(); ++k) {
@@ -152,7 +154,7 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
       odom.ref.push_back(s.robots[0].truth.front().inverse() * r.truth[k]);
     }
   }
-  out.odom_ate_m = absoluteTrajectoryError(odom.est, odom.ref, TrajectoryAlignment::Se3).rmse;
+  out.odom_ate_m = eval::absoluteTrajectoryError(odom.est, odom.ref, eval::TrajectoryAlignment::Se3).rmse;
 
   // Landmarks: each confirmed one against the true landmark most of its detections came from.
   const std::vector<Object> lms = opt.landmarks(true);
@@ -191,14 +193,14 @@ ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, 
   for (char c : seen) out.true_landmarks_seen += c;
 
   if (with_batch) {
-    const double cb = threadCpuMs();
-    const Optimizer::Batch b = opt.solveBatch();
-    out.batch_cpu_ms = threadCpuMs() - cb;
+    const double cb = clock::threadCpuMs();
+    const backend::Optimizer::Batch b = opt.solveBatch();
+    out.batch_cpu_ms = clock::threadCpuMs() - cb;
     out.batch_ms = b.ms;
     out.batch_cost = b.report.final_cost;
     Pairs bp;
     collect(s, b.trajectories, bp);
-    out.batch_ate_m = absoluteTrajectoryError(bp.est, bp.ref, TrajectoryAlignment::Se3).rmse;
+    out.batch_ate_m = eval::absoluteTrajectoryError(bp.est, bp.ref, eval::TrajectoryAlignment::Se3).rmse;
   }
   return out;
 }

@@ -42,7 +42,7 @@ struct ScenarioRunResult {
 // pace_hz > 0: while a background full solve runs, inputs arrive at most this often (the
 // robot's key-pose rate; otherwise they come as fast as the optimizer takes them).
 // final_seconds > 0 bounds the final full solve (Optimizer::fullSolve's max_seconds).
-ScenarioRunResult runScenario(const GraphScenario& s, const BackendConfig& cfg, bool with_batch = true, double pace_hz = 0,
-                              double final_seconds = 0);
+ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
+                              bool with_batch = true, double pace_hz = 0, double final_seconds = 0);
 
 }  // namespace slide

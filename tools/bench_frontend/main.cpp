@@ -29,7 +29,7 @@ using namespace slide;
 
 namespace {
 void printKitti(const KittiScanResult& r, const ClassTable& classes) {
-  const ScanScore& sc = r.score;
+  const eval::ScanScore& sc = r.score;
   std::printf("%s %-9s: cars %d/%d found, trunks/poles %d/%d found; fitted %d cuboids, %d cylinders, %d ellipsoids; "
               "duplicates %d cuboids %d cylinders; false %d cuboids %d cylinders; %d cylinders at small labelled columns\n",
               r.scan.c_str(), r.mode.c_str(), sc.cars.found, sc.cars.targets, sc.columns.found, sc.columns.targets, r.cuboids,
@@ -47,8 +47,8 @@ void printKitti(const KittiScanResult& r, const ClassTable& classes) {
 int main(int argc, char** argv) {
   CLI::App app{"Front-end benchmark: shape fitting on real trunks, segmentation of real SemanticKITTI scans, "
                "speed of segmentation + fitting, object mapping precision/recall on simulated worlds"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string json, data_dir = SLIDE_DATA_DIR, config_file, classes_file;
   std::string detection_config = std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml";
   std::vector<std::uint64_t> seeds{1};
@@ -79,14 +79,15 @@ int main(int argc, char** argv) {
   app.add_flag("--no-learned", no_learned, "Leave out the learned LiDAR mode");
   std::vector<std::string> only_modes;
   app.add_option("--modes", only_modes, "Only these perception modes of the simulated worlds (e.g. geometric rgbd)");
-  return runApp(app, common, argc, argv, [&]() {
+  return app::runApp(app, common, argc, argv, [&]() {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
-    const FrontendConfig cfg = config_file.empty() ? loadDefaultFrontendConfig() : loadFrontendConfig(config_file);
-    BenchReport report("frontend");
+    const frontend::FrontendConfig cfg =
+        config_file.empty() ? frontend::loadDefaultFrontendConfig() : frontend::loadFrontendConfig(config_file);
+    bench::BenchReport report("frontend");
     cv::setNumThreads(1);  // the learned model's inference on one core, as the paper's figures
 
     if (skip_worlds) worlds.clear();
-    const DetectionEmulatorConfig emulator = loadDetectionEmulatorConfig(detection_config);
+    const emulator::DetectionEmulatorConfig emulator = emulator::loadDetectionEmulatorConfig(detection_config);
     // Published per-class point IoU of RangeNet53++ on SemanticKITTI (config/detections.yaml).
     const std::map<std::string, double> rangenet_iou{{"car", 0.914}, {"trunk", 0.551}, {"pole", 0.479}};
     for (const auto& w : worlds) {
@@ -120,22 +121,26 @@ int main(int argc, char** argv) {
           std::printf("%s seed %lu %-11s: %d frames, %d estimated, %d ground truth seen, %d matched, %d duplicates, "
                       "%d false, %d ignored, %ld input issues, frame %.1f ms median\n",
                       w.c_str(), static_cast<unsigned long>(seed), m.mode.c_str(), res.frames, m.estimated, m.ground_truth,
-                      m.matched, m.duplicates, m.false_objects, m.ignored, m.issues, median(m.frame_ms));
+                      m.matched, m.duplicates, m.false_objects, m.ignored, m.issues, bench::median(m.frame_ms));
           for (const auto& [name, c] : m.per_class)
             std::printf("    %-8s estimated %3d  ground truth %3d  matched %3d\n", name.c_str(), c[0], c[1], c[2]);
           for (const auto& [name, n] : m.scored_as) std::printf("    %d real %s (the mode cannot name them)\n", n, name.c_str());
           for (const auto& [name, v] : m.iou) std::printf("    %s label IoU %-10s %.3f\n", m.mode.c_str(), name.c_str(), v);
           for (const auto& [name, v] : m.along_ray) {
             std::vector<double> a = v;
-            std::printf("    %-8s along the line of sight (ground truth, evaluation only): median %+.3f m, p10 %+.3f, p90 %+.3f, %zu observations\n",
-                        name.c_str(), quantile(a, 0.5), quantile(a, 0.1), quantile(a, 0.9), a.size());
+            std::printf(
+                "    %-8s along the line of sight (ground truth, evaluation only): median %+.3f m, p10 %+.3f, p90 "
+                "%+.3f, %zu observations\n",
+                name.c_str(), bench::quantile(a, 0.5), bench::quantile(a, 0.1), bench::quantile(a, 0.9), a.size());
           }
           for (const auto& [name, v] : m.centre_error) {
             std::vector<double> a = v;
             const auto near = std::count_if(a.begin(), a.end(), [&](double d) { return d <= match_distance; });
-            std::printf("    %-8s centre error (ground truth, evaluation only): median %.3f m, p90 %.3f, %.1f %% within %.1f m\n",
-                        name.c_str(), quantile(a, 0.5), quantile(a, 0.9), 100.0 * near / std::max<std::size_t>(a.size(), 1),
-                        match_distance);
+            std::printf(
+                "    %-8s centre error (ground truth, evaluation only): median %.3f m, p90 %.3f, %.1f %% within %.1f "
+                "m\n",
+                name.c_str(), bench::quantile(a, 0.5), bench::quantile(a, 0.9),
+                100.0 * near / std::max<std::size_t>(a.size(), 1), match_distance);
           }
           if (total.size() <= i) total.push_back(m);
           else {
@@ -190,11 +195,11 @@ int main(int argc, char** argv) {
         if (m.mode.rfind("rgbd", 0) == 0)
           for (const auto& [name, v] : m.along_ray) {
             std::vector<double> a = v;
-            report.add(prefix + ".along_ray_m." + name + ".median", quantile(a, 0.5), "m").note =
+            report.add(prefix + ".along_ray_m." + name + ".median", bench::quantile(a, 0.5), "m").note =
                 "key-pose " + name + " observations placed by the true key pose, offset from the nearest real " + name +
                 " along the line of sight (negative: short); scored with ground truth (evaluation only), " +
-                std::to_string(a.size()) + " observations, " + seeds_text + "; p10 " + std::to_string(quantile(a, 0.1)) +
-                ", p90 " + std::to_string(quantile(a, 0.9));
+                std::to_string(a.size()) + " observations, " + seeds_text + "; p10 " +
+                std::to_string(bench::quantile(a, 0.1)) + ", p90 " + std::to_string(bench::quantile(a, 0.9));
           }
         report.add(prefix + ".false_objects", m.false_objects, "", true).note = "estimates of no object, " + seeds_text;
         for (const auto& [name, v] : m.iou) {
@@ -214,7 +219,7 @@ int main(int argc, char** argv) {
     }
     {
       const std::vector<double> ms = timeRgbdDecode(classes, cfg, runs);
-      report.add("rgbd.yolo_decode_backproject_ms.median", median(ms), "ms", true, 15.0).note =
+      report.add("rgbd.yolo_decode_backproject_ms.median", bench::median(ms), "ms", true, 15.0).note =
           "thread CPU: YOLOv8-seg decoding (80 classes, 8400 anchors, 10 detections, prototypes 160 x 160 -> 640 x 480) "
           "+ mask back-projection, synthetic outputs (the network's inference excluded), median of " + std::to_string(ms.size());
     }
@@ -240,24 +245,25 @@ int main(int argc, char** argv) {
     report.add("tls.pine_plot.trunks", tls.pine_trunks, "", false);
     }
 
-    const LabelledSegmenter labelled(classes, cfg.labelled);
-    const GeometricSegmenter geometric(classes, cfg.geometric);
+    const frontend::LabelledSegmenter labelled(classes, cfg.labelled);
+    const frontend::GeometricSegmenter geometric(classes, cfg.geometric);
     // The learned mode on KITTI's HDL-64E: the model's own projection, not the simulated robots'.
-    LearnedLidarParams kitti_params = cfg.learned;
+    frontend::LearnedLidarParams kitti_params = cfg.learned;
     kitti_params.height.reset(), kitti_params.width.reset(), kitti_params.fov_up_deg.reset(), kitti_params.fov_down_deg.reset();
-    std::shared_ptr<const RangeNetLabeler> labeler;
-    if (!no_learned && !geometric_only) labeler = RangeNetLabeler::fromParams(kitti_params);
-    const std::optional<LearnedLidarSegmenter> learned =
-        labeler ? std::optional<LearnedLidarSegmenter>(std::in_place, labeler, std::make_shared<LabelledSegmenter>(classes, cfg.labelled))
+    std::shared_ptr<const frontend::RangeNetLabeler> labeler;
+    if (!no_learned && !geometric_only) labeler = frontend::RangeNetLabeler::fromParams(kitti_params);
+    const std::optional<frontend::LearnedLidarSegmenter> learned =
+        labeler ? std::optional<frontend::LearnedLidarSegmenter>(
+                      std::in_place, labeler, std::make_shared<frontend::LabelledSegmenter>(classes, cfg.labelled))
                 : std::nullopt;
     std::vector<double> geo_ms, lab_ms, geo_wall_ms, learned_ms, learned_label_ms;
-    LabelIou real_iou;
+    eval::LabelIou real_iou;
     int cols_total = 0, cols_found_total = 0;
     for (const char* scan : {"000720", "001500"}) {
       const std::string bin = data_dir + "/semantickitti/sequences/08/velodyne/" + scan + ".bin";
-      std::vector<const LidarSegmenter*> segmenters{&labelled, &geometric};
+      std::vector<const frontend::LidarSegmenter*> segmenters{&labelled, &geometric};
       if (learned) segmenters.push_back(&*learned);
-      for (const LidarSegmenter* seg : segmenters) {
+      for (const frontend::LidarSegmenter* seg : segmenters) {
         if (geometric_only && seg != &geometric) continue;
         const bool is_learned = learned && seg == &*learned;
         KittiScanResult r = evaluateKittiScan(bin, *seg, classes, cfg, runs);
@@ -266,7 +272,7 @@ int main(int argc, char** argv) {
         auto& ms = seg == &geometric ? geo_ms : is_learned ? learned_ms : lab_ms;
         ms.insert(ms.end(), r.segment_fit_ms.begin(), r.segment_fit_ms.end());
         if (seg == &geometric) geo_wall_ms.insert(geo_wall_ms.end(), r.segment_fit_wall_ms.begin(), r.segment_fit_wall_ms.end());
-        const ScanScore& sc = r.score;
+        const eval::ScanScore& sc = r.score;
         if (seg == &geometric) cols_total += sc.columns.targets, cols_found_total += sc.columns.found;
         const std::string prefix = std::string("semantickitti.") + scan + "." + r.mode;
         const std::string gt_note = std::string(seg == &geometric ? "label-free"
@@ -290,7 +296,7 @@ int main(int argc, char** argv) {
             "further cuboids within 2 m of a labelled car (second estimates or not car-sized)";
       }
       if (labeler) {
-        LabelIou iou;
+        eval::LabelIou iou;
         const std::vector<double> ms = evaluateLearnedLabels(bin, *labeler, runs, iou);
         learned_label_ms.insert(learned_label_ms.end(), ms.begin(), ms.end());
         evaluateLearnedLabels(bin, *labeler, 1, real_iou);
@@ -314,11 +320,11 @@ int main(int argc, char** argv) {
                      p != paper.end() ? std::optional<double>(p->second) : std::nullopt)
               .note = "both real scans' points pooled; scored with their labels (evaluation only); paper: RangeNet53++ (trained on SemanticKITTI)";
         }
-      const RangeProjection& p = labeler->config().projection;
-      report.add("scan.learned.label_ms.median", median(learned_label_ms), "ms", true, 60.0, 667.0).note =
+      const frontend::RangeProjection& p = labeler->config().projection;
+      report.add("scan.learned.label_ms.median", bench::median(learned_label_ms), "ms", true, 60.0, 667.0).note =
           "thread CPU, one OpenCV thread: projection " + std::to_string(p.height) + " x " + std::to_string(p.width) +
           " + inference + back-projection, ~126k-point SemanticKITTI scans, median of " + std::to_string(learned_label_ms.size());
-      report.add("scan.segment_fit_ms.learned.median", median(learned_ms), "ms", true, 100.0).note =
+      report.add("scan.segment_fit_ms.learned.median", bench::median(learned_ms), "ms", true, 100.0).note =
           "thread CPU, the whole LiDAR front-end with the model (labels, clustering, fitting), median of " +
           std::to_string(learned_ms.size());
     }
@@ -351,12 +357,12 @@ int main(int argc, char** argv) {
     }
     report.add("semantickitti.geometric.trunks_poles_found", cols_found_total, "", false, 14).note =
         "both scans, of " + std::to_string(cols_total) + " labelled trunk/pole/sign groups; label-free";
-    report.add("scan.segment_fit_ms.median", median(geo_ms), "ms", true, 40.0).note =
+    report.add("scan.segment_fit_ms.median", bench::median(geo_ms), "ms", true, 40.0).note =
         "thread CPU time, geometric mode, ~126k-point SemanticKITTI scans, median of " + std::to_string(geo_ms.size());
-    report.add("scan.segment_fit_wall_ms.median", median(geo_wall_ms), "ms", true).note =
+    report.add("scan.segment_fit_wall_ms.median", bench::median(geo_wall_ms), "ms", true).note =
         "wall clock of the same runs (includes waiting for a shared CPU)";
     if (!lab_ms.empty())
-      report.add("scan.segment_fit_ms.labelled.median", median(lab_ms), "ms", true, 50.0).note =
+      report.add("scan.segment_fit_ms.labelled.median", bench::median(lab_ms), "ms", true, 50.0).note =
         "thread CPU time, labelled mode, median of " + std::to_string(lab_ms.size());
 
     report.printTable(std::cout);

@@ -21,28 +21,29 @@ template <typename F>
 double medianMs(int runs, F&& f) {
   std::vector<double> ms;
   for (int r = 0; r < runs; ++r) {
-    const double t0 = threadCpuMs();
+    const double t0 = clock::threadCpuMs();
     f();
-    ms.push_back(threadCpuMs() - t0);
+    ms.push_back(clock::threadCpuMs() - t0);
   }
-  return median(ms);
+  return bench::median(ms);
 }
 
 bool groundLabel(int l) { return l == 40 || l == 44 || l == 48 || l == 49 || l == 60 || l == 72; }
 bool objectLabel(int l) { return l == 10 || l == 71 || l == 80 || l == 81; }
 }  // namespace
 
-PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_slice, const FrontendConfig& cfg, int runs) {
+PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_slice,
+                         const frontend::FrontendConfig& cfg, int runs) {
   PclComparison r;
-  const LabelledScan scan = readLabelledScan(kitti_bin);
-  GroundParams gp = cfg.geometric.ground;
+  const io::LabelledScan scan = io::readLabelledScan(kitti_bin);
+  frontend::GroundParams gp = cfg.geometric.ground;
   gp.max_range = cfg.geometric.max_range;
   const double r2 = gp.max_range * gp.max_range;
 
   // Ground. Ours: height above the grid estimate <= threshold. PCL: inliers of one RANSAC plane
   // with the same threshold as distance, 200 iterations.
   std::vector<float> h;
-  r.ours_ground_ms = medianMs(runs, [&] { h = heightAboveGround(scan.xyz, gp); });
+  r.ours_ground_ms = medianMs(runs, [&] { h = frontend::heightAboveGround(scan.xyz, gp); });
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
   std::vector<int> in_range;
   for (std::size_t i = 0; i < scan.size(); ++i) {
@@ -84,7 +85,7 @@ PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_sl
   pcl::PointCloud<pcl::PointXYZ>::Ptr above_cloud(new pcl::PointCloud<pcl::PointXYZ>);
   for (int i : above) above_cloud->push_back(pcl::PointXYZ(scan.xyz[i].x(), scan.xyz[i].y(), scan.xyz[i].z()));
   std::vector<std::vector<int>> ours;
-  r.ours_cluster_ms = medianMs(runs, [&] { ours = clusterGrid(scan.xyz, above, {0.3, false, 30}); });
+  r.ours_cluster_ms = medianMs(runs, [&] { ours = frontend::clusterGrid(scan.xyz, above, {0.3, false, 30}); });
   std::vector<pcl::PointIndices> theirs;
   r.pcl_cluster_ms = medianMs(runs, [&] {
     theirs.clear();
@@ -101,16 +102,16 @@ PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_sl
   r.pcl_clusters = static_cast<int>(theirs.size());
 
   // Circle on the TLS slice (trunk plus a branch), same inlier distance and iterations.
-  const Cloud slice = readXyzCloud(tls_slice);
+  const frontend::Cloud slice = frontend::readXyzCloud(tls_slice);
   std::vector<Eigen::Vector2d> xy;
   pcl::PointCloud<pcl::PointXYZ>::Ptr slice_cloud(new pcl::PointCloud<pcl::PointXYZ>);
   for (const auto& p : slice) {
     xy.emplace_back(p.x(), p.y());
     slice_cloud->push_back(pcl::PointXYZ(p.x(), p.y(), 0.0f));
   }
-  const CircleRansacParams& cp = cfg.fit.cylinder.ransac;
-  std::optional<Circle> c;
-  r.ours_circle_ms = medianMs(runs, [&] { c = fitCircleRansac(xy, cp); });
+  const frontend::CircleRansacParams& cp = cfg.fit.cylinder.ransac;
+  std::optional<frontend::Circle> c;
+  r.ours_circle_ms = medianMs(runs, [&] { c = frontend::fitCircleRansac(xy, cp); });
   r.ours_radius = c ? c->radius : std::nan("");
   pcl::ModelCoefficients coeff;
   r.pcl_circle_ms = medianMs(runs, [&] {

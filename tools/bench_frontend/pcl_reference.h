@@ -25,6 +25,7 @@ struct PclComparison {
 };
 
 // Medians over `runs` timings (thread CPU time). Throws IoError for missing files.
-PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_slice, const FrontendConfig& cfg, int runs);
+PclComparison comparePcl(const std::string& kitti_bin, const std::string& tls_slice,
+                         const frontend::FrontendConfig& cfg, int runs);
 
 }  // namespace slide

@@ -16,18 +16,18 @@
 
 namespace slide {
 
-TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, const FrontendConfig& cfg) {
+TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, const frontend::FrontendConfig& cfg) {
   TlsResult r;
-  const Cloud slice = readXyzCloud(data_dir + "/tls/dbh_slice.xyz");
+  const frontend::Cloud slice = frontend::readXyzCloud(data_dir + "/tls/dbh_slice.xyz");
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : slice) xy.emplace_back(p.x(), p.y());
-  const auto lsq = fitCircleAlgebraic(xy);
+  const auto lsq = frontend::fitCircleAlgebraic(xy);
   if (!lsq) throw std::runtime_error("dbh_slice.xyz: algebraic circle fit failed");
   r.algebraic_radius = lsq->radius;
 
   // The slice seen from far outside (a TLS scanner sees the whole trunk from several stations).
-  const Eigen::Vector3d view = centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
-  const auto cyl = fitCylinder(slice, cfg.fit.cylinder, view);
+  const Eigen::Vector3d view = frontend::centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
+  const auto cyl = frontend::fitCylinder(slice, cfg.fit.cylinder, view);
   r.fitted_radius = cyl ? cyl->radius : std::nan("");
   // Reference on the trunk's bark: algebraic LS of the points within 5 cm of the fitted circle
   // (a trimmed LS from all points does not converge to the trunk: the branch dominates).
@@ -37,19 +37,19 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
     for (const auto& q : xy)
       if (std::abs((q - cyl->root.head<2>()).norm() - cyl->radius) <= 0.05) bark.push_back(q);
     r.trunk_points = static_cast<int>(bark.size());
-    if (const auto c = fitCircleAlgebraic(bark)) r.trunk_radius = c->radius;
+    if (const auto c = frontend::fitCircleAlgebraic(bark)) r.trunk_radius = c->radius;
   }
 
-  LabelledScan plot;
-  plot.xyz = readXyzCloud(data_dir + "/tls/pine_plot.xyz");
-  GeometricSegmenterParams gp = cfg.geometric;
+  io::LabelledScan plot;
+  plot.xyz = frontend::readXyzCloud(data_dir + "/tls/pine_plot.xyz");
+  frontend::GeometricSegmenterParams gp = cfg.geometric;
   gp.emit_other = false;
-  const GeometricSegmenter seg(classes, gp);
-  InputIssues issues;
-  const Eigen::Vector3d plot_view = centroidOf(plot.xyz);
+  const frontend::GeometricSegmenter seg(classes, gp);
+  frontend::InputIssues issues;
+  const Eigen::Vector3d plot_view = frontend::centroidOf(plot.xyz);
   for (const auto& inst : seg.segment(plot, issues)) {
     if (classes.at(inst.class_id).shape != Shape::Cylinder) continue;
-    const auto c = fitCylinder(inst.points, cfg.fit.cylinder, plot_view);
+    const auto c = frontend::fitCylinder(inst.points, cfg.fit.cylinder, plot_view);
     if (!c) continue;
     ++r.pine_trunks;
     r.pine_radii.push_back(c->radius);
@@ -58,26 +58,27 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
   return r;
 }
 
-KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
-                                  const ClassTable& classes, const FrontendConfig& cfg, int runs) {
-  const LabelledScan scan = readLabelledScan(bin_path);
+KittiScanResult evaluateKittiScan(const std::string& bin_path, const frontend::LidarSegmenter& segmenter,
+                                  const ClassTable& classes, const frontend::FrontendConfig& cfg, int runs) {
+  const io::LabelledScan scan = io::readLabelledScan(bin_path);
   KittiScanResult r;
   r.scan = bin_path.substr(bin_path.find_last_of('/') + 1);
   r.mode = segmenter.name();
   std::vector<Object> objects;
   for (int run = 0; run < runs; ++run) {
-    InputIssues issues;
-    const double c0 = threadCpuMs();
+    frontend::InputIssues issues;
+    const double c0 = clock::threadCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const auto instances = segmenter.segment(scan, issues);
     std::vector<Object> fitted;
     for (const auto& inst : instances)
-      if (auto o = fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) fitted.push_back(*o);
+      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()))
+        fitted.push_back(*o);
     r.segment_fit_wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    r.segment_fit_ms.push_back(threadCpuMs() - c0);
+    r.segment_fit_ms.push_back(clock::threadCpuMs() - c0);
     objects = std::move(fitted);
   }
-  r.score = scoreScanAgainstLabels(scan, objects, classes);
+  r.score = eval::scoreScanAgainstLabels(scan, objects, classes);
   for (const auto& t : r.score.targets) {
     KittiTarget k;
     k.class_id = t.class_id;
@@ -99,10 +100,10 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
     r.cuboids += s == Shape::Cuboid;
     r.cylinders += s == Shape::Cylinder;
     r.ellipsoids += s == Shape::Ellipsoid;
-    if (s != Shape::Ellipsoid && r.score.verdicts[k] != EstimateVerdict::Matched) {
+    if (s != Shape::Ellipsoid && r.score.verdicts[k] != eval::EstimateVerdict::Matched) {
       const Eigen::Vector3d p = objects[k].position(), e = objects[k].extent();
       char buf[160];
-      std::snprintf(buf, sizeof buf, "%s %s at (%.1f %.1f %.1f) %.2fx%.2fx%.2f", verdictName(r.score.verdicts[k]),
+      std::snprintf(buf, sizeof buf, "%s %s at (%.1f %.1f %.1f) %.2fx%.2fx%.2f", eval::verdictName(r.score.verdicts[k]),
                     shapeName(s), p.x(), p.y(), p.z(), e.x(), e.y(), e.z());
       r.unmatched.push_back(buf);
     }
@@ -110,18 +111,19 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmen
   return r;
 }
 
-std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const PointLabeler& labeler, int runs, LabelIou& iou) {
-  const LabelledScan truth = readLabelledScan(bin_path);
+std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const frontend::PointLabeler& labeler, int runs,
+                                          eval::LabelIou& iou) {
+  const io::LabelledScan truth = io::readLabelledScan(bin_path);
   if (!truth.hasLabels()) throw std::runtime_error(bin_path + ": no labels beside the scan");
-  LabelledScan scan;
+  io::LabelledScan scan;
   scan.xyz = truth.xyz;
   scan.intensity = truth.intensity;
   std::vector<double> ms;
   for (int run = 0; run < runs; ++run) {
-    LabelledScan s = scan;
-    const double c0 = threadCpuMs();
+    io::LabelledScan s = scan;
+    const double c0 = clock::threadCpuMs();
     labeler.label(s);
-    ms.push_back(threadCpuMs() - c0);
+    ms.push_back(clock::threadCpuMs() - c0);
     if (run + 1 == runs) iou.add(truth.semantic, s.semantic);
   }
   return ms;

@@ -21,7 +21,7 @@ struct TlsResult {
   std::vector<double> pine_radii;
   std::vector<Eigen::Vector2d> pine_positions;
 };
-TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, const FrontendConfig& cfg);
+TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, const frontend::FrontendConfig& cfg);
 
 // One labelled ground-truth object of a SemanticKITTI scan and whether the mode found it.
 struct KittiTarget {
@@ -37,7 +37,7 @@ struct KittiScanResult {
   std::string scan, mode;
   std::vector<KittiTarget> targets;
   int cuboids = 0, cylinders = 0, ellipsoids = 0;   // fitted objects of the mode
-  ScanScore score;                                  // targets, duplicates, false objects
+  eval::ScanScore score;                                  // targets, duplicates, false objects
   std::vector<std::string> unmatched;               // one line per unmatched cuboid / cylinder
   std::vector<double> segment_fit_ms;               // thread CPU time, one per run
   std::vector<double> segment_fit_wall_ms;          // wall-clock time, one per run
@@ -45,12 +45,13 @@ struct KittiScanResult {
 
 // Runs `segmenter` + fitting `runs` times on the scan (timing each) and matches the fitted
 // objects of the last run against the scan's labels.
-KittiScanResult evaluateKittiScan(const std::string& bin_path, const LidarSegmenter& segmenter,
-                                  const ClassTable& classes, const FrontendConfig& cfg, int runs);
+KittiScanResult evaluateKittiScan(const std::string& bin_path, const frontend::LidarSegmenter& segmenter,
+                                  const ClassTable& classes, const frontend::FrontendConfig& cfg, int runs);
 
 // Runs `labeler` `runs` times on the scan, timing each (thread CPU: projection, inference,
 // back-projection), and adds its last labels, scored with the scan's SemanticKITTI labels, to
 // `iou`. Returns the times in ms.
-std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const PointLabeler& labeler, int runs, LabelIou& iou);
+std::vector<double> evaluateLearnedLabels(const std::string& bin_path, const frontend::PointLabeler& labeler, int runs,
+                                          eval::LabelIou& iou);
 
 }  // namespace slide

@@ -7,7 +7,8 @@
 
 namespace slide {
 
-std::vector<double> timeRgbdDecode(const ClassTable& classes, const FrontendConfig& cfg, int runs, int objects) {
+std::vector<double> timeRgbdDecode(const ClassTable& classes, const frontend::FrontendConfig& cfg, int runs,
+                                   int objects) {
   const int w = 640, h = 480, nc = 80, anchors = 8400, rows = 4 + nc + 32;
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> low(0.0f, 0.2f);
@@ -27,19 +28,19 @@ std::vector<double> timeRgbdDecode(const ClassTable& classes, const FrontendConf
   for (std::size_t i = 0; i < out1.total(); ++i) q[i] = normal(rng);
   std::vector<int> class_of_model(nc, -1);
   class_of_model[56] = classes.findByName("chair")->id;
-  YoloSegParams p;
-  const Letterbox lb = letterboxOf(w, h, p.input_width, p.input_height);
-  RgbdFrame base;
+  frontend::YoloSegParams p;
+  const frontend::Letterbox lb = frontend::letterboxOf(w, h, p.input_width, p.input_height);
+  frontend::RgbdFrame base;
   base.intrinsics = {w, h, 380.0, 380.0, 320.0, 240.0, 0.001};
   base.depth.assign(static_cast<std::size_t>(w) * h, 2000);
   std::vector<double> ms;
   for (int run = 0; run < runs; ++run) {
-    RgbdFrame f = base;
-    const double c0 = threadCpuMs();
-    paintInstances(decodeYoloSeg(out0, out1, nc, lb, w, h, p), class_of_model, f);
-    InputIssues issues;
-    segmentRgbd(f, classes, cfg.rgbd, issues);
-    ms.push_back(threadCpuMs() - c0);
+    frontend::RgbdFrame f = base;
+    const double c0 = clock::threadCpuMs();
+    frontend::paintInstances(frontend::decodeYoloSeg(out0, out1, nc, lb, w, h, p), class_of_model, f);
+    frontend::InputIssues issues;
+    frontend::segmentRgbd(f, classes, cfg.rgbd, issues);
+    ms.push_back(clock::threadCpuMs() - c0);
   }
   return ms;
 }

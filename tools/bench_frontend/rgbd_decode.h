@@ -11,6 +11,7 @@ namespace slide {
 
 // Thread CPU ms per frame, `runs` times: 80 classes, 8400 anchors, `objects` confident
 // detections at distinct boxes, random prototypes [1, 32, 160, 160], a 2 m depth plane.
-std::vector<double> timeRgbdDecode(const ClassTable& classes, const FrontendConfig& cfg, int runs, int objects = 10);
+std::vector<double> timeRgbdDecode(const ClassTable& classes, const frontend::FrontendConfig& cfg, int runs,
+                                   int objects = 10);
 
 }  // namespace slide

@@ -33,7 +33,7 @@ std::string labelName(int label) {
 }
 }  // namespace
 
-void SegmentDiagnosis::addFrame(const LabelledScan& truth, const std::vector<Instance>& instances) {
+void SegmentDiagnosis::addFrame(const io::LabelledScan& truth, const std::vector<frontend::Instance>& instances) {
   ++frame_;
   std::unordered_multimap<std::uint64_t, int> index;
   index.reserve(truth.size());

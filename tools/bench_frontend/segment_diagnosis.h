@@ -24,7 +24,7 @@ class SegmentDiagnosis {
   // with at least min_points returns within max_range (horizontal metres) in a frame count.
   SegmentDiagnosis(std::map<int, int> object_class, int min_points, double max_range)
       : object_class_(std::move(object_class)), min_points_(min_points), max_range_(max_range) {}
-  void addFrame(const LabelledScan& truth, const std::vector<Instance>& instances);
+  void addFrame(const io::LabelledScan& truth, const std::vector<frontend::Instance>& instances);
   void print(const std::string& mode, const std::map<int, std::string>& class_names) const;
 
  private:

@@ -30,7 +30,7 @@ namespace slide {
 
 namespace {
 // Can `mode` produce objects of this class at all? (Only those classes are evaluated.)
-bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
+bool producible(const std::string& mode, const ClassInfo& c, const frontend::FrontendConfig& cfg) {
   if (mode == "emulated" || mode == "oracle" || mode == "learned") return !c.semantickitti.empty();
   if (mode == "geometric")  // trunks and poles are scored apart: a trunk called a pole is wrong
     return c.id == cfg.geometric.car_class || c.id == cfg.geometric.trunk_class || c.id == cfg.geometric.pole_class ||
@@ -41,7 +41,7 @@ bool producible(const std::string& mode, const ClassInfo& c, const FrontendConfi
 // The class a real object of class c is scored as in `mode`, none when the mode cannot find it.
 // The label-free mode names no furniture: a chair, table or monitor it finds is an ellipsoid of
 // class "other", and is scored so (an "other" there is right; a car or trunk there is not).
-std::optional<int> scoreGroup(const std::string& mode, const ClassInfo& c, const FrontendConfig& cfg) {
+std::optional<int> scoreGroup(const std::string& mode, const ClassInfo& c, const frontend::FrontendConfig& cfg) {
   if (producible(mode, c, cfg)) return c.id;
   if (mode == "geometric" && cfg.geometric.emit_other && c.shape == Shape::Ellipsoid) return cfg.geometric.other_class;
   return std::nullopt;
@@ -51,9 +51,10 @@ bool isRgbd(const std::string& mode) { return mode.rfind("rgbd", 0) == 0; }
 
 // Point IoU accumulators of the emulated labels per class (tp, fp, fn).
 using IouCounts = std::map<int, std::array<long, 3>>;
-void countIou(const LabelledScan& truth, const LabelledScan& emulated, IouCounts& counts) {
+void countIou(const io::LabelledScan& truth, const io::LabelledScan& emulated, IouCounts& counts) {
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    const int t = label::classIdOfLabel(truth.semantic[i]), e = label::classIdOfLabel(emulated.semantic[i]);
+    const int t = simulator::label::classIdOfLabel(truth.semantic[i]),
+              e = simulator::label::classIdOfLabel(emulated.semantic[i]);
     if (t == e && t != 0) ++counts[t][0];
     if (t != e) {
       if (e != 0) ++counts[e][1];
@@ -62,13 +63,14 @@ void countIou(const LabelledScan& truth, const LabelledScan& emulated, IouCounts
   }
 }
 
-RgbdFrame emulatedFrame(const RgbdImage& img, const CameraModel& camera, const RgbdEmulatorParams& p, uint64_t seed) {
-  InstanceMask truth;
+frontend::RgbdFrame emulatedFrame(const simulator::RgbdImage& img, const simulator::CameraModel& camera,
+                                  const emulator::RgbdEmulatorParams& p, uint64_t seed) {
+  io::InstanceMask truth;
   truth.mask = img.instance;
   truth.class_id = img.instance_class;
   truth.object_id = img.instance_object;
-  const EmulatedMasks e = emulateRgbdDetections(truth, img.depth, 0.001, p, seed);
-  RgbdFrame f = rgbdFrameOf(img, camera);
+  const emulator::EmulatedMasks e = emulator::emulateRgbdDetections(truth, img.depth, 0.001, p, seed);
+  frontend::RgbdFrame f = mapped_robot::rgbdFrameOf(img, camera);
   f.mask.assign(e.masks.mask.begin<std::uint16_t>(), e.masks.mask.end<std::uint16_t>());
   f.instance_class = e.masks.class_id;
   f.instance_confidence = e.confidence;
@@ -83,13 +85,13 @@ RgbdFrame emulatedFrame(const RgbdImage& img, const CameraModel& camera, const R
 // unassociated object becomes a new landmark. No evaluator-side merging.
 void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
               std::vector<std::map<int, double>>& votes) {
-  std::vector<Detection> detections;
+  std::vector<backend::Detection> detections;
   for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
-  std::vector<LandmarkCandidate> candidates;
+  std::vector<backend::LandmarkCandidate> candidates;
   for (std::size_t i = 0; i < map.size(); ++i)
     if ((map[i].position() - T_world_body.translation()).head<2>().norm() < 100.0)
       candidates.push_back({static_cast<int>(i), &map[i]});
-  const std::vector<int> assoc = associateDetections(detections, candidates, classes);
+  const std::vector<int> assoc = backend::associateDetections(detections, candidates, classes);
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Object& o = detections[k].object;
     const std::size_t i = assoc[k] >= 0 ? static_cast<std::size_t>(assoc[k]) : map.size();
@@ -104,10 +106,10 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
 
 struct Runner {
   std::string mode;
-  std::unique_ptr<LidarSegmenter> lidar;
-  std::shared_ptr<const PointLabeler> labeler;  // learned mode: labels the points for `lidar`
-  LabelIou label_iou;                           // learned mode: its labels against the truth
-  std::unique_ptr<KeyPoseBundler> bundler;
+  std::unique_ptr<frontend::LidarSegmenter> lidar;
+  std::shared_ptr<const frontend::PointLabeler> labeler;  // learned mode: labels the points for `lidar`
+  eval::LabelIou label_iou;                           // learned mode: its labels against the truth
+  std::unique_ptr<frontend::KeyPoseBundler> bundler;
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
   std::vector<std::map<int, double>> votes;  // class votes per landmark
   ModeResult result;
@@ -116,29 +118,31 @@ struct Runner {
 };
 }  // namespace
 
-WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& classes, const FrontendConfig& cfg) {
-  ScenarioSpec ss;
+WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& classes,
+                              const frontend::FrontendConfig& cfg) {
+  simulator::ScenarioSpec ss;
   ss.world = spec.world;
   ss.robots = 1;
   ss.seed = spec.seed;
   ss.distance = spec.distance;
   ss.rate = spec.rate;
   ss.data_dir = spec.data_dir;
-  const Scenario sc = buildScenario(ss);
-  const RobotRun& robot = sc.robots.at(0);
-  const LidarModel lidar = lidarModel("os1-64");
-  const CameraModel camera = cameraModel("d455");
+  const simulator::Scenario sc = simulator::buildScenario(ss);
+  const simulator::RobotRun& robot = sc.robots.at(0);
+  const simulator::LidarModel lidar = simulator::lidarModel("os1-64");
+  const simulator::CameraModel camera = simulator::cameraModel("d455");
 
   std::vector<Runner> runners;
   for (const auto& mode : spec.modes) {
     Runner r;
     r.mode = r.result.mode = mode;
-    if (mode == "learned") r.labeler = RangeNetLabeler::fromParams(cfg.learned);
+    if (mode == "learned") r.labeler = frontend::RangeNetLabeler::fromParams(cfg.learned);
     if (mode == "emulated" || mode == "oracle" || mode == "learned")
-      r.lidar = std::make_unique<LabelledSegmenter>(classes, cfg.labelled);
-    else if (mode == "geometric") r.lidar = std::make_unique<GeometricSegmenter>(classes, cfg.geometric);
+      r.lidar = std::make_unique<frontend::LabelledSegmenter>(classes, cfg.labelled);
+    else if (mode == "geometric") r.lidar = std::make_unique<frontend::GeometricSegmenter>(classes, cfg.geometric);
     else if (mode != "rgbd" && mode != "rgbd.oracle") throw std::invalid_argument("unknown mode '" + mode + "'");
-    r.bundler = std::make_unique<KeyPoseBundler>(Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
+    r.bundler =
+        std::make_unique<frontend::KeyPoseBundler>(frontend::Tracker(classes, cfg.tracker, cfg.fit), cfg.keypose);
     runners.push_back(std::move(r));
   }
   bool any_moving = false;
@@ -171,18 +175,18 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   };
   std::map<int, RgbdTrace> rgbd_trace;  // --verbose: object id -> frames
   std::map<std::int64_t, int> max_points;  // object id -> frames with >= min_points
-  std::unique_ptr<RayCaster> caster;
+  std::unique_ptr<simulator::RayCaster> caster;
   const std::size_t n = robot.ground_truth.size();
   for (std::size_t k = 0; k < n; ++k) {
     const double t = robot.ground_truth.times[k];
-    if (!caster || any_moving) caster = std::make_unique<RayCaster>(sc.world, t);
+    if (!caster || any_moving) caster = std::make_unique<simulator::RayCaster>(sc.world, t);
     const Pose& T_world_body = robot.ground_truth.poses[k];
-    std::mt19937_64 rng = frameRng(spec.seed, 0, static_cast<int>(k));
-    LabelledScan scan, unlabelled, emulated;
-    RgbdFrame frame, emulated_frame;
+    std::mt19937_64 rng = simulator::frameRng(spec.seed, 0, static_cast<int>(k));
+    io::LabelledScan scan, unlabelled, emulated;
+    frontend::RgbdFrame frame, emulated_frame;
     std::map<int, int> count;
     if (need_lidar) {
-      scan = simulateLidarScan(*caster, T_world_body, lidar, rng);
+      scan = simulator::simulateLidarScan(*caster, T_world_body, lidar, rng);
       unlabelled.xyz = scan.xyz;
       unlabelled.intensity = scan.intensity;
       count.clear();
@@ -193,14 +197,16 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         max_points[id] = std::max(max_points[id], c);
       }
       if (need_emulated) {
-        emulated = emulateLidarLabels(scan, spec.emulator.lidar, detectionSeed(emulator_seed, 0, static_cast<int>(k)));
+        emulated = emulator::emulateLidarLabels(scan, spec.emulator.lidar,
+                                                emulator::detectionSeed(emulator_seed, 0, static_cast<int>(k)));
         countIou(scan, emulated, iou_counts);
       }
     }
     if (need_rgbd) {
-      const RgbdImage img = renderRgbd(*caster, T_world_body, camera, rng);
-      frame = rgbdFrameOf(img, camera);
-      emulated_frame = emulatedFrame(img, camera, spec.emulator.rgbd, detectionSeed(emulator_seed, 0, static_cast<int>(k)));
+      const simulator::RgbdImage img = simulator::renderRgbd(*caster, T_world_body, camera, rng);
+      frame = mapped_robot::rgbdFrameOf(img, camera);
+      emulated_frame = emulatedFrame(img, camera, spec.emulator.rgbd,
+                                     emulator::detectionSeed(emulator_seed, 0, static_cast<int>(k)));
       // Seen: at least min_points pixels of the object with a depth reading (beyond the
       // camera's depth range an object is in the picture but not measurable).
       std::vector<int> pix(img.instance_object.size() + 1, 0);
@@ -230,15 +236,15 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       }
     }
     for (auto& r : runners) {
-      InputIssues issues;
+      frontend::InputIssues issues;
       const auto t0 = std::chrono::steady_clock::now();
-      FrameInstances fi;
+      frontend::FrameInstances fi;
       fi.utime = static_cast<std::int64_t>(t * 1e6);
       fi.odom_pose = robot.odometry[k];
-      if (r.mode == "rgbd") fi.instances = segmentRgbd(emulated_frame, classes, cfg.rgbd, issues);
-      else if (r.mode == "rgbd.oracle") fi.instances = segmentRgbd(frame, classes, cfg.rgbd, issues);
+      if (r.mode == "rgbd") fi.instances = frontend::segmentRgbd(emulated_frame, classes, cfg.rgbd, issues);
+      else if (r.mode == "rgbd.oracle") fi.instances = frontend::segmentRgbd(frame, classes, cfg.rgbd, issues);
       else if (r.labeler) {
-        LabelledScan labelled = unlabelled;
+        io::LabelledScan labelled = unlabelled;
         r.labeler->label(labelled);
         r.label_iou.add(scan.semantic, labelled.semantic);
         fi.instances = r.lidar->segment(labelled, issues);
@@ -255,7 +261,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           auto near = [&](const Eigen::Vector3d& p) { return (p - g.position()).head<2>().norm() < 0.5; };
           bool inst = false, inst_class = false;
           for (const auto& in : fi.instances)
-            if (!in.points.empty() && near(T_world_body * centroidOf(in.points)))
+            if (!in.points.empty() && near(T_world_body * frontend::centroidOf(in.points)))
               inst = true, inst_class |= in.class_id == g.class_id;
           tr.instance += inst, tr.instance_class += inst_class;
           for (const auto& [tid, t] : r.bundler->tracker().tracks())
@@ -338,7 +344,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     for (const auto& o : estimates) est[o.class_id].push_back(&o);
     // --verbose: the real object nearest to an estimate (any class), its distance in `d`.
     auto nearestTruth = [&](const Object& o, double& d) {
-      const GroundTruthObject* near = nullptr;
+      const io::GroundTruthObject* near = nullptr;
       for (const auto& g : sc.world.objects) {
         const double dg = (g.object.position() - o.position()).head<2>().norm();
         if (dg < d) d = dg, near = &g;
@@ -359,7 +365,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         for (std::size_t i = 0; i < E.size(); ++i)
           for (std::size_t j = 0; j < G.size(); ++j)
             cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
-        const auto assign = solveGatedAssignment(cost, spec.match_distance);
+        const auto assign = assignment::solveGatedAssignment(cost, spec.match_distance);
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
           if (a >= 0) ++matched, hit[a] = 1;
@@ -373,7 +379,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           for (std::size_t i = 0; i < E.size(); ++i) {
             if (assign[i] >= 0) continue;
             double d = 1e9;
-            const GroundTruthObject* near = nearestTruth(*E[i], d);
+            const io::GroundTruthObject* near = nearestTruth(*E[i], d);
             const auto it = near ? seen.find(static_cast<int>(near->object.id)) : seen.end();
             std::printf("  extra %s %s at (%.1f, %.1f): nearest object %ld (class %d%s, seen in %d frames) at %.2f m\n",
                         r.mode.c_str(), info.name.c_str(), E[i]->position().x(), E[i]->position().y(),
@@ -438,7 +444,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           std::printf("  extra %s %s at (%.1f, %.1f): no ground truth of the class", r.mode.c_str(), info.name.c_str(),
                       e->position().x(), e->position().y());
           double d = 1e9;
-          if (const GroundTruthObject* near = nearestTruth(*e, d))
+          if (const io::GroundTruthObject* near = nearestTruth(*e, d))
             std::printf("; nearest object of any class: class %d at %.2f m (height %.1f, its %.1f)", near->object.class_id, d,
                         e->position().z(), near->object.position().z());
           if (const auto* el = std::get_if<Ellipsoid>(&e->model))

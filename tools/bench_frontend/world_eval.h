@@ -33,7 +33,7 @@ struct WorldEvalSpec {
   std::uint64_t seed = 1;
   std::string data_dir;
   std::vector<std::string> modes{"emulated", "oracle", "geometric"};  // see above
-  DetectionEmulatorConfig emulator;  // for the emulated modes (seed mixed with `seed`)
+  emulator::DetectionEmulatorConfig emulator;  // for the emulated modes (seed mixed with `seed`)
   int min_points = 30;       // a ground-truth object counts as seen with this many returns ...
   double max_range = 40.0;   // ... within this horizontal range (metres) ...
   int min_frames = 3;        // ... in this many frames
@@ -68,6 +68,7 @@ struct WorldEvalResult {
   std::vector<ModeResult> modes;
 };
 
-WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& classes, const FrontendConfig& cfg);
+WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& classes,
+                              const frontend::FrontendConfig& cfg);
 
 }  // namespace slide

@@ -14,13 +14,13 @@
 #include "simulator/scenario.h"
 #include "mapped_robot/map_robot.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 namespace {
 // Robot `r` follows robot 0's route backwards (same places, opposite heading, other start),
 // `climb` metres higher and level when climb > 0; its odometry is simulated anew.
-void retrace(slide::Scenario& sc, int r, double climb) {
-  RobotRun& run = sc.robots.at(static_cast<std::size_t>(r));
+void retrace(slide::simulator::Scenario& sc, int r, double climb) {
+  simulator::RobotRun& run = sc.robots.at(static_cast<std::size_t>(r));
   const std::vector<Pose>& route = sc.robots.at(0).ground_truth.poses;
   run.ground_truth.times = sc.robots.at(0).ground_truth.times;
   run.ground_truth.poses.clear();
@@ -34,14 +34,15 @@ void retrace(slide::Scenario& sc, int r, double climb) {
     run.ground_truth.poses.push_back(T);
   }
   std::mt19937_64 rng(sc.spec.seed * 7919 + 104729 * (run.id + 1) + 1);
-  run.odometry = simulateOdometry(run.ground_truth.poses, sc.spec.odometry, rng);
-  run.T_world_odom = odometryOrigin(run.ground_truth.poses.front());
+  run.odometry = simulator::simulateOdometry(run.ground_truth.poses, sc.spec.odometry, rng);
+  run.T_world_odom = simulator::odometryOrigin(run.ground_truth.poses.front());
 }
 
 // Ids of true objects that a landmark of `map` (odometry frame T_world_odom) lies near:
 // Within the class's association distance (horizontal), as the front-end benchmark scores maps.
-std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose& T_world_odom, const World& world,
-                                     const ClassTable& classes, int& hits, double& median_err) {
+std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose& T_world_odom,
+                                     const simulator::World& world, const ClassTable& classes, int& hits,
+                                     double& median_err) {
   std::set<std::int64_t> ids;
   std::vector<double> errs;
   hits = 0;
@@ -61,7 +62,7 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
                   p.x(), p.y(), p.z(), id, nearest);
     // Cuboids: heading (world frame) and extents against the associated true box.
     const auto* box = std::get_if<Cuboid>(&o.model);
-    const GroundTruthObject* truth = nullptr;
+    const io::GroundTruthObject* truth = nullptr;
     for (const auto& g : world.objects)
       if (g.object.id == id) truth = &g;
     const auto* true_box = truth ? std::get_if<Cuboid>(&truth->object.model) : nullptr;
@@ -83,13 +84,13 @@ std::set<std::int64_t> trueObjectsOf(const std::vector<Object>& map, const Pose&
   return ids;
 }
 
-HeteroMethod place(PlaceMethod m, const std::vector<Landmark>& a, const std::vector<Landmark>& b, const Pose& truth,
-                   const PlaceConfig& config, int repeats) {
+HeteroMethod place(place::PlaceMethod m, const std::vector<place::Landmark>& a, const std::vector<place::Landmark>& b,
+                   const Pose& truth, const place::PlaceConfig& config, int repeats) {
   HeteroMethod out;
   std::vector<double> ms;
-  PlaceResult first;
+  place::PlaceResult first;
   for (int k = 0; k < repeats; ++k) {
-    PlaceResult r = recognizePlace(m, a, b, config);
+    place::PlaceResult r = place::recognizePlace(m, a, b, config);
     ms.push_back(r.cpu_ms);
     if (k == 0) first = std::move(r);
   }
@@ -99,7 +100,7 @@ HeteroMethod place(PlaceMethod m, const std::vector<Landmark>& a, const std::vec
   out.reason = first.reason;
   out.inliers = first.inliers.size();
   if (first.found) {
-    const TransformError e = transformError(first.T_a_b, truth);
+    const eval::TransformError e = eval::transformError(first.T_a_b, truth);
     out.trans_err_m = e.translation_m;
     out.yaw_err_deg = e.yaw_deg;
   }
@@ -141,27 +142,29 @@ HeteroSpec heteroAerialGround(std::uint64_t seed) {
   return s;
 }
 
-HeteroFigures runHetero(const HeteroSpec& spec, const PlaceConfig& config, int repeats) {
+HeteroFigures runHetero(const HeteroSpec& spec, const place::PlaceConfig& config, int repeats) {
   const auto t0 = std::chrono::steady_clock::now();
-  ScenarioSpec ss;
+  simulator::ScenarioSpec ss;
   ss.world = spec.world;
   ss.robots = 2;
   ss.seed = spec.seed;
   ss.distance = spec.distance;
   ss.overlap = spec.overlap;
   ss.rate = spec.rate;
-  slide::Scenario sc = buildScenario(ss);
+  slide::simulator::Scenario sc = simulator::buildScenario(ss);
   if (spec.retrace_b) retrace(sc, 1, spec.climb_b);
 
-  MappingSetup setup{ClassTable::loadDefault(), loadDefaultFrontendConfig(),
-                     loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"), spec.seed, std::nullopt};
+  mapped_robot::MappingSetup setup{ClassTable::loadDefault(), frontend::loadDefaultFrontendConfig(),
+                                   backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml"),
+                                   spec.seed, std::nullopt};
   // What a robot has: the detection emulator's labels / masks, not the simulator's ground truth.
-  setup.emulator = loadDetectionEmulatorConfig(std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml");
-  SensorRig rig_a = parseSensorRig(spec.sensor_a), rig_b = parseSensorRig(spec.sensor_b);
-  rig_a.T_body_sensor = pitchedMount(spec.pitch_a_deg);
-  rig_b.T_body_sensor = pitchedMount(spec.pitch_b_deg);
-  const RobotMapping a = mapRobot(sc, 0, rig_a, setup);
-  const RobotMapping b = mapRobot(sc, 1, rig_b, setup);
+  setup.emulator = emulator::loadDetectionEmulatorConfig(std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml");
+  mapped_robot::SensorRig rig_a = mapped_robot::parseSensorRig(spec.sensor_a),
+                          rig_b = mapped_robot::parseSensorRig(spec.sensor_b);
+  rig_a.T_body_sensor = mapped_robot::pitchedMount(spec.pitch_a_deg);
+  rig_b.T_body_sensor = mapped_robot::pitchedMount(spec.pitch_b_deg);
+  const mapped_robot::RobotMapping a = mapped_robot::mapRobot(sc, 0, rig_a, setup);
+  const mapped_robot::RobotMapping b = mapped_robot::mapRobot(sc, 1, rig_b, setup);
 
   HeteroFigures f;
   f.objects_a = static_cast<int>(a.objects.size());
@@ -174,12 +177,13 @@ HeteroFigures runHetero(const HeteroSpec& spec, const PlaceConfig& config, int r
   const std::set<std::int64_t> tb = trueObjectsOf(b.objects, sc.robots[1].T_world_odom, sc.world, setup.classes, f.true_b, f.err_b);
   for (auto id : tb) f.shared += ta.count(id);
 
-  const std::vector<Landmark> la = landmarksOf(ObjectMap(a.objects)), lb = landmarksOf(ObjectMap(b.objects));
+  const std::vector<place::Landmark> la = place::landmarksOf(ObjectMap(a.objects)),
+                                     lb = place::landmarksOf(ObjectMap(b.objects));
   const Pose truth = sc.robots[0].T_world_odom.inverse() * sc.robots[1].T_world_odom;
-  f.slidegraph = place(PlaceMethod::SlideGraph, la, lb, truth, config, repeats);
-  f.slidematch = place(PlaceMethod::SlideMatch, la, lb, truth, config, repeats);
+  f.slidegraph = place(place::PlaceMethod::SlideGraph, la, lb, truth, config, repeats);
+  f.slidematch = place(place::PlaceMethod::SlideMatch, la, lb, truth, config, repeats);
   f.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return f;
 }
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

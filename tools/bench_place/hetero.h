@@ -11,7 +11,7 @@
 
 #include "place/place_config.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 struct HeteroSpec {
   std::string name;            // hetero_lidar_rgbd | hetero_aerial_ground
@@ -47,6 +47,6 @@ struct HeteroFigures {
   HeteroMethod slidegraph, slidematch;
 };
 
-HeteroFigures runHetero(const HeteroSpec& spec, const PlaceConfig& config, int repeats);
+HeteroFigures runHetero(const HeteroSpec& spec, const place::PlaceConfig& config, int repeats);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

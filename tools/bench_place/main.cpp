@@ -16,13 +16,13 @@
 #include "scenarios.h"
 
 using namespace slide;
-using namespace slide::bench;
+using namespace slide::bench_place;
 
 namespace {
-void writeLandmarks(const std::string& path, const std::vector<Landmark>& lms, const ClassTable& classes) {
+void writeLandmarks(const std::string& path, const std::vector<place::Landmark>& lms, const ClassTable& classes) {
   ObjectMap map;
-  for (const Landmark& l : lms) map.add(objectFromCentre(l.class_id, l.p, l.size, classes));
-  writeObjectMapText(path, map, classes);
+  for (const place::Landmark& l : lms) map.add(io::objectFromCentre(l.class_id, l.p, l.size, classes));
+  io::writeObjectMapText(path, map, classes);
 }
 
 struct Paper {
@@ -47,26 +47,30 @@ Paper paperFor(const std::string& name) {
   return p;
 }
 
-void report(BenchReport& rep, const Scenario& s, PlaceMethod m, const MethodFigures& f, int repeats) {
-  const std::string prefix = s.name + "." + methodName(m) + ".";
+void report(bench::BenchReport& rep, const Scenario& s, place::PlaceMethod m, const MethodFigures& f, int repeats) {
+  const std::string prefix = s.name + "." + place::methodName(m) + ".";
   const Paper p = paperFor(s.name);
-  const bool graph = m == PlaceMethod::SlideGraph;
+  const bool graph = m == place::PlaceMethod::SlideGraph;
   // These scenarios' maps are rigid copies of the truth with independent noise and drops (no
   // drift, no false or confused objects): the realistic cases are runRealistic's.
   const std::string of = "IDEALISED input (rigid copies); median over " + std::to_string(f.correct) + " correct of " +
                          std::to_string(f.overlapping) + " pairs";
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto& t = rep.add(prefix + "trans_err_m", f.trans_err.empty() ? nan : median(f.trans_err), "m", true, p.target_trans, p.trans);
+  auto& t = rep.add(prefix + "trans_err_m", f.trans_err.empty() ? nan : bench::median(f.trans_err), "m", true,
+                    p.target_trans, p.trans);
   t.note = of + (p.err_note.empty() ? "" : "; " + p.err_note);
-  auto& y = rep.add(prefix + "yaw_err_deg", f.yaw_err.empty() ? nan : median(f.yaw_err), "deg", true, p.target_yaw, p.yaw);
+  auto& y = rep.add(prefix + "yaw_err_deg", f.yaw_err.empty() ? nan : bench::median(f.yaw_err), "deg", true,
+                    p.target_yaw, p.yaw);
   y.note = t.note;
-  auto& ms = rep.add(prefix + "ms", median(f.cpu_ms), "ms", true, graph ? p.target_graph_ms : p.target_match_ms,
+  auto& ms = rep.add(prefix + "ms", bench::median(f.cpu_ms), "ms", true, graph ? p.target_graph_ms : p.target_match_ms,
                      graph ? p.graph_ms : p.match_ms);
   ms.note = "thread CPU time, median of " + std::to_string(f.ms.size()) + " runs (" + std::to_string(repeats) + " per pair)" +
             ((graph ? p.graph_ms_note : p.match_ms_note).empty() ? "" : "; " + (graph ? p.graph_ms_note : p.match_ms_note));
-  rep.add(prefix + "ms.p90", quantile(f.cpu_ms, 0.9), "ms").note = "thread CPU time, 90th percentile";
-  rep.add(prefix + "wall_ms", median(f.ms), "ms").note = "wall time, median (inflated when the machine is loaded)";
-  for (const auto& [stage, v] : f.stage_cpu_ms) rep.add(prefix + "stage_ms." + stage, median(v), "ms").note = "thread CPU time per run, median";
+  rep.add(prefix + "ms.p90", bench::quantile(f.cpu_ms, 0.9), "ms").note = "thread CPU time, 90th percentile";
+  rep.add(prefix + "wall_ms", bench::median(f.ms), "ms").note =
+      "wall time, median (inflated when the machine is loaded)";
+  for (const auto& [stage, v] : f.stage_cpu_ms)
+    rep.add(prefix + "stage_ms." + stage, bench::median(v), "ms").note = "thread CPU time per run, median";
   rep.add(prefix + "recall", f.overlapping ? double(f.correct) / f.overlapping : nan, "", false, 1.0).note =
       "correct transforms / overlapping pairs (" + std::to_string(f.missed) + " missed, " + std::to_string(f.wrong) + " wrong)";
   rep.add(prefix + "wrong", f.wrong + f.false_positives, "", true, 0.0).note =
@@ -74,18 +78,19 @@ void report(BenchReport& rep, const Scenario& s, PlaceMethod m, const MethodFigu
 }
 // One figure per method over the trials: found and correct (within 2 m and 10 deg: good enough
 // to seed a merge) as fractions, errors as medians over the trials that found a transform.
-void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<HeteroFigures>& trials, int repeats) {
+void reportHetero(bench::BenchReport& rep, const HeteroSpec& spec, const std::vector<HeteroFigures>& trials,
+                  int repeats) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const bool lidar_rgbd = spec.name == "hetero_lidar_rgbd";
   const double n = static_cast<double>(trials.size());
   const std::string of = std::to_string(trials.size()) + " worlds (seeds " + std::to_string(spec.seed) + "..." +
                          std::to_string(spec.seed + trials.size() - 1) + ")";
-  for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+  for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
     std::vector<double> t, y, ms;
     int found = 0, correct = 0;
     std::string reasons;
     for (const HeteroFigures& f : trials) {
-      const HeteroMethod& h = m == PlaceMethod::SlideGraph ? f.slidegraph : f.slidematch;
+      const HeteroMethod& h = m == place::PlaceMethod::SlideGraph ? f.slidegraph : f.slidematch;
       ms.push_back(h.cpu_ms);
       if (!h.found) {
         reasons += (reasons.empty() ? "" : "; ") + h.reason;
@@ -96,14 +101,14 @@ void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<He
       t.push_back(h.trans_err_m);
       y.push_back(h.yaw_err_deg);
     }
-    const std::string prefix = spec.name + "." + methodName(m) + ".";
+    const std::string prefix = spec.name + "." + place::methodName(m) + ".";
     // Paper: LiDAR-RGBD 0.54-0.58 m, 2-4 deg (the paper does not split it by method);
     // aerial-ground SlideMatch 0.245 m, SlideGraph fails.
     std::optional<double> paper_t, paper_y, paper_found;
     std::string paper_note;
     if (lidar_rgbd) {
       paper_t = 0.56, paper_y = 3.0, paper_found = 1.0, paper_note = "paper 0.54-0.58 m, 2-4 deg";
-    } else if (m == PlaceMethod::SlideMatch) {
+    } else if (m == place::PlaceMethod::SlideMatch) {
       paper_t = 0.245, paper_found = 1.0, paper_note = "paper 0.245 m";
     } else {
       paper_found = 0.0, paper_note = "paper: SlideGraph fails";
@@ -115,11 +120,11 @@ void reportHetero(BenchReport& rep, const HeteroSpec& spec, const std::vector<He
         std::to_string(found) + " of " + of + (reasons.empty() ? "" : "; none: " + reasons) + "; " + paper_note;
     rep.add(prefix + "correct", correct / n, "", false).note =
         std::to_string(correct) + " of " + std::to_string(trials.size()) + " within 2 m and 10 deg of the truth";
-    rep.add(prefix + "trans_err_m", t.empty() ? nan : median(t), "m", true, std::nullopt, paper_t).note =
+    rep.add(prefix + "trans_err_m", t.empty() ? nan : bench::median(t), "m", true, std::nullopt, paper_t).note =
         (t.empty() ? "none found" : "median over the " + std::to_string(t.size()) + " found: " + errs) + "; " + paper_note;
-    rep.add(prefix + "yaw_err_deg", y.empty() ? nan : median(y), "deg", true, std::nullopt, paper_y).note =
+    rep.add(prefix + "yaw_err_deg", y.empty() ? nan : bench::median(y), "deg", true, std::nullopt, paper_y).note =
         t.empty() ? "none found" : "median over the found";
-    rep.add(prefix + "ms", median(ms), "ms").note =
+    rep.add(prefix + "ms", bench::median(ms), "ms").note =
         "thread CPU time, median over the worlds of the median of " + std::to_string(repeats) + " runs";
   }
   double oa = 0, ob = 0, ta = 0, tb = 0, sh = 0, ca = 0, cb = 0, fa = 0, fb = 0, wall = 0, ea = 0, eb = 0;
@@ -148,8 +153,8 @@ int main(int argc, char** argv) {
                "real SlideSLAM maps and two heterogeneous simulated teams (LiDAR + RGBD indoors, aerial + ground RGBD\n"
                "over a parking lot) mapped through the front-end and back-end.\nPrints a table; --json writes the BENCHMARKS.md JSON (suite 'place').",
                "slide-bench-place"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string json, data = SLIDE_DATA_DIR, config_path;
   int repeats = 3, hetero_worlds = 3;
   unsigned seed = 1;
@@ -175,8 +180,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--dump", dump, "Write every pair's maps as DIR/<scenario>_<k>_{a,b}.txt (for ./slide match)");
-  return runApp(app, common, argc, argv, [&]() {
-    const PlaceConfig config = config_path.empty() ? loadDefaultPlaceConfig() : loadPlaceConfig(config_path);
+  return app::runApp(app, common, argc, argv, [&]() {
+    const place::PlaceConfig config =
+        config_path.empty() ? place::loadDefaultPlaceConfig() : place::loadPlaceConfig(config_path);
     const std::set<std::string> want(only.begin(), only.end());
     auto wanted = [&](const std::string& n) { return want.empty() || want.count(n); };
     std::vector<Scenario> scenarios;
@@ -201,7 +207,7 @@ int main(int argc, char** argv) {
         }
     }
     const bool scale_only = want.size() == 1 && want.count("scale");
-    BenchReport rep(scale_only ? "place_scale" : "place");
+    bench::BenchReport rep(scale_only ? "place_scale" : "place");
     for (const Scenario& s : scenarios) {
       std::size_t na = 0, nb = 0, shared = 0, overlapping = 0;
       for (const PairCase& c : s.pairs) {
@@ -211,11 +217,11 @@ int main(int argc, char** argv) {
       spdlog::info("{}: {} pairs, mean {} x {} landmarks, {} shared per overlapping pair; {}", s.name, s.pairs.size(),
                    na / s.pairs.size(), nb / s.pairs.size(), shared / std::max<std::size_t>(1, overlapping), s.description);
       int fp = 0;
-      for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+      for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
         const MethodFigures f = runScenario(s, m, config, repeats);
         report(rep, s, m, f, repeats);
         fp += f.false_positives + f.wrong;
-        if (s.name == "forest" && m == PlaceMethod::SlideGraph) {
+        if (s.name == "forest" && m == place::PlaceMethod::SlideGraph) {
           rep.add("forest.clipper.peak_mb", f.peak_bytes / 1e6, "MB").note =
               "largest consistency graph + solver vectors; a dense m x m double matrix would take " +
               std::to_string(static_cast<int>(8.0 * f.max_associations * f.max_associations / 1e6)) + " MB (m = " +
@@ -240,9 +246,9 @@ int main(int argc, char** argv) {
       }
       if (s.name == "parking_real" || s.name == "indoor_real") {
         const std::string set = s.name == "parking_real" ? "parking" : "indoor";
-        for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+        for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
           const Cycle c = realCycle(data, set, m, config);
-          const std::string prefix = s.name + "." + methodName(m) + ".cycle_";
+          const std::string prefix = s.name + "." + place::methodName(m) + ".cycle_";
           const double nan = std::numeric_limits<double>::quiet_NaN();
           rep.add(prefix + "trans_m", c.ok ? c.trans_m : nan, "m").note =
               c.ok ? "|T01 T12 T20| between the three robots' real maps" : "no cycle: " + c.why;
@@ -251,14 +257,14 @@ int main(int argc, char** argv) {
       }
     }
     if (wanted("indoor_aliased")) {
-      for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+      for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
         AliasFigures a;
         for (unsigned w = 0; w < 5; ++w) {  // five worlds, 30 re-mappings each
-          const AliasFigures one = aliasedRooms(seed + w, m, config, ConsensusParams{}, 30);
+          const AliasFigures one = aliasedRooms(seed + w, m, config, place::ConsensusParams{}, 30);
           a.attempts += one.attempts, a.raw_found += one.raw_found, a.raw_wrong += one.raw_wrong;
           a.published += one.published, a.published_wrong += one.published_wrong;
         }
-        const std::string prefix = std::string("indoor_aliased.") + methodName(m) + ".";
+        const std::string prefix = std::string("indoor_aliased.") + place::methodName(m) + ".";
         rep.add(prefix + "raw_wrong_fraction", a.raw_found ? double(a.raw_wrong) / a.raw_found : 0, "", true).note =
             std::to_string(a.raw_wrong) + " wrong of " + std::to_string(a.raw_found) + " found in " +
             std::to_string(a.attempts) + " attempts (5 worlds of two identical rooms)";
@@ -270,8 +276,9 @@ int main(int argc, char** argv) {
     if (want.count("scale")) runScale(rep, config, seed, scale_sizes, scale_conditions);
     if (wanted("realistic")) {
       // The loop closer's own consensus settings (config/loop_closer.yaml).
-      const ConsensusParams consensus =
-          loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml")).consensus;
+      const place::ConsensusParams consensus =
+          place::loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml"))
+              .consensus;
       runRealistic(rep, config, consensus, seed, realistic_worlds);
     }
     for (const HeteroSpec& h : {heteroLidarRgbd(seed), heteroAerialGround(seed)}) {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 namespace {
 // A "Key:   123 kB" line of /proc/self/status in kB; negative when absent.
@@ -37,4 +37,4 @@ double PeakMemory::extraMb() const {
   return hwm < 0 ? std::numeric_limits<double>::quiet_NaN() : std::max(0.0, hwm - rss0_kb_) / 1024.0;
 }
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

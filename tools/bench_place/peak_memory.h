@@ -5,7 +5,7 @@
 // anything other threads did meanwhile (the place bench runs one thread).
 #include <string>
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 class PeakMemory {
  public:
@@ -20,4 +20,4 @@ class PeakMemory {
   double rss0_kb_ = 0;
 };
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

@@ -15,27 +15,27 @@
 #include "peak_memory.h"
 #include "worlds.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 namespace {
-std::vector<Landmark> landmarksOfWorld(const slide::World& w) {
+std::vector<place::Landmark> landmarksOfWorld(const simulator::World& w) {
   ObjectMap map;
-  for (const GroundTruthObject& g : w.objects) map.add(g.object);
-  std::vector<Landmark> out = landmarksOf(map);
+  for (const io::GroundTruthObject& g : w.objects) map.add(g.object);
+  std::vector<place::Landmark> out = place::landmarksOf(map);
   for (std::size_t i = 0; i < out.size(); ++i) out[i].index = i;
   return out;
 }
 
 // Offices of 8 x 8 m in a grid, each furnished from one of two template rooms (chairs missing at
 // random, everything shifted a little): many rooms look alike.
-std::vector<Landmark> repeatedRooms(int rooms_x, int rooms_y, std::mt19937& rng) {
+std::vector<place::Landmark> repeatedRooms(int rooms_x, int rooms_y, std::mt19937& rng) {
   const World templates[2] = {indoorWorld(1, 1, rng), indoorWorld(1, 1, rng)};
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> jitter(0, 0.1);
-  std::vector<Landmark> out;
+  std::vector<place::Landmark> out;
   for (int rx = 0; rx < rooms_x; ++rx)
     for (int ry = 0; ry < rooms_y; ++ry)
-      for (Landmark l : templates[u(rng) < 0.5 ? 0 : 1]) {
+      for (place::Landmark l : templates[u(rng) < 0.5 ? 0 : 1]) {
         if (l.class_id == 1 && u(rng) < 0.25) continue;
         l.p += Eigen::Vector3d(rx * 10.0 + jitter(rng), ry * 10.0 + jitter(rng), 0);
         l.index = out.size();
@@ -46,7 +46,7 @@ std::vector<Landmark> repeatedRooms(int rooms_x, int rooms_y, std::mt19937& rng)
 
 // A walk over the route graph of at least `length` metres through nodes `allowed` accepts:
 // no U-turn unless at a dead end, the least visited neighbour first (ties at random).
-std::vector<Eigen::Vector2d> walkRoute(const RouteGraph& g, double length,
+std::vector<Eigen::Vector2d> walkRoute(const simulator::RouteGraph& g, double length,
                                        const std::function<bool(const Eigen::Vector2d&)>& allowed, std::mt19937& rng) {
   const std::vector<std::vector<int>> nb = g.neighbours();
   std::vector<int> ok;
@@ -103,33 +103,33 @@ struct Error {
   double trans_m = 0, yaw_deg = 0;
 };
 // Translation error where it matters, at the shared objects' centroid (B's frame); yaw error.
-Error errorAt(const Pose& estimate, const SharedTruth& t) {
+Error errorAt(const Pose& estimate, const simulator::SharedTruth& t) {
   return {(estimate * t.centroid_b - t.T_a_b * t.centroid_b).norm(),
           std::abs(wrapAngle(yawOf(estimate.linear()) - yawOf(t.T_a_b.linear()))) * 180.0 / M_PI};
 }
 bool withinTolerance(const Error& e) { return e.trans_m <= 1.0 && e.yaw_deg <= 2.0; }
 // "X m / Y deg off", or that the maps share too few objects for a truth (any transform is wrong).
-std::string offBy(const Pose& estimate, const SharedTruth& t) {
+std::string offBy(const Pose& estimate, const simulator::SharedTruth& t) {
   if (!t.ok) return fmt::format("given while the maps share {} objects", t.shared);
   const Error e = errorAt(estimate, t);
   return fmt::format("{:.2f} m / {:.2f} deg off", e.trans_m, e.yaw_deg);
 }
 
-std::size_t trueObjects(const std::vector<Landmark>& lms) {
-  return static_cast<std::size_t>(
-      std::count_if(lms.begin(), lms.end(), [](const Landmark& l) { return l.index != kSpuriousObject; }));
+std::size_t trueObjects(const std::vector<place::Landmark>& lms) {
+  return static_cast<std::size_t>(std::count_if(
+      lms.begin(), lms.end(), [](const place::Landmark& l) { return l.index != simulator::kSpuriousObject; }));
 }
 }  // namespace
 
 RouteWorld routeWorld(const std::string& name, unsigned seed) {
   RouteWorld w;
   w.name = name;
-  const ClassConfusions outdoor{{71, {80}}, {80, {71}}, {10, {0}}, {0, {10, 80}}};
+  const simulator::ClassConfusions outdoor{{71, {80}}, {80, {71}}, {10, {0}}, {0, {10, 80}}};
   w.confusions = outdoor;
   std::mt19937 rng(seed);
   std::mt19937_64 rng64(seed);
   if (name == "forest" || name == "longleaf" || name == "spruces" || name == "finpines") {
-    ForestParams p;
+    simulator::ForestParams p;
     p.crowns = false;
     p.bushes = 0;
     if (name == "forest") {
@@ -144,7 +144,7 @@ RouteWorld routeWorld(const std::string& name, unsigned seed) {
       w.route_length = name == "longleaf" ? 250 : (name == "spruces" ? 60 : 12);
       w.range = name == "longleaf" ? 12 : (name == "spruces" ? 8 : 3);
     }
-    const slide::World world = makeForestWorld(p, seed);
+    const simulator::World world = simulator::makeForestWorld(p, seed);
     w.objects = landmarksOfWorld(world);
     w.routes = world.routes;
     w.description = fmt::format("{} trunks over {:.0f} x {:.0f} m ({}), route {:.0f} m, range {:.0f} m", w.objects.size(),
@@ -152,18 +152,21 @@ RouteWorld routeWorld(const std::string& name, unsigned seed) {
                                 w.route_length, w.range);
   } else if (name == "forest_scale") {
     w.objects = forestWorld(1500, 1500, 0.1, rng);
-    w.routes = routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(1500, 1500)), 25, 5, rng64);
+    w.routes =
+        simulator::routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(1500, 1500)), 25, 5, rng64);
     w.route_length = 3500, w.range = 15;
     w.description = fmt::format("{} Poisson trunks (0.1/m^2) over 1,500 x 1,500 m, range {:.0f} m", w.objects.size(), w.range);
   } else if (name == "forest_large") {
     w.objects = forestWorld(600, 600, 0.1, rng);
-    w.routes = routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(600, 600)), 25, 5, rng64);
+    w.routes =
+        simulator::routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(600, 600)), 25, 5, rng64);
     w.route_length = 1000, w.range = 15;
     w.description = fmt::format("{} Poisson trunks (0.1/m^2) over 600 x 600 m, route {:.0f} m, range {:.0f} m",
                                 w.objects.size(), w.route_length, w.range);
   } else if (name == "urban") {
     w.objects = urbanWorld(420, rng);
-    w.routes = routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(420, 420)), 60, 0, rng64);
+    w.routes =
+        simulator::routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(0, 0), Eigen::Vector2d(420, 420)), 60, 0, rng64);
     w.route_length = 500, w.range = 25;
     w.description = fmt::format("{} cars, poles, trees, other along a 60 m street grid over 420 x 420 m, route {:.0f} m, "
                                 "range {:.0f} m", w.objects.size(), w.route_length, w.range);
@@ -171,7 +174,8 @@ RouteWorld routeWorld(const std::string& name, unsigned seed) {
     const bool repeated = name == "indoor_repeated";
     w.objects = repeated ? repeatedRooms(8, 4, rng) : indoorWorld(6, 4, rng);
     const double wx = repeated ? 80 : 60;
-    w.routes = routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(wx - 1, 39)), 10, 0, rng64);
+    w.routes = simulator::routeLattice(Eigen::AlignedBox2d(Eigen::Vector2d(-1, -1), Eigen::Vector2d(wx - 1, 39)), 10, 0,
+                                       rng64);
     w.confusions = {{1, {2}}, {2, {1}}, {3, {0}}};
     w.route_length = 80, w.range = 5;
     w.description = fmt::format("{} tables, chairs, monitors in {} 8 x 8 m offices{}, route {:.0f} m through room centres, "
@@ -185,15 +189,15 @@ RouteWorld routeWorld(const std::string& name, unsigned seed) {
 
 namespace {
 // The indices of the objects of `world` within `range` (horizontally) of the route, in world order.
-std::vector<std::size_t> withinReach(const std::vector<Landmark>& world, const std::vector<Eigen::Vector2d>& route,
-                                     double range) {
+std::vector<std::size_t> withinReach(const std::vector<place::Landmark>& world,
+                                     const std::vector<Eigen::Vector2d>& route, double range) {
   const double cell = std::max(range, 1.0);
   auto key = [&](double x, double y) {
     return (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / cell))) << 32) ^
            (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(y / cell))) & 0xffffffffULL);
   };
   std::unordered_map<std::uint64_t, std::vector<Eigen::Vector2d>> cells;
-  for (const Pose& T : posesAlong(route, 0.25 * cell)) {
+  for (const Pose& T : simulator::posesAlong(route, 0.25 * cell)) {
     const Eigen::Vector2d p = T.translation().head<2>();
     cells[key(p.x(), p.y())].push_back(p);
   }
@@ -202,7 +206,7 @@ std::vector<std::size_t> withinReach(const std::vector<Landmark>& world, const s
   // is within range + cell / 8 of a pose.
   const double reach = range + 0.125 * cell;
   for (std::size_t i = 0; i < world.size(); ++i) {
-    const Landmark& l = world[i];
+    const place::Landmark& l = world[i];
     bool near = false;
     for (int dx = -2; dx <= 2 && !near; ++dx)
       for (int dy = -2; dy <= 2 && !near; ++dy) {
@@ -222,15 +226,15 @@ std::vector<std::size_t> withinReach(const std::vector<Landmark>& world, const s
 // mapAlongRoute over the objects within reach of the route only: the same map (objects out of
 // reach are never seen and draw no random numbers), without a pass over every pose for each
 // object of a large world. Landmark::index is the world index, as mapAlongRoute's own.
-DriftedMap mapInReach(const RouteWorld& w, const std::vector<Eigen::Vector2d>& route, const MapErrorParams& errors,
-                      std::mt19937& rng) {
+simulator::DriftedMap mapInReach(const RouteWorld& w, const std::vector<Eigen::Vector2d>& route,
+                                 const simulator::MapErrorParams& errors, std::mt19937& rng) {
   const std::vector<std::size_t> origin = withinReach(w.objects, route, errors.range);
-  std::vector<Landmark> objects;
+  std::vector<place::Landmark> objects;
   objects.reserve(origin.size());
   for (std::size_t i : origin) objects.push_back(w.objects[i]);
-  DriftedMap m = mapAlongRoute(objects, route, errors, w.confusions, rng);
-  for (Landmark& l : m.lms)
-    if (l.index != kSpuriousObject) l.index = origin[l.index];
+  simulator::DriftedMap m = simulator::mapAlongRoute(objects, route, errors, w.confusions, rng);
+  for (place::Landmark& l : m.lms)
+    if (l.index != simulator::kSpuriousObject) l.index = origin[l.index];
   return m;
 }
 }  // namespace
@@ -239,7 +243,7 @@ std::vector<MapPair> makePairs(const RouteWorld& w, const Condition& c, unsigned
   std::mt19937 rng(seed);
   std::vector<MapPair> out;
   const double L = w.route_length, f = c.overlap;
-  MapErrorParams errors = c.errors;
+  simulator::MapErrorParams errors = c.errors;
   errors.range = w.range;
   for (int k = 0; k < c.pairs; ++k) {
     const std::vector<Eigen::Vector2d> master = walkRoute(w.routes, (2 - f) * L + 1, [](const Eigen::Vector2d&) { return true; }, rng);
@@ -265,23 +269,24 @@ std::vector<MapPair> makePairs(const RouteWorld& w, const Condition& c, unsigned
   return out;
 }
 
-std::vector<SharedTruth> sharedPlaces(const MapPair& p, double gap) {
+std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap) {
   // Shared objects in the order A passed them; a gap of more than `gap` metres along A's route
   // starts another place.
   std::vector<std::size_t> in_b;
-  for (const Landmark& l : p.b.lms)
-    if (l.index != kSpuriousObject) in_b.push_back(l.index);
+  for (const place::Landmark& l : p.b.lms)
+    if (l.index != simulator::kSpuriousObject) in_b.push_back(l.index);
   std::sort(in_b.begin(), in_b.end());
   std::vector<std::pair<double, std::size_t>> along;  // (A's metres, A's landmark)
   for (std::size_t i = 0; i < p.a.lms.size(); ++i)
-    if (p.a.lms[i].index != kSpuriousObject && std::binary_search(in_b.begin(), in_b.end(), p.a.lms[i].index))
+    if (p.a.lms[i].index != simulator::kSpuriousObject &&
+        std::binary_search(in_b.begin(), in_b.end(), p.a.lms[i].index))
       along.emplace_back(p.a.seen_at[i], i);
   std::sort(along.begin(), along.end());
-  std::vector<SharedTruth> out;
-  std::vector<Landmark> place;
+  std::vector<simulator::SharedTruth> out;
+  std::vector<place::Landmark> place;
   for (std::size_t k = 0; k <= along.size(); ++k) {
     if (k == along.size() || (k > 0 && along[k].first - along[k - 1].first > gap)) {
-      const SharedTruth t = sharedObjectTruth(place, p.b.lms);
+      const simulator::SharedTruth t = simulator::sharedObjectTruth(place, p.b.lms);
       if (t.ok) out.push_back(t);
       place.clear();
     }
@@ -290,12 +295,12 @@ std::vector<SharedTruth> sharedPlaces(const MapPair& p, double gap) {
   return out;
 }
 
-RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config,
-                          double place_gap) {
+RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod method,
+                          const place::PlaceConfig& config, double place_gap) {
   RealisticFigures f;
   for (const MapPair& p : pairs) {
     const PeakMemory memory;
-    const PlaceResult r = recognizePlace(method, p.a.lms, p.b.lms, config);
+    const place::PlaceResult r = place::recognizePlace(method, p.a.lms, p.b.lms, config);
     f.peak_mb.push_back(memory.extraMb());
     f.cpu_ms.push_back(r.cpu_ms);
     std::map<std::string, double> stages;  // a stage may run more than once (SlideGraph's hypotheses)
@@ -313,7 +318,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
       continue;
     }
     ++f.overlapping;
-    const SharedTruth t = sharedObjectTruth(p.a.lms, p.b.lms);
+    const simulator::SharedTruth t = simulator::sharedObjectTruth(p.a.lms, p.b.lms);
     f.shared_fraction.push_back(static_cast<double>(t.shared) / std::max<std::size_t>(1, trueObjects(p.b.lms)));
     f.truth_rms.push_back(t.rms);
     if (!r.found) {
@@ -324,7 +329,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
     Error e = t.ok ? errorAt(r.T_a_b, t) : Error{};
     bool correct = t.ok && withinTolerance(e);
     if (!correct && place_gap > 0)  // right about one of the places the maps share
-      for (const SharedTruth& place : sharedPlaces(p, place_gap))
+      for (const simulator::SharedTruth& place : sharedPlaces(p, place_gap))
         if (withinTolerance(errorAt(r.T_a_b, place))) {
           correct = true;
           e = errorAt(r.T_a_b, place);
@@ -338,10 +343,10 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
       ++f.wrong;
       std::string places;
       if (place_gap > 0) {
-        const std::vector<SharedTruth> ps = sharedPlaces(p, place_gap);
+        const std::vector<simulator::SharedTruth> ps = sharedPlaces(p, place_gap);
         std::string nearest = "none";
         double best = 1e300;
-        for (const SharedTruth& q : ps)
+        for (const simulator::SharedTruth& q : ps)
           if (errorAt(r.T_a_b, q).trans_m < best)
             best = errorAt(r.T_a_b, q).trans_m, nearest = offBy(r.T_a_b, q) + fmt::format(" of a place of {} objects, fit {:.2f} m rms", q.shared, q.rms);
         places = fmt::format("; {} shared places, nearest: {}", ps.size(), nearest);
@@ -354,11 +359,11 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method,
   return f;
 }
 
-ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config,
-                              const ConsensusParams& consensus, int checks) {
+ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMethod method,
+                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks) {
   ConsensusFigures f;
   for (const MapPair& p : pairs) {
-    ConsensusFilter filter(consensus);
+    place::ConsensusFilter filter(consensus);
     const double length = p.b.s.empty() ? 0 : p.b.s.back();
     int fed = 0;
     double first_correct_s = -1;
@@ -366,20 +371,20 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, PlaceMethod met
     (p.overlapping ? f.pairs : f.disjoint) += 1;
     for (int k = 1; k <= checks; ++k) {
       const double s = length * k / checks;
-      const std::vector<Landmark> b = mapUpTo(p.b, s);
+      const std::vector<place::Landmark> b = simulator::mapUpTo(p.b, s);
       if (b.size() < 6) continue;  // the loop closer's minimum
       ++f.queries;
-      const PlaceResult r = recognizePlace(method, p.a.lms, b, config);
+      const place::PlaceResult r = place::recognizePlace(method, p.a.lms, b, config);
       if (!r.found) continue;
       ++f.raw_found;
       ++fed;
-      const SharedTruth t = sharedObjectTruth(p.a.lms, b);
+      const simulator::SharedTruth t = simulator::sharedObjectTruth(p.a.lms, b);
       const auto correct = [&](const Pose& T) { return p.overlapping && t.ok && withinTolerance(errorAt(T, t)); };
       const bool raw_ok = correct(r.T_a_b);
       f.raw_wrong += !raw_ok;
       if (raw_ok && first_correct_s < 0) first_correct_s = s;
-      const ConsensusFilter::Update u = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
-      if (u.outcome == ConsensusFilter::Outcome::Pending) continue;
+      const place::ConsensusFilter::Update u = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
+      if (u.outcome == place::ConsensusFilter::Outcome::Pending) continue;
       if (correct(u.T)) {
         if (!published_correct) {
           f.detections_to_publish.push_back(fed);
@@ -403,17 +408,17 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, PlaceMethod met
 }
 
 namespace {
-MapErrorParams errorsOf(double noise, double missed, double spurious, double confusion, double drift_deg) {
-  MapErrorParams e;
+simulator::MapErrorParams errorsOf(double noise, double missed, double spurious, double confusion, double drift_deg) {
+  simulator::MapErrorParams e;
   e.position_sigma = noise, e.missed = missed, e.spurious = spurious, e.confusion = confusion;
   e.yaw_drift_deg_per_100m = drift_deg;
   e.scale_error = 0.005;
   e.vertical_drift_per_100m = 0.3;
   return e;
 }
-const MapErrorParams kTarget = errorsOf(0.25, 0.2, 0.2, 0.075, 1.5);  // the recall condition
-const MapErrorParams kMild = errorsOf(0.1, 0.1, 0.1, 0.05, 0.5);
-const MapErrorParams kHarsh = errorsOf(0.3, 0.3, 0.25, 0.1, 2.0);
+const simulator::MapErrorParams kTarget = errorsOf(0.25, 0.2, 0.2, 0.075, 1.5);  // the recall condition
+const simulator::MapErrorParams kMild = errorsOf(0.1, 0.1, 0.1, 0.05, 0.5);
+const simulator::MapErrorParams kHarsh = errorsOf(0.3, 0.3, 0.25, 0.1, 2.0);
 
 struct Case {
   std::string world;
@@ -431,7 +436,7 @@ std::vector<Case> cases() {
   out.push_back({"indoor_repeated", {"target", kTarget, 0.2, 0, 10}});
   for (double f : {0.1, 0.3, 0.5}) out.push_back({"forest", {fmt::format("overlap{:.0f}", 100 * f), kTarget, f, 6, 0}});
   for (double d : {0.5, 1.0, 2.0}) {
-    MapErrorParams e = kTarget;
+    simulator::MapErrorParams e = kTarget;
     e.yaw_drift_deg_per_100m = d;
     out.push_back({"forest", {fmt::format("drift{:.1f}", d), e, 0.2, 6, 0}});
   }
@@ -440,7 +445,7 @@ std::vector<Case> cases() {
 }
 
 std::string describe(const Condition& c) {
-  const MapErrorParams& e = c.errors;
+  const simulator::MapErrorParams& e = c.errors;
   return fmt::format("noise {:.2f} m, {:.0f}% missed, {:.0f}% spurious, {:.1f}% confused, {:.1f} deg/100 m yaw drift, "
                      "{:.1f}% scale, {:.1f} m/100 m vertical, overlap {:.0f}% of the route",
                      e.position_sigma, 100 * e.missed, 100 * e.spurious, 100 * e.confusion, e.yaw_drift_deg_per_100m,
@@ -449,7 +454,7 @@ std::string describe(const Condition& c) {
 
 }  // namespace
 
-MapErrorParams conditionErrors(const std::string& name) {
+simulator::MapErrorParams conditionErrors(const std::string& name) {
   if (name == "target") return kTarget;
   if (name == "mild") return kMild;
   if (name == "harsh") return kHarsh;
@@ -462,8 +467,8 @@ std::string joined(const std::vector<std::string>& notes) {
   return out;
 }
 
-void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusParams& consensus, unsigned seed,
-                  const std::vector<std::string>& worlds) {
+void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, const place::ConsensusParams& consensus,
+                  unsigned seed, const std::vector<std::string>& worlds) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::set<std::string> want(worlds.begin(), worlds.end());
   std::map<std::string, RouteWorld> built;
@@ -484,9 +489,9 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
     const std::string cond = c.world + "." + c.condition.name;
     spdlog::info("realistic {}: {} overlapping + {} disjoint pairs; {}", cond, c.condition.pairs, c.condition.disjoint_pairs,
                  describe(c.condition));
-    for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
       const RealisticFigures f = runPairs(pairs, m, config);
-      const std::string prefix = "realistic." + cond + "." + methodName(m) + ".";
+      const std::string prefix = "realistic." + cond + "." + place::methodName(m) + ".";
       const bool headline = c.condition.name == "target" && c.world != "forest_large";
       if (f.overlapping) {
         rep.add(prefix + "recall", double(f.correct) / f.overlapping, "", false, headline ? std::optional<double>(0.9) : std::nullopt)
@@ -495,10 +500,11 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
         if (f.missed) rep.add(prefix + "missed", f.missed, "", true).note = joined(f.miss_notes);
         rep.add(prefix + "wrong", f.wrong, "", true, 0.0).note =
             f.wrong ? joined(f.wrong_notes) : "found but more than 1 m (at the shared objects' centroid) or 2 deg off";
-        rep.add(prefix + "trans_err_m", f.trans_err.empty() ? nan : median(f.trans_err), "m").note =
+        rep.add(prefix + "trans_err_m", f.trans_err.empty() ? nan : bench::median(f.trans_err), "m").note =
             "median over the correct, at the centroid of the shared objects, against the least-squares truth";
-        rep.add(prefix + "yaw_err_deg", f.yaw_err.empty() ? nan : median(f.yaw_err), "deg").note = "median over the correct";
-        rep.add(prefix + "shared_fraction", median(f.shared_fraction), "", false).note =
+        rep.add(prefix + "yaw_err_deg", f.yaw_err.empty() ? nan : bench::median(f.yaw_err), "deg").note =
+            "median over the correct";
+        rep.add(prefix + "shared_fraction", bench::median(f.shared_fraction), "", false).note =
             "median share of B's true objects that A holds too";
       }
       if (f.disjoint) {
@@ -506,40 +512,44 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
             fmt::format("transforms on {} pairs in disjoint halves of the world{}", f.disjoint,
                         f.false_positives ? ": " + joined(f.wrong_notes) : "");
       }
-      const bool large_graph = c.world == "forest_large" && m == PlaceMethod::SlideGraph;
-      rep.add(prefix + "ms", median(f.cpu_ms), "ms", true, large_graph ? std::optional<double>(50.0) : std::nullopt).note =
+      const bool large_graph = c.world == "forest_large" && m == place::PlaceMethod::SlideGraph;
+      rep.add(prefix + "ms", bench::median(f.cpu_ms), "ms", true,
+              large_graph ? std::optional<double>(50.0) : std::nullopt)
+          .note =
           fmt::format("thread CPU time, median of one query per pair ({} pairs), maps {:.0f} x {:.0f} objects (median)",
-                      f.cpu_ms.size(), median(f.objects_a), median(f.objects_b));
+                      f.cpu_ms.size(), bench::median(f.objects_a), bench::median(f.objects_b));
       rep.add(prefix + "ms.max", *std::max_element(f.cpu_ms.begin(), f.cpu_ms.end()), "ms").note = "thread CPU time, slowest pair";
-      if (m == PlaceMethod::SlideGraph)
+      if (m == place::PlaceMethod::SlideGraph)
         rep.add(prefix + "clipper_peak_mb", f.peak_bytes / 1e6, "MB").note =
             "largest consistency graph + solver vectors of any query (associations capped at max_associations)";
-      table += fmt::format("| {} | {} | {} | {:.0f} x {:.0f} | {} | {} | {} | {} | {} | {} | {:.1f} / {:.1f} |\n", c.world,
-                           c.condition.name, methodName(m), median(f.objects_a), median(f.objects_b),
-                           f.shared_fraction.empty() ? "-" : fmt::format("{:.2f}", median(f.shared_fraction)),
-                           f.overlapping ? fmt::format("{}/{}", f.correct, f.overlapping) : "-",
-                           f.overlapping ? std::to_string(f.wrong) : "-",
-                           f.disjoint ? fmt::format("{}/{}", f.false_positives, f.disjoint) : "-",
-                           f.trans_err.empty() ? "-" : fmt::format("{:.2f}", median(f.trans_err)),
-                           f.yaw_err.empty() ? "-" : fmt::format("{:.2f}", median(f.yaw_err)), median(f.cpu_ms),
-                           *std::max_element(f.cpu_ms.begin(), f.cpu_ms.end()));
+      table +=
+          fmt::format("| {} | {} | {} | {:.0f} x {:.0f} | {} | {} | {} | {} | {} | {} | {:.1f} / {:.1f} |\n", c.world,
+                      c.condition.name, place::methodName(m), bench::median(f.objects_a), bench::median(f.objects_b),
+                      f.shared_fraction.empty() ? "-" : fmt::format("{:.2f}", bench::median(f.shared_fraction)),
+                      f.overlapping ? fmt::format("{}/{}", f.correct, f.overlapping) : "-",
+                      f.overlapping ? std::to_string(f.wrong) : "-",
+                      f.disjoint ? fmt::format("{}/{}", f.false_positives, f.disjoint) : "-",
+                      f.trans_err.empty() ? "-" : fmt::format("{:.2f}", bench::median(f.trans_err)),
+                      f.yaw_err.empty() ? "-" : fmt::format("{:.2f}", bench::median(f.yaw_err)),
+                      bench::median(f.cpu_ms), *std::max_element(f.cpu_ms.begin(), f.cpu_ms.end()));
     }
   }
   // Consensus over time on the target condition: B's map grows, checked 8 times along its route.
   for (auto& [world, pairs] : target_pairs) {
     if (world == "forest_large") continue;
-    for (PlaceMethod m : {PlaceMethod::SlideGraph, PlaceMethod::SlideMatch}) {
+    for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
       const ConsensusFigures f = runConsensus(pairs, m, config, consensus, 8);
-      const std::string prefix = "realistic." + world + ".consensus." + methodName(m) + ".";
+      const std::string prefix = "realistic." + world + ".consensus." + place::methodName(m) + ".";
       if (f.pairs) {
         rep.add(prefix + "recall", double(f.published_correct) / f.pairs, "", false).note = fmt::format(
             "pairs with a correct published transform, of {} (B's map checked 8 times as it grows; {} queries, {} found, "
             "{} of them wrong)", f.pairs, f.queries, f.raw_found, f.raw_wrong);
         rep.add(prefix + "published_wrong", f.published_wrong, "", true, 0.0).note =
             f.published_wrong ? joined(f.wrong_notes) : "pairs where the filter published a wrong transform";
-        rep.add(prefix + "detections", f.detections_to_publish.empty() ? nan : median(f.detections_to_publish), "").note =
-            "found results fed to the filter until the first correct publication, median";
-        rep.add(prefix + "delay_m", f.metres_delay.empty() ? nan : median(f.metres_delay), "m").note =
+        rep.add(prefix + "detections", f.detections_to_publish.empty() ? nan : bench::median(f.detections_to_publish),
+                "")
+            .note = "found results fed to the filter until the first correct publication, median";
+        rep.add(prefix + "delay_m", f.metres_delay.empty() ? nan : bench::median(f.metres_delay), "m").note =
             "metres B drove from its first correct raw detection to the first correct publication, median";
       }
       if (f.disjoint)
@@ -551,4 +561,4 @@ void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusPa
                "truth over shared objects):\n" << table << std::endl;
 }
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

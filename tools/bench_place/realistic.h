@@ -14,14 +14,14 @@
 #include "simulator/drifted_object_map.h"
 #include "simulator/world.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 // A world of objects with the routes robots drive through it.
 struct RouteWorld {
   std::string name;
-  std::vector<Landmark> objects;  // index = position
-  RouteGraph routes;
-  ClassConfusions confusions;
+  std::vector<place::Landmark> objects;  // index = position
+  simulator::RouteGraph routes;
+  simulator::ClassConfusions confusions;
   double range = 15;         // sensor range of its robots, metres
   double route_length = 300; // metres each robot drives
   std::string description;
@@ -37,20 +37,20 @@ RouteWorld routeWorld(const std::string& name, unsigned seed);
 
 // The error parameters of a named condition: "target" (the recall condition: 0.25 m
 // noise, 20 % missed, 20 % spurious, 7.5 % confused, 1.5 deg/100 m), "mild", "harsh".
-MapErrorParams conditionErrors(const std::string& name);
+simulator::MapErrorParams conditionErrors(const std::string& name);
 
 // A condition: error parameters, overlap (share of B's route along A's), pairs and how many of
 // them are disjoint (routes in opposite halves of the world).
 struct Condition {
   std::string name;
-  MapErrorParams errors;
+  simulator::MapErrorParams errors;
   double overlap = 0.2;
   int pairs = 6;           // overlapping pairs; odd ones drive the shared stretch the opposite way
   int disjoint_pairs = 0;  // pairs in disjoint halves: any transform is a false positive
 };
 
 struct MapPair {
-  DriftedMap a, b;
+  simulator::DriftedMap a, b;
   bool overlapping = true;
   bool opposite = false;
 };
@@ -73,11 +73,11 @@ struct RealisticFigures {
 // places the maps share: runs of shared objects no more than place_gap metres apart along A's
 // route, each with its own least-squares truth. Long routes cross each other: the whole shared
 // set then spans places the two maps bend differently, and no rigid transform fits all of them.
-RealisticFigures runPairs(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config,
-                          double place_gap = 0);
+RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod method,
+                          const place::PlaceConfig& config, double place_gap = 0);
 // The places two maps share (see runPairs), each with its least-squares truth (places with fewer
 // than 3 shared objects left out).
-std::vector<SharedTruth> sharedPlaces(const MapPair& p, double gap);
+std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap);
 
 // The loop closer's way: B's map grows along its route; it is checked `checks` times (evenly
 // along the route) against A's whole map and every found transform goes through the consensus
@@ -89,20 +89,20 @@ struct ConsensusFigures {
   std::vector<double> detections_to_publish, metres_delay;
   std::vector<std::string> wrong_notes;
 };
-ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, PlaceMethod method, const PlaceConfig& config,
-                              const ConsensusParams& consensus, int checks);
+ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMethod method,
+                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 // The suite's cases (world and condition), and running them: figures per case and method into
 // `rep` (names realistic.<world>.<condition>.<method>.*) and a summary table on stdout. `worlds`
 // empty runs every world. Consensus: the loop closer's filter over growing maps (target condition).
-void runRealistic(BenchReport& rep, const PlaceConfig& config, const ConsensusParams& consensus, unsigned seed,
-                  const std::vector<std::string>& worlds);
+void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, const place::ConsensusParams& consensus,
+                  unsigned seed, const std::vector<std::string>& worlds);
 
 // Joined with "; " (notes of several pairs in one figure).
 std::string joined(const std::vector<std::string>& notes);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

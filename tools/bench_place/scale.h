@@ -12,9 +12,9 @@
 #include "bench/report.h"
 #include "place/place_config.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
-void runScale(BenchReport& rep, const PlaceConfig& config, unsigned seed, const std::vector<int>& sizes,
+void runScale(bench::BenchReport& rep, const place::PlaceConfig& config, unsigned seed, const std::vector<int>& sizes,
               const std::vector<std::string>& conditions);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

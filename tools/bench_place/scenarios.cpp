@@ -6,17 +6,17 @@
 
 #include "io/object_map_text.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 namespace {
-bool inBox(const Landmark& l, double x0, double y0, double x1, double y1) {
+bool inBox(const place::Landmark& l, double x0, double y0, double x1, double y1) {
   return l.p.x() >= x0 && l.p.x() < x1 && l.p.y() >= y0 && l.p.y() < y1;
 }
 
-std::vector<Landmark> readReal(const std::string& data_dir, const std::string& set, int robot) {
+std::vector<place::Landmark> readReal(const std::string& data_dir, const std::string& set, int robot) {
   static const ClassTable classes = ClassTable::loadDefault();
   const std::string path = data_dir + "/slideslam_maps/" + set + "/robot" + std::to_string(robot) + ".txt";
-  return landmarksOf(readObjectMapText(path, classes, MissingSize::Zero).map);
+  return place::landmarksOf(io::readObjectMapText(path, classes, io::MissingSize::Zero).map);
 }
 }  // namespace
 
@@ -25,10 +25,10 @@ Scenario indoorScenario(unsigned seed) {
   for (int k = 0; k < 5; ++k) {
     std::mt19937 rng(seed + k);
     const World w = indoorWorld(4, 2, rng);
-    const PerturbParams p{0.05, 0.05, 0.1};
+    const place::PerturbParams p{0.05, 0.05, 0.1};
     PairCase c;
-    c.a = observe(w, [](const Landmark& l) { return l.p.x() < 28; }, randomFrame({10, 8}, 10, rng), p, rng);
-    c.b = observe(w, [](const Landmark& l) { return l.p.x() > 8; }, randomFrame({25, 8}, 10, rng), p, rng);
+    c.a = observe(w, [](const place::Landmark& l) { return l.p.x() < 28; }, randomFrame({10, 8}, 10, rng), p, rng);
+    c.b = observe(w, [](const place::Landmark& l) { return l.p.x() > 8; }, randomFrame({25, 8}, 10, rng), p, rng);
     s.pairs.push_back(c);
   }
   return s;
@@ -39,10 +39,13 @@ Scenario urbanScenario(unsigned seed) {
   for (int k = 0; k < 5; ++k) {
     std::mt19937 rng(seed + k);
     const World w = urbanWorld(300, rng);
-    const PerturbParams p{0.1, 0.1, 0.1};
+    const place::PerturbParams p{0.1, 0.1, 0.1};
     PairCase c;
-    c.a = observe(w, [](const Landmark& l) { return inBox(l, 0, 0, 200, 200); }, randomFrame({100, 100}, 50, rng), p, rng);
-    c.b = observe(w, [](const Landmark& l) { return inBox(l, 100, 100, 300, 300); }, randomFrame({200, 200}, 50, rng), p, rng);
+    c.a = observe(
+        w, [](const place::Landmark& l) { return inBox(l, 0, 0, 200, 200); }, randomFrame({100, 100}, 50, rng), p, rng);
+    c.b = observe(
+        w, [](const place::Landmark& l) { return inBox(l, 100, 100, 300, 300); }, randomFrame({200, 200}, 50, rng), p,
+        rng);
     s.pairs.push_back(c);
   }
   return s;
@@ -55,7 +58,7 @@ Scenario forestScenario(unsigned seed, int overlapping, int disjoint) {
   std::mt19937 rng(seed);
   const World w = forestWorld(400, 200, 0.09, rng);
   std::uniform_real_distribution<double> u(0, 1);
-  const PerturbParams p{0.1, 0.03, 0.1};
+  const place::PerturbParams p{0.1, 0.03, 0.1};
   for (int k = 0; k < overlapping + disjoint; ++k) {
     const bool overlap = k < overlapping;
     const double ax = u(rng) * 90, ay = u(rng) * 90;
@@ -63,9 +66,9 @@ Scenario forestScenario(unsigned seed, int overlapping, int disjoint) {
     const double by = overlap ? ay + (u(rng) - 0.5) * 40 : u(rng) * 130;
     PairCase c;
     c.overlapping = overlap;
-    c.a = observe(w, [&](const Landmark& l) { return inBox(l, ax, ay, ax + 100, ay + 100); },
+    c.a = observe(w, [&](const place::Landmark& l) { return inBox(l, ax, ay, ax + 100, ay + 100); },
                   randomFrame({ax + 50, ay + 50}, 30, rng), p, rng);
-    c.b = observe(w, [&](const Landmark& l) { return inBox(l, bx, by, bx + 60, by + 60); },
+    c.b = observe(w, [&](const place::Landmark& l) { return inBox(l, bx, by, bx + 60, by + 60); },
                   randomFrame({bx + 30, by + 30}, 20, rng), p, rng);
     s.pairs.push_back(c);
   }
@@ -97,24 +100,24 @@ Scenario realScenario(const std::string& data_dir, const std::string& set, unsig
              "5 cm, 10% dropped"};
   std::mt19937 rng(seed);
   for (int robot = 0; robot < 3; ++robot) {
-    const std::vector<Landmark> lms = readReal(data_dir, set, robot);
+    const std::vector<place::Landmark> lms = readReal(data_dir, set, robot);
     for (int k = 0; k < 5; ++k) {
       PairCase c;
       c.a = {lms, Pose::Identity()};
       c.b.T_w_r = randomFrame({0, 0}, 30, rng);
-      c.b.lms = perturbedCopy(lms, c.b.T_w_r, {0.05, 0.0, 0.1}, rng);
+      c.b.lms = place::perturbedCopy(lms, c.b.T_w_r, {0.05, 0.0, 0.1}, rng);
       s.pairs.push_back(c);
     }
   }
   return s;
 }
 
-MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConfig& config, int repeats) {
+MethodFigures runScenario(const Scenario& s, place::PlaceMethod method, const place::PlaceConfig& config, int repeats) {
   MethodFigures f;
   for (const PairCase& c : s.pairs) {
-    PlaceResult first;
+    place::PlaceResult first;
     for (int r = 0; r < repeats; ++r) {
-      PlaceResult res = recognizePlace(method, c.a.lms, c.b.lms, config);
+      place::PlaceResult res = place::recognizePlace(method, c.a.lms, c.b.lms, config);
       f.ms.push_back(res.ms);
       f.cpu_ms.push_back(res.cpu_ms);
       std::map<std::string, double> per_run;  // stages repeated within a run are summed
@@ -134,7 +137,7 @@ MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConf
       ++f.missed;
       continue;
     }
-    const TransformError e = transformError(first.T_a_b, truthBetween(c.a, c.b));
+    const eval::TransformError e = eval::transformError(first.T_a_b, truthBetween(c.a, c.b));
     if (e.translation_m < 1.0 && e.yaw_deg < 2.0) {
       ++f.correct;
       f.trans_err.push_back(e.translation_m);
@@ -146,12 +149,13 @@ MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConf
   return f;
 }
 
-ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const ClipperParams& params, unsigned seed) {
+ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const place::ClipperParams& params,
+                            unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<std::uint32_t> pick(0, static_cast<std::uint32_t>(c.a.lms.size() - 1));
   std::map<std::size_t, std::uint32_t> a_of_id;
   for (std::uint32_t i = 0; i < c.a.lms.size(); ++i) a_of_id[c.a.lms[i].index] = i;
-  std::vector<Association> assoc;
+  std::vector<place::Association> assoc;
   ClipperStress s;
   for (std::uint32_t j = 0; j < c.b.lms.size(); ++j) {
     const auto it = a_of_id.find(c.b.lms[j].index);
@@ -165,11 +169,11 @@ ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const 
     }
   }
   std::vector<Eigen::Vector3d> pa, pb;
-  for (const Landmark& l : c.a.lms) pa.push_back(l.p);
-  for (const Landmark& l : c.b.lms) pb.push_back(l.p);
-  const double t0 = threadCpuMs();
-  const ClipperResult r = clipper(pa, pb, assoc, params);
-  s.ms = threadCpuMs() - t0;
+  for (const place::Landmark& l : c.a.lms) pa.push_back(l.p);
+  for (const place::Landmark& l : c.b.lms) pb.push_back(l.p);
+  const double t0 = clock::threadCpuMs();
+  const place::ClipperResult r = place::clipper(pa, pb, assoc, params);
+  s.ms = clock::threadCpuMs() - t0;
   s.associations = assoc.size();
   s.selected = r.selected.size();
   for (std::size_t k : r.selected) s.selected_true += c.a.lms[assoc[k].a].index == c.b.lms[assoc[k].b].index;
@@ -178,59 +182,63 @@ ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const 
   return s;
 }
 
-AliasFigures aliasedRooms(unsigned seed, PlaceMethod method, const PlaceConfig& config, const ConsensusParams& consensus,
-                          int attempts) {
+AliasFigures aliasedRooms(unsigned seed, place::PlaceMethod method, const place::PlaceConfig& config,
+                          const place::ConsensusParams& consensus, int attempts) {
   std::mt19937 rng(seed);
   World room = indoorWorld(1, 1, rng);
   World w = room;
-  for (Landmark l : room) {  // the twin room, 10 m further along x
+  for (place::Landmark l : room) {  // the twin room, 10 m further along x
     l.p.x() += 10.0;
     l.index = w.size();
     w.push_back(l);
   }
   std::uniform_real_distribution<double> u(0, 1);
   for (int k = 0; k < 4; ++k) {  // what tells the rooms apart: a few objects only in the second
-    Landmark l;
+    place::Landmark l;
     l.class_id = 0;
     l.p = {11.0 + 6.0 * u(rng), 1.0 + 6.0 * u(rng), 0.5};
     l.size = {0.6, 0.6, 1.0};
     l.index = w.size();
     w.push_back(l);
   }
-  const RobotMap a = observe(w, [](const Landmark&) { return true; }, randomFrame({9, 4}, 3, rng), {0.03, 0.03, 0.0}, rng);
+  const RobotMap a = observe(
+      w, [](const place::Landmark&) { return true; }, randomFrame({9, 4}, 3, rng), {0.03, 0.03, 0.0}, rng);
   const Pose T_w_b = randomFrame({14, 4}, 3, rng);
   const Pose truth = a.T_w_r.inverse() * T_w_b;
-  ConsensusFilter filter(consensus);
+  place::ConsensusFilter filter(consensus);
   AliasFigures f;
   for (int k = 0; k < attempts; ++k) {
-    const RobotMap b = observe(w, [](const Landmark& l) { return l.p.x() > 9.0; }, T_w_b, {0.05, 0.05, 0.3}, rng);
-    const PlaceResult r = recognizePlace(method, a.lms, b.lms, config);
+    const RobotMap b = observe(
+        w, [](const place::Landmark& l) { return l.p.x() > 9.0; }, T_w_b, {0.05, 0.05, 0.3}, rng);
+    const place::PlaceResult r = place::recognizePlace(method, a.lms, b.lms, config);
     ++f.attempts;
     if (!r.found) continue;
     ++f.raw_found;
     const auto wrong = [&](const Pose& T) {
-      const TransformError e = transformError(T, truth);
+      const eval::TransformError e = eval::transformError(T, truth);
       return e.translation_m > 1.0 || e.yaw_deg > 2.0;
     };
     f.raw_wrong += wrong(r.T_a_b);
-    const ConsensusFilter::Update up = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
-    if (up.outcome == ConsensusFilter::Outcome::Pending) continue;
+    const place::ConsensusFilter::Update up = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
+    if (up.outcome == place::ConsensusFilter::Outcome::Pending) continue;
     ++f.published;
     f.published_wrong += wrong(up.T);
   }
   return f;
 }
 
-Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod method, const PlaceConfig& config) {
-  std::vector<Landmark> maps[3];
+Cycle realCycle(const std::string& data_dir, const std::string& set, place::PlaceMethod method,
+                const place::PlaceConfig& config) {
+  std::vector<place::Landmark> maps[3];
   for (int i = 0; i < 3; ++i) maps[i] = readReal(data_dir, set, i);
   Pose T[3];
   const int links[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   Cycle c;
   for (int k = 0; k < 3; ++k) {
     // Either direction will do (the acceptance test is not symmetric): T_b_a inverted.
-    const PlaceResult r = recognizePlace(method, maps[links[k][0]], maps[links[k][1]], config);
-    const PlaceResult back = r.found ? r : recognizePlace(method, maps[links[k][1]], maps[links[k][0]], config);
+    const place::PlaceResult r = place::recognizePlace(method, maps[links[k][0]], maps[links[k][1]], config);
+    const place::PlaceResult back =
+        r.found ? r : place::recognizePlace(method, maps[links[k][1]], maps[links[k][0]], config);
     if (!r.found && !back.found) {
       c.why = "robot" + std::to_string(links[k][0]) + "-robot" + std::to_string(links[k][1]) + ": " + r.reason;
       return c;
@@ -244,4 +252,4 @@ Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod
   return c;
 }
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

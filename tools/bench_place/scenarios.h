@@ -7,7 +7,7 @@
 #include "place/place_config.h"
 #include "worlds.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 struct PairCase {
   RobotMap a, b;
@@ -36,7 +36,7 @@ struct MethodFigures {
 
 // Runs `method` on every pair (`repeats` timed runs each; the first is scored). A result is
 // correct within 1 m and 2 degrees of the truth; otherwise (or on a disjoint pair) it is wrong.
-MethodFigures runScenario(const Scenario& s, PlaceMethod method, const PlaceConfig& config, int repeats);
+MethodFigures runScenario(const Scenario& s, place::PlaceMethod method, const place::PlaceConfig& config, int repeats);
 
 // CLIPPER alone on a large association set: for every landmark of B its true partner in A
 // (when A has it) plus `outliers_per_landmark` random landmarks of A.
@@ -44,7 +44,8 @@ struct ClipperStress {
   std::size_t associations = 0, true_associations = 0, selected = 0, selected_true = 0, edges = 0, peak_bytes = 0;
   double ms = 0;
 };
-ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const ClipperParams& params, unsigned seed);
+ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const place::ClipperParams& params,
+                            unsigned seed);
 
 // Two identical rooms side by side (perfect alias) plus a few objects only in the second; A
 // maps both, B re-maps the second room `attempts` times (new noise and missed objects each
@@ -52,8 +53,8 @@ ClipperStress clipperStress(const PairCase& c, int outliers_per_landmark, const 
 struct AliasFigures {
   int attempts = 0, raw_found = 0, raw_wrong = 0, published = 0, published_wrong = 0;
 };
-AliasFigures aliasedRooms(unsigned seed, PlaceMethod method, const PlaceConfig& config, const ConsensusParams& consensus,
-                          int attempts);
+AliasFigures aliasedRooms(unsigned seed, place::PlaceMethod method, const place::PlaceConfig& config,
+                          const place::ConsensusParams& consensus, int attempts);
 
 // Real robot maps: T01 * T12 * T20 for the three robots of `set`; false when a link is missing.
 struct Cycle {
@@ -61,6 +62,7 @@ struct Cycle {
   double trans_m = 0, yaw_deg = 0;
   std::string why;
 };
-Cycle realCycle(const std::string& data_dir, const std::string& set, PlaceMethod method, const PlaceConfig& config);
+Cycle realCycle(const std::string& data_dir, const std::string& set, place::PlaceMethod method,
+                const place::PlaceConfig& config);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

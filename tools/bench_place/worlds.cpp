@@ -9,11 +9,11 @@
 
 #include "io/kitti_poses.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
 namespace {
-Landmark make(int cls, const Eigen::Vector3d& p, const Eigen::Vector3d& size, std::size_t id) {
-  Landmark l;
+place::Landmark make(int cls, const Eigen::Vector3d& p, const Eigen::Vector3d& size, std::size_t id) {
+  place::Landmark l;
   l.class_id = cls;
   l.p = p;
   l.size = size;
@@ -99,12 +99,12 @@ World indoorWorld(int rooms_x, int rooms_y, std::mt19937& rng) {
   return out;
 }
 
-RobotMap observe(const World& world, const std::function<bool(const Landmark&)>& visible, const Pose& T_w_r,
-                 const PerturbParams& p, std::mt19937& rng) {
+RobotMap observe(const World& world, const std::function<bool(const place::Landmark&)>& visible, const Pose& T_w_r,
+                 const place::PerturbParams& p, std::mt19937& rng) {
   World seen;
-  for (const Landmark& l : world)
+  for (const place::Landmark& l : world)
     if (visible(l)) seen.push_back(l);
-  return {perturbedCopy(seen, T_w_r, p, rng), T_w_r};
+  return {place::perturbedCopy(seen, T_w_r, p, rng), T_w_r};
 }
 
 Pose randomFrame(const Eigen::Vector2d& around, double spread, std::mt19937& rng) {
@@ -114,7 +114,8 @@ Pose randomFrame(const Eigen::Vector2d& around, double spread, std::mt19937& rng
 
 KittiSequence loadKitti(const std::string& data_dir, const std::string& seq) {
   KittiSequence k;
-  k.poses = kittiLidarPoses(readKittiPoses(data_dir + "/kitti/poses/" + seq + ".txt"), kittiVeloToCamTr0410());
+  k.poses =
+      io::kittiLidarPoses(io::readKittiPoses(data_dir + "/kitti/poses/" + seq + ".txt"), io::kittiVeloToCamTr0410());
   const std::string path = data_dir + "/kitti/poles/" + seq + ".csv";
   std::ifstream f(path);
   if (!f) throw std::runtime_error(path + ": cannot open");
@@ -131,7 +132,7 @@ KittiSequence loadKitti(const std::string& data_dir, const std::string& seq) {
     k.poles.push_back(make(80, {x, y, 0}, {0.3, 0.3, 4.0}, k.poles.size()));
   }
   // Pole centres at the height of the nearest trajectory pose (the ground is not in the data).
-  for (Landmark& l : k.poles) {
+  for (place::Landmark& l : k.poles) {
     double best = 1e300;
     for (const Pose& T : k.poses) {
       const double d = (T.translation().head<2>() - l.p.head<2>()).squaredNorm();
@@ -144,14 +145,14 @@ KittiSequence loadKitti(const std::string& data_dir, const std::string& seq) {
   return k;
 }
 
-RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double range, const PerturbParams& p,
+RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double range, const place::PerturbParams& p,
                     std::mt19937& rng) {
   last = std::min<int>(last, static_cast<int>(kitti.poses.size()) - 1);
   const Pose start = kitti.poses.at(first);
   // Level the start frame: roll and pitch are known from the IMU, so maps are gravity-aligned.
   const Pose frame = poseFromXyzYaw(start.translation().x(), start.translation().y(), start.translation().z(),
                                     yawOf(start.linear()));
-  auto visible = [&](const Landmark& l) {
+  auto visible = [&](const place::Landmark& l) {
     for (int i = first; i <= last; i += 5)
       if ((kitti.poses[i].translation().head<2>() - l.p.head<2>()).norm() < range) return true;
     return false;
@@ -161,10 +162,10 @@ RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double rang
 
 std::size_t sharedLandmarks(const RobotMap& a, const RobotMap& b) {
   std::set<std::size_t> ids;
-  for (const Landmark& l : a.lms) ids.insert(l.index);
+  for (const place::Landmark& l : a.lms) ids.insert(l.index);
   std::size_t n = 0;
-  for (const Landmark& l : b.lms) n += ids.count(l.index);
+  for (const place::Landmark& l : b.lms) n += ids.count(l.index);
   return n;
 }
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

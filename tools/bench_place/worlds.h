@@ -8,13 +8,13 @@
 
 #include "place/map_perturb.h"
 
-namespace slide::bench {
+namespace slide::bench_place {
 
-using World = std::vector<Landmark>;
+using World = std::vector<place::Landmark>;
 
 // A robot's map: its landmarks in its own frame and the pose of that frame in the world.
 struct RobotMap {
-  std::vector<Landmark> lms;
+  std::vector<place::Landmark> lms;
   Pose T_w_r = Pose::Identity();
 };
 
@@ -29,8 +29,8 @@ World urbanWorld(double w, std::mt19937& rng);
 World indoorWorld(int rooms_x, int rooms_y, std::mt19937& rng);
 
 // The world landmarks for which `visible` holds, seen from frame T_w_r with perturbation p.
-RobotMap observe(const World& world, const std::function<bool(const Landmark&)>& visible, const Pose& T_w_r,
-                 const PerturbParams& p, std::mt19937& rng);
+RobotMap observe(const World& world, const std::function<bool(const place::Landmark&)>& visible, const Pose& T_w_r,
+                 const place::PerturbParams& p, std::mt19937& rng);
 
 // A random robot frame: position within `spread` metres of `around`, any yaw, small z.
 Pose randomFrame(const Eigen::Vector2d& around, double spread, std::mt19937& rng);
@@ -44,10 +44,10 @@ struct KittiSequence {
 KittiSequence loadKitti(const std::string& data_dir, const std::string& seq);
 // The robot driving frames [first, last]: poles within `range` of any of its poses, in the
 // frame of its first pose.
-RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double range, const PerturbParams& p,
+RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double range, const place::PerturbParams& p,
                     std::mt19937& rng);
 
 // Number of world ids present in both maps.
 std::size_t sharedLandmarks(const RobotMap& a, const RobotMap& b);
 
-}  // namespace slide::bench
+}  // namespace slide::bench_place

@@ -21,9 +21,9 @@ void oneWay(const std::vector<Object>& from, const std::vector<Object>& to, doub
 
 }  // namespace
 
-std::vector<Object> backendMap(const BackendConfig& cfg, std::int32_t host, const std::map<std::int32_t, Pose>& transforms,
-                               const std::vector<Arrival>& arrivals) {
-  Optimizer opt(cfg, ClassTable::loadDefault(), host);
+std::vector<Object> backendMap(const backend::BackendConfig& cfg, std::int32_t host,
+                               const std::map<std::int32_t, Pose>& transforms, const std::vector<Arrival>& arrivals) {
+  backend::Optimizer opt(cfg, ClassTable::loadDefault(), host);
   for (const auto& [peer, T] : transforms) opt.addRobotTransform(peer, T);
   for (const Arrival& a : arrivals)
     for (const KeyPoseBundle& b : a.bundles) opt.addBundle(b);

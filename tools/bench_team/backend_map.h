@@ -15,8 +15,8 @@ struct Arrival {
 };
 
 // `transforms`: T_host_peer per peer robot id.
-std::vector<Object> backendMap(const BackendConfig& cfg, std::int32_t host, const std::map<std::int32_t, Pose>& transforms,
-                               const std::vector<Arrival>& arrivals);
+std::vector<Object> backendMap(const backend::BackendConfig& cfg, std::int32_t host,
+                               const std::map<std::int32_t, Pose>& transforms, const std::vector<Arrival>& arrivals);
 
 // Landmarks of two maps paired with the nearest landmark of the same class in the other map
 // within `gate_m` (both ways): the largest paired distance and how many found no partner.

@@ -74,15 +74,15 @@ RunResult run(const TeamScenario& sc, const LinkPlan& plan, const std::string& s
   RunResult res;
   net.on_send = [&](std::size_t, const TeamMessage& m) {
     if (auto* c = std::get_if<Chunk>(&m)) {
-      const double b = static_cast<double>(lcmWireBytes(channels::kTeamChunk, encodedSize(*c)));
+      const double b = static_cast<double>(lcmWireBytes(app::channels::kTeamChunk, encodedSize(*c)));
       (c->kind == ChunkKind::Bundle ? res.traffic.bundle : res.traffic.map) += b;
       if (c->kind == ChunkKind::Bundle) ++res.bundle_chunks;
       if (c->kind == ChunkKind::Bundle) res.payload += c->data.size();
     } else if (auto* h = std::get_if<Heartbeat>(&m)) {
-      res.traffic.heartbeat += static_cast<double>(lcmWireBytes(channels::kTeamHeartbeat, encodedSize(*h)));
+      res.traffic.heartbeat += static_cast<double>(lcmWireBytes(app::channels::kTeamHeartbeat, encodedSize(*h)));
       ++res.traffic.heartbeats;
     } else {
-      res.traffic.ack += static_cast<double>(lcmWireBytes(channels::kTeamAck, encodedSize(std::get<Ack>(m))));
+      res.traffic.ack += static_cast<double>(lcmWireBytes(app::channels::kTeamAck, encodedSize(std::get<Ack>(m))));
       ++res.traffic.acks;
     }
   };
@@ -155,7 +155,7 @@ std::vector<Arrival> feedOfFirstRobot(const TeamScenario& sc, const RunResult& r
   return out;
 }
 
-void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, const RunResult& r) {
+void addTraffic(slide::bench::BenchReport& rep, const std::string& p, const TeamScenario& sc, const RunResult& r) {
   double metres = 0;
   std::size_t keyposes = 0;
   for (const auto& rs : sc.robots) {
@@ -204,8 +204,8 @@ void addTraffic(BenchReport& rep, const std::string& p, const TeamScenario& sc, 
 int main(int argc, char** argv) {
   CLI::App app{"Team benchmark: bytes per landmark and per metre of the peer-sync protocol on simulated forest and "
                "urban team runs (3 robots unless --robots), and delivery under 30% loss with links down half the time"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string json;
   int keyposes = 200;
   std::uint64_t seed = 1;
@@ -214,8 +214,8 @@ int main(int argc, char** argv) {
   app.add_option("--robots", robots, "Robots in the team")->capture_default_str()->check(CLI::Range(2, 16));
   app.add_option("--keyposes", keyposes, "Key poses per robot (1.4 m apart)")->capture_default_str()->check(CLI::Range(10, 100000));
   app.add_option("--seed", seed, "Random seed")->capture_default_str();
-  return runApp(app, common, argc, argv, [&]() {
-    BenchReport rep("team");
+  return app::runApp(app, common, argc, argv, [&]() {
+    slide::bench::BenchReport rep("team");
     for (const std::string kind : {"forest", "urban"}) {
       const TeamScenario sc = makeScenario(kind, robots, keyposes, seed);
       spdlog::info("{}: {} landmarks seen, {:.1f} objects per key pose", kind, sc.landmarks_seen, sc.mean_objects_per_keypose);
@@ -256,7 +256,8 @@ int main(int argc, char** argv) {
         "max distance between object positions composed from delivered bundles (odometry chain per origin), "
         "lossy vs lossless run";
     // The back-end's map at robot 0 from what each run delivered, fed in the same order.
-    const BackendConfig backend = loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+    const backend::BackendConfig backend =
+        backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
     std::map<std::int32_t, Pose> transforms;
     for (std::size_t r = 1; r < sc.robots.size(); ++r)
       transforms[sc.robots[r].robot] = sc.robots[0].start.inverse() * sc.robots[r].start;

@@ -42,12 +42,12 @@ struct TrajectoryError {
 
 // A robot's key poses as the host holds them, against truth expressed in the host's frame; with
 // `odom_of`, the robot's raw odometry at the same key poses instead (the same measure).
-TrajectoryError trajectoryError(const Optimizer& opt, int robot, const TeamTruth& truth,
+TrajectoryError trajectoryError(const backend::Optimizer& opt, int robot, const TeamTruth& truth,
                                 const std::map<std::pair<int, int>, Pose>* odom_of = nullptr) {
   TrajectoryError e;
   const Pose T_host_world = truth.robot(opt.hostRobot()).T_world_odom.inverse();
   double sq = 0;
-  for (const TrajectoryPose& p : opt.trajectory(robot)) {
+  for (const backend::TrajectoryPose& p : opt.trajectory(robot)) {
     const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
     if (!g) continue;
     Pose estimate = p.pose;
@@ -66,17 +66,17 @@ TrajectoryError trajectoryError(const Optimizer& opt, int robot, const TeamTruth
 }
 
 // The peer's odometry frame as the host's graph holds it (at the peer's first key pose).
-std::optional<TransformError> mergedFrameError(const Optimizer& opt, int peer, const TeamTruth& truth,
+std::optional<eval::TransformError> mergedFrameError(const backend::Optimizer& opt, int peer, const TeamTruth& truth,
                                                const std::map<std::pair<int, int>, Pose>& odom_of) {
   const auto traj = opt.trajectory(peer);
   if (traj.empty()) return std::nullopt;
   const auto it = odom_of.find({peer, traj.front().seq});
   if (it == odom_of.end()) return std::nullopt;
-  return transformError(traj.front().pose * it->second.inverse(), truth.T_a_b(opt.hostRobot(), peer));
+  return eval::transformError(traj.front().pose * it->second.inverse(), truth.T_a_b(opt.hostRobot(), peer));
 }
 
-void printState(const Optimizer& opt, const TeamTruth& truth, const std::map<std::pair<int, int>, Pose>& odom_of,
-                const char* prefix) {
+void printState(const backend::Optimizer& opt, const TeamTruth& truth,
+                const std::map<std::pair<int, int>, Pose>& odom_of, const char* prefix) {
   const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth),
                         odom = trajectoryError(opt, opt.hostRobot(), truth, &odom_of);
   std::printf("%s own %d poses rmse %.3f m last %.3f m (odometry %.3f / %.3f m); landmarks %d", prefix, own.poses,
@@ -125,11 +125,13 @@ class ObservationErrors {
   void print() const {
     for (const auto& [c, e] : errors_) {
       const ClassInfo* info = classes_.find(c);
-      std::printf("observations of %s: %zu within 2 m of a true one (%d not): along the line of sight median %+.3f m "
-                  "(p10 %+.3f, p90 %+.3f), across median %.3f m\n",
-                  info ? info->name.c_str() : std::to_string(c).c_str(), e.along.size(), e.unmatched,
-                  e.along.empty() ? NAN : quantile(e.along, 0.5), e.along.empty() ? NAN : quantile(e.along, 0.1),
-                  e.along.empty() ? NAN : quantile(e.along, 0.9), e.across.empty() ? NAN : quantile(e.across, 0.5));
+      std::printf(
+          "observations of %s: %zu within 2 m of a true one (%d not): along the line of sight median %+.3f m "
+          "(p10 %+.3f, p90 %+.3f), across median %.3f m\n",
+          info ? info->name.c_str() : std::to_string(c).c_str(), e.along.size(), e.unmatched,
+          e.along.empty() ? NAN : bench::quantile(e.along, 0.5), e.along.empty() ? NAN : bench::quantile(e.along, 0.1),
+          e.along.empty() ? NAN : bench::quantile(e.along, 0.9),
+          e.across.empty() ? NAN : bench::quantile(e.across, 0.5));
     }
   }
 
@@ -173,8 +175,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Replay an optimizer journal (state/optimizer<N>.journal of a team run, or the .lcmlog of older runs) "
                "in-process and print, against the simulator's ground truth, what each loop closure and inter-robot transform did to the estimate",
                "slide-journal-replay"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string journal, data, config = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml",
                             classes_path = std::string(SLIDE_SOURCE_DIR) + "/config/classes.yaml";
   int robot = 0, every = 50;
@@ -191,10 +193,10 @@ int main(int argc, char** argv) {
   app.add_flag("--observation-errors", observation_errors,
                "Also print, per class, how far the host's own observations lie from their true objects (placed by the "
                "true key poses) along and across the line of sight");
-  return runApp(app, common, argc, argv, [&] {
+  return app::runApp(app, common, argc, argv, [&] {
     const TeamTruth truth = readTeamTruth(data, robots);
     const ClassTable classes = ClassTable::load(classes_path);
-    OptimizerNode node(loadBackendConfig(config), classes, robot, {}, {});
+    OptimizerNode node(backend::loadBackendConfig(config), classes, robot, {}, {});
     ObservationErrors obs_errors(classes);
     const std::vector<OptimizerNode::JournalInput> inputs = readInputs(journal);
     std::map<std::pair<int, int>, Pose> odom_of;  // (robot, seq) -> odometry pose of the bundle
@@ -211,16 +213,16 @@ int main(int argc, char** argv) {
         std::printf("#%d after %d bundles: ", index, bundles);
         if (m.robot_a == m.robot_b) {
           std::string err = "truth n/a";
-          const Optimizer& opt = node.optimizer();
-          std::optional<TrajectoryPose> a, b;
-          for (const TrajectoryPose& p : opt.trajectory(m.robot_a)) {
+          const backend::Optimizer& opt = node.optimizer();
+          std::optional<backend::TrajectoryPose> a, b;
+          for (const backend::TrajectoryPose& p : opt.trajectory(m.robot_a)) {
             if (p.seq == m.keypose_a) a = p;
             if (p.seq == m.keypose_b) b = p;
           }
           const StampedPose* ga = a ? truthAt(truth.robot(m.robot_a), a->utime * 1e-6) : nullptr;
           const StampedPose* gb = b ? truthAt(truth.robot(m.robot_a), b->utime * 1e-6) : nullptr;
           if (ga && gb) {
-            const TransformError te = transformError(T, ga->pose.inverse() * gb->pose);
+            const eval::TransformError te = eval::transformError(T, ga->pose.inverse() * gb->pose);
             char buf[96];
             std::snprintf(buf, sizeof buf, "error %.2f m / %.2f deg", te.translation_m, te.yaw_deg);
             err = buf;
@@ -228,7 +230,7 @@ int main(int argc, char** argv) {
           std::printf("intra %d key poses %d-%d, %d inliers, %s\n", m.robot_a, m.keypose_a, m.keypose_b, m.num_inliers,
                       err.c_str());
         } else {
-          const TransformError te = transformError(T, truth.T_a_b(m.robot_a, m.robot_b));
+          const eval::TransformError te = eval::transformError(T, truth.T_a_b(m.robot_a, m.robot_b));
           std::printf("inter %d <- %d, %d inliers, error %.2f m / %.2f deg\n", m.robot_a, m.robot_b, m.num_inliers,
                       te.translation_m, te.yaw_deg);
         }
@@ -237,7 +239,7 @@ int main(int argc, char** argv) {
       } else if (e->channel == "KEYPOSE_BUNDLE" || (e->channel == "PEER_BUNDLE" && !own_only)) {
         keypose_bundle_t m;
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable bundle");
-        const KeyPoseBundle b = fromLcm(m, nullptr);
+        const KeyPoseBundle b = msg::fromLcm(m, nullptr);
         odom_of[{b.robot, b.seq}] = b.odom_pose;
         if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
         node.handle(e->channel, e->data, e->datalen);

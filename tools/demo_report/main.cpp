@@ -46,12 +46,12 @@ struct RobotFigures {
   int robot = 0;
   double ate = NAN, odom_ate = NAN, ate_anchored = NAN, odom_ate_anchored = NAN;
   std::size_t poses = 0, landmarks = 0, trajectories = 0;
-  ObjectMappingScore objects;
-  std::vector<std::pair<int, TransformError>> closures;  // per peer found (place recognition)
+  eval::ObjectMappingScore objects;
+  std::vector<std::pair<int, eval::TransformError>> closures;  // per peer found (place recognition)
   // What the optimizer made of each merged peer: its estimate of the peer's odometry frame
   // (at the peer's first key pose it holds) and the RMS position error of the peer's key poses
   // in this robot's frame, with no alignment.
-  std::vector<std::pair<int, TransformError>> merged;
+  std::vector<std::pair<int, eval::TransformError>> merged;
   std::map<int, Pose> merged_frames;  // the optimizer's T_a_b per merged peer
   std::vector<std::pair<int, double>> peer_traj_rmse;
   double update_ms_median = NAN, update_ms_p99 = NAN;
@@ -102,18 +102,18 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   f.peer_bundles = log.peer_bundles;
   const RobotTruth& rt = truth.robot(a);
   if (auto it = log.trajectories.find(a); it != log.trajectories.end() && it->second.poses.size() >= 3) {
-    const AssociatedPoses est = associatePoses(stamped(it->second), rt.ground_truth, 0.05, 0.0, 3);
+    const eval::AssociatedPoses est = eval::associatePoses(stamped(it->second), rt.ground_truth, 0.05, 0.0, 3);
     f.poses = est.est.size();
-    f.ate = absoluteTrajectoryError(est.est, est.ref, TrajectoryAlignment::Se3).rmse;
+    f.ate = eval::absoluteTrajectoryError(est.est, est.ref, eval::TrajectoryAlignment::Se3).rmse;
     // Without alignment, through the true start: the error a peer inherits when it places this
     // robot's map by a transform between the two odometry frames.
     std::vector<Pose> in_world;
     for (const Pose& p : est.est) in_world.push_back(rt.T_world_odom * p);
-    f.ate_anchored = absoluteTrajectoryError(in_world, est.ref, TrajectoryAlignment::None).rmse;
+    f.ate_anchored = eval::absoluteTrajectoryError(in_world, est.ref, eval::TrajectoryAlignment::None).rmse;
     // Raw odometry at the same instants, as the baseline.
     std::vector<double> key_t(est.t.begin(), est.t.end());
     std::vector<StampedPose> odom_at;
-    const AssociatedPoses od = associatePoses(rt.odometry, rt.ground_truth, 0.05, 0.0, 3);
+    const eval::AssociatedPoses od = eval::associatePoses(rt.odometry, rt.ground_truth, 0.05, 0.0, 3);
     std::vector<Pose> oe, orf;
     for (std::size_t i = 0; i < od.t.size(); ++i)
       for (double t : key_t)
@@ -122,27 +122,27 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
           orf.push_back(od.ref[i]);
         }
     if (oe.size() >= 3) {
-      f.odom_ate = absoluteTrajectoryError(oe, orf, TrajectoryAlignment::Se3).rmse;
+      f.odom_ate = eval::absoluteTrajectoryError(oe, orf, eval::TrajectoryAlignment::Se3).rmse;
       for (Pose& p : oe) p = rt.T_world_odom * p;  // the same anchoring as the estimate's
-      f.odom_ate_anchored = absoluteTrajectoryError(oe, orf, TrajectoryAlignment::None).rmse;
+      f.odom_ate_anchored = eval::absoluteTrajectoryError(oe, orf, eval::TrajectoryAlignment::None).rmse;
     }
   }
   std::vector<Object> in_world;
   for (const Object& o : log.map) in_world.push_back(transformObject(rt.T_world_odom, o));
-  ObjectMatchOptions mo;
+  eval::ObjectMatchOptions mo;
   mo.threshold = opts.match_threshold;
   mo.planar = true;
   // Recall: of the objects near some robot's path; precision: against every real object, so
   // that a correctly mapped tree farther out is not counted as false.
-  f.objects = scoreObjectMap(in_world, visible, mo);
-  const ObjectMappingScore against_all = scoreObjectMap(in_world, truth.objects, mo);
+  f.objects = eval::scoreObjectMap(in_world, visible, mo);
+  const eval::ObjectMappingScore against_all = eval::scoreObjectMap(in_world, truth.objects, mo);
   f.objects.overall.precision = against_all.overall.precision;
-  ObjectMatchOptions any = mo;
+  eval::ObjectMatchOptions any = mo;
   any.match_classes = false;
-  const ObjectMappingScore against_any = scoreObjectMap(in_world, truth.objects, any);
+  const eval::ObjectMappingScore against_any = eval::scoreObjectMap(in_world, truth.objects, any);
   std::vector<char> right(in_world.size(), 0), somewhere(in_world.size(), 0);
-  for (const ObjectMatch& m : against_all.matches) right[m.est] = 1;
-  for (const ObjectMatch& m : against_any.matches) somewhere[m.est] = 1;
+  for (const eval::ObjectMatch& m : against_all.matches) right[m.est] = 1;
+  for (const eval::ObjectMatch& m : against_any.matches) somewhere[m.est] = 1;
   for (std::size_t i = 0; i < in_world.size(); ++i) {
     auto& c = f.landmark_classes[in_world[i].class_id];
     ++c[0];
@@ -151,17 +151,17 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
   for (const auto& [b, c] : log.closures) {
-    f.closures.emplace_back(b, transformError(c.T_a_b, truth.T_a_b(a, b)));
+    f.closures.emplace_back(b, eval::transformError(c.T_a_b, truth.T_a_b(a, b)));
     const Eigen::Vector3d d = c.T_a_b.translation() - truth.T_a_b(a, b).translation();
     spdlog::info("robot {} <- {}: place recognition off by x {:.2f} y {:.2f} z {:.2f} m", a, b, d.x(), d.y(), d.z());
   }
   for (const auto& [b, traj] : log.trajectories) {
     if (b == a || traj.frame_robot != a || traj.poses.size() < 3) continue;
     const RobotTruth& peer = truth.robot(b);
-    AssociatedPoses in_odom, in_world;
+    eval::AssociatedPoses in_odom, in_world;
     try {
-      in_odom = associatePoses(stamped(traj), peer.odometry, 0.05, 0.0, 3);
-      in_world = associatePoses(stamped(traj), peer.ground_truth, 0.05, 0.0, 3);
+      in_odom = eval::associatePoses(stamped(traj), peer.odometry, 0.05, 0.0, 3);
+      in_world = eval::associatePoses(stamped(traj), peer.ground_truth, 0.05, 0.0, 3);
     } catch (const std::invalid_argument& e) {
       spdlog::warn("robot {}'s trajectory of robot {}: {}", a, b, e.what());
       continue;
@@ -169,7 +169,7 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     // T_a_b as the optimizer holds it: the peer's first key pose in this robot's frame, composed
     // with the inverse of where the peer's own odometry put that key pose.
     const Pose T_a_b = in_odom.est.front() * in_odom.ref.front().inverse();
-    f.merged.emplace_back(b, transformError(T_a_b, truth.T_a_b(a, b)));
+    f.merged.emplace_back(b, eval::transformError(T_a_b, truth.T_a_b(a, b)));
     f.merged_frames[b] = T_a_b;
     double sq = 0;
     for (std::size_t i = 0; i < in_world.est.size(); ++i)
@@ -177,8 +177,8 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     f.peer_traj_rmse.emplace_back(b, std::sqrt(sq / static_cast<double>(in_world.est.size())));
   }
   if (!log.update_ms.empty()) {
-    f.update_ms_median = median(log.update_ms);
-    f.update_ms_p99 = quantile(log.update_ms, 0.99);
+    f.update_ms_median = bench::median(log.update_ms);
+    f.update_ms_p99 = bench::quantile(log.update_ms, 0.99);
   }
   return f;
 }
@@ -191,46 +191,46 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
 struct MapAgreement {
   int a = 0, b = 0;
   std::size_t shared = 0;
-  std::optional<HorizontalError> place_vs_maps, merged_vs_maps;
+  std::optional<eval::HorizontalError> place_vs_maps, merged_vs_maps;
   std::vector<double> merged_distances;
 };
 
 MapAgreement mapAgreement(int a, int b, const std::vector<Object>& own_a, const std::vector<Object>& own_b,
                           const RobotRunLog& log_a, const RobotFigures& f, const TeamTruth& truth,
-                          const ObjectMatchOptions& mo) {
+                          const eval::ObjectMatchOptions& mo) {
   MapAgreement out{a, b, 0, std::nullopt, std::nullopt, {}};
-  const SharedLandmarks sh =
-      sharedLandmarks(own_a, truth.robot(a).T_world_odom, own_b, truth.robot(b).T_world_odom, truth.objects, mo);
+  const eval::SharedLandmarks sh =
+      eval::sharedLandmarks(own_a, truth.robot(a).T_world_odom, own_b, truth.robot(b).T_world_odom, truth.objects, mo);
   out.shared = sh.in_a.size();
-  const std::optional<Pose> T_maps = mapAlignment(sh);  // b's map into a's frame
+  const std::optional<Pose> T_maps = eval::mapAlignment(sh);  // b's map into a's frame
   if (!T_maps) return out;
   if (const auto it = log_a.closures.find(b); it != log_a.closures.end())
-    out.place_vs_maps = horizontalError(it->second.T_a_b, *T_maps);
+    out.place_vs_maps = eval::horizontalError(it->second.T_a_b, *T_maps);
   if (const auto it = f.merged_frames.find(b); it != f.merged_frames.end()) {
-    out.merged_vs_maps = horizontalError(it->second, *T_maps);
-    out.merged_distances = landmarkDistances(sh, it->second);
+    out.merged_vs_maps = eval::horizontalError(it->second, *T_maps);
+    out.merged_distances = eval::landmarkDistances(sh, it->second);
   }
   return out;
 }
 
 void plotRobot(int a, const RobotRunLog& log, const TeamTruth& truth, const std::vector<Object>& visible,
-               const ClassTable& classes, const std::string& out_base, View view) {
+               const ClassTable& classes, const std::string& out_base, plot::View view) {
   const Pose T_w_a = truth.robot(a).T_world_odom;
-  std::vector<PlotMap> maps;
+  std::vector<plot::PlotMap> maps;
   maps.push_back({"ground truth", visible, -1, true});
-  PlotMap own{"robot" + std::to_string(a) + " merged map", {}, a, false};
+  plot::PlotMap own{"robot" + std::to_string(a) + " merged map", {}, a, false};
   for (const Object& o : log.map) own.objects.push_back(transformObject(T_w_a, o));
   maps.push_back(own);
-  std::vector<PlotTrajectory> trajs;
+  std::vector<plot::PlotTrajectory> trajs;
   for (const RobotTruth& r : truth.robots)
     trajs.push_back({"robot" + std::to_string(r.robot) + " truth", positions(r.ground_truth), r.robot, true, {}});
   for (const auto& [b, t] : log.trajectories)
     trajs.push_back({"robot" + std::to_string(b) + " estimate", positions(stamped(t), T_w_a), b, false, {}});
-  MapPlotOptions po;
+  plot::MapPlotOptions po;
   po.view = view;
   po.title = "robot" + std::to_string(a) + ": merged map and all trajectories";
   po.subtitle = "world frame via robot" + std::to_string(a) + "'s true start; dashed black = ground truth";
-  const Canvas c = plotMap(maps, trajs, classes, po);
+  const plot::Canvas c = plot::plotMap(maps, trajs, classes, po);
   c.write(out_base + ".png");
   c.write(out_base + ".svg");
 }
@@ -249,8 +249,8 @@ int main(int argc, char** argv) {
                "writes report.md, report.json and pictures",
                "slide-demo-report"};
   Options opts;
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   app.add_option("--run", opts.run_dir, "Run folder with logs/robot<N>.lcmlog (robot bus) and logs/team<N>.lcmlog (team bus on robot N's host)")->required();
   app.add_option("--data", opts.data_dir, "Simulator output folder (robot<N>/, objects.csv)")->required();
   app.add_option("--out", opts.out_dir, "Report folder (default RUN/report)");
@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
   app.add_option("--visible-range", opts.visible_range,
                  "Ground-truth objects within this horizontal distance of a path count as observable")
       ->capture_default_str();
-  return runApp(app, common, argc, argv, [&] {
+  return app::runApp(app, common, argc, argv, [&] {
     if (opts.out_dir.empty()) opts.out_dir = opts.run_dir + "/report";
     fs::create_directories(opts.out_dir);
     const ClassTable classes = ClassTable::load(opts.classes);
@@ -285,8 +285,8 @@ int main(int argc, char** argv) {
       detections[a] = log.detections.empty() ? "unknown (no SENSOR_STATUS logged)" : log.detections;
       figs.push_back(evaluateRobot(a, log, truth, visible, opts));
       const std::string base = opts.out_dir + "/robot" + std::to_string(a);
-      plotRobot(a, log, truth, visible, classes, base + "_top", View::top());
-      plotRobot(a, log, truth, visible, classes, base + "_oblique", View::oblique());
+      plotRobot(a, log, truth, visible, classes, base + "_top", plot::View::top());
+      plotRobot(a, log, truth, visible, classes, base + "_oblique", plot::View::oblique());
     }
 
     TeamTraffic traffic;
@@ -305,7 +305,7 @@ int main(int argc, char** argv) {
     for (const RobotTruth& r : truth.robots) metres += r.path_length_m;
     std::size_t max_landmarks = 0;
     for (const RobotFigures& f : figs) max_landmarks = std::max(max_landmarks, f.landmarks);
-    const BandwidthFigures bw = bandwidthFigures(double(team_bytes), max_landmarks, metres);
+    const eval::BandwidthFigures bw = eval::bandwidthFigures(double(team_bytes), max_landmarks, metres);
 
     std::vector<double> trans_err, yaw_err, ates, odom_ates, f1s, precisions, recalls;
     std::vector<double> merged_trans_err, merged_yaw_err, peer_rmse, anchored_ates, odom_anchored_ates;
@@ -330,11 +330,11 @@ int main(int argc, char** argv) {
       recalls.push_back(f.objects.overall.recall);
     }
     const std::size_t pairs_possible = opts.robots.size() * (opts.robots.size() - 1);
-    ObjectMatchOptions mo;
+    eval::ObjectMatchOptions mo;
     mo.threshold = opts.match_threshold;
     mo.planar = true;
     std::map<int, std::vector<Object>> own_maps;
-    const BackendConfig backend = loadBackendConfig(opts.backend_config);
+    const backend::BackendConfig backend = backend::loadBackendConfig(opts.backend_config);
     for (int a : opts.robots) {
       const std::string journal = opts.run_dir + "/state/optimizer" + std::to_string(a) + ".journal";
       if (!fs::exists(journal)) {
@@ -371,38 +371,42 @@ int main(int argc, char** argv) {
     const std::string object_note = oracle ? "ORACLE: ground-truth labels / masks reached the robots; an upper bound, "
                                              "not what a robot achieves"
                                            : "perception " + perception;
-    BenchReport report("system");
+    bench::BenchReport report("system");
     if (std::isfinite(opts.wall_s)) report.add("demo.wall_s", opts.wall_s, "s", true, 300.0);
-    report.add("demo.inter_robot_trans_err_m", mean(trans_err), "m", true, 0.5, 0.54).note =
+    report.add("demo.inter_robot_trans_err_m", bench::mean(trans_err), "m", true, 0.5, 0.54).note =
         "mean over " + std::to_string(pairs_found) + " of " + std::to_string(pairs_possible) + " ordered pairs found";
-    report.add("demo.inter_robot_yaw_err_deg", mean(yaw_err), "deg", true, 2.0);
-    report.add("demo.inter_robot_vs_maps_trans_err_m", mean(place_vs_maps_t), "m", true, 0.15, 0.16).note =
+    report.add("demo.inter_robot_yaw_err_deg", bench::mean(yaw_err), "deg", true, 2.0);
+    report.add("demo.inter_robot_vs_maps_trans_err_m", bench::mean(place_vs_maps_t), "m", true, 0.15, 0.16).note =
         "place recognition's transform, horizontally (x, y), against the best rigid alignment (x, y, yaw) of the two robots' own maps (own "
         "observations replayed from their journals) over the landmarks both hold (the paper's comparison; ground truth only pairs the landmarks), mean over " +
         std::to_string(place_vs_maps_t.size()) + " ordered pairs";
-    report.add("demo.inter_robot_vs_maps_yaw_err_deg", mean(place_vs_maps_yaw), "deg", true);
-    report.add("demo.merged_vs_maps_trans_err_m", mean(merged_vs_maps_t), "m", true).note =
+    report.add("demo.inter_robot_vs_maps_yaw_err_deg", bench::mean(place_vs_maps_yaw), "deg", true);
+    report.add("demo.merged_vs_maps_trans_err_m", bench::mean(merged_vs_maps_t), "m", true).note =
         "the optimizer's merged frame against the same map alignment";
-    report.add("demo.merged_consistency_median_m", consistency.empty() ? NAN : median(consistency), "m", true).note =
-        "horizontal distance between two robots' own landmarks of one real object, the peer's placed by the host's merged frame (" +
+    report.add("demo.merged_consistency_median_m", consistency.empty() ? NAN : bench::median(consistency), "m", true)
+        .note =
+        "horizontal distance between two robots' own landmarks of one real object, the peer's placed by the host's "
+        "merged frame (" +
         std::to_string(consistency.size()) + " landmark pairs)";
-    report.add("demo.merged_consistency_p90_m", consistency.empty() ? NAN : quantile(consistency, 0.9), "m", true);
-    report.add("demo.merged_trans_err_m", mean(merged_trans_err), "m", true).note =
+    report.add("demo.merged_consistency_p90_m", consistency.empty() ? NAN : bench::quantile(consistency, 0.9), "m",
+               true);
+    report.add("demo.merged_trans_err_m", bench::mean(merged_trans_err), "m", true).note =
         "the optimizer's estimate of each merged peer's frame, after the joint solve (" +
         std::to_string(merged_trans_err.size()) + " ordered pairs)";
-    report.add("demo.merged_yaw_err_deg", mean(merged_yaw_err), "deg", true);
-    report.add("demo.peer_trajectory_rmse_m", mean(peer_rmse), "m", true).note =
+    report.add("demo.merged_yaw_err_deg", bench::mean(merged_yaw_err), "deg", true);
+    report.add("demo.peer_trajectory_rmse_m", bench::mean(peer_rmse), "m", true).note =
         "merged peers' key poses in the host's frame against truth, no alignment";
     report.add("demo.pairs_found_fraction", pairs_possible ? double(pairs_found) / pairs_possible : 0.0, "", false, 1.0);
-    report.add("demo.ate_m", mean(ates), "m").note = "mean over robots of own-trajectory ATE (SE3 aligned)";
-    report.add("demo.ate_anchored_m", mean(anchored_ates), "m", true).note =
+    report.add("demo.ate_m", bench::mean(ates), "m").note = "mean over robots of own-trajectory ATE (SE3 aligned)";
+    report.add("demo.ate_anchored_m", bench::mean(anchored_ates), "m", true).note =
         "own trajectory, no alignment: the estimate placed in the world by the robot's true start";
-    report.add("demo.odom_ate_m", mean(odom_ates), "m").note = "raw odometry at the same key poses (SE3 aligned)";
-    report.add("demo.odom_ate_anchored_m", mean(odom_anchored_ates), "m").note =
+    report.add("demo.odom_ate_m", bench::mean(odom_ates), "m").note =
+        "raw odometry at the same key poses (SE3 aligned)";
+    report.add("demo.odom_ate_anchored_m", bench::mean(odom_anchored_ates), "m").note =
         "raw odometry at the same key poses, no alignment: placed by the robot's true start (compare with demo.ate_anchored_m)";
-    report.add("demo.precision", mean(precisions), "", false, 0.95).note = object_note;
-    report.add("demo.recall", mean(recalls), "", false, 0.92).note = object_note;
-    report.add("demo.f1", mean(f1s), "", false, 0.93).note = object_note;
+    report.add("demo.precision", bench::mean(precisions), "", false, 0.95).note = object_note;
+    report.add("demo.recall", bench::mean(recalls), "", false, 0.92).note = object_note;
+    report.add("demo.f1", bench::mean(f1s), "", false, 0.93).note = object_note;
     report.add("demo.team_bytes", double(team_bytes), "bytes").note =
         std::to_string(traffic.messages) + " team-bus messages; IPv4 bytes on the wire (LCM, UDP and IP headers included; " +
         std::to_string(traffic.payload) + " bytes of LCM payload)";
@@ -423,7 +427,7 @@ int main(int argc, char** argv) {
        << (oracle ? " **ORACLE run: ground-truth labels or masks reached the robots; every figure is an upper bound.**" : "")
        << "\n\n";
     md << "| figure | value | unit | target | paper | note |\n|---|---|---|---|---|---|\n";
-    for (const BenchResult& r : report.results())
+    for (const bench::BenchResult& r : report.results())
       md << "| " << r.name << " | " << num(r.value) << " | " << r.unit << " | " << (r.target ? num(*r.target) : "-")
          << " | " << (r.paper ? num(*r.paper) : "-") << " | " << r.note << " |\n";
     md << "\nObject scores place each robot's landmarks in the world through its true start and match them "
@@ -472,14 +476,15 @@ int main(int argc, char** argv) {
           "two robots' own landmarks of one real object, the peer's placed by the host's merged frame.\n\n"
           "| robot | peer | landmarks both hold | place recognition vs maps: m / deg | optimizer vs maps: m / deg | "
           "consistency median / p90 m |\n|---|---|---|---|---|---|\n";
-    auto err = [](const std::optional<HorizontalError>& e) {
+    auto err = [](const std::optional<eval::HorizontalError>& e) {
       return e ? num(e->translation_m) + " / " + num(e->yaw_deg, 2) : std::string("-");
     };
     for (const MapAgreement& g : agreements)
       md << "| " << g.a << " | " << g.b << " | " << g.shared << " | " << err(g.place_vs_maps) << " | "
          << err(g.merged_vs_maps) << " | "
-         << (g.merged_distances.empty() ? std::string("-")
-                                        : num(median(g.merged_distances)) + " / " + num(quantile(g.merged_distances, 0.9)))
+         << (g.merged_distances.empty()
+                 ? std::string("-")
+                 : num(bench::median(g.merged_distances)) + " / " + num(bench::quantile(g.merged_distances, 0.9)))
          << " |\n";
     md << "\n## Pictures\n\n";
     for (int a : opts.robots)

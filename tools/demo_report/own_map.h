@@ -14,7 +14,7 @@ namespace slide {
 
 // Throws std::runtime_error naming the journal when it cannot be read or holds an
 // undecodable loop closure.
-std::vector<Object> ownOnlyMap(const std::string& journal, int robot, const BackendConfig& config,
+std::vector<Object> ownOnlyMap(const std::string& journal, int robot, const backend::BackendConfig& config,
                                const ClassTable& classes);
 
 }  // namespace slide

@@ -32,38 +32,38 @@ RobotRunLog readRobotLog(const std::string& path, int robot, int& bad) {
   bad = 0;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     const std::string& ch = ev->channel;
-    if (ch == channels::kObjectMap) {
+    if (ch == app::channels::kObjectMap) {
       object_map_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot != robot) continue;
       out.map.clear();
-      for (const object_t& o : m.objects) out.map.push_back(fromLcm(o));
-    } else if (ch == channels::kTrajectory) {
+      for (const object_t& o : m.objects) out.map.push_back(msg::fromLcm(o));
+    } else if (ch == app::channels::kTrajectory) {
       trajectory_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       LoggedTrajectory t{m.robot, m.frame_robot, {}, {}};
       for (int i = 0; i < m.num_poses; ++i) {
         t.t.push_back(m.pose_utime[i] * 1e-6);
-        t.poses.push_back(fromLcm(m.poses[i]));
+        t.poses.push_back(msg::fromLcm(m.poses[i]));
       }
       out.trajectories[m.robot] = t;
-    } else if (ch == channels::kLoopClosure) {
+    } else if (ch == app::channels::kLoopClosure) {
       loop_closure_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot_a != robot || m.robot_b == robot) continue;
       out.closures[m.robot_b] = {m.robot_a, m.robot_b, m.num_inliers, poseFromXyzYaw(m.x, m.y, m.z, m.yaw),
                                  m.method == loop_closure_t::SLIDEMATCH ? "slidematch" : "slidegraph"};
-    } else if (ch == channels::kOptimizerStatus) {
+    } else if (ch == app::channels::kOptimizerStatus) {
       optimizer_status_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       out.update_ms.push_back(m.update_ms);
-    } else if (ch == channels::kSensorStatus) {
+    } else if (ch == app::channels::kSensorStatus) {
       stream_status_t m;
       if (!decode(ev, m)) { ++bad; continue; }
       if (m.robot == robot) out.detections = m.detections;
-    } else if (ch == channels::kKeyPoseBundle) {
+    } else if (ch == app::channels::kKeyPoseBundle) {
       ++out.keypose_bundles;
-    } else if (ch == channels::kPeerBundle) {
+    } else if (ch == app::channels::kPeerBundle) {
       ++out.peer_bundles;
     }
   }
@@ -88,13 +88,13 @@ TeamTraffic readTeamTraffic(const std::string& path, int robot) {
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     int sender = -1;
     std::int64_t* kind = nullptr;
-    if (ev->channel == channels::kTeamHeartbeat) {
+    if (ev->channel == app::channels::kTeamHeartbeat) {
       sync_heartbeat_t m{};
       if (decode(ev, m)) sender = m.sender, kind = &out.heartbeats;
-    } else if (ev->channel == channels::kTeamChunk) {
+    } else if (ev->channel == app::channels::kTeamChunk) {
       sync_chunk_t m{};
       if (decode(ev, m)) sender = m.sender, kind = m.kind == sync_chunk_t::MAP ? &out.maps : &out.bundles;
-    } else if (ev->channel == channels::kTeamAck) {
+    } else if (ev->channel == app::channels::kTeamAck) {
       sync_ack_t m{};
       if (decode(ev, m)) sender = m.sender, kind = &out.acks;
     } else {

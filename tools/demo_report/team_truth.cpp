@@ -20,7 +20,7 @@ TeamTruth readTeamTruth(const std::string& data_dir, const std::vector<int>& rob
   TeamTruth truth;
   for (int id : robots) {
     const std::string dir = data_dir + "/robot" + std::to_string(id);
-    const RobotDataset ds = openRobotDataset(dir);
+    const io::RobotDataset ds = io::openRobotDataset(dir);
     if (ds.ground_truth.empty() || ds.odometry.empty())
       throw std::runtime_error(dir + ": needs groundtruth.txt and odom.txt to evaluate the run");
     RobotTruth r;
@@ -30,12 +30,12 @@ TeamTruth readTeamTruth(const std::string& data_dir, const std::vector<int>& rob
     r.T_world_odom = ds.ground_truth.front().pose * ds.odometry.front().pose.inverse();
     const ConfigNode yaml = ConfigNode::load(dir + "/robot.yaml");
     r.platform = std::string(yaml.get<bool>("aerial", false) ? "aerial " : "ground ") +
-                 (ds.sensor == RobotDataset::Sensor::Rgbd ? "RGBD" : "LiDAR");
+                 (ds.sensor == io::RobotDataset::Sensor::Rgbd ? "RGBD" : "LiDAR");
     for (std::size_t i = 1; i < ds.ground_truth.size(); ++i)
       r.path_length_m += (ds.ground_truth[i].pose.translation() - ds.ground_truth[i - 1].pose.translation()).norm();
     truth.robots.push_back(r);
   }
-  for (const GroundTruthObject& g : readGroundTruthObjects(data_dir + "/objects.csv"))
+  for (const io::GroundTruthObject& g : io::readGroundTruthObjects(data_dir + "/objects.csv"))
     if (!g.moving()) truth.objects.push_back(g.object);
   return truth;
 }

@@ -10,7 +10,7 @@
 
 namespace slide {
 
-using EvalCommand = std::function<Json()>;
+using EvalCommand = std::function<report::Json()>;
 
 // Each adds its options to the subcommand `cmd` and returns what runs when it is chosen.
 EvalCommand addAteCommand(CLI::App* cmd);
@@ -21,8 +21,8 @@ EvalCommand addBandwidthCommand(CLI::App* cmd);
 EvalCommand addTimingCommand(CLI::App* cmd);
 
 // {"rmse": .., "mean": .., "median": .., "std": .., "min": .., "max": .., "count": ..}
-Json statsJson(const ErrorStats& s);
+report::Json statsJson(const eval::ErrorStats& s);
 // "rmse 1.234  mean ...  (n = 42)" with a unit after each number.
-std::string statsLine(const ErrorStats& s, const std::string& unit);
+std::string statsLine(const eval::ErrorStats& s, const std::string& unit);
 
 }  // namespace slide

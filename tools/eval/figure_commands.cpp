@@ -29,7 +29,7 @@ Pose parseTransform(const std::string& arg, const char* what) {
     if (c == ',') c = ' ';
   std::vector<double> v;
   try {
-    v = parseNumberList(text);
+    v = io::parseNumberList(text);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(what) + ": " + e.what());
   }
@@ -57,10 +57,10 @@ EvalCommand addTransformCommand(CLI::App* cmd) {
   cmd->add_option("--truth", *truth, "True transform, same forms")->required();
   return [=] {
     const Pose E = parseTransform(*est, "--est"), T = parseTransform(*truth, "--truth");
-    const TransformError e = transformError(E, T);
+    const eval::TransformError e = eval::transformError(E, T);
     std::printf("transform error: translation %.4f m, yaw %.4f deg, rotation %.4f deg\n", e.translation_m, e.yaw_deg,
                 e.rotation_deg);
-    Json j;
+    report::Json j;
     j["metric"] = "transform";
     j["translation_m"] = e.translation_m;
     j["yaw_deg"] = e.yaw_deg;
@@ -86,14 +86,14 @@ EvalCommand addBandwidthCommand(CLI::App* cmd) {
       metres = 0;
       for (const auto& t : a->trajs) {
         std::vector<Pose> poses;
-        for (const auto& p : readTrajectory(t)) poses.push_back(p.pose);
-        metres += pathLength(poses);
+        for (const auto& p : eval::readTrajectory(t)) poses.push_back(p.pose);
+        metres += eval::pathLength(poses);
       }
     }
-    const BandwidthFigures f = bandwidthFigures(a->bytes, a->landmarks, std::max(0.0, metres));
+    const eval::BandwidthFigures f = eval::bandwidthFigures(a->bytes, a->landmarks, std::max(0.0, metres));
     std::printf("bandwidth: %.0f bytes, %.1f bytes per landmark (%zu landmarks), %.1f bytes per metre (%.1f m)\n", f.bytes,
                 f.bytes_per_landmark, a->landmarks, f.bytes_per_metre, std::max(0.0, metres));
-    Json j;
+    report::Json j;
     j["metric"] = "bandwidth";
     j["bytes"] = f.bytes;
     j["landmarks"] = a->landmarks;
@@ -112,12 +112,13 @@ EvalCommand addTimingCommand(CLI::App* cmd) {
   return [=] {
     std::map<std::string, std::vector<double>> samples;
     for (const auto& f : *files)
-      for (auto& [stage, v] : readStageSamples(f)) samples[stage].insert(samples[stage].end(), v.begin(), v.end());
+      for (auto& [stage, v] : eval::readStageSamples(f))
+        samples[stage].insert(samples[stage].end(), v.begin(), v.end());
     std::printf("  %-24s %8s %10s %10s %10s %10s\n", "stage", "count", "median", "p99", "mean", "max");
-    Json stages = Json::array();
-    for (const StageTiming& t : stageTimings(samples)) {
+    report::Json stages = report::Json::array();
+    for (const eval::StageTiming& t : eval::stageTimings(samples)) {
       std::printf("  %-24s %8zu %10.3f %10.3f %10.3f %10.3f\n", t.stage.c_str(), t.count, t.median, t.p99, t.mean, t.max);
-      Json s;
+      report::Json s;
       s["stage"] = t.stage;
       s["count"] = t.count;
       s["median"] = t.median;
@@ -126,7 +127,7 @@ EvalCommand addTimingCommand(CLI::App* cmd) {
       s["max"] = t.max;
       stages.push_back(s);
     }
-    Json j;
+    report::Json j;
     j["metric"] = "timing";
     j["stages"] = stages;
     return j;

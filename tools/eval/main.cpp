@@ -12,8 +12,8 @@ using namespace slide;
 
 int main(int argc, char** argv) {
   CLI::App app{"slide-eval: trajectory, map, transform, bandwidth and runtime metrics"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::string json_path;
   app.add_option("--json", json_path, "Also write the results as JSON to this file");
   app.require_subcommand(1);
@@ -31,12 +31,12 @@ int main(int argc, char** argv) {
       addTransformCommand);
   add("bandwidth", "Bytes per landmark and per metre travelled", addBandwidthCommand);
   add("timing", "Per-stage runtime statistics (median, 99th percentile) from 'stage value' lines", addTimingCommand);
-  return runApp(app, common, argc, argv, [&] {
+  return app::runApp(app, common, argc, argv, [&] {
     for (auto& [sub, cmd] : commands) {
       if (!sub->parsed()) continue;
-      const Json result = cmd();
+      const report::Json result = cmd();
       if (!json_path.empty()) {
-        writeJsonFile(json_path, result);
+        report::writeJsonFile(json_path, result);
         spdlog::info("wrote {}", json_path);
       }
       return 0;

@@ -31,29 +31,29 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
       "precision = matched / estimated, recall = matched / ground truth, F1 = 2PR/(P+R); RMSE over matched pairs.");
   return [=] {
     const ClassTable classes = a->classes.empty() ? ClassTable::loadDefault() : ClassTable::load(a->classes);
-    const PlacedFile est_file = parsePlacedFile(a->est), gt_file = parsePlacedFile(a->gt);
+    const eval::PlacedFile est_file = eval::parsePlacedFile(a->est), gt_file = eval::parsePlacedFile(a->gt);
     std::vector<Object> est, gt;
-    for (const Object& o : readObjectMapFile(est_file.path, classes, a->default_class))
+    for (const Object& o : io::readObjectMapFile(est_file.path, classes, a->default_class))
       est.push_back(transformObject(est_file.placement, o));
-    for (const Object& o : readObjectMapFile(gt_file.path, classes, a->default_class))
+    for (const Object& o : io::readObjectMapFile(gt_file.path, classes, a->default_class))
       gt.push_back(transformObject(gt_file.placement, o));
-    ObjectMatchOptions o;
+    eval::ObjectMatchOptions o;
     o.threshold = a->threshold;
     o.planar = a->planar;
     o.match_classes = !a->any_class;
-    const ObjectMappingScore s = scoreObjectMap(est, gt, o);
+    const eval::ObjectMappingScore s = eval::scoreObjectMap(est, gt, o);
 
     std::printf("object map %s against %s (threshold %g m%s%s)\n", est_file.path.c_str(), gt_file.path.c_str(),
                 a->threshold, a->planar ? ", planar" : "", a->any_class ? ", any class" : "");
     std::printf("  %-12s %6s %6s %6s %9s %7s %7s %9s\n", "class", "est", "gt", "match", "precision", "recall", "F1",
                 "rmse [m]");
-    auto row = [](const std::string& name, const ClassScore& c) {
+    auto row = [](const std::string& name, const eval::ClassScore& c) {
       std::printf("  %-12s %6zu %6zu %6zu %9.3f %7.3f %7.3f %9.3f\n", name.c_str(), c.num_est, c.num_gt, c.true_positives,
                   c.precision, c.recall, c.f1, c.position_rmse);
     };
-    Json per_class = Json::array();
-    auto classJson = [](const std::string& name, const ClassScore& c) {
-      Json j;
+    report::Json per_class = report::Json::array();
+    auto classJson = [](const std::string& name, const eval::ClassScore& c) {
+      report::Json j;
       j["class"] = name;
       j["class_id"] = c.class_id;
       j["estimated"] = c.num_est;
@@ -65,21 +65,21 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
       j["position_rmse_m"] = c.position_rmse;
       return j;
     };
-    for (const ClassScore& c : s.per_class) {
+    for (const eval::ClassScore& c : s.per_class) {
       const ClassInfo* info = classes.find(c.class_id);
       const std::string name = info ? info->name : std::to_string(c.class_id);
       row(name, c);
       per_class.push_back(classJson(name, c));
     }
     row("all", s.overall);
-    Json listing;
+    report::Json listing;
     if (a->list) {
       auto name = [&](int id) {
         const ClassInfo* c = classes.find(id);
         return c ? c->name : std::to_string(id);
       };
       auto objectJson = [&](const Object& o, std::size_t index) {
-        Json j;
+        report::Json j;
         j["index"] = index;
         j["id"] = static_cast<long long>(o.id);
         j["class"] = name(o.class_id);
@@ -89,13 +89,13 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
         return j;
       };
       std::vector<bool> est_matched(est.size(), false), gt_matched(gt.size(), false);
-      Json matches = Json::array(), fps = Json::array(), fns = Json::array();
-      for (const ObjectMatch& m : s.matches) {
+      report::Json matches = report::Json::array(), fps = report::Json::array(), fns = report::Json::array();
+      for (const eval::ObjectMatch& m : s.matches) {
         est_matched[m.est] = gt_matched[m.gt] = true;
         const Eigen::Vector3d p = est[m.est].position(), q = gt[m.gt].position();
         std::printf("  match  %-10s est #%zu (%.2f, %.2f, %.2f) - gt #%zu (%.2f, %.2f, %.2f): %.3f m\n",
                     name(est[m.est].class_id).c_str(), m.est, p.x(), p.y(), p.z(), m.gt, q.x(), q.y(), q.z(), m.distance);
-        Json j;
+        report::Json j;
         j["estimate"] = objectJson(est[m.est], m.est);
         j["ground_truth"] = objectJson(gt[m.gt], m.gt);
         j["distance_m"] = m.distance;
@@ -118,7 +118,7 @@ EvalCommand addObjectsCommand(CLI::App* cmd) {
       listing["false_positives"] = fps;
       listing["missed"] = fns;
     }
-    Json j;
+    report::Json j;
     j["metric"] = "objects";
     j["estimate"] = est_file.path;
     j["ground_truth"] = gt_file.path;

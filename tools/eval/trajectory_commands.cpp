@@ -38,18 +38,18 @@ void addPairOptions(CLI::App* cmd, PairArgs& a) {
   cmd->add_option("--offset", a.offset, "Added to the estimate's stamps before association, seconds")->capture_default_str();
 }
 
-AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_ref) {
-  TrajectoryReadOptions o;
-  o.format = parseTrajectoryFormat(a.format);
+eval::AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_ref) {
+  eval::TrajectoryReadOptions o;
+  o.format = eval::parseTrajectoryFormat(a.format);
   o.kitti_lidar = a.kitti_lidar;
   o.kitti_times = a.est_times;
-  const auto est = readTrajectory(a.est, o);
+  const auto est = eval::readTrajectory(a.est, o);
   o.kitti_times = a.ref_times;
-  const auto ref = readTrajectory(a.ref, o);
+  const auto ref = eval::readTrajectory(a.ref, o);
   *n_est = est.size();
   *n_ref = ref.size();
   try {
-    return associatePoses(est, ref, a.max_dt, a.offset, 3);
+    return eval::associatePoses(est, ref, a.max_dt, a.offset, 3);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(e.what()) +
                                 "; KITTI poses are stamped by frame index unless --est-times/--ref-times are given, "
@@ -57,9 +57,9 @@ AssociatedPoses loadPair(const PairArgs& a, std::size_t* n_est, std::size_t* n_r
   }
 }
 
-Json poseJson(const Pose& T) {
+report::Json poseJson(const Pose& T) {
   const Eigen::Quaterniond q(T.linear());
-  Json j;
+  report::Json j;
   j["x"] = T.translation().x();
   j["y"] = T.translation().y();
   j["z"] = T.translation().z();
@@ -72,8 +72,8 @@ Json poseJson(const Pose& T) {
 }
 
 // Logs each warning (and prints it under the figures) and returns them as a JSON array.
-Json warnings(std::initializer_list<std::optional<std::string>> found) {
-  Json out = Json::array();
+report::Json warnings(std::initializer_list<std::optional<std::string>> found) {
+  report::Json out = report::Json::array();
   for (const auto& w : found) {
     if (!w) continue;
     spdlog::warn("{}", *w);
@@ -85,8 +85,8 @@ Json warnings(std::initializer_list<std::optional<std::string>> found) {
 
 }  // namespace
 
-Json statsJson(const ErrorStats& s) {
-  Json j;
+report::Json statsJson(const eval::ErrorStats& s) {
+  report::Json j;
   j["rmse"] = s.rmse;
   j["mean"] = s.mean;
   j["median"] = s.median;
@@ -97,7 +97,7 @@ Json statsJson(const ErrorStats& s) {
   return j;
 }
 
-std::string statsLine(const ErrorStats& s, const std::string& unit) {
+std::string statsLine(const eval::ErrorStats& s, const std::string& unit) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "rmse %.4f %s  mean %.4f  median %.4f  std %.4f  min %.4f  max %.4f  (n = %zu)", s.rmse,
                 unit.c_str(), s.mean, s.median, s.std, s.min, s.max, s.count);
@@ -117,17 +117,17 @@ EvalCommand addAteCommand(CLI::App* cmd) {
   cmd->add_option("--save-errors", *save_errors, "Write 'time error_m' per matched pose");
   return [=] {
     std::size_t n_est = 0, n_ref = 0;
-    const AssociatedPoses p = loadPair(*a, &n_est, &n_ref);
-    const AteResult r = absoluteTrajectoryError(p.est, p.ref, parseAlignment(*align));
-    const ErrorStats s = errorStats(r.errors);
+    const eval::AssociatedPoses p = loadPair(*a, &n_est, &n_ref);
+    const eval::AteResult r = eval::absoluteTrajectoryError(p.est, p.ref, eval::parseAlignment(*align));
+    const eval::ErrorStats s = eval::errorStats(r.errors);
     std::printf("ATE of %s against %s\n", a->est.c_str(), a->ref.c_str());
     std::printf("  poses matched: %zu (estimate %zu, reference %zu, max dt %g s)\n", p.t.size(), n_est, n_ref, a->max_dt);
     std::printf("  alignment: %s; translation (%.3f, %.3f, %.3f) m, yaw %.3f deg, scale %.5f\n", align->c_str(),
                 r.alignment.T.translation().x(), r.alignment.T.translation().y(), r.alignment.T.translation().z(),
                 yawOf(r.alignment.T.linear()) * 180 / M_PI, r.alignment.scale);
     std::printf("  translation error: %s\n", statsLine(s, "m").c_str());
-    const Json warned = warnings({coverageWarning(p.t.size(), n_est, n_ref),
-                                  *align == "sim3" ? scaleWarning(r.alignment.scale) : std::nullopt});
+    const report::Json warned = warnings({eval::coverageWarning(p.t.size(), n_est, n_ref),
+                                  *align == "sim3" ? eval::scaleWarning(r.alignment.scale) : std::nullopt});
     if (!save_aligned->empty()) {
       std::vector<StampedPose> out;
       for (std::size_t i = 0; i < p.t.size(); ++i) {
@@ -136,17 +136,17 @@ EvalCommand addAteCommand(CLI::App* cmd) {
         q.linear() = r.alignment.T.linear() * q.linear();
         out.push_back({p.t[i], q});
       }
-      writeTum(*save_aligned, out);
+      io::writeTum(*save_aligned, out);
       spdlog::info("wrote {}", *save_aligned);
     }
     if (!save_errors->empty()) {
       std::ofstream e(*save_errors);
-      if (!e) throw IoError(*save_errors, "cannot write file");
+      if (!e) throw io::IoError(*save_errors, "cannot write file");
       e << "# time ate_m\n" << std::setprecision(10);
       for (std::size_t i = 0; i < p.t.size(); ++i) e << p.t[i] << ' ' << r.errors[i] << '\n';
       spdlog::info("wrote {}", *save_errors);
     }
-    Json j;
+    report::Json j;
     j["metric"] = "ate";
     j["estimate"] = a->est;
     j["reference"] = a->ref;
@@ -177,12 +177,13 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
       ->capture_default_str();
   return [=] {
     std::size_t n_est = 0, n_ref = 0;
-    const AssociatedPoses p = loadPair(*a, &n_est, &n_ref);
-    RpeOptions o;
+    const eval::AssociatedPoses p = loadPair(*a, &n_est, &n_ref);
+    eval::RpeOptions o;
     o.delta = *delta;
-    o.unit = *unit == "m" ? DeltaUnit::Metres : DeltaUnit::Frames;
-    if (*align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, TrajectoryAlignment::Sim3).alignment.scale;
-    const RpeResult r = relativePoseError(p.est, p.ref, o);
+    o.unit = *unit == "m" ? eval::DeltaUnit::Metres : eval::DeltaUnit::Frames;
+    if (*align == "sim3")
+      o.scale = eval::absoluteTrajectoryError(p.est, p.ref, eval::TrajectoryAlignment::Sim3).alignment.scale;
+    const eval::RpeResult r = eval::relativePoseError(p.est, p.ref, o);
     if (r.trans_errors.empty())
       throw std::invalid_argument("rpe: no pose pair is " + std::to_string(*delta) + " " + *unit + " apart");
     std::printf("RPE of %s against %s, delta %g %s\n", a->est.c_str(), a->ref.c_str(), *delta, unit->c_str());
@@ -190,9 +191,9 @@ EvalCommand addRpeCommand(CLI::App* cmd) {
                 r.trans_errors.size(), o.scale);
     std::printf("  translation: %s\n", statsLine(r.translation, "m").c_str());
     std::printf("  rotation:    %s\n", statsLine(r.rotation_deg, "deg").c_str());
-    const Json warned =
-        warnings({coverageWarning(p.t.size(), n_est, n_ref), *align == "sim3" ? scaleWarning(o.scale) : std::nullopt});
-    Json j;
+    const report::Json warned = warnings({eval::coverageWarning(p.t.size(), n_est, n_ref),
+                                          *align == "sim3" ? eval::scaleWarning(o.scale) : std::nullopt});
+    report::Json j;
     j["metric"] = "rpe";
     j["estimate"] = a->est;
     j["reference"] = a->ref;

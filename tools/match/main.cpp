@@ -24,7 +24,7 @@ std::string jsonEscape(const std::string& s) {
   return out;
 }
 
-void printJson(const std::string& method, const slide::PlaceResult& r) {
+void printJson(const std::string& method, const slide::place::PlaceResult& r) {
   const Eigen::Vector4d v = slide::xyzYawOf(r.T_a_b);
   std::printf("{\"found\": %s, \"method\": \"%s\"", r.found ? "true" : "false", method.c_str());
   if (r.found)
@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
                "Prints one JSON object: found, x, y, z, yaw_deg (mapping MAP_B's frame into MAP_A's), inliers,\n"
                "residual_rms, ms, and reason when no transform is found.",
                "slide-match"};
-  slide::CommonOptions common;
-  slide::addCommonOptions(app, common);
+  slide::app::CommonOptions common;
+  slide::app::addCommonOptions(app, common);
   std::string method = "slidegraph", map_a, map_b, classes_path, config_path;
   double budget_ms = -1;
   app.add_option("--method", method, "slidegraph or slidematch")
@@ -55,27 +55,30 @@ int main(int argc, char** argv) {
   app.add_option("--budget-ms", budget_ms, "Time budget of either method in ms (overrides the config)");
   app.add_option("MAP_A", map_a, "Reference map")->required();
   app.add_option("MAP_B", map_b, "Map whose frame is found in MAP_A's")->required();
-  return slide::runApp(app, common, argc, argv, [&]() {
+  return slide::app::runApp(app, common, argc, argv, [&]() {
     const slide::ClassTable classes =
         classes_path.empty() ? slide::ClassTable::loadDefault() : slide::ClassTable::load(classes_path);
-    slide::PlaceConfig config = config_path.empty() ? slide::loadDefaultPlaceConfig() : slide::loadPlaceConfig(config_path);
+    slide::place::PlaceConfig config =
+        config_path.empty() ? slide::place::loadDefaultPlaceConfig() : slide::place::loadPlaceConfig(config_path);
     if (budget_ms >= 0) config.slidematch.budget_ms = config.slidegraph.budget_ms = budget_ms;
-    std::vector<slide::Landmark> lms[2];
+    std::vector<slide::place::Landmark> lms[2];
     const std::string paths[2] = {map_a, map_b};
     for (int k = 0; k < 2; ++k) {
       try {
-        const slide::ObjectMapText text = slide::readObjectMapText(paths[k], classes, slide::MissingSize::Zero);
+        const slide::io::ObjectMapText text =
+            slide::io::readObjectMapText(paths[k], classes, slide::io::MissingSize::Zero);
         for (const std::string& w : text.warnings) spdlog::warn("{}", w);
-        lms[k] = slide::landmarksOf(text.map);
+        lms[k] = slide::place::landmarksOf(text.map);
       } catch (const std::exception& e) {
-        slide::PlaceResult r;
+        slide::place::PlaceResult r;
         r.reason = e.what();
         printJson(method, r);
         spdlog::error("{}", e.what());
         return 1;
       }
     }
-    const slide::PlaceResult r = slide::recognizePlace(slide::parsePlaceMethod(method), lms[0], lms[1], config);
+    const slide::place::PlaceResult r =
+        slide::place::recognizePlace(slide::place::parsePlaceMethod(method), lms[0], lms[1], config);
     printJson(method, r);
     return 0;
   });

@@ -48,22 +48,22 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
   }
   return [a, rpe] {
     if (a->pairs.size() % 2) throw std::invalid_argument("give trajectory files in EST REF pairs");
-    std::vector<Series> series;
-    std::vector<PlotTrajectory> paths;
+    std::vector<plot::Series> series;
+    std::vector<plot::PlotTrajectory> paths;
     std::string subtitle;
     for (std::size_t k = 0; k < a->pairs.size(); k += 2) {
       const auto est = loadTrajectory(a->pairs[k], a->traj, Pose::Identity());
       const auto ref = loadTrajectory(a->pairs[k + 1], a->traj, Pose::Identity());
-      const AssociatedPoses p = associatePoses(est, ref, a->max_dt, 0.0, 3);
-      Series s;
+      const eval::AssociatedPoses p = eval::associatePoses(est, ref, a->max_dt, 0.0, 3);
+      plot::Series s;
       s.name = fileStem(a->pairs[k]);
-      s.colour = robotColour(static_cast<int>(k / 2));
+      s.colour = plot::robotColour(static_cast<int>(k / 2));
       if (!rpe) {
-        const AteResult r = absoluteTrajectoryError(p.est, p.ref, parseAlignment(a->align));
+        const eval::AteResult r = eval::absoluteTrajectoryError(p.est, p.ref, eval::parseAlignment(a->align));
         s.x = p.t;
         s.y = r.errors;
-        PlotTrajectory e{s.name + " (aligned)", {}, static_cast<int>(k / 2), false, r.errors};
-        PlotTrajectory g{fileStem(a->pairs[k + 1]), {}, static_cast<int>(k / 2), true, {}};
+        plot::PlotTrajectory e{s.name + " (aligned)", {}, static_cast<int>(k / 2), false, r.errors};
+        plot::PlotTrajectory g{fileStem(a->pairs[k + 1]), {}, static_cast<int>(k / 2), true, {}};
         for (std::size_t i = 0; i < p.t.size(); ++i) {
           e.positions.push_back(r.alignment.scale * (r.alignment.T.linear() * p.est[i].translation()) +
                                 r.alignment.T.translation());
@@ -72,23 +72,24 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
         paths.push_back(std::move(e));
         paths.push_back(std::move(g));
       } else {
-        RpeOptions o;
+        eval::RpeOptions o;
         o.delta = a->delta;
-        o.unit = a->unit == "m" ? DeltaUnit::Metres : DeltaUnit::Frames;
-        if (a->align == "sim3") o.scale = absoluteTrajectoryError(p.est, p.ref, TrajectoryAlignment::Sim3).alignment.scale;
-        const RpeResult r = relativePoseError(p.est, p.ref, o);
+        o.unit = a->unit == "m" ? eval::DeltaUnit::Metres : eval::DeltaUnit::Frames;
+        if (a->align == "sim3")
+          o.scale = eval::absoluteTrajectoryError(p.est, p.ref, eval::TrajectoryAlignment::Sim3).alignment.scale;
+        const eval::RpeResult r = eval::relativePoseError(p.est, p.ref, o);
         for (std::size_t i : r.first) s.x.push_back(p.t[i]);
         s.y = a->rotation ? r.rot_errors_deg : r.trans_errors;
       }
       for (double& x : s.x) x -= p.t.front();
-      const ErrorStats st = errorStats(s.y);
+      const eval::ErrorStats st = eval::errorStats(s.y);
       char buf[200];
       std::snprintf(buf, sizeof buf, "%s%s: rmse %.3f, max %.3f %s over %zu", subtitle.empty() ? "" : "; ", s.name.c_str(),
                     st.rmse, st.max, rpe && a->rotation ? "deg" : "m", st.count);
       subtitle += buf;
       series.push_back(std::move(s));
     }
-    SeriesPlotOptions opts;
+    plot::SeriesPlotOptions opts;
     if (!rpe) {
       opts.title = "absolute trajectory error (" + a->align + " alignment)";
       opts.y_label = "ATE [m]";
@@ -100,14 +101,14 @@ PlotCommand addErrorCommand(CLI::App* cmd, bool rpe) {
     }
     if (!a->title.empty()) opts.title = a->title;
     opts.subtitle = subtitle;
-    plotSeries(series, opts).write(a->out);
+    plot::plotSeries(series, opts).write(a->out);
     spdlog::info("wrote {}", a->out);
     if (!a->map_out.empty()) {
-      MapPlotOptions m;
+      plot::MapPlotOptions m;
       m.title = opts.title;
       m.subtitle = "estimates coloured by ATE, references dashed (top view)";
       m.values_label = "ATE [m]";
-      plotMap({}, paths, ClassTable(), m).write(a->map_out);
+      plot::plotMap({}, paths, ClassTable(), m).write(a->map_out);
       spdlog::info("wrote {}", a->map_out);
     }
   };

@@ -18,12 +18,12 @@ void addTrajectoryOptions(CLI::App* cmd, TrajectoryArgs& a) {
 }
 
 std::vector<StampedPose> loadTrajectory(const std::string& path, const TrajectoryArgs& a, const Pose& placement) {
-  TrajectoryReadOptions o;
-  o.format = parseTrajectoryFormat(a.format);
+  eval::TrajectoryReadOptions o;
+  o.format = eval::parseTrajectoryFormat(a.format);
   o.kitti_times = a.times;
   o.kitti_lidar = a.kitti_lidar;
   o.placement = placement;
-  return readTrajectory(path, o);
+  return eval::readTrajectory(path, o);
 }
 
 std::string fileStem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
@@ -33,8 +33,8 @@ std::string fileStem(const std::string& path) { return std::filesystem::path(pat
 int main(int argc, char** argv) {
   using namespace slide;
   CLI::App app{"slide-plot: pictures of object maps, trajectories and errors (PNG or SVG by --out extension)"};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   app.require_subcommand(1);
   app.fallthrough();  // --log-level also after the subcommand
   std::vector<std::pair<CLI::App*, PlotCommand>> commands;
@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   commands.emplace_back(ate, addErrorCommand(ate, false));
   CLI::App* rpe = app.add_subcommand("rpe", "Relative pose error over time (at each pair's first pose), one line per pair");
   commands.emplace_back(rpe, addErrorCommand(rpe, true));
-  return runApp(app, common, argc, argv, [&] {
+  return app::runApp(app, common, argc, argv, [&] {
     for (auto& [sub, cmd] : commands)
       if (sub->parsed()) cmd();
     return 0;

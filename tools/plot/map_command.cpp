@@ -48,13 +48,13 @@ PlotCommand addMapCommand(CLI::App* cmd) {
     if (a->maps.empty() && a->trajs.empty() && a->gt_maps.empty() && a->gt_trajs.empty())
       throw std::invalid_argument("map: nothing to draw; give --map, --traj, --gt-map or --gt-traj");
     const ClassTable classes = a->classes.empty() ? ClassTable::loadDefault() : ClassTable::load(a->classes);
-    std::vector<PlotMap> maps;
-    std::vector<PlotTrajectory> trajs;
+    std::vector<plot::PlotMap> maps;
+    std::vector<plot::PlotTrajectory> trajs;
     auto addMaps = [&](const std::vector<std::string>& args, bool truth) {
       for (std::size_t i = 0; i < args.size(); ++i) {
-        const PlacedFile f = parsePlacedFile(args[i]);
-        PlotMap m{fileStem(f.path), {}, static_cast<int>(i), truth};
-        for (const Object& o : readObjectMapFile(f.path, classes, a->default_class))
+        const eval::PlacedFile f = eval::parsePlacedFile(args[i]);
+        plot::PlotMap m{fileStem(f.path), {}, static_cast<int>(i), truth};
+        for (const Object& o : io::readObjectMapFile(f.path, classes, a->default_class))
           m.objects.push_back(transformObject(f.placement, o));
         spdlog::info("{}: {} objects", f.path, m.objects.size());
         maps.push_back(std::move(m));
@@ -62,8 +62,8 @@ PlotCommand addMapCommand(CLI::App* cmd) {
     };
     auto addTrajs = [&](const std::vector<std::string>& args, bool truth) {
       for (std::size_t i = 0; i < args.size(); ++i) {
-        const PlacedFile f = parsePlacedFile(args[i]);
-        PlotTrajectory t{fileStem(f.path), {}, static_cast<int>(i), truth, {}};
+        const eval::PlacedFile f = eval::parsePlacedFile(args[i]);
+        plot::PlotTrajectory t{fileStem(f.path), {}, static_cast<int>(i), truth, {}};
         for (const auto& p : loadTrajectory(f.path, a->traj, f.placement)) t.positions.push_back(p.pose.translation());
         spdlog::info("{}: {} poses", f.path, t.positions.size());
         trajs.push_back(std::move(t));
@@ -73,8 +73,8 @@ PlotCommand addMapCommand(CLI::App* cmd) {
     addMaps(a->gt_maps, true);
     addTrajs(a->trajs, false);
     addTrajs(a->gt_trajs, true);
-    MapPlotOptions opts;
-    opts.view = a->view == "top" ? View::top() : View::oblique(a->azimuth, a->elevation);
+    plot::MapPlotOptions opts;
+    opts.view = a->view == "top" ? plot::View::top() : plot::View::oblique(a->azimuth, a->elevation);
     opts.width = a->width;
     opts.height = a->height;
     opts.label_ids = a->label_ids;
@@ -88,11 +88,11 @@ PlotCommand addMapCommand(CLI::App* cmd) {
       std::vector<Object> est, gt;
       for (const auto& m : maps) (m.ground_truth ? gt : est).insert((m.ground_truth ? gt : est).end(), m.objects.begin(), m.objects.end());
       if (est.empty() || gt.empty()) throw std::invalid_argument("map --score needs --map and --gt-map");
-      ObjectMatchOptions mo;
+      eval::ObjectMatchOptions mo;
       mo.threshold = a->score_threshold;
-      const ObjectMappingScore sc = scoreObjectMap(est, gt, mo);
+      const eval::ObjectMappingScore sc = eval::scoreObjectMap(est, gt, mo);
       std::vector<bool> est_hit(est.size(), false), gt_hit(gt.size(), false);
-      for (const ObjectMatch& m : sc.matches) {
+      for (const eval::ObjectMatch& m : sc.matches) {
         est_hit[m.est] = gt_hit[m.gt] = true;
         opts.overlay.matches.emplace_back(est[m.est].position(), gt[m.gt].position());
       }
@@ -106,7 +106,7 @@ PlotCommand addMapCommand(CLI::App* cmd) {
       opts.subtitle = std::string(a->view == "top" ? "top view" : "oblique view") + "; " + buf;
       spdlog::info("{}", buf);
     }
-    plotMap(maps, trajs, classes, opts).write(a->out);
+    plot::plotMap(maps, trajs, classes, opts).write(a->out);
     spdlog::info("wrote {}", a->out);
   };
 }

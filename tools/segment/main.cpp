@@ -33,12 +33,12 @@ std::string lower(std::string s) {
 }
 
 // KITTI .bin, PCD, or text "x y z [intensity]" by the file's extension.
-LabelledScan readScan(const std::string& path) {
+io::LabelledScan readScan(const std::string& path) {
   const std::string l = lower(path);
-  if (endsWith(l, ".bin")) return readVelodyneBin(path);
-  if (endsWith(l, ".pcd")) return readPcdFile(path);
-  LabelledScan scan;
-  scan.xyz = readXyzCloud(path);
+  if (endsWith(l, ".bin")) return io::readVelodyneBin(path);
+  if (endsWith(l, ".pcd")) return io::readPcdFile(path);
+  io::LabelledScan scan;
+  scan.xyz = frontend::readXyzCloud(path);
   scan.intensity.assign(scan.xyz.size(), 0.0f);
   return scan;
 }
@@ -68,8 +68,8 @@ struct Found {
 };
 
 std::string toJson(const std::string& scan_path, const std::string& mode, std::size_t num_points, double ms,
-                   const std::vector<Found>& found, int unfitted, const ClassTable& classes, const ScanScore* score,
-                   const std::vector<ColumnRejection>& rejected) {
+                   const std::vector<Found>& found, int unfitted, const ClassTable& classes,
+                   const eval::ScanScore* score, const std::vector<frontend::ColumnRejection>& rejected) {
   std::ostringstream o;
   o << "{\n  \"scan\": " << jsonString(scan_path) << ",\n  \"mode\": " << jsonString(mode)
     << ",\n  \"points\": " << num_points << ",\n  \"segment_fit_ms\": " << ms << ",\n  \"unfitted_instances\": " << unfitted
@@ -82,12 +82,12 @@ std::string toJson(const std::string& scan_path, const std::string& mode, std::s
     if (const auto* c = std::get_if<Cuboid>(&ob.model)) o << ", \"yaw_deg\": " << yawOf(c->pose.linear()) * 180.0 / M_PI;
     if (const auto* c = std::get_if<Cylinder>(&ob.model)) o << ", \"radius\": " << c->radius;
     o << ", \"points\": " << found[k].points;
-    if (score) o << ", \"verdict\": " << jsonString(verdictName(score->verdicts[k]));
+    if (score) o << ", \"verdict\": " << jsonString(eval::verdictName(score->verdicts[k]));
     o << "}";
   }
   o << (found.empty() ? "]" : "\n  ]");
   if (score) {
-    auto tally = [&](const char* name, const ShapeTally& t) {
+    auto tally = [&](const char* name, const eval::ShapeTally& t) {
       o << "    " << jsonString(name) << ": {\"targets\": " << t.targets << ", \"found\": " << t.found
         << ", \"estimates\": " << t.estimates << ", \"duplicates\": " << t.duplicates << ", \"small\": " << t.small
         << ", \"false\": " << t.false_estimates << "}";
@@ -124,9 +124,9 @@ int main(int argc, char** argv) {
       "fits: prints the objects found (class, position, size) as JSON; --plot draws them over the points (top "
       "view); --labels (SemanticKITTI .label) scores them against the labelled cars (>= 200 points) and "
       "trunk/pole point groups (>= 30 points). Exit code 1 for an unreadable file (the message names it)."};
-  CommonOptions common;
+  app::CommonOptions common;
   common.log_level = "warn";
-  addCommonOptions(app, common);
+  app::addCommonOptions(app, common);
   std::string scan_path, labels_path, mode = "geometric", plot_path, json_path, config_file, classes_file;
   bool explain = false;
   std::vector<double> sensor_fov;
@@ -146,40 +146,43 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_file, "Front-end YAML (default: config/frontend.yaml)");
   app.add_option("--classes", classes_file, "Class table YAML (default: config/classes.yaml)");
   app.add_flag("--explain", explain, "Geometric mode: also list the column candidates turned down and why");
-  return runApp(app, common, argc, argv, [&]() {
+  return app::runApp(app, common, argc, argv, [&]() {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
-    const FrontendConfig cfg = config_file.empty() ? loadDefaultFrontendConfig() : loadFrontendConfig(config_file);
-    LabelledScan scan = readScan(scan_path);
-    if (scan.size() == 0) throw IoError(scan_path, "no points");
+    const frontend::FrontendConfig cfg =
+        config_file.empty() ? frontend::loadDefaultFrontendConfig() : frontend::loadFrontendConfig(config_file);
+    io::LabelledScan scan = readScan(scan_path);
+    if (scan.size() == 0) throw io::IoError(scan_path, "no points");
     if (!labels_path.empty()) {
-      readLabels(labels_path, scan);
+      io::readLabels(labels_path, scan);
     } else if (mode == "labelled") {
       throw std::invalid_argument("--mode labelled needs --labels");
     }
-    LabelledScan input = scan;
+    io::LabelledScan input = scan;
     if (mode != "labelled") input.semantic.clear(), input.instance.clear();  // the segmenter never sees labels
-    LearnedLidarParams learned_params = cfg.learned;
+    frontend::LearnedLidarParams learned_params = cfg.learned;
     if (!sensor_fov.empty()) learned_params.fov_up_deg = sensor_fov[0], learned_params.fov_down_deg = sensor_fov[1];
-    const std::optional<LearnedLidarSegmenter> learned =
-        mode == "learned" ? std::optional<LearnedLidarSegmenter>(std::in_place, RangeNetLabeler::fromParams(learned_params),
-                                                                 std::make_shared<LabelledSegmenter>(classes, cfg.labelled))
+    const std::optional<frontend::LearnedLidarSegmenter> learned =
+        mode == "learned" ? std::optional<frontend::LearnedLidarSegmenter>(
+                                std::in_place, frontend::RangeNetLabeler::fromParams(learned_params),
+                                std::make_shared<frontend::LabelledSegmenter>(classes, cfg.labelled))
                           : std::nullopt;
 
-    InputIssues issues;
-    std::vector<ColumnRejection> rejected;
+    frontend::InputIssues issues;
+    std::vector<frontend::ColumnRejection> rejected;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Instance> instances;
+    std::vector<frontend::Instance> instances;
     if (mode == "geometric") {
-      instances = GeometricSegmenter(classes, cfg.geometric).segment(input, issues, explain ? &rejected : nullptr);
+      instances =
+          frontend::GeometricSegmenter(classes, cfg.geometric).segment(input, issues, explain ? &rejected : nullptr);
     } else if (learned) {
       instances = learned->segment(input, issues);
     } else {
-      instances = LabelledSegmenter(classes, cfg.labelled).segment(input, issues);
+      instances = frontend::LabelledSegmenter(classes, cfg.labelled).segment(input, issues);
     }
     std::vector<Found> found;
     int unfitted = 0;
     for (const auto& inst : instances) {
-      if (auto o = fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) {
+      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) {
         o->id = inst.id;
         found.push_back({*o, static_cast<int>(inst.points.size())});
       } else {
@@ -189,20 +192,20 @@ int main(int argc, char** argv) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     for (const auto& [what, n] : issues.counts()) spdlog::warn("{}: {} x {}", scan_path, n, what);
 
-    std::optional<ScanScore> score;
+    std::optional<eval::ScanScore> score;
     if (scan.hasLabels()) {
       std::vector<Object> objects;
       for (const auto& f : found) objects.push_back(f.object);
-      score = scoreScanAgainstLabels(scan, objects, classes);
+      score = eval::scoreScanAgainstLabels(scan, objects, classes);
     }
     const std::string json = toJson(scan_path, mode, scan.size(), ms, found, unfitted, classes, score ? &*score : nullptr, rejected);
     std::fputs(json.c_str(), stdout);
     if (!json_path.empty()) {
       std::ofstream out(json_path);
-      if (!(out << json)) throw IoError(json_path, "cannot write");
+      if (!(out << json)) throw io::IoError(json_path, "cannot write");
     }
     if (!plot_path.empty()) {
-      MapPlotOptions opts;
+      plot::MapPlotOptions opts;
       opts.title = scan_path;
       char sub[200];
       std::snprintf(sub, sizeof sub, "%s mode: %zu objects from %zu points", mode.c_str(), found.size(), scan.size());
@@ -217,14 +220,15 @@ int main(int argc, char** argv) {
           else opts.overlay.missed.push_back(t.centroid);
         }
         for (std::size_t k = 0; k < found.size(); ++k)
-          if (score->verdicts[k] == EstimateVerdict::False) opts.overlay.false_positives.push_back(found[k].object.position());
+          if (score->verdicts[k] == eval::EstimateVerdict::False)
+            opts.overlay.false_positives.push_back(found[k].object.position());
       }
       const double r2 = cfg.geometric.max_range * cfg.geometric.max_range;
       for (const auto& p : scan.xyz)
         if (p.allFinite() && double(p.x()) * p.x() + double(p.y()) * p.y() <= r2) opts.points.push_back(p.cast<double>());
-      PlotMap m{mode + " objects", {}, 0, false};
+      plot::PlotMap m{mode + " objects", {}, 0, false};
       for (const auto& f : found) m.objects.push_back(f.object);
-      plotMap({m}, {}, classes, opts).write(plot_path);
+      plot::plotMap({m}, {}, classes, opts).write(plot_path);
       spdlog::info("wrote {}", plot_path);
     }
     return 0;

@@ -11,7 +11,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"slide-sheriff: run a procman (.pmd) script headless, or print the team's status", "slide-sheriff"};
-  slide::CommonOptions common;
+  slide::app::CommonOptions common;
   slide::SheriffOptions opts;
   std::string config;
   char host[HOST_NAME_MAX + 1] = {};
@@ -31,8 +31,8 @@ int main(int argc, char** argv) {
   app.add_option("--linger", opts.linger_s, "Keep sending orders this many seconds after the script")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_flag("--show-output", opts.show_output, "Print the commands' output (PM_OUTPUT)");
-  slide::addCommonOptions(app, common);
-  return slide::runApp(app, common, argc, argv, [&]() {
+  slide::app::addCommonOptions(app, common);
+  return slide::app::runApp(app, common, argc, argv, [&]() {
     const slide::procman::PmdConfig cfg = slide::procman::loadPmd(config);
     slide::SheriffNode node(cfg, opts);
     return node.run();

@@ -35,7 +35,7 @@ void SheriffNode::onInfo(const lcm::ReceiveBuffer*, const std::string&, const pr
   const auto deputies = model_.deputies();
   if (std::find(deputies.begin(), deputies.end(), m->deputy_id) == deputies.end()) return;
   if (!model_.heardFrom(m->deputy_id)) spdlog::info("deputy '{}' reports {} commands", m->deputy_id, m->ncmds);
-  model_.onDeputyInfo(m->deputy_id, commandReports(*m));
+  model_.onDeputyInfo(m->deputy_id, msg::commandReports(*m));
 }
 
 void SheriffNode::onOutput(const lcm::ReceiveBuffer*, const std::string&, const procman_lcm::output_t* m) {
@@ -53,7 +53,7 @@ void SheriffNode::spin(double seconds) {
 
 void SheriffNode::sendOrders(int64_t now) {
   for (const std::string& d : model_.deputies()) {
-    const procman_lcm::orders_t m = makeOrders(d, opts_.id, now, model_.ordersFor(d));
+    const procman_lcm::orders_t m = msg::makeOrders(d, opts_.id, now, model_.ordersFor(d));
     lcm_.publish("PM_ORDERS", &m);
   }
 }

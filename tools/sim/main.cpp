@@ -12,14 +12,14 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"Generate a simulated multi-robot dataset (one folder per robot plus objects.csv)", "slide-sim"};
-  slide::CommonOptions common;
-  slide::addCommonOptions(app, common);
-  slide::ScenarioSpec spec;
+  slide::app::CommonOptions common;
+  slide::app::addCommonOptions(app, common);
+  slide::simulator::ScenarioSpec spec;
   std::string out, sensor = "lidar", lidar = "os1-64", camera = "d455";
   bool force = false, quiet = false;
   unsigned threads = 0;
   app.add_option("--world", spec.world, "World: forest | urban | indoor | kitti05 | kitti07")
-      ->check(CLI::IsMember(slide::worldNames()))
+      ->check(CLI::IsMember(slide::simulator::worldNames()))
       ->capture_default_str();
   app.add_option("--robots", spec.robots, "Number of robots")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_option("--seed", spec.seed, "Random seed (same seed, same dataset)")->capture_default_str();
@@ -32,10 +32,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"lidar", "rgbd"}))
       ->excludes(sensor_opt);
   auto* lidar_opt = app.add_option("--lidar", lidar, "LiDAR model: os1-64 | hdl-64e | vlp-16 (KITTI worlds: hdl-64e)")
-      ->check(CLI::IsMember(slide::lidarModelNames()))
+      ->check(CLI::IsMember(slide::simulator::lidarModelNames()))
       ->capture_default_str();
   app.add_option("--camera", camera, "RGBD camera: d435 | d455")
-      ->check(CLI::IsMember(slide::cameraModelNames()))
+      ->check(CLI::IsMember(slide::simulator::cameraModelNames()))
       ->capture_default_str();
   auto* frames = app.add_option("--frames", spec.frames, "Frames per robot (KITTI: cut each split to N frames)");
   app.add_option("--distance", spec.distance, "Metres driven per robot (procedural worlds)")
@@ -64,21 +64,21 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_option("--threads", threads, "Robots generated in parallel (0: one per core)")->capture_default_str();
 
-  return slide::runApp(app, common, argc, argv, [&]() {
+  return slide::app::runApp(app, common, argc, argv, [&]() {
     namespace fs = std::filesystem;
     if (fs::exists(out) && !fs::is_empty(out) && !force)
       throw std::runtime_error("output folder " + out + " is not empty (use --force to write into it)");
     if (!sensors_list.empty() && static_cast<int>(sensors_list.size()) != spec.robots)
       throw std::runtime_error("--sensors lists " + std::to_string(sensors_list.size()) + " sensors for " +
                                std::to_string(spec.robots) + " robots");
-    slide::SensorOptions sensors;
+    slide::simulator::SensorOptions sensors;
     sensors.sensor = sensor;
     sensors.per_robot = sensors_list;
     if (lidar_opt->count() == 0 && spec.world.rfind("kitti", 0) == 0) lidar = "hdl-64e";  // KITTI's own sensor
-    sensors.lidar = slide::lidarModel(lidar);
-    sensors.camera = slide::cameraModel(camera);
+    sensors.lidar = slide::simulator::lidarModel(lidar);
+    sensors.camera = slide::simulator::cameraModel(camera);
     const auto t0 = std::chrono::steady_clock::now();
-    const slide::Scenario sc = slide::buildScenario(spec);
+    const slide::simulator::Scenario sc = slide::simulator::buildScenario(spec);
     spdlog::info("world '{}': {} objects, {} scenery shapes; {} robot(s)", sc.world.name, sc.world.objects.size(),
                  sc.world.structures.size(), sc.robots.size());
     for (const auto& r : sc.robots)
@@ -105,7 +105,8 @@ int main(int argc, char** argv) {
       std::fflush(stderr);
       (void)n;
     };
-    const slide::GenerationStats st = slide::writeScenarioDataset(sc, sensors, out, progress, threads);
+    const slide::simulator::GenerationStats st =
+        slide::simulator::writeScenarioDataset(sc, sensors, out, progress, threads);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     spdlog::info("wrote {} frames ({} points or valid depth pixels) to {} in {:.1f} s", st.frames, st.points, out, s);
     return 0;

@@ -15,14 +15,14 @@ using namespace slide::team;
 int main(int argc, char** argv) {
   CLI::App app{"Makes one team key file per robot (<out>/robot<id>.keys, mode 0600) with a fresh random key for "
                "each pair of robots, or keys derived from a master secret file (--master-file) kept off the robots."};
-  CommonOptions common;
-  addCommonOptions(app, common);
+  app::CommonOptions common;
+  app::addCommonOptions(app, common);
   std::vector<std::int32_t> team;
   std::string out, master_file;
   app.add_option("--team", team, "Robot ids of the team, e.g. 0,1,2")->required()->delimiter(',');
   app.add_option("--out", out, "Folder for the key files")->required();
   app.add_option("--master-file", master_file, "Derive the pair keys from this secret file instead of at random");
-  return runApp(app, common, argc, argv, [&]() {
+  return app::runApp(app, common, argc, argv, [&]() {
     for (std::int32_t id : team)
       if (id < 0 || id > 32767) throw std::runtime_error("robot id " + std::to_string(id) + " outside 0..32767");
     std::string master;
