@@ -228,6 +228,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
       opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
+      if (c.has("gap_cluster")) loadCluster(c.child("gap_cluster"), cfg.labelled.gap_cluster);
       opt(c, "min_split_cell", cfg.labelled.min_split_cell, 1e-3);
       if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
       if (c.has("cluster_cell_by_class")) {

@@ -75,6 +75,15 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
         for (int i : c) xy.emplace_back(scan.xyz[i].x(), scan.xyz[i].y());
         const cv::Size2f r = cv::minAreaRect(xy).size;
         const bool oversized = std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y();
+        // Car-sized, but falling apart on gap_cluster cells (an end face joined to a stripe of the
+        // next car's side seen through the gap): each part is a cluster of its own.
+        if (!oversized && params_.gap_cluster.cell > 0 && cell > params_.gap_cluster.cell + 1e-9) {
+          auto parts = clusterGrid(scan.xyz, c, params_.gap_cluster);
+          if (parts.size() >= 2) {
+            for (auto& part : parts) todo.emplace_back(std::move(part), params_.gap_cluster.cell);
+            continue;
+          }
+        }
         if (!oversized || 0.5 * cell < params_.min_split_cell - 1e-9) {
           kept.push_back(std::move(c));
           continue;

@@ -34,6 +34,9 @@ struct LabelledSegmenterParams {
   // again on cells half as large, down to this cell (cars parked a few decimetres apart join
   // at cluster.cell); cluster.cell or more: off.
   double min_split_cell = 0.15;
+  // A cuboid-class cluster within the class's size that falls apart on these cells into two or
+  // more parts of at least min_points is split into them (cell 0: off; geometric car.gap_cell).
+  GridClusterParams gap_cluster{0.15, false, 40};
   NotchSplitParams notch{0.4, 0.0};  // depth 0: off (config/frontend.yaml says why); on, a cuboid-class cluster with a notch in its view is split there (view_notch.h)
 };
 

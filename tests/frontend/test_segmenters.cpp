@@ -153,6 +153,42 @@ TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
   EXPECT_THROW(frontend::LabelledSegmenter(classes, p), std::invalid_argument);
 }
 
+// A car's end face (label car, 1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a
+// stripe of the next car's side (0.8 m deep at x = 7.15) join on 0.3 m cells into one car-sized
+// cluster; on gap_cluster cells they are two, and the car is the face alone.
+TEST(LabelledSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreTwoClusters) {
+  io::LabelledScan scan;
+  auto face = [&](double x0, double y0, double x1, double y1) {
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    for (double t = 0; t <= len + 1e-9; t += 0.05)
+      for (double z = -1.0; z <= 0.4; z += 0.1) {
+        scan.xyz.emplace_back(static_cast<float>(x0 + (x1 - x0) * t / len), static_cast<float>(y0 + (y1 - y0) * t / len),
+                              static_cast<float>(z));
+        scan.intensity.push_back(0.5f);
+        scan.semantic.push_back(10);
+        scan.instance.push_back(0);
+      }
+  };
+  face(5.0, 4.0, 6.8, 4.0);
+  face(7.15, 4.2, 7.15, 5.0);
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.gap_cluster.cell, 0.0) << "on by default";
+  frontend::InputIssues issues;
+  auto widest = [&](const frontend::LabelledSegmenterParams& params) {
+    float most = 0;
+    for (const auto& inst : frontend::LabelledSegmenter(classes, params).segment(scan, issues)) {
+      float lo = 1e9f, hi = -1e9f;
+      for (const auto& q : inst.points) lo = std::min(lo, q.x()), hi = std::max(hi, q.x());
+      most = std::max(most, hi - lo);
+    }
+    return most;
+  };
+  EXPECT_LT(widest(p), 1.9f) << "the face alone";
+  p.gap_cluster.cell = 0;
+  EXPECT_GT(widest(p), 2.1f) << "the face with the stripe";
+}
+
 TEST(LabelledSegmenter, RealScanCarBecomesCarSizedCuboid) {
   const ClassTable classes = ClassTable::loadDefault();
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
