@@ -138,7 +138,8 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   // Which face is seen is judged on the lower half of the points: the vertical faces, without
   // the top (a hood or roof seen from above adds depth whichever face is in view).
   double su0, su1, sv0, sv1;
-  if (extents(yaw, su0, su1, sv0, sv1, 0.5 * (bottom_z + top_z)) < p.min_points) su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
+  if (extents(yaw, su0, su1, sv0, sv1, 0.5 * (bottom_z + top_z)) < p.min_points)
+    su0 = lo_u, su1 = hi_u, sv0 = lo_v, sv1 = hi_v;
   const double face_u = su1 - su0, face_v = sv1 - sv0;
   const bool end_view =
       longerExtentIsWidth(std::max(face_u, face_v), std::min(face_u, face_v), size_min, size_max, p.size_tolerance);
@@ -173,7 +174,8 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   const double yaw_x = length_along_u ? yaw : yaw + M_PI / 2;
   std::optional<Cuboid> box = boxAlong(yaw_x, why);
   // No face was long enough to be the length: the length may run along either axis.
-  if (box && other_reading && std::max(face_u, face_v) < size_min.x()) *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
+  if (box && other_reading && std::max(face_u, face_v) < size_min.x())
+    *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
   return box;
 }
 

@@ -21,7 +21,8 @@ bool withinClassSize(const Object& o, const ClassInfo& info, const FitParams& p,
 }  // namespace
 
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
-                                const Eigen::Vector3d& viewpoint, std::string* why, std::optional<Object>* other_reading) {
+                                const Eigen::Vector3d& viewpoint, std::string* why,
+                                std::optional<Object>* other_reading) {
   if (other_reading) other_reading->reset();
   const ClassInfo* info = classes.find(class_id);
   if (!info) {

@@ -283,7 +283,8 @@ double headingOf(const Object& o) {
 
 // Each box with an other reading takes the reading whose heading the sure boxes (no other
 // reading) of its class within `radius` agree with more: the sum over them of cos(2 x the
-// heading difference), +1 parallel, -1 across). Without sure boxes nearby it keeps its first reading.
+// heading difference), +1 parallel and -1 across. Without sure boxes nearby it keeps its first
+// reading.
 void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fits, double radius) {
   for (auto& [o, other] : fits) {
     if (!other) continue;
@@ -307,8 +308,8 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     std::optional<Object> other;
-    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_, T_body_odom * t.viewpoint(),
-                       nullptr, readings ? &other : nullptr);
+    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_,
+                       T_body_odom * t.viewpoint(), nullptr, readings ? &other : nullptr);
     if (!o) continue;
     o->id = id;
     o->num_observations = t.hits;

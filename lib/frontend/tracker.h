@@ -40,8 +40,8 @@ struct TrackerParams {
   double box_merge_growth = 0.5;
   // A box none of whose faces was seen as long as its class's shortest length may have its length
   // along either axis (a car's lone end face, or a stretch of its side seen through a gap): it
-  // takes the reading whose heading lies nearer (modulo 180 deg) that of the nearest box of its
-  // class within this radius (m, x-y) whose length was seen. Parked cars stand parallel to their
+  // takes the reading whose heading the boxes of its class within this radius (m, x-y) whose
+  // length was seen agree with more (modulo 180 deg). Parked cars stand parallel to their
   // neighbours. 0: off (the fit's own guess).
   double parallel_radius = 10.0;
 };

@@ -162,8 +162,8 @@ TEST(LabelledSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreTwoClusters) {
     const double len = std::hypot(x1 - x0, y1 - y0);
     for (double t = 0; t <= len + 1e-9; t += 0.05)
       for (double z = -1.0; z <= 0.4; z += 0.1) {
-        scan.xyz.emplace_back(static_cast<float>(x0 + (x1 - x0) * t / len), static_cast<float>(y0 + (y1 - y0) * t / len),
-                              static_cast<float>(z));
+        const double x = x0 + (x1 - x0) * t / len, y = y0 + (y1 - y0) * t / len;
+        scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
         scan.intensity.push_back(0.5f);
         scan.semantic.push_back(10);
         scan.instance.push_back(0);
