@@ -147,8 +147,8 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
 
   // The box with its length (x) along heading yaw_x, or nullopt when the extents do not fit the class.
   auto boxAlong = [&](double yaw_x, std::string* reason) -> std::optional<Cuboid> {
-    double lu, hu, lv, hv;
-    extents(yaw_x, lu, hu, lv, hv);
+    double lu = lo_u, hu = hi_u, lv = lo_v, hv = hi_v;  // the extents at `yaw`, measured above
+    if (yaw_x != yaw) extents(yaw_x, lu, hu, lv, hv);
     double lo_z = bottom_z, hi_z = top_z;
     const Eigen::Vector3d observed(hu - lu, hv - lv, hi_z - lo_z);
     if ((observed.array() > size_max.array() * p.size_tolerance).any()) {
