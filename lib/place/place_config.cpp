@@ -82,6 +82,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
       n.fail("max_yaw_step_deg", "must be at least min_yaw_step_deg");
   }
   root.read("min_shared_class_share", c.min_shared_class_share);
+  root.read("rival_search_max_landmarks", c.rival_search_max_landmarks);
   root.rejectUnknownKeys();
   return c;
 }
@@ -102,7 +103,17 @@ PlaceResult recognizePlace(PlaceMethod method, const std::vector<Landmark>& a, c
     r.by_shape = true;
     return r;
   }
-  return method == PlaceMethod::SlideGraph ? slideGraph(a, b, config.slidegraph) : slideMatch(a, b, config.slidematch);
+  if (method == PlaceMethod::SlideMatch) return slideMatch(a, b, config.slidematch);
+  PlaceResult r = slideGraph(a, b, config.slidegraph);
+  if (!r.found || std::max(a.size(), b.size()) > config.rival_search_max_landmarks) return r;
+  const double cpu0 = clock::threadCpuMs();
+  std::vector<PlaceResult> rivals;
+  r.ms += slideMatch(a, b, config.slidematch, &rivals).ms;
+  standsAgainstRival(rivalOf(r, rivals, b, config.slidegraph.verify), config.slidegraph.verify, r);
+  const double cpu = clock::threadCpuMs() - cpu0;
+  r.stage_cpu_ms.emplace_back("rival_search", cpu);
+  r.cpu_ms += cpu;
+  return r;
 }
 
 }  // namespace slide::place

@@ -13,6 +13,12 @@ struct PlaceConfig {
   // Two maps whose classes overlap less than this (sharedClassShare: e.g. a label-free LiDAR's
   // "other" furniture against an RGBD detector's chairs and tables) are matched by shape family.
   double min_shared_class_share = 0.5;
+  // SlideGraph's answer between maps of at most this many landmarks each must also stand against
+  // the alignments SlideMatch's exhaustive search verifies (the ambiguity test of verify.h with
+  // SlideMatch's candidates as rivals); 0 turns the check off. CLIPPER's few densest sets can
+  // miss the true alignment of a periodic scene: a block grid's half-turn alias matched 13
+  // landmarks of two urban robots' maps, the true alignment 12, and only the alias was verified.
+  std::size_t rival_search_max_landmarks = 400;
 };
 
 // Every key is optional (defaults of the structs above); a wrong type or value throws
@@ -24,7 +30,8 @@ PlaceConfig loadDefaultPlaceConfig();
 // "slidegraph" or "slidematch"; throws std::invalid_argument otherwise.
 PlaceMethod parsePlaceMethod(const std::string& name);
 
-// Matches with the configured method; when the maps' classes barely overlap, by shape family
+// Matches with the configured method (SlideGraph's answer checked against SlideMatch's rivals on
+// small maps, see rival_search_max_landmarks); when the maps' classes barely overlap, by shape family
 // and with SlideMatch whatever the method (the result says so through `by_shape`): with classes
 // collapsed to three families SlideGraph's class-triple descriptors no longer tell places apart
 // (an indoor LiDAR robot's "other" furniture against an RGBD robot's chairs and tables: no

@@ -172,9 +172,10 @@ std::vector<Candidate> prunedPeaks(const std::vector<Landmark>& a, const std::ve
 }  // namespace
 
 PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Landmark>& b_in,
-                       const SlideMatchParams& params) {
+                       const SlideMatchParams& params, std::vector<PlaceResult>* trials_out) {
   const auto t0 = Clock::now();
   const double cpu0 = clock::threadCpuMs();
+  if (trials_out) trials_out->clear();
   PlaceResult res;
   double cpu_mark = cpu0;
   auto stage = [&](const char* name) {
@@ -358,6 +359,7 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
   PlaceResult chosen = trials[pick];
   standsAgainstRival(rivalOf(chosen, trials, b_in, params.verify), params.verify, chosen);
   res = std::move(chosen);
+  if (trials_out) *trials_out = std::move(trials);
   stage("verify");
   if (!res.found && res.budget_exhausted)
     res.reason += " (time budget ran out after " + std::to_string(visited) + " of " + std::to_string(to_visit) + " " + unit + ")";

@@ -44,6 +44,9 @@ struct SlideMatchParams {
   VerifyParams verify;
 };
 
-PlaceResult slideMatch(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideMatchParams& params);
+// trials (optional): every refined candidate as verified (accepted or not), strongest coarse peak
+// first; the exhaustive search's view of the other alignments the maps allow (see recognizePlace).
+PlaceResult slideMatch(const std::vector<Landmark>& a, const std::vector<Landmark>& b, const SlideMatchParams& params,
+                       std::vector<PlaceResult>* trials = nullptr);
 
 }  // namespace slide::place

@@ -289,15 +289,19 @@ TEST(SlideMatch, BudgetIsTheQueryingThreadsCpuTime) {
   EXPECT_GT(r.ms, 1.3 * r.cpu_ms) << "the busy thread did not share the core";
 }
 
+namespace {
+// A recorded object map under tests/data/recorded/ (text: label x y z sx sy sz).
+std::vector<place::Landmark> recordedMap(const std::string& path) {
+  const std::string file = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/" + path;
+  return place::landmarksOf(io::readObjectMapText(file, ClassTable::loadDefault(), io::MissingSize::Zero).map);
+}
+}  // namespace
+
 TEST(PlaceRecognition, RecordedIndoorLidarAndRgbdMapsAlignByShapeFamily) {
   // tests/data/recorded/indoor_lidar_rgbd_maps/README.md: the loop closer's SlideGraph found no
   // transform between these two robots' maps in a mixed-team demo.
-  const ClassTable classes = ClassTable::loadDefault();
-  const std::string dir = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/indoor_lidar_rgbd_maps/";
-  const std::vector<place::Landmark> lidar =
-      place::landmarksOf(io::readObjectMapText(dir + "lidar_robot0.txt", classes, io::MissingSize::Zero).map);
-  const std::vector<place::Landmark> rgbd =
-      place::landmarksOf(io::readObjectMapText(dir + "rgbd_robot1.txt", classes, io::MissingSize::Zero).map);
+  const std::vector<place::Landmark> lidar = recordedMap("indoor_lidar_rgbd_maps/lidar_robot0.txt");
+  const std::vector<place::Landmark> rgbd = recordedMap("indoor_lidar_rgbd_maps/rgbd_robot1.txt");
   const place::PlaceConfig config = place::loadDefaultPlaceConfig();
   ASSERT_LT(place::sharedClassShare(lidar, rgbd), config.min_shared_class_share);
   const Pose truth = poseFromXyzYaw(-18.38, 8.62, 0.0, -M_PI / 2);
@@ -309,4 +313,26 @@ TEST(PlaceRecognition, RecordedIndoorLidarAndRgbdMapsAlignByShapeFamily) {
     EXPECT_LT(e.translation_m, 0.5) << place::methodName(m);
     EXPECT_LT(e.yaw_deg, 1.0) << place::methodName(m);
   }
+}
+
+TEST(PlaceRecognition, RecordedHalfTurnAliasOfABlockGridIsAmbiguous) {
+  // tests/data/recorded/urban_half_turn_alias/README.md: CLIPPER's densest sets held only the
+  // alias, so SlideGraph alone accepted it; SlideMatch's exhaustive search also verifies the true
+  // alignment, which matches nearly as many landmarks.
+  const std::vector<place::Landmark> own = recordedMap("urban_half_turn_alias/robot2.txt");
+  const std::vector<place::Landmark> peer = recordedMap("urban_half_turn_alias/robot1.txt");
+  place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  ASSERT_GE(config.rival_search_max_landmarks, own.size());
+  const place::PlaceResult checked = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
+  EXPECT_FALSE(checked.found) << "accepted x " << checked.T_a_b.translation().x() << " y "
+                              << checked.T_a_b.translation().y();
+  EXPECT_NE(checked.reason.find("ambiguous"), std::string::npos) << checked.reason;
+  EXPECT_FALSE(place::recognizePlace(place::PlaceMethod::SlideMatch, own, peer, config).found);
+
+  config.rival_search_max_landmarks = 0;  // SlideGraph alone: the alias, 88 m from the truth
+  const place::PlaceResult alone = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
+  ASSERT_TRUE(alone.found) << alone.reason;
+  const eval::TransformError e = eval::transformError(alone.T_a_b, poseFromXyzYaw(0.0, 69.6, 0.0, 0.0));
+  EXPECT_GT(e.translation_m, 50.0);
+  EXPECT_GT(e.yaw_deg, 170.0);
 }
