@@ -21,7 +21,7 @@ struct WallTraceParams {
   double window_deg = 2.0;       // azimuth searched beyond a column edge for the next returns ...
   double window_length = 2.5;    // ... or as much as spans this many metres at the edge's range (at most 10 deg)
   double beam_tolerance_deg = 0.1;  // elevation difference of returns on the same beam
-  double max_step = 4.0;         // metres (horizontal) between consecutive returns on the face
+  double max_step = 8.0;         // metres (horizontal) between consecutive returns on the face
   double line_tolerance = 0.08;  // metres: distance of the column edge from the line through the next two returns
   double max_step_ratio = 3.0;   // consecutive steps along the face differ at most by this factor
   double corner_run = 0.6;       // a straight run of returns this long beside a stack behind it is a face (0: off)
