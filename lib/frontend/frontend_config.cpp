@@ -134,6 +134,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_top", p.min_top, 0.0);
     opt(c, "max_top", p.max_top, p.min_top);
     opt(c, "max_bottom", p.max_bottom, 0.0);
+    opt(c, "max_range", p.max_range, 0.0);
     opt(c, "min_length", p.min_length, 0.0);
     opt(c, "max_length", p.max_length, p.min_length);
     opt(c, "max_width", p.max_width, 0.0);

@@ -13,6 +13,13 @@
 namespace slide::frontend {
 
 namespace {
+// Horizontal range of the cluster's nearest return.
+double nearestRange(const Cloud& cloud, const std::vector<int>& cluster) {
+  double r = std::numeric_limits<double>::infinity();
+  for (int i : cluster) r = std::min(r, double(cloud[i].head<2>().norm()));
+  return r;
+}
+
 struct Footprint {
   double length = 0, width = 0;
 };
@@ -140,6 +147,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
+    if (kp.max_range > 0 && nearestRange(cloud, cl) > kp.max_range) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
     if (f.length > kp.max_length || f.width > kp.max_width) {
       if (0.5 * cell >= kp.min_split_cell - 1e-9 && boxSide(cloud, cl) <= kp.max_split_length)

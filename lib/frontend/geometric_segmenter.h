@@ -28,6 +28,10 @@ struct CarParams {
   // 1.15 m, does not; at 1.0 indoor table groups were cars).
   double min_top = 1.2, max_top = 2.3;
   double max_bottom = 0.8;       // 5th percentile of height above ground
+  // Clusters whose nearest return lies farther (horizontally) are no cars (0: off): a few beams
+  // of a far car cannot be told from the top of a facade seen over nearer objects, whose lowest
+  // returns make its ground (the tracker meets a real car again nearer).
+  double max_range = 40.0;
   double min_length = 1.2, max_length = 6.5;
   double max_width = 2.8;
   // A cluster longer or wider than that is re-clustered on cells half as large, down to this

@@ -322,6 +322,26 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
   EXPECT_GE(face_cars_without, 1);
 }
 
+// A car-sized box 42 m off (nearest return) is no car: a few beams that far cannot be told
+// from the top of a facade seen over nearer cars, which stands on its own lowest returns (the
+// urban lot's buildings 43-52 m off were cars). The same box 36 m off is a car. (1.8 m tall:
+// at 42 m the beams 0.53 deg apart leave a 1.5 m box's 95th height percentile under min_top.)
+TEST(GeometricSegmenter, ACarSizedClusterBeyondTheCarRangeIsNoCar) {
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.geometric.car.max_range, 36.0);
+  ASSERT_LT(cfg.geometric.car.max_range, 42.0);
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(36, -2.2, -1), Eigen::Vector3d(37.8, 2.2, 0.8)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(-2.2, 42, -1), Eigen::Vector3d(2.2, 43.8, 0.8))},
+                   true);
+  const int car = cfg.geometric.car_class;
+  EXPECT_EQ(instancesNear(c, cfg.geometric, car, {36, 0}, 1.0f), 1);
+  EXPECT_EQ(instancesNear(c, cfg.geometric, car, {0, 42}, 1.0f), 0);
+  frontend::GeometricSegmenterParams off = cfg.geometric;
+  off.car.max_range = 0;  // without the bound both are cars
+  EXPECT_EQ(instancesNear(c, off, car, {0, 42}, 1.0f), 1);
+}
+
 // A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
 // the next car's side seen through the gap between them (0.8 m deep at x = 7.15) join on the car
 // cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart, and
