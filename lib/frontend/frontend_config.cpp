@@ -231,6 +231,9 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
       if (c.has("gap_cluster")) loadCluster(c.child("gap_cluster"), cfg.labelled.gap_cluster);
       opt(c, "min_split_cell", cfg.labelled.min_split_cell, 1e-3);
+      opt(c, "cuboid_ground_strip", cfg.labelled.cuboid_ground_strip, 0.0);
+      opt(c, "ground_cell", cfg.labelled.ground_cell, 0.05);
+      if (c.has("ground_labels")) cfg.labelled.ground_labels = c.getList<int>("ground_labels");
       if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
       if (c.has("cluster_cell_by_class")) {
         const ConfigNode cells = c.child("cluster_cell_by_class");

@@ -1,11 +1,57 @@
 #include "frontend/labelled_segmenter.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <map>
 #include <stdexcept>
 #include <opencv2/imgproc.hpp>
 
 namespace slide::frontend {
+
+namespace {
+// The lowest point labelled ground per cell of a horizontal grid over the scan's ground.
+class LabelledGround {
+ public:
+  LabelledGround(const io::LabelledScan& scan, const std::vector<int>& ground_labels, double cell) : inv_(1.0 / cell) {
+    std::vector<int> idx;
+    for (std::size_t i = 0; i < scan.size(); ++i)
+      if (scan.xyz[i].allFinite() &&
+          std::find(ground_labels.begin(), ground_labels.end(), static_cast<int>(scan.semantic[i])) != ground_labels.end())
+        idx.push_back(static_cast<int>(i));
+    if (idx.empty()) return;
+    x0_ = y0_ = std::numeric_limits<double>::infinity();
+    double x1 = -x0_, y1 = -y0_;
+    for (int i : idx) {
+      x0_ = std::min(x0_, double(scan.xyz[i].x())), x1 = std::max(x1, double(scan.xyz[i].x()));
+      y0_ = std::min(y0_, double(scan.xyz[i].y())), y1 = std::max(y1, double(scan.xyz[i].y()));
+    }
+    nx_ = static_cast<int>((x1 - x0_) * inv_) + 1, ny_ = static_cast<int>((y1 - y0_) * inv_) + 1;
+    low_.assign(static_cast<std::size_t>(nx_) * ny_, std::numeric_limits<float>::infinity());
+    for (int i : idx) {
+      float& m = low_[cellOf(scan.xyz[i].x(), scan.xyz[i].y())];
+      m = std::min(m, scan.xyz[i].z());
+    }
+  }
+  // The lowest ground in the point's cell and the 8 around it; +inf when there is none.
+  float lowestNear(const Eigen::Vector3f& p) const {
+    float m = std::numeric_limits<float>::infinity();
+    const int cx = static_cast<int>(std::floor((p.x() - x0_) * inv_)), cy = static_cast<int>(std::floor((p.y() - y0_) * inv_));
+    for (int y = std::max(0, cy - 1); y <= std::min(ny_ - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); x <= std::min(nx_ - 1, cx + 1); ++x) m = std::min(m, low_[y * nx_ + x]);
+    return m;
+  }
+
+ private:
+  std::size_t cellOf(float x, float y) const {
+    return static_cast<std::size_t>(static_cast<int>((y - y0_) * inv_)) * nx_ + static_cast<int>((x - x0_) * inv_);
+  }
+  double inv_, x0_ = 0, y0_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<float> low_;
+};
+}  // namespace
 
 LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
     : classes_(std::move(classes)), params_(std::move(params)) {
@@ -30,6 +76,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
   std::map<int, std::vector<int>> groups;   // group -> point indices
   std::vector<int> class_of(scan.size(), -1);
   std::map<int, int> class_of_label;        // cache of the class-table lookup
+  std::optional<LabelledGround> ground;     // built when a cuboid class shows up
   long bad = 0;
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const auto& p = scan.xyz[i];
@@ -42,8 +89,14 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     auto it = class_of_label.find(label);
     if (it == class_of_label.end()) it = class_of_label.emplace(label, classes_.fromSemanticKitti(label).value_or(-1)).first;
     if (it->second < 0) continue;
+    const Shape shape = classes_.at(it->second).shape;
+    if (shape == Shape::Cuboid && params_.cuboid_ground_strip > 0) {
+      if (!ground) ground.emplace(scan, params_.ground_labels, params_.ground_cell);
+      const float g = ground->lowestNear(p);
+      if (std::isfinite(g) && p.z() - g <= params_.cuboid_ground_strip) continue;
+    }
     class_of[i] = it->second;
-    const bool cylinder = classes_.at(it->second).shape == Shape::Cylinder;
+    const bool cylinder = shape == Shape::Cylinder;
     groups[params_.merge_cylinders && cylinder ? -1 : it->second].push_back(static_cast<int>(i));
   }
   issues.count("non-finite point", bad);

@@ -13,6 +13,7 @@
 // and flat patches (ground labelled as an object) fall below the class's height.
 #include <map>
 #include <string>
+#include <vector>
 
 #include "frontend/grid_clustering.h"
 #include "frontend/view_notch.h"
@@ -37,6 +38,13 @@ struct LabelledSegmenterParams {
   // A cuboid-class cluster within the class's size that falls apart on these cells into two or
   // more parts of at least min_points is split into them (cell 0: off; geometric car.gap_cell).
   GridClusterParams gap_cluster{0.15, false, 40};
+  // Points of a cuboid class at most this high above the lowest point labelled ground within
+  // about ground_cell of them are left out: ground bled into a car's labels stretches its
+  // footprint towards the sensor (0: off). Where nothing near is labelled ground (a car's far
+  // half seen over another) nothing is left out.
+  double cuboid_ground_strip = 0.1;  // metres
+  double ground_cell = 0.5;          // metres
+  std::vector<int> ground_labels{40, 44, 48, 49, 60, 72};  // the labeller's ground (SemanticKITTI ids: road, parking, ...)
   NotchSplitParams notch{0.4, 0.0};  // depth 0: off (config/frontend.yaml says why); on, a cuboid-class cluster with a notch in its view is split there (view_notch.h)
 };
 

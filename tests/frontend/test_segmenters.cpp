@@ -337,3 +337,34 @@ TEST(ViewNotch, SplitsTwoCarsNoseOutAndKeepsOneCarWhole) {
   off.depth = 0;
   EXPECT_FALSE(frontend::splitAtNotch(pair, allOf(pair), off));
 }
+
+// A car's side (x = 10, 4.4 m long, 1.4 m tall) over ground labelled road, and a strip of the
+// ground in front of it (x 9.0 to 10) whose labels bled into "car", as a range-image network's
+// boundary errors do: left in, the strip stretches the car's footprint 1 m towards the sensor.
+TEST(LabelledSegmenter, GroundLabelledCarAtACarsFootIsLeftOut) {
+  io::LabelledScan scan;
+  auto point = [&](double x, double y, double z, std::uint16_t label) {
+    scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+    scan.intensity.push_back(0.5f);
+    scan.semantic.push_back(label);
+    scan.instance.push_back(0);
+  };
+  for (double y = -2.2; y <= 2.2 + 1e-9; y += 0.05) {
+    for (double z = -0.9; z <= 0.4 + 1e-9; z += 0.1) point(10.0, y, z, 10);
+    for (double x = 4.0; x < 10.0; x += 0.1) point(x, y, -1.0, x >= 9.0 ? 10 : 40);
+  }
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.cuboid_ground_strip, 0.0) << "on by default";
+  frontend::InputIssues issues;
+  auto nearest = [&](const frontend::LabelledSegmenterParams& params) {
+    float x = 1e9f;
+    for (const auto& inst : frontend::LabelledSegmenter(classes, params).segment(scan, issues))
+      if (inst.class_id == 10)
+        for (const auto& q : inst.points) x = std::min(x, q.x());
+    return x;
+  };
+  EXPECT_NEAR(nearest(p), 10.0f, 1e-3f) << "the car's side alone";
+  p.cuboid_ground_strip = 0;
+  EXPECT_LT(nearest(p), 9.2f) << "the bled ground strip in the car";
+}
