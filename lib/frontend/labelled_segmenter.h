@@ -10,7 +10,8 @@
 // its points carry, so a half-confused pole stays one object; cylinder classes are clustered
 // on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
 // background and shadows behind objects form small separate clusters that min_points drops,
-// and flat patches (ground labelled as an object) fall below the class's height.
+// and flat patches (ground labelled as an object) fall below the class's height; car points
+// just above the labelled ground beside them (its bled edge) are left out.
 #include <map>
 #include <string>
 #include <vector>
