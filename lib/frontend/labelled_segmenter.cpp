@@ -11,15 +11,20 @@
 namespace slide::frontend {
 
 namespace {
-// The lowest point labelled ground per cell of a horizontal grid over the scan's ground.
+// The lowest point labelled ground per cell of a horizontal grid over the scan's ground within
+// max_range (horizontally; a stray far return must not size the grid).
 class LabelledGround {
  public:
-  LabelledGround(const io::LabelledScan& scan, const std::vector<int>& ground_labels, double cell) : inv_(1.0 / cell) {
+  LabelledGround(const io::LabelledScan& scan, const std::vector<int>& ground_labels, double cell, double max_range)
+      : inv_(1.0 / cell) {
     std::vector<int> idx;
-    for (std::size_t i = 0; i < scan.size(); ++i)
-      if (scan.xyz[i].allFinite() &&
+    const double r2 = max_range * max_range;
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      const auto& q = scan.xyz[i];
+      if (q.allFinite() && double(q.x()) * q.x() + double(q.y()) * q.y() <= r2 &&
           std::find(ground_labels.begin(), ground_labels.end(), static_cast<int>(scan.semantic[i])) != ground_labels.end())
         idx.push_back(static_cast<int>(i));
+    }
     if (idx.empty()) return;
     x0_ = y0_ = std::numeric_limits<double>::infinity();
     double x1 = -x0_, y1 = -y0_;
@@ -91,7 +96,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     if (it->second < 0) continue;
     const Shape shape = classes_.at(it->second).shape;
     if (shape == Shape::Cuboid && params_.cuboid_ground_strip > 0) {
-      if (!ground) ground.emplace(scan, params_.ground_labels, params_.ground_cell);
+      if (!ground) ground.emplace(scan, params_.ground_labels, params_.ground_cell, params_.max_range);
       const float g = ground->lowestNear(p);
       if (std::isfinite(g) && p.z() - g <= params_.cuboid_ground_strip) continue;
     }

@@ -17,7 +17,8 @@ struct PlaceConfig {
   // the alignments SlideMatch's exhaustive search verifies (the ambiguity test of verify.h with
   // SlideMatch's candidates as rivals); 0 turns the check off. CLIPPER's few densest sets can
   // miss the true alignment of a periodic scene: a block grid's half-turn alias matched 13
-  // landmarks of two urban robots' maps, the true alignment 12, and only the alias was verified.
+  // landmarks of two urban robots' maps, the true alignment (the simulator's start poses) 12, and
+  // only the alias was verified (tests/data/recorded/urban_half_turn_alias).
   std::size_t rival_search_max_landmarks = 400;
 };
 

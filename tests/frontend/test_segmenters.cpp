@@ -353,6 +353,7 @@ TEST(LabelledSegmenter, GroundLabelledCarAtACarsFootIsLeftOut) {
     for (double z = -0.9; z <= 0.4 + 1e-9; z += 0.1) point(10.0, y, z, 10);
     for (double x = 4.0; x < 10.0; x += 0.1) point(x, y, -1.0, x >= 9.0 ? 10 : 40);
   }
+  point(3.0e6, -2.0e6, -1.0, 40);  // a stray far return labelled ground must not size the ground grid
   const ClassTable classes = ClassTable::loadDefault();
   frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
   ASSERT_GT(p.cuboid_ground_strip, 0.0) << "on by default";
