@@ -15,6 +15,9 @@ double associationCost(const Object& detection, const Object& landmark, const Cl
   const double d = associationDistance(detection, landmark) / (c->association_distance + slack);
   const double m = modelDifference(detection, landmark) / c->model_difference;
   if (!(d <= 1.0) || !(m <= 1.0)) return -1;
+  const auto* bd = std::get_if<Cuboid>(&detection.model);
+  const auto* bl = std::get_if<Cuboid>(&landmark.model);
+  if (bd && bl && !footprintsOverlap(*bd, *bl, 0.5 * slack)) return -1;
   return d + m;
 }
 

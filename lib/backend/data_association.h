@@ -1,6 +1,6 @@
 #pragma once
 // Detection-to-landmark association for one key pose: same class (or family, ClassInfo::family), centre distance and model
-// difference inside the class table's thresholds, and at most one detection per landmark,
+// difference inside the class table's thresholds, boxes whose footprints overlap, and at most one detection per landmark,
 // chosen by a minimum-cost assignment (normalized distance + normalized model difference).
 #include <vector>
 
@@ -26,7 +26,8 @@ struct LandmarkCandidate {
 };
 
 // Cost of pairing a detection with a landmark: distance / (class threshold + slack) + model
-// difference / class threshold (each <= 1 when associable); negative when not associable.
+// difference / class threshold (each <= 1 when associable); negative when not associable,
+// which includes two boxes whose footprints, grown by half the slack each, do not overlap.
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack = 0.0);
 double associationCost(const Detection& detection, const Object& landmark, const ClassTable& classes);
 

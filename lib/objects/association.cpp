@@ -11,7 +11,28 @@ double distanceToAxis(const Cylinder& c, const Eigen::Vector3d& p) {
   const Eigen::Vector3d d = p - c.root;
   return (d - d.dot(c.axis) * c.axis).norm();
 }
+// The box's length axis and half extents in the horizontal plane, or nothing when it stands on its end.
+bool footprint(const Cuboid& c, double margin, Eigen::Vector2d& along, Eigen::Vector2d& half) {
+  const Eigen::Vector2d x = c.pose.rotation().col(0).head<2>();
+  if (!(x.norm() > 1e-6)) return false;
+  along = x.normalized();
+  half = 0.5 * c.dims.head<2>() + Eigen::Vector2d::Constant(margin);
+  return true;
+}
 }  // namespace
+
+bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin) {
+  Eigen::Vector2d ua, ha, ub, hb;
+  if (!footprint(a, margin, ua, ha) || !footprint(b, margin, ub, hb)) return true;
+  const Eigen::Vector2d va(-ua.y(), ua.x()), vb(-ub.y(), ub.x());
+  const Eigen::Vector2d d = (b.pose.translation() - a.pose.translation()).head<2>();
+  for (const Eigen::Vector2d& n : {ua, va, ub, vb}) {
+    const double ra = ha.x() * std::abs(ua.dot(n)) + ha.y() * std::abs(va.dot(n));
+    const double rb = hb.x() * std::abs(ub.dot(n)) + hb.y() * std::abs(vb.dot(n));
+    if (std::abs(d.dot(n)) > ra + rb) return false;
+  }
+  return true;
+}
 
 double associationDistance(const Object& a, const Object& b) {
   const auto* ca = std::get_if<Cylinder>(&a.model);
@@ -37,13 +58,6 @@ double modelDifference(const Object& a, const Object& b) {
     }
   }
   return std::numeric_limits<double>::infinity();
-}
-
-bool associable(const Object& a, const Object& b, const ClassTable& classes) {
-  if (a.class_id != b.class_id) return false;
-  const ClassInfo* c = classes.find(a.class_id);
-  if (!c) return false;
-  return associationDistance(a, b) <= c->association_distance && modelDifference(a, b) <= c->model_difference;
 }
 
 }  // namespace slide

@@ -1,8 +1,8 @@
 #pragma once
-// How far apart two objects of the map are, in position and in model, and whether one
-// observation may be the other landmark under the class table's thresholds.
+// How far apart two objects of the map are, in position, footprint and model (the back-end's
+// data association weighs them against the class table's thresholds).
 // Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
-#include "objects/class_table.h"
+#include "objects/object.h"
 
 namespace slide {
 
@@ -10,12 +10,15 @@ namespace slide {
 // to the other's axis line (views of one trunk cover different heights).
 double associationDistance(const Object& a, const Object& b);
 
+// True when the horizontal footprints of two boxes, each grown by `margin` on every side,
+// overlap (separating axes). Two cars parked side by side are closer than a partial view of one
+// may be from its whole (3 m) but their footprints stay apart. A box standing on its end has
+// no footprint to test: true.
+bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin = 0.0);
+
 // Model difference in metres: cuboids, norm of the extent difference (length and width may
 // swap); cylinders, radius difference; ellipsoids, norm of (radius, height) difference.
 // Infinite for different shapes.
 double modelDifference(const Object& a, const Object& b);
-
-// Same class, and both distances within that class's thresholds.
-bool associable(const Object& a, const Object& b, const ClassTable& classes);
 
 }  // namespace slide

@@ -13,6 +13,12 @@ Object chair(double x, double y, double radius = 0.3) {
   o.model = Ellipsoid{{x, y, 0.45}, radius, 0.9};
   return o;
 }
+Object car(double x, double y, double yaw) {
+  Object o;
+  o.class_id = 10;
+  o.model = Cuboid{poseFromXyzYaw(x, y, 0.75, yaw), {4.5, 1.8, 1.5}};
+  return o;
+}
 Object table(double x, double y) {
   Object o;
   o.class_id = 2;
@@ -45,4 +51,19 @@ TEST(BackendAssociation, OneDetectionPerLandmarkOptimally) {
   const std::vector<int> m2 = backend::associateDetections({{chair(0.05, 0), 0}, {chair(0.2, 0), 0}}, one, classes);
   EXPECT_EQ(m2[0], 5);
   EXPECT_EQ(m2[1], -1);
+}
+
+TEST(BackendAssociation, CarsParkedSideBySideAreNotOneLandmark) {
+  const ClassTable classes = ClassTable::loadDefault();
+  // Parked nose in, 2.5 m apart (1.8 m wide): the neighbour is within the car's 3 m but its
+  // footprint does not touch the landmark's. The same car seen 2 m further along its length
+  // (a partial view completed the other way) or read across (length and width swapped) is.
+  const Object landmark = car(0, 0, M_PI / 2);
+  EXPECT_LT(backend::associationCost(car(2.5, 0, M_PI / 2), landmark, classes), 0.0);
+  EXPECT_GE(backend::associationCost(car(0, 2.0, M_PI / 2), landmark, classes), 0.0);
+  EXPECT_GE(backend::associationCost(car(1.2, -1.4, 0), landmark, classes), 0.0);
+  // A detection far out carries slack for its own uncertainty: it widens the footprints too.
+  EXPECT_GE(backend::associationCost(car(2.5, 0, M_PI / 2), landmark, classes, 1.6), 0.0);
+  const std::vector<backend::LandmarkCandidate> one = {{7, &landmark}};
+  EXPECT_EQ(backend::associateDetections({{car(2.5, 0, M_PI / 2), 0}}, one, classes)[0], -1);
 }

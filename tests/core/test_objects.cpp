@@ -69,14 +69,17 @@ TEST(Objects, AssociationDistances) {
   EXPECT_TRUE(std::isinf(modelDifference(car(0, 0, 0), chair({0, 0, 0}))));
 }
 
-TEST(Objects, AssociableUsesClassThresholds) {
-  const ClassTable classes = ClassTable::loadDefault();
-  EXPECT_TRUE(associable(car(0, 0, 0), car(2.0, 0, 0.3), classes));
-  EXPECT_FALSE(associable(car(0, 0, 0), car(3.5, 0, 0), classes));                        // car: 3 m
-  EXPECT_FALSE(associable(car(0, 0, 0), car(0, 0, 0, {2.0, 1.5, 1.2}), classes));          // size
-  EXPECT_TRUE(associable(trunk({0, 0, 0}, 0.2), trunk({0.5, 0, 1}, 0.25), classes));
-  EXPECT_FALSE(associable(trunk({0, 0, 0}, 0.2), trunk({0, 0, 0}, 0.6), classes));         // radius
-  Object pole = trunk({0, 0, 0}, 0.2);
-  pole.class_id = 80;
-  EXPECT_FALSE(associable(trunk({0, 0, 0}, 0.2), pole, classes));                           // class
+TEST(Objects, FootprintsOverlap) {
+  const auto box = [](const Object& o) { return std::get<Cuboid>(o.model); };
+  // Side by side (1.8 m wide, 2.5 m apart): apart; 0.35 m of margin each closes the 0.7 m gap.
+  EXPECT_FALSE(footprintsOverlap(box(car(0, 0, M_PI / 2)), box(car(2.5, 0, M_PI / 2))));
+  EXPECT_TRUE(footprintsOverlap(box(car(0, 0, M_PI / 2)), box(car(2.5, 0, M_PI / 2)), 0.36));
+  EXPECT_FALSE(footprintsOverlap(box(car(0, 0, M_PI / 2)), box(car(2.5, 0, M_PI / 2)), 0.34));
+  // Nose to tail along the length: 4.4 m apart overlaps, 4.6 m does not.
+  EXPECT_TRUE(footprintsOverlap(box(car(0, 0, 0)), box(car(4.4, 0, 0))));
+  EXPECT_FALSE(footprintsOverlap(box(car(0, 0, 0)), box(car(4.6, 0, 0))));
+  // Crossed boxes: only the diagonal gap counts (separating axis of the rotated box).
+  EXPECT_TRUE(footprintsOverlap(box(car(0, 0, 0)), box(car(2.5, 2.0, M_PI / 4))));
+  EXPECT_FALSE(footprintsOverlap(box(car(0, 0, 0)), box(car(3.0, 3.5, M_PI / 4))));
 }
+
