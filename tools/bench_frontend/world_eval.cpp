@@ -77,14 +77,22 @@ frontend::RgbdFrame emulatedFrame(const simulator::RgbdImage& img, const simulat
   return f;
 }
 
+// What the map holds about one landmark beyond its current estimate.
+struct LandmarkEvidence {
+  std::map<int, double> votes;              // class -> confidence-weighted votes
+  std::vector<Eigen::Vector3d> centres;     // every associated detection's centre
+};
+
 // The map a robot builds from its key-pose bundles: each bundle's objects, placed with the
 // ground-truth key pose, are associated with the landmarks by the back-end's own rule
-// (backend/data_association.h: class, centre distance and model difference within the class
-// table's thresholds, one detection per landmark); an associated landmark takes the newer
-// estimate and, as in the back-end, the class with the most confidence-weighted votes; an
-// unassociated object becomes a new landmark. No evaluator-side merging.
+// (backend/data_association.h: class, centre distance, model difference and box footprints
+// within the class table's thresholds, one detection per landmark). An associated landmark
+// takes the newer model, centred on the per-axis median of all its detections' centres (the
+// back-end fits a landmark to all its observations under a robust loss: one late, wrong view
+// moves it little), and, as in the back-end, the class with the most confidence-weighted
+// votes; an unassociated object becomes a new landmark. No evaluator-side merging.
 void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
-              std::vector<std::map<int, double>>& votes) {
+              std::vector<LandmarkEvidence>& evidence) {
   std::vector<backend::Detection> detections;
   for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
   std::vector<backend::LandmarkCandidate> candidates;
@@ -95,11 +103,20 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Object& o = detections[k].object;
     const std::size_t i = assoc[k] >= 0 ? static_cast<std::size_t>(assoc[k]) : map.size();
-    if (i == map.size()) map.push_back(o), votes.emplace_back();
-    else map[i] = o;
-    votes[i][o.class_id] += std::clamp(o.confidence, 1e-3, 1.0);
+    if (i == map.size()) map.emplace_back(), evidence.emplace_back();
+    LandmarkEvidence& e = evidence[i];
+    e.centres.push_back(o.position());
+    Pose to_median = Pose::Identity();
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> v;
+      for (const auto& c : e.centres) v.push_back(c[a]);
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      to_median.translation()[a] = v[v.size() / 2] - o.position()[a];
+    }
+    map[i] = transformObject(to_median, o);
+    e.votes[o.class_id] += std::clamp(o.confidence, 1e-3, 1.0);
     double most = -1;  // as the back-end: ties go to the lower class id
-    for (const auto& [c, v] : votes[i])
+    for (const auto& [c, v] : e.votes)
       if (v > most) most = v, map[i].class_id = c;
   }
 }
@@ -111,7 +128,7 @@ struct Runner {
   eval::LabelIou label_iou;                           // learned mode: its labels against the truth
   std::unique_ptr<frontend::KeyPoseBundler> bundler;
   std::vector<Object> landmarks;  // world frame: the map the back-end's association builds
-  std::vector<std::map<int, double>> votes;  // class votes per landmark
+  std::vector<LandmarkEvidence> evidence;  // per landmark
   ModeResult result;
   std::unique_ptr<SegmentDiagnosis> diagnosis;  // --diagnose, LiDAR modes
   std::map<std::int64_t, std::pair<int, int>> moving_tracks;  // --diagnose: track -> (class, hits) of tracks taken as moving
@@ -278,7 +295,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
       if (bundle) {
-        addToMap(*bundle, T_world_body, classes, r.landmarks, r.votes);
+        addToMap(*bundle, T_world_body, classes, r.landmarks, r.evidence);
         for (const Object& o : bundle->objects) {
           const Eigen::Vector3d p = T_world_body * o.position();
           const Object* best = nullptr;
