@@ -6,6 +6,7 @@
 #include "backend/factors.h"
 #include "backend/optimizer.h"
 #include "backend/pose_block.h"
+#include "objects/association.h"
 
 namespace slide::backend {
 
@@ -39,6 +40,7 @@ std::pair<Pose, Eigen::Vector3d> closestCuboidSymmetry(const Cuboid& m, const Po
   }
   return best;
 }
+constexpr int kWholeViewsToChoose = 2;
 }  // namespace
 
 int Optimizer::addLandmark(const Object& w) {
@@ -66,8 +68,16 @@ int Optimizer::addLandmark(const Object& w) {
   return index;
 }
 
-void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& o, Landmark& lm) {
+void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& seen, Landmark& lm) {
   const double a = cfg_.ellipsoid_size_ema;
+  // A box read two ways is the reading the landmark agrees with, once boxes read one way only
+  // (whole views) have fixed it; before, the front-end's choice.
+  int whole = 0;
+  if (seen.other_reading)
+    for (const Observation& s : lm.seen) whole += !s.body.other_reading;
+  const Object o = whole >= kWholeViewsToChoose
+                       ? nearestReading(seen, transformObject(T_w_b.inverse(), landmarkObject(lm)))
+                       : seen;
   int factor = -1;
   if (const auto* c = std::get_if<Cuboid>(&o.model)) {
     const Pose predicted = T_w_b.inverse() * fromPoseBlock(graph_.value(lm.var));

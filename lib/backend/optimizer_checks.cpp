@@ -74,6 +74,14 @@ std::vector<Object> Optimizer::usableObjects(const KeyPoseBundle& b, UpdateResul
     } else {
       out.push_back(o);
       out.back().id = static_cast<std::int64_t>(i);  // remember the input index
+      // The other reading of a box is the same box read the other way: beside it, never elsewhere.
+      if (const auto* box = std::get_if<Cuboid>(&o.model); o.other_reading &&
+          (!box || (o.other_reading->pose.translation() - box->pose.translation()).norm() >
+                       std::max(box->dims.head<2>().maxCoeff(), o.other_reading->dims.head<2>().maxCoeff()))) {
+        r.warnings.push_back("inconsistent readings: " + who + " has a second box that is no reading of its own, " +
+                             "second box dropped");
+        out.back().other_reading.reset();
+      }
     }
   }
   return out;

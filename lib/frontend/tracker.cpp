@@ -293,7 +293,7 @@ void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fi
     for (const auto& [s, s_other] : fits)
       if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= radius)
         vote += std::cos(2 * (second - headingOf(s))) - std::cos(2 * (first - headingOf(s)));
-    if (vote > 0) o.model = other->model;
+    if (vote > 0) std::swap(o.model, other->model);
   }
 }
 }  // namespace
@@ -320,7 +320,11 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
   if (readings) settleBoxReadings(fits, params_.parallel_radius);
   std::vector<Object> out;
   out.reserve(fits.size());
-  for (auto& f : fits) out.push_back(std::move(f.first));
+  for (auto& [o, other] : fits) {
+    if (other)
+      if (const auto* box = std::get_if<Cuboid>(&other->model)) o.other_reading = *box;
+    out.push_back(std::move(o));
+  }
   return out;
 }
 

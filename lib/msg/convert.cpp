@@ -55,7 +55,12 @@ object_t toLcm(const Object& o) {
     cm.pose = toLcm(c->pose);
     put(c->dims, cm.dims);
     m.cuboid.push_back(cm);
-    m.num_cuboid = 1;
+    if (o.other_reading) {  // a second box: the other reading of a box whose length went unseen
+      cm.pose = toLcm(o.other_reading->pose);
+      put(o.other_reading->dims, cm.dims);
+      m.cuboid.push_back(cm);
+    }
+    m.num_cuboid = static_cast<int8_t>(m.cuboid.size());
   } else if (const auto* c = std::get_if<Cylinder>(&o.model)) {
     cylinder_t cm;
     put(c->root, cm.root);
@@ -77,11 +82,14 @@ object_t toLcm(const Object& o) {
 }
 
 Object fromLcm(const object_t& m) {
-  if (m.num_cuboid + m.num_cylinder + m.num_ellipsoid != 1 || m.num_cuboid < 0 || m.num_cylinder < 0 ||
-      m.num_ellipsoid < 0)
-    throw std::invalid_argument("object_t id " + std::to_string(m.id) + ": expected exactly one of cuboid, cylinder, "
-                                "ellipsoid, got " + std::to_string(m.num_cuboid) + "/" + std::to_string(m.num_cylinder) +
-                                "/" + std::to_string(m.num_ellipsoid));
+  // One model; a cuboid may come with its other reading as a second box.
+  const bool one = (m.num_cuboid >= 1 && m.num_cuboid <= 2 && m.num_cylinder == 0 && m.num_ellipsoid == 0) ||
+                   (m.num_cuboid == 0 && m.num_cylinder + m.num_ellipsoid == 1 && m.num_cylinder >= 0 &&
+                    m.num_ellipsoid >= 0);
+  if (!one)
+    throw std::invalid_argument("object_t id " + std::to_string(m.id) + ": expected one cuboid (or two: its two "
+                                "readings), one cylinder or one ellipsoid, got " + std::to_string(m.num_cuboid) + "/" +
+                                std::to_string(m.num_cylinder) + "/" + std::to_string(m.num_ellipsoid));
   Object o;
   o.id = m.id;
   o.class_id = m.class_id;
@@ -89,6 +97,7 @@ Object fromLcm(const object_t& m) {
   o.num_observations = m.num_observations;
   if (m.num_cuboid) {
     o.model = Cuboid{fromLcm(m.cuboid[0].pose), vec(m.cuboid[0].dims)};
+    if (m.num_cuboid == 2) o.other_reading = Cuboid{fromLcm(m.cuboid[1].pose), vec(m.cuboid[1].dims)};
   } else if (m.num_cylinder) {
     const cylinder_t& c = m.cylinder[0];
     o.model = Cylinder{vec(c.root), vec(c.axis).normalized(), c.radius, c.length};

@@ -34,6 +34,15 @@ bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin) {
   return true;
 }
 
+Object nearestReading(const Object& detection, const Object& landmark) {
+  if (!detection.other_reading || !std::holds_alternative<Cuboid>(detection.model)) return detection;
+  Object other = detection;
+  other.model = *detection.other_reading;
+  other.other_reading = std::get<Cuboid>(detection.model);
+  const auto score = [&](const Object& o) { return associationDistance(o, landmark) + modelDifference(o, landmark); };
+  return score(other) < score(detection) ? other : detection;
+}
+
 double associationDistance(const Object& a, const Object& b) {
   const auto* ca = std::get_if<Cylinder>(&a.model);
   const auto* cb = std::get_if<Cylinder>(&b.model);

@@ -16,6 +16,10 @@ double associationDistance(const Object& a, const Object& b);
 // no footprint to test: true.
 bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin = 0.0);
 
+// The detection as the reading of its box (Object::other_reading) nearer `landmark`: least
+// centre distance plus model difference. The detection itself when it has one reading.
+Object nearestReading(const Object& detection, const Object& landmark);
+
 // Model difference in metres: cuboids, norm of the extent difference (length and width may
 // swap); cylinders, radius difference; ellipsoids, norm of (radius, height) difference.
 // Infinite for different shapes.

@@ -35,7 +35,9 @@ bool Object::isFinite() const {
                  },
                  [](const Ellipsoid& e) { return e.centroid.allFinite() && std::isfinite(e.radius) && std::isfinite(e.height); }},
       model);
-  return ok && std::isfinite(confidence);
+  const bool other_ok =
+      !other_reading || (other_reading->pose.matrix().allFinite() && other_reading->dims.allFinite());
+  return ok && other_ok && std::isfinite(confidence);
 }
 
 const char* shapeName(Shape s) {
@@ -55,6 +57,7 @@ Object transformObject(const Pose& T, const Object& o) {
                                     },
                                     [&](const Ellipsoid& e) -> ObjectModel { return Ellipsoid{T * e.centroid, e.radius, e.height}; }},
                          o.model);
+  if (o.other_reading) out.other_reading = Cuboid{T * o.other_reading->pose, o.other_reading->dims};
   return out;
 }
 

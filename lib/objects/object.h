@@ -2,6 +2,7 @@
 // The three object models of the sparse map and the operations every stage shares.
 // Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
 #include <cstdint>
+#include <optional>
 #include <variant>
 
 #include "geometry/pose.h"
@@ -39,6 +40,10 @@ struct Object {
   ObjectModel model;
   double confidence = 1.0;
   int num_observations = 1;
+  // A box whose length went unseen (a lone end face, a stretch of side) reads two ways: `model`
+  // is the reading the front-end settled on, this the box with its length along the other
+  // axis. The back-end keeps the reading its landmark agrees with.
+  std::optional<Cuboid> other_reading;
 
   Shape shape() const { return static_cast<Shape>(model.index()); }
   // Centre of the object: cuboid centre, cylinder axis midpoint, ellipsoid centroid.

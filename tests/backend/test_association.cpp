@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "backend/data_association.h"
+#include "objects/association.h"
 
 using namespace slide;
 
@@ -51,6 +52,25 @@ TEST(BackendAssociation, OneDetectionPerLandmarkOptimally) {
   const std::vector<int> m2 = backend::associateDetections({{chair(0.05, 0), 0}, {chair(0.2, 0), 0}}, one, classes);
   EXPECT_EQ(m2[0], 5);
   EXPECT_EQ(m2[1], -1);
+}
+
+TEST(BackendAssociation, ABoxReadTwoWaysIsTakenAsTheReadingTheLandmarkAgreesWith) {
+  const ClassTable classes = ClassTable::loadDefault();
+  // A car along y at (0, 0); its end face seen alone, read as a car across (centre 1.35 m to
+  // the side and 1.5 m short) and as a car along y (the other reading, 0.2 m off). Association
+  // weighs the front-end's reading (the other one never reaches a neighbour's landmark); the
+  // observation then takes the reading that fits.
+  const Object landmark = car(0, 0, M_PI / 2);
+  Object seen = car(1.35, -1.5, 0);
+  const double alone = backend::associationCost(seen, landmark, classes);
+  seen.other_reading = std::get<Cuboid>(car(0, 0.2, M_PI / 2).model);
+  EXPECT_DOUBLE_EQ(backend::associationCost(seen, landmark, classes), alone);
+  const Object chosen = nearestReading(seen, landmark);
+  EXPECT_NEAR(chosen.position().y(), 0.2, 1e-9);
+  ASSERT_TRUE(chosen.other_reading.has_value());  // the reading not taken is kept
+  EXPECT_NEAR(chosen.other_reading->pose.translation().x(), 1.35, 1e-9);
+  seen.other_reading.reset();
+  EXPECT_NEAR(nearestReading(seen, landmark).position().x(), 1.35, 1e-9);  // one reading: itself
 }
 
 TEST(BackendAssociation, CarsParkedSideBySideAreNotOneLandmark) {

@@ -337,6 +337,49 @@ TEST(BackendOptimizer, MergesAConfusedClassIntoItsObjectButNotTheObjectBesideIt)
   EXPECT_LT((by_class[2] - Eigen::Vector3d(6.8, 2, 0.4)).norm(), 0.05);
 }
 
+// A car along y at (6, 3), seen whole from key poses 0-7; from key poses 8-15 only its end
+// face, which the front-end read as a car across (its centre 1.35 m to the side) with the
+// right box as the other reading. The landmark keeps the reading it agrees with and stays on
+// the car; without the other reading it is pulled off it.
+TEST(BackendOptimizer, ABoxReadTwoWaysJoinsItsLandmarkAsTheReadingThatFits) {
+  const Pose truth = poseFromXyzYaw(6, 3, 0.75, M_PI / 2);
+  auto run = [&](bool with_other) {
+    backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
+    for (int k = 0; k < 16; ++k) {
+      const Pose T_body_world = poseFromXyzYaw(0.5 * k, 0, 0, 0).inverse();
+      Object o;
+      o.id = 0;
+      o.class_id = 10;
+      o.model = Cuboid{T_body_world * truth, {4.5, 1.8, 1.5}};
+      if (k >= 8) {
+        const Cuboid whole = std::get<Cuboid>(o.model);
+        o.model = Cuboid{T_body_world * poseFromXyzYaw(6 + 1.35, 3 - 1.5, 0.75, 0), {4.5, 1.8, 1.5}};
+        if (with_other) o.other_reading = whole;
+      }
+      const backend::UpdateResult r = opt.addBundle(stepBundle(k, {o}));
+      EXPECT_TRUE(r.accepted) << r.reason;
+    }
+    opt.fullSolve();
+    const std::vector<Object> lms = opt.landmarks();
+    double best = 1e9;
+    for (const Object& lm : lms) best = std::min(best, (lm.position() - truth.translation()).head<2>().norm());
+    return best;
+  };
+  EXPECT_LT(run(true), 0.05);
+  EXPECT_GT(run(false), 0.3);
+  // A second box far from the first is no reading of it: dropped and named, the object kept.
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
+  Object o;
+  o.class_id = 10;
+  o.model = Cuboid{truth, {4.5, 1.8, 1.5}};
+  o.other_reading = Cuboid{poseFromXyzYaw(40, 3, 0.75, 0), {4.5, 1.8, 1.5}};
+  const backend::UpdateResult r = opt.addBundle(stepBundle(0, {o}));
+  ASSERT_TRUE(r.accepted) << r.reason;
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("inconsistent readings"), std::string::npos) << r.warnings[0];
+  EXPECT_GE(r.landmark_ids.at(0), 0);
+}
+
 // With merge_shared_fraction, a duplicate that shares one key pose with its object (there, it
 // took a false object's detection) is merged all the same; that one observation stays behind,
 // unconfirmed. By default (0) it is not.

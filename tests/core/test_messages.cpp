@@ -306,3 +306,24 @@ TEST(Messages, ObjectConversionRoundTrip) {
   empty.cuboid.clear();
   EXPECT_THROW(msg::fromLcm(empty), std::invalid_argument);
 }
+
+TEST(Messages, ABoxReadTwoWaysTravelsAsTwoCuboids) {
+  Object car = someCar();
+  car.other_reading = Cuboid{poseFromXyzYaw(1, 2, 0.8, 1.2), {4.5, 1.8, 1.5}};
+  const object_t m = roundTrip(msg::toLcm(car));
+  EXPECT_EQ(m.num_cuboid, 2);
+  const Object back = msg::fromLcm(m);
+  ASSERT_TRUE(back.other_reading.has_value());
+  EXPECT_TRUE(back.other_reading->pose.isApprox(car.other_reading->pose, 1e-5));
+  EXPECT_TRUE(back.other_reading->dims.isApprox(car.other_reading->dims, 1e-6));
+  EXPECT_FALSE(msg::fromLcm(msg::toLcm(someCar())).other_reading.has_value());
+  // Three boxes, or two beside a cylinder, are no object.
+  object_t three = m;
+  three.cuboid.push_back(m.cuboid[0]);
+  three.num_cuboid = 3;
+  EXPECT_THROW(msg::fromLcm(three), std::invalid_argument);
+  object_t mixed = msg::toLcm(someTrunk());
+  mixed.cuboid = m.cuboid;
+  mixed.num_cuboid = 2;
+  EXPECT_THROW(msg::fromLcm(mixed), std::invalid_argument);
+}

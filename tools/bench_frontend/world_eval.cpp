@@ -11,6 +11,7 @@
 #include "frontend/geometric_segmenter.h"
 #include "assignment/hungarian.h"
 #include "backend/data_association.h"
+#include "objects/association.h"
 #include "frontend/keypose.h"
 #include "eval/label_iou.h"
 #include "frontend/labelled_segmenter.h"
@@ -81,12 +82,14 @@ frontend::RgbdFrame emulatedFrame(const simulator::RgbdImage& img, const simulat
 struct LandmarkEvidence {
   std::map<int, double> votes;              // class -> confidence-weighted votes
   std::vector<Eigen::Vector3d> centres;     // every associated detection's centre
+  int whole_views = 0;                      // detections with one reading
 };
 
 // The map a robot builds from its key-pose bundles: each bundle's objects, placed with the
 // ground-truth key pose, are associated with the landmarks by the back-end's own rule
 // (backend/data_association.h: class, centre distance, model difference and box footprints
-// within the class table's thresholds, one detection per landmark). An associated landmark
+// within the class table's thresholds, one detection per landmark; a box read two ways as the
+// reading the landmark agrees with). An associated landmark
 // takes the newer model, centred on the per-axis median of all its detections' centres (the
 // back-end fits a landmark to all its observations under a robust loss: one late, wrong view
 // moves it little), and, as in the back-end, the class with the most confidence-weighted
@@ -101,10 +104,13 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
       candidates.push_back({static_cast<int>(i), &map[i]});
   const std::vector<int> assoc = backend::associateDetections(detections, candidates, classes);
   for (std::size_t k = 0; k < detections.size(); ++k) {
-    const Object& o = detections[k].object;
     const std::size_t i = assoc[k] >= 0 ? static_cast<std::size_t>(assoc[k]) : map.size();
+    // A box read two ways counts as the reading its landmark agrees with, as in the back-end.
+    const Object o = i < map.size() && evidence[i].whole_views >= 2 ? nearestReading(detections[k].object, map[i])
+                                                                     : detections[k].object;
     if (i == map.size()) map.emplace_back(), evidence.emplace_back();
     LandmarkEvidence& e = evidence[i];
+    e.whole_views += !detections[k].object.other_reading;
     e.centres.push_back(o.position());
     Pose to_median = Pose::Identity();
     for (int a = 0; a < 3; ++a) {
