@@ -40,7 +40,6 @@ std::pair<Pose, Eigen::Vector3d> closestCuboidSymmetry(const Cuboid& m, const Po
   }
   return best;
 }
-constexpr int kWholeViewsToChoose = 2;
 }  // namespace
 
 int Optimizer::addLandmark(const Object& w) {
@@ -75,7 +74,7 @@ void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& se
   int whole = 0;
   if (seen.other_reading)
     for (const Observation& s : lm.seen) whole += !s.body.other_reading;
-  const Object o = whole >= kWholeViewsToChoose
+  const Object o = whole >= kWholeViewsToChooseReading
                        ? nearestReading(seen, transformObject(T_w_b.inverse(), landmarkObject(lm)))
                        : seen;
   int factor = -1;

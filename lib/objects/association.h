@@ -19,6 +19,10 @@ bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin = 0.0);
 // The detection as the reading of its box (Object::other_reading) nearer `landmark`: least
 // centre distance plus model difference. The detection itself when it has one reading.
 Object nearestReading(const Object& detection, const Object& landmark);
+// A landmark chooses between a detection's readings once this many detections read one way
+// only (whole views) fixed it; before, the detection keeps the front-end's reading (a landmark
+// begun from one partial view would keep choosing its own reading).
+constexpr int kWholeViewsToChooseReading = 2;
 
 // Model difference in metres: cuboids, norm of the extent difference (length and width may
 // swap); cylinders, radius difference; ellipsoids, norm of (radius, height) difference.

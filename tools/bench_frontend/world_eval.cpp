@@ -106,8 +106,9 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const std::size_t i = assoc[k] >= 0 ? static_cast<std::size_t>(assoc[k]) : map.size();
     // A box read two ways counts as the reading its landmark agrees with, as in the back-end.
-    const Object o = i < map.size() && evidence[i].whole_views >= 2 ? nearestReading(detections[k].object, map[i])
-                                                                     : detections[k].object;
+    const Object o = i < map.size() && evidence[i].whole_views >= kWholeViewsToChooseReading
+                         ? nearestReading(detections[k].object, map[i])
+                         : detections[k].object;
     if (i == map.size()) map.emplace_back(), evidence.emplace_back();
     LandmarkEvidence& e = evidence[i];
     e.whole_views += !detections[k].object.other_reading;
