@@ -73,7 +73,8 @@ class Tracker {
   // T_odom_body; object ids are track ids. Recently: missed in at most
   // max(report_max_missed, frames_since_report - 1) frames, where frames_since_report counts
   // the frames since the previous report (a key pose) including this one: a track confirmed
-  // between two key poses and lost just before the second is still reported once.
+  // between two key poses and lost just before the second is still reported once. A box whose
+  // length was not seen carries the reading not taken (parallel_radius) as Object::other_reading.
   std::vector<Object> objectsInBody(const Pose& T_odom_body, int frames_since_report = 0) const;
 
   const std::map<std::int64_t, Track>& tracks() const { return tracks_; }

@@ -88,12 +88,13 @@ struct LandmarkEvidence {
 // The map a robot builds from its key-pose bundles: each bundle's objects, placed with the
 // ground-truth key pose, are associated with the landmarks by the back-end's own rule
 // (backend/data_association.h: class, centre distance, model difference and box footprints
-// within the class table's thresholds, one detection per landmark; a box read two ways as the
-// reading the landmark agrees with). An associated landmark
-// takes the newer model, centred on the per-axis median of all its detections' centres (the
-// back-end fits a landmark to all its observations under a robust loss: one late, wrong view
-// moves it little), and, as in the back-end, the class with the most confidence-weighted
-// votes; an unassociated object becomes a new landmark. No evaluator-side merging.
+// within the class table's thresholds, one detection per landmark). As in the back-end, a box
+// read two ways counts as the reading its landmark agrees with once kWholeViewsToChooseReading
+// whole views fixed that landmark. An associated landmark takes the newer model, centred on the
+// per-axis median of all its detections' centres (the back-end fits a landmark to all its
+// observations under a robust loss: one late, wrong view moves it little), and, as in the
+// back-end, the class with the most confidence-weighted votes; an unassociated object becomes
+// a new landmark. No evaluator-side merging.
 void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
               std::vector<LandmarkEvidence>& evidence) {
   std::vector<backend::Detection> detections;
