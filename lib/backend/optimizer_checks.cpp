@@ -74,10 +74,17 @@ std::vector<Object> Optimizer::usableObjects(const KeyPoseBundle& b, UpdateResul
     } else {
       out.push_back(o);
       out.back().id = static_cast<std::int64_t>(i);  // remember the input index
-      // The other reading of a box is the same box read the other way: beside it, never elsewhere.
-      if (const auto* box = std::get_if<Cuboid>(&o.model); o.other_reading &&
-          (!box || (o.other_reading->pose.translation() - box->pose.translation()).norm() >
-                       std::max(box->dims.head<2>().maxCoeff(), o.other_reading->dims.head<2>().maxCoeff()))) {
+      // The other reading of a box is the same box read the other way: of the class's size and
+      // beside it, never elsewhere.
+      const auto* box = std::get_if<Cuboid>(&o.model);
+      const auto readsTheBox = [&](const Cuboid& other) {
+        const Eigen::Vector3d& d = other.dims;
+        return box && (d.array() > 0).all() && d.head<2>().maxCoeff() <= 2 * info->size_max.head<2>().maxCoeff() &&
+               d.z() <= 2 * info->size_max.z() &&
+               (other.pose.translation() - box->pose.translation()).norm() <=
+                   std::max(box->dims.head<2>().maxCoeff(), d.head<2>().maxCoeff());
+      };
+      if (o.other_reading && !readsTheBox(*o.other_reading)) {
         r.warnings.push_back("inconsistent readings: " + who + " has a second box that is no reading of its own, " +
                              "second box dropped");
         out.back().other_reading.reset();

@@ -367,17 +367,22 @@ TEST(BackendOptimizer, ABoxReadTwoWaysJoinsItsLandmarkAsTheReadingThatFits) {
   };
   EXPECT_LT(run(true), 0.05);
   EXPECT_GT(run(false), 0.3);
-  // A second box far from the first is no reading of it: dropped and named, the object kept.
+  // A second box far from the first, or of no car's size (which would also let it stand
+  // anywhere), is no reading of it: dropped and named, the object kept.
   backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
-  Object o;
-  o.class_id = 10;
-  o.model = Cuboid{truth, {4.5, 1.8, 1.5}};
-  o.other_reading = Cuboid{poseFromXyzYaw(40, 3, 0.75, 0), {4.5, 1.8, 1.5}};
-  const backend::UpdateResult r = opt.addBundle(stepBundle(0, {o}));
+  Object far, huge, flat;
+  for (Object* o : {&far, &huge, &flat}) {
+    o->class_id = 10;
+    o->model = Cuboid{truth, {4.5, 1.8, 1.5}};
+  }
+  far.other_reading = Cuboid{poseFromXyzYaw(40, 3, 0.75, 0), {4.5, 1.8, 1.5}};
+  huge.other_reading = Cuboid{poseFromXyzYaw(40, 3, 0.75, 0), {1e6, 1.8, 1.5}};
+  flat.other_reading = Cuboid{truth, {4.5, -1.8, 1.5}};
+  const backend::UpdateResult r = opt.addBundle(stepBundle(0, {far, huge, flat}));
   ASSERT_TRUE(r.accepted) << r.reason;
-  ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("inconsistent readings"), std::string::npos) << r.warnings[0];
-  EXPECT_GE(r.landmark_ids.at(0), 0);
+  ASSERT_EQ(r.warnings.size(), 3u);
+  for (const std::string& w : r.warnings) EXPECT_NE(w.find("inconsistent readings"), std::string::npos) << w;
+  for (int k = 0; k < 3; ++k) EXPECT_GE(r.landmark_ids.at(k), 0);
 }
 
 // With merge_shared_fraction, a duplicate that shares one key pose with its object (there, it
