@@ -187,7 +187,8 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   int label = 0;
   for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
     const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
-    if (height > other.size_max.z() || height < other.size_min.z() || bottom > p.other_max_bottom) continue;
+    const double max_height = p.other_max_height > 0 ? std::min(p.other_max_height, other.size_max.z()) : other.size_max.z();
+    if (height > max_height || height < other.size_min.z() || bottom > p.other_max_bottom) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(other.size_max.x(), other.size_max.y()));
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;

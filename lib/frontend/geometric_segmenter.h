@@ -6,7 +6,8 @@
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car and whose roof is open (a wall's lower part goes on above the cap), leaving out
 //     stacks that reach the top of the view (ViewCutParams),
-//  3. other: clusters of what is left whose extents fit the "other" class, that stand low,
+//  3. other: clusters of what is left whose extents fit the "other" class (no taller than
+//     furniture: other_max_height), that stand low,
 //     whose surfaces are solid (not foliage), that are seen whole (not cut off by a nearer
 //     occluder beside them; see occlusion.h) and that are no upright column.
 #include "frontend/column_detection.h"
@@ -87,6 +88,10 @@ struct GeometricSegmenterParams {
   // whose footprint is no longer than a column's cross-section (column.max_diameter) is a
   // trunk or pole the column step turned down (not isolated, a bush at its foot). false: off.
   bool other_not_column = true;
+  // ... and that are no taller than this (metres, 2nd to 98th percentile of height; 0: the
+  // "other" class's size_max): a wall's piece between two doors stands from floor to
+  // ceiling; furniture, bins and boxes stand lower.
+  double other_max_height = 0.0;
   OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };

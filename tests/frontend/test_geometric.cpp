@@ -294,8 +294,25 @@ TEST(GeometricSegmenter, AnUprightColumnTurnedDownIsNoOtherABinIs) {
   EXPECT_EQ(instancesNear(c, p, p.other_class, {8.3f, 0}, 1.0f), 0);
   EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -5}, 1.0f), 1);
   frontend::GeometricSegmenterParams off = p;
-  off.other_not_column = false;  // without the rule the pillar is an "other"
+  off.other_not_column = false, off.other_max_height = 0;  // without the rules the pillar is an "other"
   EXPECT_EQ(instancesNear(c, off, off.other_class, {8.3f, 0}, 1.0f), 1);
+}
+
+// A piece of wall between two doorways (1.6 m long, 0.15 m thick, 2.8 m tall: from the floor to
+// an office's ceiling) is compact and solid like furniture, but no furniture, bin or box stands
+// that tall: it is no "other". A table beside it (1.2 x 0.6 m, 0.75 m tall) is.
+TEST(GeometricSegmenter, AFloorToCeilingPieceOfWallIsNoOtherATableIs) {
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(7, -0.8, -1), Eigen::Vector3d(7.15, 0.8, 1.8)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.1, -0.25))});
+  const frontend::GeometricSegmenterParams p = frontend::loadDefaultFrontendConfig().geometric;
+  ASSERT_GT(p.other_max_height, 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {7.1f, 0}, 1.0f), 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -4.7f}, 1.0f), 1);
+  for (int cls : {p.car_class, p.trunk_class, p.pole_class}) EXPECT_EQ(instancesNear(c, p, cls, {7.1f, 0}, 1.0f), 0);
+  frontend::GeometricSegmenterParams off = p;
+  off.other_max_height = 0;  // the class's own limit (4 m): the wall's piece is an "other"
+  EXPECT_EQ(instancesNear(c, off, off.other_class, {7.1f, 0}, 1.0f), 1);
 }
 
 // A building's face behind a parked car (seen side-on, 5 m long), past the car's roof: the
