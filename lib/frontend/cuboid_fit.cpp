@@ -171,8 +171,12 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     box.dims = Eigen::Vector3d(hu - lu, hv - lv, hi_z - lo_z);
     return box;
   };
-  const double yaw_x = length_along_u ? yaw : yaw + M_PI / 2;
+  double yaw_x = length_along_u ? yaw : yaw + M_PI / 2;
   std::optional<Cuboid> box = boxAlong(yaw_x, why);
+  // The faces misjudged (a lone end face in the lower half, the side's sparse returns above it):
+  // the length too wide for the class lies along the other axis.
+  if (!box)
+    if ((box = boxAlong(yaw_x + M_PI / 2, nullptr))) yaw_x += M_PI / 2;
   // No face was long enough to be the length: the length may run along either axis.
   if (box && other_reading && std::max(face_u, face_v) < size_min.x())
     *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);

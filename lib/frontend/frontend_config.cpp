@@ -75,6 +75,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_cell_points", g.ground.min_cell_points, 1);
     opt(c, "max_step", g.ground.max_step, 0.0);
     opt(c, "max_rise", g.ground.max_rise, 0.0);
+    opt(c, "under_tolerance", g.ground.under_tolerance, 0.0);
   }
   if (n.has("column")) {
     const ConfigNode c = n.child("column");

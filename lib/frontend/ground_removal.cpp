@@ -113,7 +113,37 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
   std::vector<float> cand(lowest.size(), inf);
   for (std::size_t c = 0; c < cand.size(); ++c)
     if (count[c] >= std::max(2, params.min_cell_points)) cand[c] = second[c];
-  const std::vector<float> envelope = minFilter(cand, nx, ny, params.window);
+  std::vector<float> envelope = minFilter(cand, nx, ny, params.window);
+  // Returns from under the ground are no ground: a beam reflected off a wet road or a window
+  // comes back late, from metres below the road (real SemanticKITTI 001500: 23 returns 3.5 m
+  // under the road in front of a car), and would sink the envelope over a whole window. The
+  // line of sight from the sensor (the origin) to such a return runs under the ground nearer
+  // along it; to anything seen directly it does not. A cell that sets the envelope and whose
+  // line of sight passes more than under_tolerance below the ground of a nearer cell is left
+  // out, and the envelope is taken again, until none is. Ground there: the envelope of a cell
+  // out of reach of the tested cell's window, below the sensor (crowns and roofs overhead are
+  // no ground), where the cell's own candidate is ground (within `threshold` of it).
+  auto cellOf = [&](double x, double y) {
+    const int cx = static_cast<int>(std::floor((x - min_x) * inv)), cy = static_cast<int>(std::floor((y - min_y) * inv));
+    return cx < 0 || cy < 0 || cx >= nx || cy >= ny ? -1 : cy * nx + cx;
+  };
+  for (int round = 0; params.under_tolerance > 0 && round < 16; ++round) {
+    bool dropped = false;
+    for (int c = 0; c < nx * ny; ++c) {
+      if (!std::isfinite(cand[c]) || cand[c] > envelope[c]) continue;
+      const double x = min_x + ((c % nx) + 0.5) * params.cell, y = min_y + ((c / nx) + 0.5) * params.cell;
+      const double r = std::hypot(x, y);
+      for (double s = params.cell; s < r - (params.window + 1.5) * params.cell; s += 0.5 * params.cell) {
+        const int n = cellOf(x * s / r, y * s / r);
+        if (n >= 0 && envelope[n] < 0 && cand[n] <= envelope[n] + params.threshold && cand[c] * s / r < envelope[n] - params.under_tolerance) {
+          cand[c] = inf, dropped = true;
+          break;
+        }
+      }
+    }
+    if (!dropped) break;
+    envelope = minFilter(cand, nx, ny, params.window);
+  }
   const std::vector<float> ground = params.max_step > 0 ? growGround(cand, envelope, nx, ny, params.max_step, params.max_rise) : envelope;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (cell_of[i] < 0) continue;

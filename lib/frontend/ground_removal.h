@@ -3,7 +3,8 @@
 // over a window of cells (a lower envelope under car roofs and walls), then ground grown from
 // the cells on that envelope to neighbours within max_step (so that it follows slopes, which
 // the envelope alone cuts into); cells it does not reach (objects) take the ground of the
-// nearest ground cell. Points within `threshold` of the estimate are ground.
+// nearest ground cell. Cells seen through the ground (reflections) are left out of the
+// envelope (under_tolerance). Points within `threshold` of the estimate are ground.
 #include <vector>
 
 #include "frontend/instance.h"
@@ -18,6 +19,10 @@ struct GroundParams {
   int min_cell_points = 2;   // cells with fewer points do not define ground (stray returns)
   double max_step = 0.0;     // metres between neighbouring ground cells (0: envelope only) ...
   double max_rise = 0.45;    // ... and at most this above the envelope (its error on a 25 % slope: 0.375)
+  // A cell whose line of sight from the sensor (at the origin) passes more than this many metres
+  // below the ground estimated nearer along it was seen through the ground: a reflection, left
+  // out of the estimate (0: off).
+  double under_tolerance = 0.0;
 };
 
 // Height of every point above the local ground estimate; NaN for non-finite or out-of-range
