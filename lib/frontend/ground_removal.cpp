@@ -133,7 +133,7 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
       if (!std::isfinite(cand[c]) || cand[c] > envelope[c]) continue;
       const double x = min_x + ((c % nx) + 0.5) * params.cell, y = min_y + ((c / nx) + 0.5) * params.cell;
       const double r = std::hypot(x, y);
-      for (double s = params.cell; s < r - (params.window + 1.5) * params.cell; s += 0.5 * params.cell) {
+      for (double s = params.cell; s < r - (params.window + 1.5) * params.cell; s += 2 * params.cell) {
         const int n = cellOf(x * s / r, y * s / r);
         if (n >= 0 && envelope[n] < 0 && cand[n] <= envelope[n] + params.threshold && cand[c] * s / r < envelope[n] - params.under_tolerance) {
           cand[c] = inf, dropped = true;
