@@ -127,22 +127,29 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
     const int cx = static_cast<int>(std::floor((x - min_x) * inv)), cy = static_cast<int>(std::floor((y - min_y) * inv));
     return cx < 0 || cy < 0 || cx >= nx || cy >= ny ? -1 : cy * nx + cx;
   };
+  // After the first round only cells within a window of a dropped one can have changed.
+  std::vector<char> check(params.under_tolerance > 0 ? cand.size() : 0, 1);
   for (int round = 0; params.under_tolerance > 0 && round < 16; ++round) {
-    bool dropped = false;
+    std::vector<int> dropped;
     for (int c = 0; c < nx * ny; ++c) {
-      if (!std::isfinite(cand[c]) || cand[c] > envelope[c]) continue;
+      if (!check[c] || !std::isfinite(cand[c]) || cand[c] > envelope[c]) continue;
       const double x = min_x + ((c % nx) + 0.5) * params.cell, y = min_y + ((c / nx) + 0.5) * params.cell;
       const double r = std::hypot(x, y);
       for (double s = params.cell; s < r - (params.window + 1.5) * params.cell; s += 2 * params.cell) {
         const int n = cellOf(x * s / r, y * s / r);
         if (n >= 0 && envelope[n] < 0 && cand[n] <= envelope[n] + params.threshold && cand[c] * s / r < envelope[n] - params.under_tolerance) {
-          cand[c] = inf, dropped = true;
+          cand[c] = inf;
+          dropped.push_back(c);
           break;
         }
       }
     }
-    if (!dropped) break;
+    if (dropped.empty()) break;
     envelope = minFilter(cand, nx, ny, params.window);
+    std::fill(check.begin(), check.end(), 0);
+    for (int c : dropped)
+      for (int v = std::max(0, c / nx - params.window); v <= std::min(ny - 1, c / nx + params.window); ++v)
+        for (int u = std::max(0, c % nx - params.window); u <= std::min(nx - 1, c % nx + params.window); ++u) check[v * nx + u] = 1;
   }
   const std::vector<float> ground = params.max_step > 0 ? growGround(cand, envelope, nx, ny, params.max_step, params.max_rise) : envelope;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
