@@ -493,7 +493,7 @@ TEST(GeometricSegmenter, RealScansTrunksPolesAndCarsAgainstLabels) {
     found += s.columns.found;
     targets += s.columns.targets;
     EXPECT_EQ(s.cars.found, s.cars.targets) << name;
-    // Each labelled car (>= 200 points) is found as a box of most of its points, not a stray
+    // Each labelled car (>= 200 points) is found as a box of at least half its points, not a stray
     // piece beside it (001500: 23 reflections under the road sank the ground there, lifting the
     // car above the height cap, until GroundParams::under_tolerance).
     for (const auto& t : s.targets)
