@@ -66,6 +66,9 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "tolerance_deg", g.view_cut.tolerance_deg, 0.0, 5.0);
     opt(c, "min_share", g.view_cut.min_share, 0.0, 1.0);
     opt(c, "range_tolerance", g.view_cut.range_tolerance, 0.0, 5.0);
+    opt(c, "max_origin_height", g.view_cut.max_origin_height, 0.0, 2.0);
+    opt(c, "max_beside_share", g.view_cut.max_beside_share, 0.0, 1.0);
+    opt(c, "beside_range", g.view_cut.beside_range, 0.0, 5.0);
   }
   if (n.has("ground")) {
     const ConfigNode c = n.child("ground");
@@ -145,6 +148,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "gap_cell", p.gap_cell, 0.0);
     if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
+    opt(c, "min_thickness", p.min_thickness, 0.0, 2.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
   }

@@ -109,15 +109,17 @@ double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
 
 // Marks in `taken` the points that stand under a return at the top of the view (ViewCutParams).
 void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& taken) {
-  const float top = lines.viewTop(p.tolerance_deg, p.min_share);
-  if (!std::isfinite(top)) return;
-  lines.markUnderTop(top, p.tolerance_deg, static_cast<float>(p.range_tolerance), taken);
+  const auto top = lines.viewTop(p.tolerance_deg, p.min_share, p.max_origin_height);
+  if (!top) return;
+  lines.markUnderTop(*top, p.tolerance_deg, static_cast<float>(p.range_tolerance), taken);
 }
 
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                          const CarParams& kp, std::vector<char>& taken) {
+                                          const ScanLines& lines, const std::vector<char>& cut,
+                                          const GeometricSegmenterParams& params, std::vector<char>& taken) {
+  const CarParams& kp = params.car;
   std::vector<int> low;
   std::unordered_set<std::int64_t> over;  // cells with returns just above the cap
   for (int i : above) {
@@ -164,6 +166,11 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
         for (auto& part : parts) todo.emplace_back(std::move(part), kp.gap_cell);
         continue;
       }
+    }
+    if (params.view_cut.max_beside_share < 1) {
+      int beside = 0;
+      for (int i : cl) beside += lines.besideMarked(cloud[i], cut, static_cast<float>(params.view_cut.beside_range));
+      if (beside > params.view_cut.max_beside_share * cl.size()) continue;
     }
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
     for (int i : cl) taken[i] = 1;
@@ -251,10 +258,12 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
     emit(c.trunk ? params_.trunk_class : params_.pole_class, c.points, c.confidence);
 
   // Stacks reaching the top of the view are of unknown height: no car, no other (ViewCutParams).
-  if (params_.view_cut.tolerance_deg > 0) markViewCut(lines, params_.view_cut, taken);
+  std::vector<char> cut(cloud.size(), 0);
+  if (params_.view_cut.tolerance_deg > 0) markViewCut(lines, params_.view_cut, cut);
+  for (std::size_t i = 0; i < cloud.size(); ++i) taken[i] |= cut[i];
 
   // 2. Cars, 3. other.
-  for (const auto& cl : carClusters(cloud, h, above, params_.car, taken)) emit(params_.car_class, cl);
+  for (const auto& cl : carClusters(cloud, h, above, lines, cut, params_, taken)) emit(params_.car_class, cl);
   if (params_.emit_other)
     for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
       emit(params_.other_class, cl);

@@ -51,6 +51,7 @@ struct CarParams {
   // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
   // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a
   // building's lower storey goes on above the cap; a car ends below it). 1 disables.
+  double min_thickness = 0.0;
   double max_covered = 0.3;
   double cover_height = 1.0;
 };
@@ -64,6 +65,14 @@ struct ViewCutParams {
   double tolerance_deg = 0.2;    // a return this close to the top beam's elevation reaches it (0: off)
   double min_share = 0.1;        // share of azimuth bins (0.25 deg) the top beam must hit
   double range_tolerance = 0.1;  // metres: a return in the azimuth bin of such a return or the next, this close in range, is under it
+  // The top beam may leave from up to this far above or below the sensor frame's origin
+  // (ScanLines::viewTop; a multi-laser head's emitters sit above it).
+  double max_origin_height = 0.5;
+  // A car cluster more than this share of whose returns stand beside such a return (its azimuth
+  // bin or the next, within beside_range metres of range) is the lower part of a stack cut off
+  // by the view: no car (1: off).
+  double max_beside_share = 1.0;
+  double beside_range = 0.3;
 };
 
 struct GeometricSegmenterParams {

@@ -122,30 +122,69 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   return false;
 }
 
-float ScanLines::viewTop(double tolerance_deg, double min_share) const {
-  float top = -std::numeric_limits<float>::infinity();
+std::optional<ScanLines::ViewTop> ScanLines::viewTop(double tolerance_deg, double min_share, double max_height) const {
+  // Candidates: the highest returns of each bin (seen from the origin); the top beam's are
+  // among them for any origin height up to max_height.
+  constexpr int kPerBin = 8;
+  struct Candidate {
+    float z, range;
+    int bin;
+  };
+  std::vector<Candidate> cand;
   for (int b = 0; b < kBins; ++b)
-    if (start_[b + 1] > start_[b]) top = std::max(top, returns_[start_[b + 1] - 1].tan_elevation);
-  if (!std::isfinite(top)) return std::numeric_limits<float>::quiet_NaN();
-  const float tol = tanTolerance(top, tolerance_deg);
-  int hit = 0;
-  for (int b = 0; b < kBins; ++b) hit += start_[b + 1] > start_[b] && returns_[start_[b + 1] - 1].tan_elevation >= top - tol;
-  return hit >= min_share * kBins ? top : std::numeric_limits<float>::quiet_NaN();
+    for (int k = start_[b + 1] - 1; k >= std::max(start_[b], start_[b + 1] - kPerBin); --k)
+      cand.push_back({returns_[k].tan_elevation * returns_[k].range, returns_[k].range, b});
+  if (cand.empty()) return std::nullopt;
+  std::optional<ViewTop> best;
+  int best_hit = 0;
+  std::vector<float> bin_top(kBins);
+  const int steps = static_cast<int>(std::floor(max_height / 0.02 + 1e-9));
+  for (int s = -steps; s <= steps; ++s) {
+    const float height = 0.02f * s;
+    std::fill(bin_top.begin(), bin_top.end(), -std::numeric_limits<float>::infinity());
+    float top = -std::numeric_limits<float>::infinity();
+    for (const Candidate& c : cand) {
+      const float t = (c.z - height) / c.range;
+      bin_top[c.bin] = std::max(bin_top[c.bin], t);
+      top = std::max(top, t);
+    }
+    const float tol = tanTolerance(top, tolerance_deg);
+    int hit = 0;
+    for (float t : bin_top) hit += t >= top - tol;
+    // Ties go to the height nearest the origin (steps run outwards from -max to +max).
+    if (hit > best_hit || (hit == best_hit && best && std::abs(height) < std::abs(best->height)))
+      best_hit = hit, best = ViewTop{top, height};
+  }
+  if (best_hit < min_share * kBins) return std::nullopt;
+  return best;
 }
 
-void ScanLines::markUnderTop(float tan_top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const {
-  const float tan_tolerance = tanTolerance(tan_top, tolerance_deg);
+void ScanLines::markUnderTop(const ViewTop& top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const {
+  const float tan_tolerance = tanTolerance(top.tan_elevation, tolerance_deg);
   std::vector<std::vector<float>> top_ranges(kBins);  // per bin: ranges of its returns at the top
   bool any = false;
   for (int b = 0; b < kBins; ++b)
-    for (int k = start_[b + 1] - 1; k >= start_[b] && returns_[k].tan_elevation >= tan_top - tan_tolerance; --k)
-      top_ranges[b].push_back(returns_[k].range), any = true;
+    for (int k = start_[b]; k < start_[b + 1]; ++k) {
+      const Return& r = returns_[k];
+      if (r.tan_elevation * r.range >= top.at(r.range) - tan_tolerance * r.range) top_ranges[b].push_back(r.range), any = true;
+    }
   if (!any) return;
   for (int b = 0; b < kBins; ++b)
     for (int d = -1; d <= 1; ++d)
       for (float r : top_ranges[(b + d + kBins) % kBins])
         for (int k = start_[b]; k < start_[b + 1]; ++k)
           if (std::abs(returns_[k].range - r) <= range_tolerance) mark[returns_[k].index] = 1;
+}
+
+bool ScanLines::besideMarked(const Eigen::Vector3f& p, const std::vector<char>& mark, float range_tolerance) const {
+  const Return q = polar(p, -1);
+  const int b = bin(q.azimuth);
+  for (int d = -1; d <= 1; ++d) {
+    const int n = (b + d + kBins) % kBins;
+    for (int k = start_[n]; k < start_[n + 1]; ++k)
+      if (mark[returns_[k].index] && std::abs(returns_[k].range - q.range) <= range_tolerance) return true;
+  }
+  return false;
 }
 
 }  // namespace slide::frontend

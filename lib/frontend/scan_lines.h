@@ -6,6 +6,7 @@
 // whether a nearer return lies just above a point (its upward view is blocked), and where the
 // view ends above (the top beam, and the returns standing under it). Points are in the sensor
 // frame (sensor at the origin, z up).
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,17 +40,30 @@ class ScanLines {
   // stands above p (a crown may be there).
   bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
 
-  // The top of the view (tan of its elevation) where the scan's top beam hits something in most
-  // directions: the highest indexed return, when at least min_share of the azimuth bins hold
-  // a return within tolerance_deg of its elevation (walls, a ceiling or crowns all around); NaN
-  // when not (open sky above most directions: the view cuts nothing off).
-  float viewTop(double tolerance_deg, double min_share) const;
+  // The top beam: its returns lie on z = height + r * tan_elevation (r horizontal). A
+  // multi-laser head fires from emitters above the sensor frame's origin: the real
+  // SemanticKITTI scans' top beam leaves at +2.0 deg from 0.2-0.24 m above it, so its
+  // elevation seen from the origin falls from 3.6 deg at 7 m to 2.2 deg at 50 m.
+  struct ViewTop {
+    float tan_elevation = 0, height = 0;
+    float at(float range) const { return height + range * tan_elevation; }
+  };
+  // The top of the view where the scan's top beam hits something in most directions: over
+  // origin heights within max_height of the sensor's (steps of 0.02 m), the highest
+  // line through the returns that at least min_share of the azimuth bins reach within
+  // tolerance_deg (walls, a ceiling or crowns all around); none when no height gives that
+  // share (open sky above most directions: the view cuts nothing off).
+  std::optional<ViewTop> viewTop(double tolerance_deg, double min_share, double max_height = 0.5) const;
 
   // Marks in `mark` (sized like the cloud) the indexed returns that stand under a return at the
-  // top of the view (elevation within tolerance_deg of tan_top's): in its azimuth bin or a
-  // neighbouring one, within range_tolerance metres of its horizontal range. A vertical face
-  // returns every beam of an azimuth step at the same range.
-  void markUnderTop(float tan_top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const;
+  // top of the view (within tolerance_deg of it): in its azimuth bin or a neighbouring one,
+  // within range_tolerance metres of its horizontal range. A vertical face returns every beam
+  // of an azimuth step at the same range.
+  void markUnderTop(const ViewTop& top, double tolerance_deg, float range_tolerance, std::vector<char>& mark) const;
+
+  // Whether an indexed return marked in `mark` (sized like the cloud) lies in the azimuth bin
+  // of cloud point p or a neighbouring one, within range_tolerance metres of its horizontal range.
+  bool besideMarked(const Eigen::Vector3f& p, const std::vector<char>& mark, float range_tolerance) const;
 
  private:
   struct Return {
