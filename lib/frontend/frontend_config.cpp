@@ -148,7 +148,6 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "gap_cell", p.gap_cell, 0.0);
     if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
-    opt(c, "min_thickness", p.min_thickness, 0.0, 2.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
   }

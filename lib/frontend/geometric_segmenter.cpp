@@ -1,5 +1,6 @@
 #include "frontend/geometric_segmenter.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -120,6 +121,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
                                           const ScanLines& lines, const std::vector<char>& cut,
                                           const GeometricSegmenterParams& params, std::vector<char>& taken) {
   const CarParams& kp = params.car;
+  const bool any_cut = params.view_cut.max_beside_share < 1 && std::find(cut.begin(), cut.end(), 1) != cut.end();
   std::vector<int> low;
   std::unordered_set<std::int64_t> over;  // cells with returns just above the cap
   for (int i : above) {
@@ -167,7 +169,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
         continue;
       }
     }
-    if (params.view_cut.max_beside_share < 1) {
+    if (any_cut) {
       int beside = 0;
       for (int i : cl) beside += lines.besideMarked(cloud[i], cut, static_cast<float>(params.view_cut.beside_range));
       if (beside > params.view_cut.max_beside_share * cl.size()) continue;

@@ -51,7 +51,6 @@ struct CarParams {
   // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
   // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a
   // building's lower storey goes on above the cap; a car ends below it). 1 disables.
-  double min_thickness = 0.0;
   double max_covered = 0.3;
   double cover_height = 1.0;
 };

@@ -151,7 +151,7 @@ std::optional<ScanLines::ViewTop> ScanLines::viewTop(double tolerance_deg, doubl
     const float tol = tanTolerance(top, tolerance_deg);
     int hit = 0;
     for (float t : bin_top) hit += t >= top - tol;
-    // Ties go to the height nearest the origin (steps run outwards from -max to +max).
+    // Of heights that reach as many bins, the one nearest the origin.
     if (hit > best_hit || (hit == best_hit && best && std::abs(height) < std::abs(best->height)))
       best_hit = hit, best = ViewTop{top, height};
   }
