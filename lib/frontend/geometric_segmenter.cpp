@@ -108,15 +108,16 @@ double boxSide(const Cloud& cloud, const std::vector<int>& idx) {
   return idx.empty() ? 0.0 : static_cast<double>((hi - lo).maxCoeff());
 }
 
-// Marks in `taken` the points that stand under a return at the top of the view (ViewCutParams).
-void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& taken) {
+// Marks in `cut` the points that stand under a return at the top of the view (ViewCutParams).
+void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<char>& cut) {
   const auto top = lines.viewTop(p.tolerance_deg, p.min_share, p.max_origin_height);
   if (!top) return;
-  lines.markUnderTop(*top, p.tolerance_deg, static_cast<float>(p.range_tolerance), taken);
+  lines.markUnderTop(*top, p.tolerance_deg, static_cast<float>(p.range_tolerance), cut);
 }
 
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
-// cap that fit a car (module comment in the header); their points are marked taken.
+// cap that fit a car (module comment in the header) and are not the rest of a stack the view
+// cuts off (beside the points marked in `cut`); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                           const ScanLines& lines, const std::vector<char>& cut,
                                           const GeometricSegmenterParams& params, std::vector<char>& taken) {

@@ -5,7 +5,7 @@
 //     column_detection.h),
 //  2. cars: clusters of the remaining points below a height cap whose footprint and height
 //     fit a car and whose roof is open (a wall's lower part goes on above the cap), leaving out
-//     stacks that reach the top of the view (ViewCutParams),
+//     stacks that reach the top of the view and what stands beside them (ViewCutParams),
 //  3. other: clusters of what is left whose extents fit the "other" class (no taller than
 //     furniture: other_max_height), that stand low,
 //     whose surfaces are solid (not foliage), that are seen whole (not cut off by a nearer
