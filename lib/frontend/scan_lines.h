@@ -48,12 +48,13 @@ class ScanLines {
     float tan_elevation = 0, height = 0;
     float at(float range) const { return height + range * tan_elevation; }
   };
-  // The top of the view where the scan's top beam hits something in most directions: over
-  // origin heights within max_height of the sensor's (steps of 0.02 m), the highest
-  // line through the returns that at least min_share of the azimuth bins reach within
-  // tolerance_deg (walls, a ceiling or crowns all around); none when no height gives that
-  // share (open sky above most directions: the view cuts nothing off).
-  std::optional<ViewTop> viewTop(double tolerance_deg, double min_share, double max_height = 0.5) const;
+  // The top of the view where the scan's top beam hits something in most directions. For each
+  // origin height within max_height of the sensor's (steps of 0.02 m), the line at the highest
+  // elevation of the returns seen from there; of those, the one that the most azimuth bins
+  // reach within tolerance_deg (ties: the height nearest the origin). None when it is reached
+  // by fewer than min_share of the bins (open sky above most directions: the view cuts
+  // nothing off); walls, a ceiling or crowns all around give one.
+  std::optional<ViewTop> viewTop(double tolerance_deg, double min_share, double max_height) const;
 
   // Marks in `mark` (sized like the cloud) the indexed returns that stand under a return at the
   // top of the view (within tolerance_deg of it): in its azimuth bin or a neighbouring one,

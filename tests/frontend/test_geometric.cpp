@@ -551,7 +551,7 @@ TEST(ScanLines, ViewTopIsTheTopBeamWhenItHitsSomethingAllAround) {
     }
     std::vector<int> all(c.size());
     std::iota(all.begin(), all.end(), 0);
-    return frontend::ScanLines(c, all).viewTop(0.2, 0.1);
+    return frontend::ScanLines(c, all).viewTop(0.2, 0.1, 0.5);
   };
   const auto all_round = ring(1000);
   ASSERT_TRUE(all_round);
