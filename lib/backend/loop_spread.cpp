@@ -9,12 +9,14 @@
 
 namespace slide::backend {
 
-std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const Pose& T_a_b, const PoseSigma& loop_sigma,
+std::vector<Pose> spreadLoopError(const std::vector<Pose>& chain, const std::vector<Pose>& fixed,
+                                  const std::vector<LoopSpread::Closure>& closures, const PoseSigma& loop_sigma,
                                   const LoopSpreadNoise& noise) {
-  const int n = static_cast<int>(poses.size());
-  if (n < 2 || b <= 0 || b >= n) return poses;
-  std::vector<PoseBlock> blocks(n);
-  for (int i = 0; i < n; ++i) blocks[i] = toPoseBlock(poses[i]);
+  const int n = static_cast<int>(chain.size());
+  if (n < 2 || closures.empty()) return chain;
+  std::vector<PoseBlock> blocks(n), anchors(fixed.size());
+  for (int i = 0; i < n; ++i) blocks[i] = toPoseBlock(chain[i]);
+  for (std::size_t k = 0; k < fixed.size(); ++k) anchors[k] = toPoseBlock(fixed[k]);
   std::unique_ptr<ceres::Manifold> manifold(newPoseManifold());
   ceres::Problem::Options po;
   po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -22,14 +24,28 @@ std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const P
   for (auto& block : blocks) problem.AddParameterBlock(block.data(), 7, manifold.get());
   problem.SetParameterBlockConstant(blocks[0].data());
   for (int i = 0; i + 1 < n; ++i) {
-    const Pose rel = poses[i].inverse() * poses[i + 1];
+    const Pose rel = chain[i].inverse() * chain[i + 1];
     const double d = rel.translation().norm();
     PoseSigma s;
     s.head<3>().setConstant(std::max(noise.translation_floor, noise.translation_per_m * d));
     s.tail<3>().setConstant(std::max(noise.rotation_floor, noise.rotation_per_m * d));
     problem.AddResidualBlock(relativePoseFactor(rel, s), nullptr, blocks[i].data(), blocks[i + 1].data());
   }
-  problem.AddResidualBlock(relativePoseFactor(T_a_b, loop_sigma), nullptr, blocks[0].data(), blocks[b].data());
+  auto block = [&](int index) -> double* {
+    if (index >= 0) return index < n ? blocks[index].data() : nullptr;
+    const std::size_t k = static_cast<std::size_t>(-index - 1);
+    if (k >= anchors.size()) return nullptr;
+    if (!problem.HasParameterBlock(anchors[k].data())) {
+      problem.AddParameterBlock(anchors[k].data(), 7, manifold.get());
+      problem.SetParameterBlockConstant(anchors[k].data());
+    }
+    return anchors[k].data();
+  };
+  for (const LoopSpread::Closure& c : closures) {
+    double* a = block(c.a);
+    double* b = block(c.b);
+    if (a && b && a != b) problem.AddResidualBlock(relativePoseFactor(c.T_a_b, loop_sigma), nullptr, a, b);
+  }
   ceres::Solver::Options o;
   o.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   o.max_num_iterations = 10;
@@ -43,21 +59,21 @@ std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const P
   return out;
 }
 
-void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<LoopSpread>& loops,
+void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<LoopSpread>& spreads,
                  const std::vector<LandmarkObservers>& landmarks, const PoseSigma& loop_sigma,
                  const LoopSpreadNoise& noise) {
   std::vector<Pose> correction(values.size(), Pose::Identity());
   std::vector<char> moved(values.size(), 0);
-  for (const LoopSpread& loop : loops) {
-    if (loop.b <= 0 || loop.b >= static_cast<int>(loop.vars.size())) continue;
-    std::vector<Pose> before(loop.vars.size());
-    for (std::size_t i = 0; i < loop.vars.size(); ++i) before[i] = fromPoseBlock(values[loop.vars[i]].data());
-    const std::vector<Pose> after = spreadLoopError(before, loop.b, loop.T_a_b, loop_sigma, noise);
-    for (std::size_t i = 0; i < loop.vars.size(); ++i) {
-      correction[loop.vars[i]] = after[i] * before[i].inverse();
-      moved[loop.vars[i]] = 1;
+  for (const LoopSpread& spread : spreads) {
+    std::vector<Pose> before(spread.chain.size()), fixed(spread.fixed.size());
+    for (std::size_t i = 0; i < spread.chain.size(); ++i) before[i] = fromPoseBlock(values[spread.chain[i]].data());
+    for (std::size_t k = 0; k < spread.fixed.size(); ++k) fixed[k] = fromPoseBlock(values[spread.fixed[k]].data());
+    const std::vector<Pose> after = spreadLoopError(before, fixed, spread.closures, loop_sigma, noise);
+    for (std::size_t i = 0; i < spread.chain.size(); ++i) {
+      correction[spread.chain[i]] = after[i] * before[i].inverse();
+      moved[spread.chain[i]] = 1;
       const PoseBlock block = toPoseBlock(after[i]);
-      std::copy(block.begin(), block.end(), values[loop.vars[i]].begin());
+      std::copy(block.begin(), block.end(), values[spread.chain[i]].begin());
     }
     for (const LandmarkObservers& lm : landmarks) {
       const Pose* C = nullptr;
@@ -68,7 +84,7 @@ void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<L
       }
       if (C) moveLandmarkBlock(values[lm.var].data(), lm.shape, *C);
     }
-    for (int v : loop.vars) moved[v] = 0;
+    for (int v : spread.chain) moved[v] = 0;
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// Spreading a new loop closure's error along its loop before the full solve: a pose graph of
-// the loop's key poses alone, whose edges are the current estimate's relative poses (so the
-// shape the landmarks gave the trajectory is kept) and the loop closure. The full solve then
+// Spreading new loop closures' error along their loops before the full solve: a pose graph of
+// the robot's key poses since the oldest loop's start, whose edges are the current estimate's
+// relative poses (so the shape the landmarks gave the trajectory is kept), the new closures
+// and the closures already in the graph there (so what they hold stays held). The full solve then
 // starts next to its solution instead of from a trajectory that still misses the loop by the
 // accumulated drift, and needs fewer iterations.
 #include <array>
@@ -17,13 +18,20 @@ struct LoopSpreadNoise {
   double rotation_floor = 0.0005, rotation_per_m = 0.001;
 };
 
-// A loop closure's spread as a full solve carries it out on its snapshot's values (off the
-// update path): one robot's key-pose variables from the loop's older end (vars[0]) to its
-// latest, the index of the newer end, and the closure.
+// The spread of one robot's new loop closures as a full solve carries it out on its snapshot's
+// values (off the update path): its key-pose variables from the oldest new closure's older end
+// (chain[0], held fixed) to its latest; older key poses that closures already in the graph reach
+// from inside the chain (held fixed); and the closures — the new ones and those already in the
+// graph with an end in the chain, which the spread keeps as they are met, instead of bending
+// what they hold to close the new ones.
 struct LoopSpread {
-  std::vector<int> vars;
-  int b = 0;
-  Pose T_a_b = Pose::Identity();
+  struct Closure {
+    int a = 0, b = 0;  // indices into chain, or -(k + 1) for fixed[k]
+    Pose T_a_b = Pose::Identity();
+  };
+  std::vector<int> chain;
+  std::vector<int> fixed;
+  std::vector<Closure> closures;
 };
 // A landmark's variable, shape and the key-pose variables that observed it.
 struct LandmarkObservers {
@@ -32,15 +40,18 @@ struct LandmarkObservers {
   std::vector<int> observers;
 };
 
-// poses: one robot's current key poses from the loop's older end (index 0, held fixed) to its
-// latest; b: index of the newer end; T_a_b: the loop closure. Returns the corrected poses.
-std::vector<Pose> spreadLoopError(const std::vector<Pose>& poses, int b, const Pose& T_a_b, const PoseSigma& loop_sigma,
+// chain: one robot's current key poses from the oldest new closure's older end (index 0, held
+// fixed) to its latest; fixed: older key poses closures reach; closures index both as
+// LoopSpread does. A pose graph whose edges are the chain's current relative poses (weighted by
+// `noise`) and the closures (loop_sigma). Returns the corrected chain.
+std::vector<Pose> spreadLoopError(const std::vector<Pose>& chain, const std::vector<Pose>& fixed,
+                                  const std::vector<LoopSpread::Closure>& closures, const PoseSigma& loop_sigma,
                                   const LoopSpreadNoise& noise);
 
-// Each spread in turn on `values` (variables by index, as FactorGraph::Values): its key poses
+// Each spread in turn on `values` (variables by index, as FactorGraph::Values): its chain
 // corrected by spreadLoopError, then every landmark moved with its least-moved observer (those
-// seen from before the loop stay).
-void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<LoopSpread>& loops,
+// seen from before the chain stay).
+void spreadLoops(std::vector<std::array<double, 7>>& values, const std::vector<LoopSpread>& spreads,
                  const std::vector<LandmarkObservers>& landmarks, const PoseSigma& loop_sigma,
                  const LoopSpreadNoise& noise);
 

@@ -257,7 +257,11 @@ class Optimizer {
   std::vector<KeyPose> keyposes_;
   std::vector<Landmark> landmarks_;
   std::map<int, Robot> robots_;
-  std::map<std::pair<int, std::pair<int, int>>, int> loop_factors_;
+  struct LoopFactor {
+    int factor;
+    Pose T_a_b;
+  };
+  std::map<std::pair<int, std::pair<int, int>>, LoopFactor> loop_factors_;  // (robot, (seq_a, seq_b))
   LandmarkGrid grid_;
   double max_association_distance_ = 1.0;
   int step_ = 0;                 // key poses inserted so far

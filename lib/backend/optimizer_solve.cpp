@@ -2,6 +2,7 @@
 // background worker, and how a solution made while the graph grew is taken in.
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <unordered_map>
 
 #include "backend/optimizer.h"
@@ -81,25 +82,46 @@ void Optimizer::takePendingLoops(FullSolveJob& job) {
   job.loop_sigma = loopSigma();
   job.spread_noise = {cfg_.odom_translation_floor, cfg_.odom_translation_per_m, cfg_.odom_rotation_floor,
                       cfg_.odom_rotation_per_m};
+  std::map<int, int> oldest;  // robot -> oldest key pose (seq) a new closure of it reaches
   for (const PendingLoop& l : pending_loops_) {
     const KeyPose* a = findKeyPose(l.robot, l.seq_a);
     const KeyPose* b = findKeyPose(l.robot, l.seq_b);
     if (!a || !b) continue;  // checked on arrival; key poses are never removed
     job.loops.push_back(l);
     FactorGraph::addToSnapshot(job.snapshot, relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var});
-    if (!cfg_.spread_loops || l.seq_a >= l.seq_b) continue;
-    LoopSpread spread;
-    spread.T_a_b = l.T_a_b;
-    const std::vector<int>& list = robots_[l.robot].keyposes;
-    auto k = std::lower_bound(list.begin(), list.end(), l.seq_a, [&](int kp, int seq) { return keyposes_[kp].seq < seq; });
-    for (; k != list.end(); ++k) {
-      if (keyposes_[*k].seq == l.seq_b) spread.b = static_cast<int>(spread.vars.size());
-      spread.vars.push_back(keyposes_[*k].var);
-    }
-    job.spreads.push_back(std::move(spread));
+    const int first = std::min(l.seq_a, l.seq_b);
+    const auto it = oldest.find(l.robot);
+    if (it == oldest.end() || first < it->second) oldest[l.robot] = first;
   }
   pending_loops_.clear();
-  if (job.spreads.empty()) return;
+  if (!cfg_.spread_loops || oldest.empty()) return;
+  for (const auto& [robot, first] : oldest) {
+    const std::vector<int>& list = robots_[robot].keyposes;
+    auto position = [&](int seq) {
+      return static_cast<int>(std::lower_bound(list.begin(), list.end(), seq,
+                                               [&](int kp, int s) { return keyposes_[kp].seq < s; }) - list.begin());
+    };
+    const int start = position(first);
+    LoopSpread spread;
+    for (std::size_t k = start; k < list.size(); ++k) spread.chain.push_back(keyposes_[list[k]].var);
+    std::map<int, int> fixed_index;  // list position before the chain -> -(k + 1)
+    auto index = [&](int seq) {
+      const int p = position(seq);
+      if (p >= start) return p - start;
+      const auto [it, added] = fixed_index.emplace(p, -static_cast<int>(spread.fixed.size()) - 1);
+      if (added) spread.fixed.push_back(keyposes_[list[p]].var);
+      return it->second;
+    };
+    auto add = [&](int seq_a, int seq_b, const Pose& T) {
+      if (std::max(seq_a, seq_b) < first) return;  // wholly before the chain: nothing there moves
+      spread.closures.push_back({index(seq_a), index(seq_b), T});
+    };
+    for (const PendingLoop& l : job.loops)
+      if (l.robot == robot) add(l.seq_a, l.seq_b, l.T_a_b);
+    for (const auto& [key, factor] : loop_factors_)
+      if (key.first == robot) add(key.second.first, key.second.second, factor.T_a_b);
+    job.spreads.push_back(std::move(spread));
+  }
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive || lm.seen.empty()) continue;
     LandmarkObservers o{lm.var, lm.shape, {}};
@@ -115,8 +137,8 @@ void Optimizer::addLoopFactors(const FullSolveJob& job) {
     const KeyPose* b = findKeyPose(l.robot, l.seq_b);
     const auto key = std::make_pair(l.robot, std::make_pair(l.seq_a, l.seq_b));
     const auto it = loop_factors_.find(key);
-    if (it != loop_factors_.end()) graph_.removeFactor(it->second);  // repeated while the solve ran
-    loop_factors_[key] = graph_.addFactor(relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var}, false);
+    if (it != loop_factors_.end()) graph_.removeFactor(it->second.factor);  // repeated while the solve ran
+    loop_factors_[key] = {graph_.addFactor(relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var}, false), l.T_a_b};
   }
 }
 
@@ -125,7 +147,7 @@ std::shared_ptr<Optimizer::FullSolveJob> Optimizer::makeJob(int iterations, doub
   for (const PendingLoop& l : pending_loops_) {  // a repeated closure replaces the one in the graph
     const auto it = loop_factors_.find({l.robot, {l.seq_a, l.seq_b}});
     if (it == loop_factors_.end()) continue;
-    graph_.removeFactor(it->second);
+    graph_.removeFactor(it->second.factor);
     loop_factors_.erase(it);
   }
   job->snapshot = graph_.snapshot();

@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
                                                   ? graph_scenario::makeForestChainScenario(long_keyposes)
                                                   : graph_scenario::makeForestReturnScenario(long_keyposes);
       spdlog::info("long mission ({}): {} key poses, {} landmarks", s.name, s.robots[0].bundles.size(), s.landmarks.size());
-      reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz, final_seconds), cfg.background_solves, rate_hz);
+      reportLong(rep, long_keyposes, route, runScenario(s, cfg, false, rate_hz, final_seconds, 500), cfg.background_solves, rate_hz);
       rep.printTable(std::cout);
       if (!json.empty()) rep.writeJson(json);
       return 0;

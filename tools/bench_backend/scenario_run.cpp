@@ -9,6 +9,8 @@
 #include "clock/thread_cpu.h"
 #include "eval/ate.h"
 
+#include <spdlog/spdlog.h>
+
 namespace slide {
 
 namespace {
@@ -46,7 +48,7 @@ double landmarkError(const Object& est, const Object& truth) {
 }  // namespace
 
 ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
-                              bool with_batch, double pace_hz, double final_seconds) {
+                              bool with_batch, double pace_hz, double final_seconds, int progress_every) {
   ScenarioRunResult out;
   backend::Optimizer opt(cfg, ClassTable::loadDefault(), s.robots[0].id);
   std::mt19937 rng(11);
@@ -63,6 +65,20 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
     if (!u.full_solve) return;
     ++out.full_solves;
     out.full_solve_ms.push_back(u.full_solve_ms);
+  };
+  // Long missions: the live estimate so far against the truth and against odometry, as it goes.
+  auto progress = [&](std::size_t done) {
+    Pairs live, odom;
+    for (const backend::TrajectoryPose& p : opt.trajectory(s.robots[0].id)) {
+      live.est.push_back(p.pose);
+      live.ref.push_back(s.robots[0].truth[p.seq]);
+      odom.est.push_back(s.robots[0].bundles[p.seq].odom_pose);
+      odom.ref.push_back(s.robots[0].truth[p.seq]);
+    }
+    const double ate = eval::absoluteTrajectoryError(live.est, live.ref, eval::TrajectoryAlignment::Se3).rmse;
+    const double odo = eval::absoluteTrajectoryError(odom.est, odom.ref, eval::TrajectoryAlignment::Se3).rmse;
+    spdlog::info("key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}; simulator truth), {} full solves, "
+                 "{} loop closures", done, longest, ate, odo, ate / std::max(1e-9, odo), out.full_solves, out.loop_closures);
   };
   auto last_input = Clock::now();
   auto pace = [&]() {
@@ -84,6 +100,7 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
         out.update_cpu_ms.push_back(cpu);
       }
       tally(u);
+      if (progress_every > 0 && r.id == s.robots[0].id && (k + 1) % progress_every == 0) progress(k + 1);
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
       if (!opt.merged(r.id)) continue;
