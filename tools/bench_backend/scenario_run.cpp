@@ -1,6 +1,7 @@
 #include "scenario_run.h"
 
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <map>
 #include <thread>
@@ -61,13 +62,17 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
   for (const auto& r : s.robots)
     for (const auto& lc : graph_scenario::simulateLoopClosures(r)) closures[r.id][lc.seq_b].push_back(lc);
   int objects = 0;
+  std::function<void(std::size_t)> progress;
+  std::size_t inserted = 0;  // host key poses so far
   auto tally = [&](const backend::UpdateResult& u) {
     if (!u.full_solve) return;
     ++out.full_solves;
     out.full_solve_ms.push_back(u.full_solve_ms);
+    if (progress && spdlog::should_log(spdlog::level::debug)) progress(inserted);
   };
-  // Long missions: the live estimate so far against the truth and against odometry, as it goes.
-  auto progress = [&](std::size_t done) {
+  // Long missions: the live estimate so far against the truth and against odometry, every
+  // progress_every key poses (info) and after every full solve taken in (debug).
+  if (progress_every > 0) progress = [&](std::size_t done) {
     Pairs live, odom;
     for (const backend::TrajectoryPose& p : opt.trajectory(s.robots[0].id)) {
       live.est.push_back(p.pose);
@@ -77,8 +82,10 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
     }
     const double ate = eval::absoluteTrajectoryError(live.est, live.ref, eval::TrajectoryAlignment::Se3).rmse;
     const double odo = eval::absoluteTrajectoryError(odom.est, odom.ref, eval::TrajectoryAlignment::Se3).rmse;
-    spdlog::info("key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}; simulator truth), {} full solves, "
-                 "{} loop closures", done, longest, ate, odo, ate / std::max(1e-9, odo), out.full_solves, out.loop_closures);
+    spdlog::log(done % progress_every == 0 ? spdlog::level::info : spdlog::level::debug,
+                "key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}; simulator truth), {} full "
+                "solves, {} loop closures",
+                done, longest, ate, odo, ate / std::max(1e-9, odo), out.full_solves, out.loop_closures);
   };
   auto last_input = Clock::now();
   auto pace = [&]() {
@@ -100,6 +107,7 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
         out.update_cpu_ms.push_back(cpu);
       }
       tally(u);
+      if (r.id == s.robots[0].id) inserted = k + 1;
       if (progress_every > 0 && r.id == s.robots[0].id && (k + 1) % progress_every == 0) progress(k + 1);
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
@@ -113,6 +121,7 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
         out.update_ms.push_back(l.update_ms);
         tally(l);
         ++out.loop_closures;
+        spdlog::debug("loop closure {} -> {} (robot {}){}", lc.seq_a, lc.seq_b, lc.robot, l.accepted ? "" : ": " + l.reason);
       }
     }
     for (std::size_t p = 1; p < s.robots.size(); ++p) {

@@ -42,8 +42,8 @@ struct ScenarioRunResult {
 // pace_hz > 0: while a background full solve runs, inputs arrive at most this often (the
 // robot's key-pose rate; otherwise they come as fast as the optimizer takes them).
 // final_seconds > 0 bounds the final full solve (Optimizer::fullSolve's max_seconds).
-// progress_every > 0: every that many key poses of the host, logs the live estimate's ATE so far
-// against the truth and against odometry.
+// progress_every > 0: every that many key poses of the host (and, at debug level, after every
+// full solve taken in), logs the live estimate's ATE so far against the truth and against odometry.
 ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
                               bool with_batch = true, double pace_hz = 0, double final_seconds = 0,
                               int progress_every = 0);
