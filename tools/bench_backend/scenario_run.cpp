@@ -82,10 +82,18 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
     }
     const double ate = eval::absoluteTrajectoryError(live.est, live.ref, eval::TrajectoryAlignment::Se3).rmse;
     const double odo = eval::absoluteTrajectoryError(odom.est, odom.ref, eval::TrajectoryAlignment::Se3).rmse;
+    int total = 0, wrong = 0;  // detections not of their landmark's majority object (simulator's associations)
+    for (const auto& [id, counts] : votes) {
+      int best = 0, sum = 0;
+      for (const auto& [i, c] : counts) best = std::max(best, c), sum += c;
+      total += sum;
+      wrong += sum - best;
+    }
     spdlog::log(done % progress_every == 0 ? spdlog::level::info : spdlog::level::debug,
-                "key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}; simulator truth), {} full "
-                "solves, {} loop closures",
-                done, longest, ate, odo, ate / std::max(1e-9, odo), out.full_solves, out.loop_closures);
+                "key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}), wrong associations {:.2f} %, "
+                "{} full solves, {} loop closures (against the simulator's truth)",
+                done, longest, ate, odo, ate / std::max(1e-9, odo), 100.0 * wrong / std::max(1, total), out.full_solves,
+                out.loop_closures);
   };
   auto last_input = Clock::now();
   auto pace = [&]() {
