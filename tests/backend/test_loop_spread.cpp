@@ -7,6 +7,12 @@
 namespace slide {
 namespace {
 
+backend::PoseSigma loopSigma() {
+  backend::PoseSigma s;
+  s << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+  return s;
+}
+
 TEST(LoopSpread, ClosesTheLoopAndKeepsItsStart) {
   // A square of 40 one-metre steps whose estimate turns slightly too little at each step.
   std::vector<Pose> truth, est;
@@ -21,8 +27,7 @@ TEST(LoopSpread, ClosesTheLoopAndKeepsItsStart) {
   const int b = 39;
   const Pose T_a_b = truth[0].inverse() * truth[b];
   const double before = (est[b].translation() - truth[b].translation()).norm();
-  backend::PoseSigma loop;
-  loop << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+  const backend::PoseSigma loop = loopSigma();
   const std::vector<Pose> out = backend::spreadLoopError(est, {}, {{0, b, T_a_b}}, loop, backend::LoopSpreadNoise{});
   ASSERT_EQ(out.size(), est.size());
   EXPECT_LT((out[0].translation() - est[0].translation()).norm(), 1e-12);
@@ -56,8 +61,7 @@ TEST(LoopSpread, KeepsAClosureAlreadyMetWhileClosingANewOne) {
     t = t * poseFromXyzYaw(1, 0, 0, turn);
     e = e * poseFromXyzYaw(1, 0, 0, turn + 0.2 * M_PI / 180);
   }
-  backend::PoseSigma loop;
-  loop << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+  const backend::PoseSigma loop = loopSigma();
   const Pose held = est[40].inverse() * est[80];  // what the graph's solution met
   const Pose fresh = truth[0].inverse() * truth[120];
   const std::vector<Pose> out =
@@ -78,8 +82,7 @@ TEST(LoopSpread, HoldsKeyPosesBeforeTheChainFixed) {
   std::vector<Pose> chain;
   for (int i = 0; i < 20; ++i) chain.push_back(poseFromXyzYaw(10 + i, 0.05 * i, 0, 0));
   const std::vector<Pose> fixed{poseFromXyzYaw(0, 0, 0, 0)};
-  backend::PoseSigma loop;
-  loop << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
+  const backend::PoseSigma loop = loopSigma();
   const Pose T = poseFromXyzYaw(29, 0, 0, 0);  // the chain's end lies on the x axis
   const std::vector<Pose> out = backend::spreadLoopError(chain, fixed, {{-1, 19, T}}, loop, backend::LoopSpreadNoise{});
   EXPECT_LT((out[0].translation() - chain[0].translation()).norm(), 1e-12);

@@ -1,8 +1,8 @@
 #include "scenario_run.h"
 
 #include <chrono>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <thread>
 
@@ -46,6 +46,19 @@ double landmarkError(const Object& est, const Object& truth) {
     return (std::get<Cylinder>(est.model).root - std::get<Cylinder>(truth.model).root).head<2>().norm();
   return (est.position() - truth.position()).norm();
 }
+
+// Detections not of their landmark's majority true object, over all detections (votes: landmark
+// id -> true object index -> detections; the simulator's associations).
+double wrongAssociationFraction(const std::map<std::int64_t, std::map<int, int>>& votes) {
+  int total = 0, wrong = 0;
+  for (const auto& [id, counts] : votes) {
+    int best = 0, sum = 0;
+    for (const auto& [i, c] : counts) best = std::max(best, c), sum += c;
+    total += sum;
+    wrong += sum - best;
+  }
+  return total ? static_cast<double>(wrong) / total : 0.0;
+}
 }  // namespace
 
 ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const backend::BackendConfig& cfg,
@@ -82,17 +95,10 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
     }
     const double ate = eval::absoluteTrajectoryError(live.est, live.ref, eval::TrajectoryAlignment::Se3).rmse;
     const double odo = eval::absoluteTrajectoryError(odom.est, odom.ref, eval::TrajectoryAlignment::Se3).rmse;
-    int total = 0, wrong = 0;  // detections not of their landmark's majority object (simulator's associations)
-    for (const auto& [id, counts] : votes) {
-      int best = 0, sum = 0;
-      for (const auto& [i, c] : counts) best = std::max(best, c), sum += c;
-      total += sum;
-      wrong += sum - best;
-    }
     spdlog::log(done % progress_every == 0 ? spdlog::level::info : spdlog::level::debug,
                 "key pose {} of {}: live ATE {:.2f} m, odometry {:.2f} m (ratio {:.3f}), wrong associations {:.2f} %, "
                 "{} full solves, {} loop closures (against the simulator's truth)",
-                done, longest, ate, odo, ate / std::max(1e-9, odo), 100.0 * wrong / std::max(1, total), out.full_solves,
+                done, longest, ate, odo, ate / std::max(1e-9, odo), 100.0 * wrongAssociationFraction(votes), out.full_solves,
                 out.loop_closures);
   };
   auto last_input = Clock::now();
@@ -114,8 +120,8 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
         out.update_ms.push_back(u.update_ms);
         out.update_cpu_ms.push_back(cpu);
       }
-      tally(u);
       if (r.id == s.robots[0].id) inserted = k + 1;
+      tally(u);
       if (progress_every > 0 && r.id == s.robots[0].id && (k + 1) % progress_every == 0) progress(k + 1);
       for (std::size_t i = 0; i < u.landmark_ids.size(); ++i)
         if (u.landmark_ids[i] >= 0) ++votes[u.landmark_ids[i]][r.seen[k][i]];
@@ -212,14 +218,7 @@ ScenarioRunResult runScenario(const graph_scenario::GraphScenario& s, const back
   int duplicates = 0;
   for (const auto& [i, c] : confirmed_per_object) duplicates += c - 1;
   out.duplicate_fraction = lms.empty() ? 0.0 : static_cast<double>(duplicates) / lms.size();
-  int total = 0, wrong = 0;
-  for (const auto& [id, counts] : votes) {
-    int best = 0, sum = 0;
-    for (const auto& [i, c] : counts) best = std::max(best, c), sum += c;
-    total += sum;
-    wrong += sum - best;
-  }
-  out.wrong_association_fraction = total ? static_cast<double>(wrong) / total : 0;
+  out.wrong_association_fraction = wrongAssociationFraction(votes);
   std::vector<char> seen(s.landmarks.size(), 0);
   for (const auto& r : s.robots)
     for (const auto& list : r.seen)
