@@ -34,7 +34,7 @@ struct CuboidFitParams {
   double size_tolerance = 1.1;     // fitted extents may exceed the class maximum by this factor
   // A horizontal extent shorter than this fraction of the class's typical one is taken as partly
   // hidden and grows to the typical extent away from the sensor (0: only below the class minimum).
-  double complete_fraction = 0.0;
+  double complete_fraction = 0.9;
   int min_points = 30;
 };
 
