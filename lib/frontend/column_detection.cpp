@@ -15,33 +15,63 @@ namespace slide::frontend {
 namespace {
 std::int64_t pack(long x, long y) { return (static_cast<std::int64_t>(x) << 32) ^ (y & 0xffffffffLL); }
 
-// Points bucketed on a 2-D grid for neighbourhood look-ups.
+// Points bucketed on a 2-D grid for neighbourhood look-ups: their indices counting-sorted by
+// cell over the cells of their bounding box (at most kMaxSide a side: the cell grows for
+// scattered points), each cell's contiguous and in their given order. Non-finite points are left out.
 class PlanarBuckets {
  public:
-  PlanarBuckets(const Cloud& cloud, double cell) : cloud_(&cloud), inv_(1.0 / cell) {}
-  void add(int i) { buckets_[key((*cloud_)[i].x(), (*cloud_)[i].y())].push_back(i); }
+  PlanarBuckets(const Cloud& cloud, const std::vector<int>& idx, double cell) : cloud_(&cloud) {
+    float x0 = 1e30f, x1 = -1e30f, y0 = 1e30f, y1 = -1e30f;
+    for (int i : idx)
+      if (cloud[i].head<2>().allFinite()) {
+        x0 = std::min(x0, cloud[i].x()), x1 = std::max(x1, cloud[i].x());
+        y0 = std::min(y0, cloud[i].y()), y1 = std::max(y1, cloud[i].y());
+      }
+    if (x0 > x1) return;
+    cell = std::max({cell, double(x1 - x0) / (kMaxSide - 2), double(y1 - y0) / (kMaxSide - 2)});
+    inv_ = 1.0 / cell;
+    gx_ = static_cast<long>(std::floor(x0 * inv_)), gy_ = static_cast<long>(std::floor(y0 * inv_));
+    nx_ = static_cast<long>(std::floor(x1 * inv_)) - gx_ + 1, ny_ = static_cast<long>(std::floor(y1 * inv_)) - gy_ + 1;
+    start_.assign(nx_ * ny_ + 1, 0);
+    std::vector<int> cell_of(idx.size(), -1);
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const auto& q = cloud[idx[k]];
+      if (!q.head<2>().allFinite()) continue;
+      const long cx = std::clamp(static_cast<long>(std::floor(q.x() * inv_)) - gx_, 0L, nx_ - 1);
+      const long cy = std::clamp(static_cast<long>(std::floor(q.y() * inv_)) - gy_, 0L, ny_ - 1);
+      cell_of[k] = static_cast<int>(cx * ny_ + cy);
+      ++start_[cell_of[k] + 1];
+    }
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    items_.resize(start_.back());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      if (cell_of[k] >= 0) items_[fill[cell_of[k]]++] = idx[k];
+  }
   // Calls f(i, squared horizontal distance) for every point within `radius` of c.
   template <typename F>
   void forNear(const Eigen::Vector2d& c, double radius, F&& f) const {
-    const long x0 = std::lround(std::floor((c.x() - radius) * inv_)), x1 = std::lround(std::floor((c.x() + radius) * inv_));
-    const long y0 = std::lround(std::floor((c.y() - radius) * inv_)), y1 = std::lround(std::floor((c.y() + radius) * inv_));
+    if (items_.empty()) return;
+    const long x0 = std::max(0L, static_cast<long>(std::floor((c.x() - radius) * inv_)) - gx_);
+    const long x1 = std::min(nx_ - 1, static_cast<long>(std::floor((c.x() + radius) * inv_)) - gx_);
+    const long y0 = std::max(0L, static_cast<long>(std::floor((c.y() - radius) * inv_)) - gy_);
+    const long y1 = std::min(ny_ - 1, static_cast<long>(std::floor((c.y() + radius) * inv_)) - gy_);
     const double r2 = radius * radius;
     for (long x = x0; x <= x1; ++x)
-      for (long y = y0; y <= y1; ++y) {
-        const auto it = buckets_.find(pack(x, y));
-        if (it == buckets_.end()) continue;
-        for (int i : it->second) {
+      for (long y = y0; y <= y1; ++y)
+        for (int k = start_[x * ny_ + y], e = start_[x * ny_ + y + 1]; k < e; ++k) {
+          const int i = items_[k];
           const double dx = (*cloud_)[i].x() - c.x(), dy = (*cloud_)[i].y() - c.y(), d2 = dx * dx + dy * dy;
           if (d2 <= r2) f(i, d2);
         }
-      }
   }
 
  private:
-  std::int64_t key(float x, float y) const { return pack(std::lround(std::floor(x * inv_)), std::lround(std::floor(y * inv_))); }
+  static constexpr long kMaxSide = 2048;
   const Cloud* cloud_;
-  double inv_;
-  std::unordered_map<std::int64_t, std::vector<int>> buckets_;
+  double inv_ = 1.0;
+  long gx_ = 0, gy_ = 0, nx_ = 0, ny_ = 0;  // the box's first cell on the global grid, and its size in cells
+  std::vector<int> start_, items_;          // cell c holds items_[start_[c], start_[c + 1])
 };
 
 struct Blob {
@@ -160,19 +190,18 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
   std::vector<Column> out;
   const int num_slices = std::max(1, static_cast<int>(std::floor((p.slice_high - p.slice_low) / p.slice_height)));
   std::vector<std::vector<int>> slices(num_slices);
-  PlanarBuckets all(cloud, 0.5);
-  std::vector<PlanarBuckets> slice_buckets(num_slices, PlanarBuckets(cloud, 0.5));
   // Highest elevation angle seen (beyond 3 m): columns need not reach above what is visible.
   double tan_elev = -1e9;
   for (int i : above) {
-    all.add(i);
     const double r = std::hypot(cloud[i].x(), cloud[i].y());
     if (r > 3.0) tan_elev = std::max(tan_elev, cloud[i].z() / r);
     const int s = static_cast<int>(std::floor((h[i] - p.slice_low) / p.slice_height));
-    if (s < 0 || s >= num_slices) continue;
-    slices[s].push_back(i);
-    slice_buckets[s].add(i);
+    if (s >= 0 && s < num_slices) slices[s].push_back(i);
   }
+  const PlanarBuckets all(cloud, above, 0.5);
+  std::vector<PlanarBuckets> slice_buckets;
+  slice_buckets.reserve(num_slices);
+  for (const auto& slice : slices) slice_buckets.emplace_back(cloud, slice, 0.5);
   const std::vector<Blob> blobs = sliceBlobs(cloud, slices, p);
   std::vector<char> in_column;
   std::vector<int> every(blobs.size());
