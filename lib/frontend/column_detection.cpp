@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <unordered_map>
 
 #include "frontend/circle_fit.h"
 #include "frontend/grid_clustering.h"
@@ -13,19 +12,20 @@
 namespace slide::frontend {
 
 namespace {
-std::int64_t pack(long x, long y) { return (static_cast<std::int64_t>(x) << 32) ^ (y & 0xffffffffLL); }
-
-// Points bucketed on a 2-D grid for neighbourhood look-ups: their indices counting-sorted by
-// cell over the cells of their bounding box (at most kMaxSide a side: the cell grows for
-// scattered points), each cell's contiguous and in their given order. Non-finite points are left out.
+// Items at planar positions, bucketed on a 2-D grid for neighbourhood look-ups: counting-sorted
+// by cell over the cells of their bounding box (at most kMaxSide a side: the cell grows for
+// scattered items), each cell's contiguous and in their given order. Items at non-finite
+// positions are left out.
 class PlanarBuckets {
  public:
-  PlanarBuckets(const Cloud& cloud, const std::vector<int>& idx, double cell) : cloud_(&cloud) {
+  // n items, item k at xy(k) with id(k).
+  template <typename XY, typename Id>
+  PlanarBuckets(std::size_t n, XY&& xy, Id&& id, double cell) {
     float x0 = 1e30f, x1 = -1e30f, y0 = 1e30f, y1 = -1e30f;
-    for (int i : idx)
-      if (cloud[i].head<2>().allFinite()) {
-        x0 = std::min(x0, cloud[i].x()), x1 = std::max(x1, cloud[i].x());
-        y0 = std::min(y0, cloud[i].y()), y1 = std::max(y1, cloud[i].y());
+    for (std::size_t k = 0; k < n; ++k)
+      if (const Eigen::Vector2f q = xy(k); q.allFinite()) {
+        x0 = std::min(x0, q.x()), x1 = std::max(x1, q.x());
+        y0 = std::min(y0, q.y()), y1 = std::max(y1, q.y());
       }
     if (x0 > x1) return;
     cell = std::max({cell, double(x1 - x0) / (kMaxSide - 2), double(y1 - y0) / (kMaxSide - 2)});
@@ -33,10 +33,10 @@ class PlanarBuckets {
     gx_ = static_cast<long>(std::floor(x0 * inv_)), gy_ = static_cast<long>(std::floor(y0 * inv_));
     nx_ = static_cast<long>(std::floor(x1 * inv_)) - gx_ + 1, ny_ = static_cast<long>(std::floor(y1 * inv_)) - gy_ + 1;
     start_.assign(nx_ * ny_ + 1, 0);
-    std::vector<int> cell_of(idx.size(), -1);
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      const auto& q = cloud[idx[k]];
-      if (!q.head<2>().allFinite()) continue;
+    std::vector<int> cell_of(n, -1);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Eigen::Vector2f q = xy(k);
+      if (!q.allFinite()) continue;
       const long cx = std::clamp(static_cast<long>(std::floor(q.x() * inv_)) - gx_, 0L, nx_ - 1);
       const long cy = std::clamp(static_cast<long>(std::floor(q.y() * inv_)) - gy_, 0L, ny_ - 1);
       cell_of[k] = static_cast<int>(cx * ny_ + cy);
@@ -45,10 +45,15 @@ class PlanarBuckets {
     std::partial_sum(start_.begin(), start_.end(), start_.begin());
     items_.resize(start_.back());
     std::vector<int> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t k = 0; k < idx.size(); ++k)
-      if (cell_of[k] >= 0) items_[fill[cell_of[k]]++] = idx[k];
+    for (std::size_t k = 0; k < n; ++k)
+      if (cell_of[k] >= 0) items_[fill[cell_of[k]]++] = {xy(k), id(k)};
   }
-  // Calls f(i, squared horizontal distance) for every point within `radius` of c.
+  // Points of `cloud` (indices `idx`) at their x, y; ids are the indices.
+  PlanarBuckets(const Cloud& cloud, const std::vector<int>& idx, double cell)
+      : PlanarBuckets(
+            idx.size(), [&](std::size_t k) -> Eigen::Vector2f { return cloud[idx[k]].head<2>(); },
+            [&](std::size_t k) { return idx[k]; }, cell) {}
+  // Calls f(id, squared horizontal distance) for every item within `radius` of c.
   template <typename F>
   void forNear(const Eigen::Vector2d& c, double radius, F&& f) const {
     if (items_.empty()) return;
@@ -60,18 +65,21 @@ class PlanarBuckets {
     for (long x = x0; x <= x1; ++x)
       for (long y = y0; y <= y1; ++y)
         for (int k = start_[x * ny_ + y], e = start_[x * ny_ + y + 1]; k < e; ++k) {
-          const int i = items_[k];
-          const double dx = (*cloud_)[i].x() - c.x(), dy = (*cloud_)[i].y() - c.y(), d2 = dx * dx + dy * dy;
-          if (d2 <= r2) f(i, d2);
+          const double dx = items_[k].xy.x() - c.x(), dy = items_[k].xy.y() - c.y(), d2 = dx * dx + dy * dy;
+          if (d2 <= r2) f(items_[k].id, d2);
         }
   }
 
  private:
   static constexpr long kMaxSide = 2048;
-  const Cloud* cloud_;
+  struct Item {
+    Eigen::Vector2f xy;
+    int id;
+  };
   double inv_ = 1.0;
   long gx_ = 0, gy_ = 0, nx_ = 0, ny_ = 0;  // the box's first cell on the global grid, and its size in cells
-  std::vector<int> start_, items_;          // cell c holds items_[start_[c], start_[c + 1])
+  std::vector<int> start_;                  // cell c holds items_[start_[c], start_[c + 1])
+  std::vector<Item> items_;
 };
 
 struct Blob {
@@ -105,17 +113,10 @@ std::vector<Blob> sliceBlobs(const Cloud& cloud, const std::vector<std::vector<i
 
 // Groups of blobs in different slices whose centres chain within stack_distance.
 std::vector<std::vector<int>> stackBlobs(const std::vector<Blob>& blobs, const std::vector<int>& subset, double dist) {
-  std::unordered_map<std::int64_t, std::vector<int>> grid;
-  const double inv = 1.0 / dist;
-  auto cellOf = [&](const Eigen::Vector2d& c) {
-    return std::make_pair(std::lround(std::floor(c.x() * inv)), std::lround(std::floor(c.y() * inv)));
-  };
-  // Union-find over positions k in `subset`; the grid holds positions.
-  grid.reserve(subset.size());
-  for (std::size_t k = 0; k < subset.size(); ++k) {
-    const auto [x, y] = cellOf(blobs[subset[k]].centre);
-    grid[pack(x, y)].push_back(static_cast<int>(k));
-  }
+  // Union-find over positions k in `subset`; the buckets hold positions.
+  const PlanarBuckets grid(
+      subset.size(), [&](std::size_t k) -> Eigen::Vector2f { return blobs[subset[k]].centre.cast<float>(); },
+      [](std::size_t k) { return static_cast<int>(k); }, dist);
   std::vector<int> parent(subset.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int i) {
@@ -123,32 +124,23 @@ std::vector<std::vector<int>> stackBlobs(const std::vector<Blob>& blobs, const s
     return i;
   };
   for (std::size_t k = 0; k < subset.size(); ++k) {
-    const int b = subset[k];
-    const auto [x, y] = cellOf(blobs[b].centre);
-    for (long dx = -1; dx <= 1; ++dx)
-      for (long dy = -1; dy <= 1; ++dy) {
-        const auto it = grid.find(pack(x + dx, y + dy));
-        if (it == grid.end()) continue;
-        for (int ko : it->second) {
-          const int o = subset[ko];
-          if (ko <= static_cast<int>(k) || blobs[o].slice == blobs[b].slice ||
-              (blobs[o].centre - blobs[b].centre).squaredNorm() > dist * dist)
-            continue;
-          const int ra = root(static_cast<int>(k)), rb = root(ko);
-          if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-        }
-      }
+    const Blob& b = blobs[subset[k]];
+    grid.forNear(b.centre, dist, [&](int ko, double) {
+      if (ko <= static_cast<int>(k) || blobs[subset[ko]].slice == b.slice) return;
+      const int ra = root(static_cast<int>(k)), rb = root(ko);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+    });
   }
-  std::vector<int> label(subset.size(), -1);
-  std::vector<std::vector<int>> stacks;
+  // Stacks numbered in the order of their first blob in `subset`, each sized before it is filled.
+  std::vector<int> label(subset.size(), -1), size;
   for (std::size_t k = 0; k < subset.size(); ++k) {
     const int r = root(static_cast<int>(k));
-    if (label[r] < 0) {
-      label[r] = static_cast<int>(stacks.size());
-      stacks.emplace_back();
-    }
-    stacks[label[r]].push_back(subset[k]);
+    if (label[r] < 0) label[r] = static_cast<int>(size.size()), size.push_back(0);
+    ++size[label[r]];
   }
+  std::vector<std::vector<int>> stacks(size.size());
+  for (std::size_t s = 0; s < size.size(); ++s) stacks[s].reserve(size[s]);
+  for (std::size_t k = 0; k < subset.size(); ++k) stacks[label[root(static_cast<int>(k))]].push_back(subset[k]);
   return stacks;
 }
 
