@@ -206,6 +206,27 @@ TEST(CuboidFit, SideSeenBroadsideKeepsLengthAndGrowsWidthAway) {
   }
 }
 
+// A 2.7 m stretch of a car's side (the rest hidden behind its parked neighbour) is no 2.7 m car:
+// an extent below 0.9 x the class's typical one (FitParams' default complete_fraction) grows to
+// the typical one away from where it was seen, so the centre lands near the car's.
+TEST(CuboidFit, AStretchOfSideShorterThanATypicalCarIsCompletedToOne) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  frontend::Cloud side;  // the car: x 1.0 .. 5.5, y 7.0 .. 8.8; its side y = 7 seen from x 1.0 to 3.7
+  for (double z = -0.75; z <= 0.75; z += 0.05)
+    for (double x = 1.0; x <= 3.7; x += 0.05) side.push_back(Eigen::Vector3f(x, 7.0, z));
+  const auto box = frontend::fitCuboid(side, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(box);
+  EXPECT_LT(longSideYawErrorDeg(*box, 0.0), 2.0);
+  EXPECT_NEAR(box->dims.x(), car.typicalSize().x(), 1e-9);
+  EXPECT_NEAR((box->pose.translation().head<2>() - Eigen::Vector2d(3.25, 7.9)).norm(), 0, 0.15);
+  frontend::CuboidFitParams off;  // completion only below the class minimum: a 2.7 m box
+  off.complete_fraction = 0;
+  const auto stub = frontend::fitCuboid(side, off, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(stub);
+  EXPECT_LT(stub->dims.x(), 2.8);
+}
+
 TEST(CuboidFit, CornerViewOfBothFacesFitsHeadingAndCentre) {
   const ClassTable classes = ClassTable::loadDefault();
   const ClassInfo& car = classes.at(10);
