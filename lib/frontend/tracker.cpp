@@ -298,6 +298,63 @@ void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fi
 }
 }  // namespace
 
+std::optional<Object> Tracker::fitPoints(const Cloud& points, const Eigen::Vector3d& view, int class_id, std::int64_t id,
+                                         int hits, double confidence_sum, const Pose& T_body_odom,
+                                         std::optional<Object>* other) const {
+  auto o = fitObject(transformCloud(T_body_odom, points), class_id, classes_, fit_, T_body_odom * view, nullptr, other);
+  if (!o) return std::nullopt;
+  o->id = id;
+  o->num_observations = hits;
+  o->confidence = confidence_sum / std::max(1, hits);
+  if (other && *other) (*other)->id = id, (*other)->num_observations = hits, (*other)->confidence = o->confidence;
+  return o;
+}
+
+void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,
+                                   bool readings) const {
+  auto rectOf = [](const Object& o) {
+    const Cuboid& c = std::get<Cuboid>(o.model);
+    const Eigen::Matrix3d& R = c.pose.linear();
+    return cv::RotatedRect(cv::Point2f(c.pose.translation().x(), c.pose.translation().y()),
+                           cv::Size2f(c.dims.x(), c.dims.y()), std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI);
+  };
+  auto overlapShare = [](const cv::RotatedRect& a, const cv::RotatedRect& b) {
+    const double reach = 0.5 * (std::hypot(a.size.width, a.size.height) + std::hypot(b.size.width, b.size.height));
+    std::vector<cv::Point2f> poly, hull;
+    if (cv::norm(a.center - b.center) > reach || cv::rotatedRectangleIntersection(a, b, poly) == cv::INTERSECT_NONE ||
+        poly.size() < 3)
+      return 0.0;
+    cv::convexHull(poly, hull);
+    return cv::contourArea(hull) / std::max(1e-9f, std::min(a.size.area(), b.size.area()));
+  };
+  std::vector<char> gone(fits.size(), 0);
+  for (std::size_t a = 0; a < fits.size(); ++a) {
+    if (gone[a] || fits[a].first.shape() != Shape::Cuboid) continue;
+    for (std::size_t b = a + 1; b < fits.size(); ++b) {
+      if (gone[b] || fits[b].first.class_id != fits[a].first.class_id ||
+          overlapShare(rectOf(fits[a].first), rectOf(fits[b].first)) <= params_.box_overlap)
+        continue;
+      const Track& ta = tracks_.at(fits[a].first.id);
+      const Track& tb = tracks_.at(fits[b].first.id);
+      Cloud both = ta.accumulated();
+      const Cloud more = tb.accumulated();
+      const double na = static_cast<double>(both.size()), nb = static_cast<double>(more.size());
+      both.insert(both.end(), more.begin(), more.end());
+      const Eigen::Vector3d view = (na * ta.viewpoint() + nb * tb.viewpoint()) / std::max(1.0, na + nb);
+      std::optional<Object> other;
+      auto o = fitPoints(both, view, ta.class_id, ta.id, ta.hits + tb.hits, ta.confidence_sum + tb.confidence_sum,
+                         T_body_odom, readings ? &other : nullptr);
+      if (!o) continue;
+      fits[a] = {std::move(*o), std::move(other)};
+      gone[b] = 1;
+    }
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    if (!gone[i]) fits[k++] = std::move(fits[i]);
+  fits.resize(k);
+}
+
 std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_since_report) const {
   std::vector<std::pair<Object, std::optional<Object>>> fits;  // the fit and its other reading, if any
   const Pose T_body_odom = T_odom_body.inverse();
@@ -308,15 +365,11 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     std::optional<Object> other;
-    auto o = fitObject(transformCloud(T_body_odom, t.accumulated()), t.class_id, classes_, fit_,
-                       T_body_odom * t.viewpoint(), nullptr, readings ? &other : nullptr);
-    if (!o) continue;
-    o->id = id;
-    o->num_observations = t.hits;
-    o->confidence = t.confidence_sum / t.hits;
-    if (other) other->id = o->id, other->num_observations = o->num_observations, other->confidence = o->confidence;
-    fits.emplace_back(std::move(*o), std::move(other));
+    auto o = fitPoints(t.accumulated(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
+                       readings ? &other : nullptr);
+    if (o) fits.emplace_back(std::move(*o), std::move(other));
   }
+  if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
   if (readings) settleBoxReadings(fits, params_.parallel_radius);
   std::vector<Object> out;
   out.reserve(fits.size());

@@ -44,6 +44,10 @@ struct TrackerParams {
   // length was seen agree with more (modulo 180 deg). Parked cars stand parallel to their
   // neighbours. 0: off (the fit's own guess).
   double parallel_radius = 10.0;
+  // Two reported boxes of one class whose footprints overlap by more than this share of the
+  // smaller one's are one object tracked in two pieces: reported as one box fitted to both
+  // tracks' points (0: off).
+  double box_overlap = 0.5;
 };
 
 struct Track {
@@ -93,6 +97,15 @@ class Tracker {
   // (a car's side seen at a grazing angle comes in stripes that start tracks of their own):
   // merged into the older.
   void mergeBoxTracks(std::map<std::int64_t, bool>& matched);
+  // The model of `points` (odometry frame) seen from `view`, in the body frame of T_body_odom,
+  // carrying the track's id, hits and mean confidence; its other reading into *other if asked.
+  std::optional<Object> fitPoints(const Cloud& points, const Eigen::Vector3d& view, int class_id, std::int64_t id,
+                                  int hits, double confidence_sum, const Pose& T_body_odom,
+                                  std::optional<Object>* other) const;
+  // Reported boxes of one class whose footprints overlap by more than box_overlap of the smaller
+  // one's: the older's entry becomes the fit of both tracks' points, the younger's is dropped.
+  void joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,
+                            bool readings) const;
 
   ClassTable classes_;
   TrackerParams params_;

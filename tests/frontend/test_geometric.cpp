@@ -496,9 +496,11 @@ TEST(GeometricSegmenter, RealScansTrunksPolesAndCarsAgainstLabels) {
     // Each labelled car (>= 200 points) is found as a box of at least half its points, not a stray
     // piece beside it (001500: 23 reflections under the road sank the ground there, lifting the
     // car above the height cap, until GroundParams::under_tolerance).
-    for (const auto& t : s.targets)
-      if (t.class_id == 10 && t.estimate >= 0)
+    for (const auto& t : s.targets) {
+      if (t.class_id == 10 && t.estimate >= 0) {
         EXPECT_GE(2 * points[t.estimate], static_cast<std::size_t>(t.points)) << name << ": car of " << t.points << " points";
+      }
+    }
     EXPECT_LE(s.columns.false_estimates, 1) << name;
     // Wall pieces under the top of the view (ViewCutParams: 9 and 11 false cuboids before the
     // top beam was taken from its own origin, with the rest of a cut stack no car): 6 and 8.

@@ -271,6 +271,38 @@ TEST(Tracker, AStripeOfACarsSideIsMergedIntoItsTrackTheNeighbourIsNot) {
   }
 }
 
+// Car A (4.4 x 1.8 m, its length along y, x 9.1 to 10.9, y -2.8 to -7.2) seen as its end face
+// and, 1.8 m on, a 2.6 m stripe of its far side: two tracks (beyond the gate, and too far apart
+// along the side for one to hold the other). Each alone is completed away from the sensor and
+// the stripe's box lands 2 m off the car; their boxes overlap by more than half, so they are
+// reported as one box fitted to both tracks' points, on the car.
+TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.box_overlap, 0.0) << "on by default";
+  for (double overlap : {cfg.tracker.box_overlap, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.box_overlap = overlap;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance face = carInstance(), stripe = carInstance();
+    addFace(face, 9.1, -2.8, 10.9, -2.8);
+    addFace(stripe, 9.1, -4.6, 9.1, -7.2);
+    feedFourFrames(tracker, {face, stripe});
+    ASSERT_EQ(tracker.tracks().size(), 2u);
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    if (overlap > 0) {
+      ASSERT_EQ(objects.size(), 1u);
+      EXPECT_NEAR((objects[0].position().head<2>() - Eigen::Vector2d(10.0, -5.0)).norm(), 0, 0.25);
+      EXPECT_EQ(objects[0].num_observations, 8);
+    } else {
+      ASSERT_EQ(objects.size(), 2u);
+      double worst = 0;
+      for (const auto& o : objects) worst = std::max(worst, (o.position().head<2>() - Eigen::Vector2d(10.0, -5.0)).norm());
+      EXPECT_GT(worst, 1.5) << "the stripe alone is completed the wrong way";
+    }
+  }
+}
+
 // Two cars seen along their sides (length along x, at y = 5 and y = 12) and, between them, a
 // 1.8 m stretch of a third one's side seen through a gap (x 20 to 21.8 at y = 8.5: a lone face
 // with the width of a car). Alone, the fit takes that face for the car's end (its length across
