@@ -71,7 +71,7 @@ class PlanarBuckets {
   }
 
  private:
-  static constexpr long kMaxSide = 2048;
+  static constexpr long kMaxSide = 1024;
   struct Item {
     Eigen::Vector2f xy;
     int id;

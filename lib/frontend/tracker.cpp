@@ -327,31 +327,40 @@ void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<O
     cv::convexHull(poly, hull);
     return cv::contourArea(hull) / std::max(1e-9f, std::min(a.size.area(), b.size.area()));
   };
-  std::vector<char> gone(fits.size(), 0);
+  // Each entry's tracks: an entry that took another in is fitted to all of theirs.
+  std::vector<std::vector<const Track*>> members(fits.size());
+  for (std::size_t i = 0; i < fits.size(); ++i) members[i] = {&tracks_.at(fits[i].first.id)};
   for (std::size_t a = 0; a < fits.size(); ++a) {
-    if (gone[a] || fits[a].first.shape() != Shape::Cuboid) continue;
+    if (members[a].empty() || fits[a].first.shape() != Shape::Cuboid) continue;
     for (std::size_t b = a + 1; b < fits.size(); ++b) {
-      if (gone[b] || fits[b].first.class_id != fits[a].first.class_id ||
+      if (members[b].empty() || fits[b].first.class_id != fits[a].first.class_id ||
           overlapShare(rectOf(fits[a].first), rectOf(fits[b].first)) <= params_.box_overlap)
         continue;
-      const Track& ta = tracks_.at(fits[a].first.id);
-      const Track& tb = tracks_.at(fits[b].first.id);
-      Cloud both = ta.accumulated();
-      const Cloud more = tb.accumulated();
-      const double na = static_cast<double>(both.size()), nb = static_cast<double>(more.size());
-      both.insert(both.end(), more.begin(), more.end());
-      const Eigen::Vector3d view = (na * ta.viewpoint() + nb * tb.viewpoint()) / std::max(1.0, na + nb);
+      std::vector<const Track*> both = members[a];
+      both.insert(both.end(), members[b].begin(), members[b].end());
+      Cloud points;
+      Eigen::Vector3d view = Eigen::Vector3d::Zero();  // the tracks' viewpoints weighted by their points
+      int hits = 0;
+      double confidence_sum = 0;
+      for (const Track* t : both) {
+        const Cloud c = t->accumulated();
+        view += static_cast<double>(c.size()) * t->viewpoint();
+        points.insert(points.end(), c.begin(), c.end());
+        hits += t->hits, confidence_sum += t->confidence_sum;
+      }
+      view /= std::max<double>(1.0, static_cast<double>(points.size()));
       std::optional<Object> other;
-      auto o = fitPoints(both, view, ta.class_id, ta.id, ta.hits + tb.hits, ta.confidence_sum + tb.confidence_sum,
-                         T_body_odom, readings ? &other : nullptr);
+      auto o = fitPoints(points, view, fits[a].first.class_id, fits[a].first.id, hits, confidence_sum, T_body_odom,
+                         readings ? &other : nullptr);
       if (!o) continue;
       fits[a] = {std::move(*o), std::move(other)};
-      gone[b] = 1;
+      members[a] = std::move(both);
+      members[b].clear();
     }
   }
   std::size_t k = 0;
   for (std::size_t i = 0; i < fits.size(); ++i)
-    if (!gone[i]) fits[k++] = std::move(fits[i]);
+    if (!members[i].empty()) fits[k++] = std::move(fits[i]);
   fits.resize(k);
 }
 

@@ -103,7 +103,7 @@ class Tracker {
                                   int hits, double confidence_sum, const Pose& T_body_odom,
                                   std::optional<Object>* other) const;
   // Reported boxes of one class whose footprints overlap by more than box_overlap of the smaller
-  // one's: the older's entry becomes the fit of both tracks' points, the younger's is dropped.
+  // one's: the older's entry becomes the fit of all their tracks' points, the younger's is dropped.
   void joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,
                             bool readings) const;
 
