@@ -30,16 +30,40 @@ struct Optimizer::FullSolveJob {
   // added to the graph when its solution is taken in (queued again when it is not).
   std::vector<PendingLoop> loops;
   std::vector<LoopSpread> spreads;
-  std::vector<LandmarkObservers> observers;
+  // For the spreads: the live landmarks' variables and shapes, and which variables are key
+  // poses (their observers are found in the snapshot's terms on the worker, off the update path).
+  std::vector<std::pair<int, Shape>> landmarks;
+  std::vector<char> keypose;
   PoseSigma loop_sigma;
   LoopSpreadNoise spread_noise;
   std::vector<double> residual_norms;
   SolveReport report;
 
   void run(const std::atomic<bool>* cancel) {
-    if (!spreads.empty()) spreadLoops(snapshot.values, spreads, observers, loop_sigma, spread_noise);
+    if (!spreads.empty()) spreadLoops(snapshot.values, spreads, observersOf(), loop_sigma, spread_noise);
     options.cancel = cancel;
     report = FactorGraph::solveSnapshot(snapshot, options, update_path ? &residual_norms : nullptr);
+  }
+
+  // Each landmark's observers: the key poses its terms in the snapshot tie it to.
+  std::vector<LandmarkObservers> observersOf() const {
+    std::vector<int> index(snapshot.values.size(), -1);
+    std::vector<LandmarkObservers> out(landmarks.size());
+    for (std::size_t k = 0; k < landmarks.size(); ++k) {
+      out[k].var = landmarks[k].first, out[k].shape = landmarks[k].second;
+      if (landmarks[k].first >= 0 && landmarks[k].first < static_cast<int>(index.size())) index[landmarks[k].first] = static_cast<int>(k);
+    }
+    for (const FactorGraph::Snapshot::Term& t : snapshot.terms) {
+      int lm = -1, pose = -1;
+      for (int j = t.first; j < t.first + t.count; ++j) {
+        const int v = snapshot.vars[j];
+        if (v < 0 || v >= static_cast<int>(index.size())) continue;
+        if (index[v] >= 0) lm = index[v];
+        else if (v < static_cast<int>(keypose.size()) && keypose[v]) pose = v;
+      }
+      if (lm >= 0 && pose >= 0) out[lm].observers.push_back(pose);
+    }
+    return out;
   }
 };
 
@@ -122,13 +146,12 @@ void Optimizer::takePendingLoops(FullSolveJob& job) {
       if (key.first == robot) add(key.second.first, key.second.second, factor.T_a_b);
     job.spreads.push_back(std::move(spread));
   }
-  for (const Landmark& lm : landmarks_) {
-    if (!lm.alive || lm.seen.empty()) continue;
-    LandmarkObservers o{lm.var, lm.shape, {}};
-    o.observers.reserve(lm.seen.size());
-    for (const Observation& obs : lm.seen) o.observers.push_back(obs.pose_var);
-    job.observers.push_back(std::move(o));
-  }
+  job.landmarks.reserve(landmarks_.size());
+  for (const Landmark& lm : landmarks_)
+    if (lm.alive && !lm.seen.empty()) job.landmarks.emplace_back(lm.var, lm.shape);
+  job.keypose.assign(job.snapshot.values.size(), 0);
+  for (const KeyPose& kp : keyposes_)
+    if (kp.var >= 0 && kp.var < static_cast<int>(job.keypose.size())) job.keypose[kp.var] = 1;
 }
 
 void Optimizer::addLoopFactors(const FullSolveJob& job) {
