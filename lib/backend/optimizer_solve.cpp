@@ -50,8 +50,9 @@ struct Optimizer::FullSolveJob {
     std::vector<int> index(snapshot.values.size(), -1);
     std::vector<LandmarkObservers> out(landmarks.size());
     for (std::size_t k = 0; k < landmarks.size(); ++k) {
-      out[k].var = landmarks[k].first, out[k].shape = landmarks[k].second;
-      if (landmarks[k].first >= 0 && landmarks[k].first < static_cast<int>(index.size())) index[landmarks[k].first] = static_cast<int>(k);
+      const auto [var, shape] = landmarks[k];
+      out[k].var = var, out[k].shape = shape;
+      if (var >= 0 && var < static_cast<int>(index.size())) index[var] = static_cast<int>(k);
     }
     for (const FactorGraph::Snapshot::Term& t : snapshot.terms) {
       int lm = -1, pose = -1;
