@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 namespace slide::frontend {
 
 namespace {
@@ -10,6 +12,39 @@ namespace {
 float offLine(const Eigen::Vector2f& a, const Eigen::Vector2f& b, const Eigen::Vector2f& c) {
   const Eigen::Vector2f u = (b - a).normalized(), w = c - a;
   return std::abs(u.x() * w.y() - u.y() * w.x());
+}
+
+// Do pts[first], pts[first + 1], ... (returns of one beam, in azimuth order) begin a straight run
+// of at least three returns that reaches corner_run metres? Straight: every return within
+// line_tolerance of the least-squares line through the run (a line through two noisy returns
+// tilts by their range noise); regular: each step along that line is positive, at most
+// max_step, and within max_step_ratio of the run's median step.
+bool straightRun(const std::vector<Eigen::Vector2f>& pts, std::size_t first, const WallTraceParams& p) {
+  for (std::size_t last = first + 2; last < pts.size(); ++last) {
+    if ((pts[last] - pts[first]).norm() < p.corner_run) continue;
+    const int m = static_cast<int>(last - first + 1);
+    Eigen::Vector2f mean = Eigen::Vector2f::Zero();
+    for (std::size_t k = first; k <= last; ++k) mean += pts[k];
+    mean /= static_cast<float>(m);
+    Eigen::Matrix2f cov = Eigen::Matrix2f::Zero();
+    for (std::size_t k = first; k <= last; ++k) cov += (pts[k] - mean) * (pts[k] - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2f> eig(cov);
+    Eigen::Vector2f u = eig.eigenvectors().col(1);
+    if (u.dot(pts[last] - pts[first]) < 0) u = -u;
+    std::vector<float> steps;
+    for (std::size_t k = first; k <= last; ++k) {
+      const Eigen::Vector2f w = pts[k] - mean;
+      if (std::abs(u.x() * w.y() - u.y() * w.x()) > p.line_tolerance) return false;
+      if (k > first) steps.push_back(u.dot(pts[k] - pts[k - 1]));
+    }
+    std::vector<float> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const float median = sorted[sorted.size() / 2];
+    for (float s : steps)
+      if (s <= 0 || s > p.max_step || s > p.max_step_ratio * median || median > p.max_step_ratio * s) return false;
+    return true;
+  }
+  return false;
 }
 
 // Does the scan line continue beyond `edge` (direction +1: growing azimuth) as a face?
@@ -29,17 +64,13 @@ bool continuesAsFace(const Cloud& cloud, const ScanLines& lines, int edge, int d
       offLine(n1, n2, e) <= p.line_tolerance)
     return true;
   // Round a corner: the edge lies behind the first of a straight run of at least three
-  // returns, at a regular spacing, longer than a column is wide.
+  // returns, at a regular spacing, longer than a column is wide. The run may begin one return
+  // later: a wall's end face (its thickness, seen at a grazing angle) gives one return off the
+  // line of the face beside it.
   if (p.corner_run <= 0 || e.norm() < n1.norm() - p.line_tolerance) return false;
-  for (std::size_t j = 1; j < n.size(); ++j) {
-    const Eigen::Vector2f nj = xy(n[j]);
-    const float step = (nj - xy(n[j - 1])).norm();
-    if (step > p.max_step || step > p.max_step_ratio * s2 || s2 > p.max_step_ratio * step) return false;
-    for (std::size_t k = 1; k < j; ++k)
-      if (offLine(n1, nj, xy(n[k])) > p.line_tolerance) return false;
-    if (j >= 2 && (nj - n1).norm() >= p.corner_run) return true;
-  }
-  return false;
+  std::vector<Eigen::Vector2f> run;
+  for (int i : n) run.push_back(xy(i));
+  return straightRun(run, 0, p) || straightRun(run, 1, p);
 }
 
 // Is `edge`, the only return of its beam in the column, a stack between two others on one

@@ -389,27 +389,52 @@ TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
   }
 }
 
+namespace {
+// Stacks of returns at the given (x, y), one return per beam `beams` of the OS1-64 (rows of
+// 33.2 / 63 deg from -16.6), in that order; the first `column` stacks are the column candidate.
+// Returns the exact share of its beams continued as a face (no early stop).
+double faceShareOfStacks(const std::vector<Eigen::Vector2d>& xy, int column, int first_beam, int beams) {
+  frontend::Cloud c;
+  for (const auto& q : xy)
+    for (int b = first_beam; b < first_beam + beams; ++b) c.emplace_back(q.x(), q.y(), q.norm() * std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180));
+  std::vector<int> all(c.size()), candidate;
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<char> in_column(c.size(), 0);
+  for (int i = 0; i < column * beams; ++i) candidate.push_back(i), in_column[i] = 1;
+  frontend::WallTraceParams wp = frontend::loadDefaultFrontendConfig().geometric.column.wall;
+  wp.min_fraction = 0;  // the exact share, no early stop
+  return frontend::faceFraction(c, frontend::ScanLines(c, all), candidate, in_column, wp);
+}
+}  // namespace
+
 // Far off (45-52 m), a face nearly edge-on shows three stacks, one per azimuth step, 2.7-3 m
 // apart: the middle one has a single neighbour on each side, so neither side continues it on
 // two returns, but it lies on the line between them: a face. Moved 0.5 m off that line (a
 // pole standing beside the sparse face) it is no face.
 TEST(WallTrace, ALoneStackBetweenTwoOnALineIsAFace) {
-  auto stacks = [](double off) {  // metres the middle stack stands off the line (x = 5.13)
-    frontend::Cloud c;
-    for (const Eigen::Vector2d& xy : {Eigen::Vector2d(5.13, -46.25), Eigen::Vector2d(5.13 - off, -49.0), Eigen::Vector2d(5.13, -52.05)})
-      for (int b = 40; b < 60; ++b) c.emplace_back(xy.x(), xy.y(), xy.norm() * std::tan((-16.6 + b * 33.2 / 63) * M_PI / 180));
-    return c;
-  };
-  for (const double off : {0.0, 0.5}) {
-    const frontend::Cloud c = stacks(off);
-    std::vector<int> all(c.size()), middle;
-    std::iota(all.begin(), all.end(), 0);
-    std::vector<char> in_column(c.size(), 0);
-    for (int i = 20; i < 40; ++i) middle.push_back(i), in_column[i] = 1;
-    frontend::WallTraceParams wp = frontend::loadDefaultFrontendConfig().geometric.column.wall;
-    wp.min_fraction = 0;  // the exact share, no early stop
-    const double f = frontend::faceFraction(c, frontend::ScanLines(c, all), middle, in_column, wp);
+  for (const double off : {0.0, 0.5}) {  // metres the middle stack stands off the line (x = 5.13)
+    const double f = faceShareOfStacks({{5.13 - off, -49.0}, {5.13, -46.25}, {5.13, -52.05}}, 1, 40, 20);
     if (off == 0) EXPECT_DOUBLE_EQ(f, 1.0);
+    else EXPECT_DOUBLE_EQ(f, 0.0);
+  }
+}
+
+// A strip of a far wall (15.7 m) seen just past the end of a nearer wall (9.7 m, face-on,
+// returns every 0.35 deg) is the hidden rest of a face. The nearer wall's returns carry range
+// noise of several centimetres (as the simulated OS1-64's do): the line through its first two
+// returns tilts by 0.13 m over its 0.9 m, a least-squares line through the run does not. Scattered
+// by 0.3 m (foliage) the run is no face, and the strip stays a column.
+TEST(WallTrace, AStackBehindTheEndOfANoisyNearerWallIsAFace) {
+  const std::vector<double> noise = {0.07, -0.06, 0.01, -0.07, 0.05, -0.03, 0.06, -0.05, 0.02, -0.04, 0.03, -0.02, 0.04, -0.01, 0.0};
+  for (const double scatter : {1.0, 4.5}) {  // times the noise
+    std::vector<Eigen::Vector2d> xy = {{-15.70, 0.87}, {-15.72, 0.77}, {-15.74, 0.68}};  // the strip, 0.35 deg apart
+    for (std::size_t k = 0; k < noise.size(); ++k) {
+      const double az = std::atan2(0.68, -15.74) - (k + 1) * 0.35 * M_PI / 180;  // on past the strip's edge
+      const double r = 9.7 / std::abs(std::cos(az)) + scatter * noise[k];
+      xy.emplace_back(r * std::cos(az), r * std::sin(az));
+    }
+    const double f = faceShareOfStacks(xy, 3, 30, 20);
+    if (scatter == 1.0) EXPECT_DOUBLE_EQ(f, 1.0);
     else EXPECT_DOUBLE_EQ(f, 0.0);
   }
 }
