@@ -55,6 +55,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
   opt(n, "other_not_column", g.other_not_column);
   opt(n, "other_max_height", g.other_max_height, 0.0, 10.0);
+  opt(n, "other_confidence", g.other_confidence, 1e-3, 1.0);
   if (n.has("occlusion")) {
     const ConfigNode c = n.child("occlusion");
     opt(c, "window_deg", g.occlusion.window_deg, 0.0, 10.0);

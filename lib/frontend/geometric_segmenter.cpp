@@ -269,7 +269,7 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   for (const auto& cl : carClusters(cloud, h, above, lines, cut, params_, taken)) emit(params_.car_class, cl);
   if (params_.emit_other)
     for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
-      emit(params_.other_class, cl);
+      emit(params_.other_class, cl, params_.other_confidence);
   return out;
 }
 

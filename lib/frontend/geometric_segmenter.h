@@ -100,6 +100,10 @@ struct GeometricSegmenterParams {
   // "other" class's size_max): a wall's piece between two doors stands from floor to
   // ceiling; furniture, bins and boxes stand lower.
   double other_max_height = 0.0;
+  // Confidence of an "other" instance: without labels "other" names no class, it only says
+  // "an object of none of the classes told by shape". Kept low, its votes yield to a named
+  // observation of the same object (a peer's detector, once merged). 1: a class like any other.
+  double other_confidence = 0.05;
   OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };
