@@ -337,6 +337,26 @@ TEST(BackendOptimizer, MergesAConfusedClassIntoItsObjectButNotTheObjectBesideIt)
   EXPECT_LT((by_class[2] - Eigen::Vector3d(6.8, 2, 0.4)).norm(), 0.05);
 }
 
+// A LiDAR robot without labels sees a chair as "other" from key poses 0-9; key poses 10-13 (a
+// detector, e.g. a merged peer's) name it a chair. The two landmarks are merged and the votes
+// decide the class: label-free "other" votes at the geometric segmenter's other_confidence
+// (0.05) yield to the named ones; at full weight the ten "other" votes win.
+TEST(BackendOptimizer, AnUnnamedObjectTakesTheClassADetectorGivesIt) {
+  const int other = 0, chair = 1;
+  for (const float other_confidence : {0.05f, 1.0f}) {
+    backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
+    for (int k = 0; k < 14; ++k) {
+      Object o = ellipsoidAt(0, k < 10 ? other : chair, Eigen::Vector3d(6, 2, 0.45) - Eigen::Vector3d(0.5 * k, 0, 0), 0.3, 0.9);
+      o.confidence = k < 10 ? other_confidence : 0.8f;
+      ASSERT_TRUE(opt.addBundle(stepBundle(k, {o})).accepted);
+    }
+    opt.fullSolve();
+    const std::vector<Object> lms = opt.landmarks();
+    ASSERT_EQ(lms.size(), 1u) << other_confidence;
+    EXPECT_EQ(lms[0].class_id, other_confidence < 0.5f ? chair : other) << other_confidence;
+  }
+}
+
 // A car along y at (6, 3), seen whole from key poses 0-7; from key poses 8-15 only its end
 // face, which the front-end read as a car across (its centre 1.35 m to the side) with the
 // right box as the other reading. The landmark keeps the reading it agrees with and stays on

@@ -654,6 +654,9 @@ IndoorCounts indoorInstances(const frontend::GeometricSegmenterParams& p) {
       if (inst.class_id == p.car_class) ++n.cars;
       if (inst.class_id == p.trunk_class || inst.class_id == p.pole_class) ++n.columns;
       if (inst.class_id == p.other_class && 2 * furniture > static_cast<int>(inst.points.size())) ++n.furniture_other;
+      if (inst.class_id == p.other_class) {
+        EXPECT_FLOAT_EQ(inst.confidence, static_cast<float>(p.other_confidence)) << "other names no class";
+      }
     }
     ++n.frames;
   }
