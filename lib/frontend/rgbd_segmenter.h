@@ -40,7 +40,7 @@ class MaskDetector {
 };
 
 struct RgbdSegmenterParams {
-  double min_confidence = 0.5;
+  double min_confidence = 0.25;
   double band_fraction = 0.8;  // keep depths between the (0.5 -+ band/2) quantiles of the mask
   double band_margin = 0.05;   // metres added on both sides of the band
   double min_depth = 0.2, max_depth = 12.0;  // metres
