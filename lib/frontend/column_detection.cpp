@@ -174,6 +174,7 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
   if (hi) *hi = s.empty() ? 0 : s.back();
   return static_cast<int>(std::unique(s.begin(), s.end()) - s.begin());
 }
+
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
@@ -291,15 +292,25 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
     // Canopy: points above min_top spreading well beyond the axis.
     int canopy = 0, high = 0;
     std::vector<double> high_h;
+    double view_above = 1e9;  // least height of the view's top above those returns
     all.forNear(mid, p.canopy_radius + 2.0, [&](int i, double d2) {
       if (h[i] < p.min_top) return;
       ++high;
       canopy += d2 > p.canopy_radius * p.canopy_radius;
       high_h.push_back(h[i]);
+      view_above = std::min(view_above, cloud[i].head<2>().norm() * tan_elev - cloud[i].z());
     });
     // A flat layer above it (the returns there within ceiling_max_spread of one height) is a
     // ceiling, not a crown: the column is part of a building (a door jamb, a wall's end).
-    if (p.ceiling_max_spread > 0 && static_cast<int>(high_h.size()) >= p.ceiling_min_points) {
+    // Far off, a patch of ceiling gives fewer returns; fewer count when the view reaches above
+    // them all (a crown cut off by the top of the view is as flat at its cut).
+    int ceiling_points = p.ceiling_min_points;
+    if (p.ceiling_full_range > 0 && mid.norm() > p.ceiling_full_range && view_above > p.ceiling_margin) {
+      const double thinning = std::pow(p.ceiling_full_range / mid.norm(), 2);
+      ceiling_points = std::max(std::min(p.ceiling_min_points_far, p.ceiling_min_points),
+                                static_cast<int>(std::ceil(p.ceiling_min_points * thinning)));
+    }
+    if (p.ceiling_max_spread > 0 && static_cast<int>(high_h.size()) >= ceiling_points) {
       const double lo = quantileInPlace(high_h, 0.1), hi = quantileInPlace(high_h, 0.9);
       if (hi - lo <= p.ceiling_max_spread) {
         reject(mid, "under a flat ceiling (" + std::to_string(high_h.size()) + " returns within " + std::to_string(hi - lo) + " m)");

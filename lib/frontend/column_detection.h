@@ -55,8 +55,15 @@ struct ColumnParams {
   double canopy_min_fraction = 0.02;   // ... in this fraction of the cluster make it a trunk
   // Returns above min_top within canopy_radius + 2 m: at least ceiling_min_points of them within
   // ceiling_max_spread metres of one height (10th to 90th percentile) are a ceiling (0: off).
+  // Beyond ceiling_full_range metres (0: never) the returns a patch of ceiling gives thin out
+  // as 1 / range^2, and so does the count needed, down to ceiling_min_points_far, when the
+  // view reaches more than ceiling_margin above every one of them (a crown cut off by the top
+  // of the view is as flat at its cut; the real SemanticKITTI scans' top beam, +2 deg, gives
+  // such layers of 46-95 returns at 12-18 m).
   double ceiling_max_spread = 0.0;
   int ceiling_min_points = 20;
+  double ceiling_full_range = 0.0;
+  int ceiling_min_points_far = 20;
   // A thin column without a canopy is a pole for sure only when its top is seen with open view
   // above it: top + end_margin below both the highest visible point at its range and
   // max_height, and no nearer return just above its top (in a forest, nearer trunks and crowns

@@ -115,6 +115,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "canopy_min_fraction", p.canopy_min_fraction, 0.0);
     opt(c, "ceiling_max_spread", p.ceiling_max_spread, 0.0);
     opt(c, "ceiling_min_points", p.ceiling_min_points, 1);
+    opt(c, "ceiling_full_range", p.ceiling_full_range, 0.0);
+    opt(c, "ceiling_min_points_far", p.ceiling_min_points_far, 1);
     opt(c, "end_margin", p.end_margin, 0.0);
     opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
     if (c.has("wall")) {

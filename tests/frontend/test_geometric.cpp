@@ -685,6 +685,31 @@ TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
   EXPECT_GE(without.cars, 3 * with.frames) << "the scans hold the walls and furniture the rules are for";
 }
 
+// Far off (20 m), the ceiling over a door jamb gives few returns: 30 here, where 100 make a
+// ceiling near by. They are one when the view reaches well above them (a wall 5-7 m off, seen
+// up to 2.8 m); the same 30 at the very top of the view are as flat as a crown cut off by it,
+// and the pole under them stays a column.
+TEST(GeometricSegmenter, AFarCeilingNeedsFewerReturnsWhenTheViewReachesAboveIt) {
+  frontend::Cloud under_view_top;
+  for (double x = 17; x <= 23; x += 0.25)
+    for (double y = -3; y <= 3; y += 0.25) under_view_top.emplace_back(x, y, 0);
+  for (double z = 0.1; z < 2.8; z += 0.18)  // a pole as the OS1-64 samples it there: two returns a beam
+    for (const double y : {-0.05, 0.05}) under_view_top.emplace_back(19.9, y, z);
+  for (int k = 0; k < 30; ++k) under_view_top.emplace_back(18.2 + (k % 6) * 0.7, -2.0 + (k / 6) * 0.9, 2.85);
+  frontend::Cloud under_ceiling = under_view_top;
+  for (double x = 3; x <= 7; x += 0.25)
+    for (double y = 3; y <= 9; y += 0.25) under_ceiling.emplace_back(x, y, 0);
+  addWall(under_ceiling, {5, 5}, {5, 7}, 2.8);
+  const frontend::ColumnParams p = frontend::loadDefaultFrontendConfig().geometric.column;
+  ASSERT_GT(p.ceiling_full_range, 0);
+  ASSERT_GT(p.ceiling_min_points, 30);
+  EXPECT_FALSE(columnNear(columnsOf(under_ceiling, p), {20, 0}, 0.5)) << "under a ceiling";
+  EXPECT_TRUE(columnNear(columnsOf(under_view_top, p), {20, 0}, 0.5)) << "under the top of the view";
+  frontend::ColumnParams off = p;
+  off.ceiling_full_range = 0;
+  EXPECT_TRUE(columnNear(columnsOf(under_ceiling, off), {20, 0}, 0.5)) << "without the rule 30 returns are too few";
+}
+
 // A door jamb or a wall's end seen through a doorway stands alone in view like a pole, but a
 // ceiling spans above it: a flat layer of returns, where a tree's crown spreads over metres of
 // height. The pole under the ceiling is no column; the same pole under a crown is a trunk.
