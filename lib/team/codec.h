@@ -53,8 +53,8 @@ struct BundleContext {
 // steadily repeats its last step, so the differences are small).
 //
 // Full: everything the robot's own stack has (its journal). Team: as peers get it, without the
-// detector confidence and the tracks' observation counts (nothing downstream of peer sync
-// reads them for a peer's bundle; they decode as 1.0 and 1).
+// tracks' observation counts (nothing downstream of peer sync reads them for a peer's bundle;
+// they decode as 1). The detector confidence stays: the optimizer weighs class votes by it.
 enum class BundleDetail { Full, Team };
 Bytes encodeBundle(const KeyPoseBundle& b, const BundleContext* previous = nullptr, BundleDetail detail = BundleDetail::Full);
 // origin and seq come from the chunk header. On failure returns nullopt and sets `error`.

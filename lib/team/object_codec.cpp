@@ -77,7 +77,7 @@ float readFinite(ByteReader& r, std::uint64_t i, const char* what) {
 }  // namespace
 
 void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListKind kind) {
-  const bool body = kind != ObjectListKind::Map, detail = kind == ObjectListKind::Bundle;
+  const bool body = kind != ObjectListKind::Map, counts = kind == ObjectListKind::Bundle;
   const double unit = body ? kPositionUnit : kMapPositionUnit;
   w.varint(objects.size());
   std::int64_t prev_id = 0;
@@ -106,7 +106,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
         o.confidence >= 0 && o.confidence <= 1 ? quantiseU8(o.confidence, kConfidenceUnit) : std::nullopt;
     std::int64_t tilt[2] = {0, 0};
     if (body) {
-      if (detail && !qconf) tag |= kConfidenceFloat;
+      if (!qconf) tag |= kConfidenceFloat;
       if (const auto* c = std::get_if<Cylinder>(&o.model)) {
         const Eigen::Vector3d a = c->axis.normalized();
         // (A degenerate, non-finite axis goes as upright.)
@@ -125,11 +125,11 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
     w.svarint(wrappingSub(o.id, prev_id));
     prev_id = o.id;
     if (!(tag & kSameClass)) w.varint(static_cast<std::uint64_t>(cls));
-    if (detail) {
+    if (body) {
       if (!(tag & kConfidenceFloat)) w.u8(qconf.value_or(0));
       else w.f32(static_cast<float>(o.confidence));
-      w.svarint(o.num_observations);
     }
+    if (counts) w.svarint(o.num_observations);
     if (qp) {
       for (int i = 0; i < 3; ++i) w.svarint(body ? (*qp)[i] : (*qp)[i] - prev_q[i]);
       if (!body) prev_q = Eigen::Matrix<std::int64_t, 3, 1>((*qp)[0], (*qp)[1], (*qp)[2]);
@@ -153,7 +153,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
 }
 
 bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
-  const bool body = kind != ObjectListKind::Map, detail = kind == ObjectListKind::Bundle;
+  const bool body = kind != ObjectListKind::Map, counts = kind == ObjectListKind::Bundle;
   const double unit = body ? kPositionUnit : kMapPositionUnit;
   const std::uint64_t n = r.varint();
   if (!r.ok()) return false;
@@ -186,9 +186,9 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
       prev_class = static_cast<int>(cls);
     }
     o.class_id = static_cast<std::int16_t>(static_cast<std::uint16_t>(prev_class));
-    if (!detail && (tag & kConfidenceFloat)) return r.fail(at(i, "confidence flag in a bundle without confidences")), false;
-    if (detail) {
-      o.confidence = (tag & kConfidenceFloat) ? readFinite(r, i, "confidence") : r.u8() * kConfidenceUnit;
+    if (!body && (tag & kConfidenceFloat)) return r.fail(at(i, "confidence flag in a map")), false;
+    if (body) o.confidence = (tag & kConfidenceFloat) ? readFinite(r, i, "confidence") : r.u8() * kConfidenceUnit;
+    if (counts) {
       const std::int64_t nobs = r.svarint();
       if (r.ok() && (nobs < INT32_MIN || nobs > INT32_MAX)) return r.fail(at(i, "num_observations out of range")), false;
       o.num_observations = static_cast<int>(nobs);

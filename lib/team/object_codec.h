@@ -3,8 +3,9 @@
 // object: a tag byte (shape, flags), the id as a difference from the previous object's, the
 // class unless it repeats, then the quantised fields. In a bundle (body frame) positions are
 // absolute; in a map they are differences from the previous object's, and only what place
-// recognition uses is kept. A bundle as the team bus carries it leaves out the detector
-// confidence and the track's observation count (no peer uses them; they decode as 1.0 and 1).
+// recognition uses is kept. A bundle as the team bus carries it leaves out the track's
+// observation count (no peer uses it; it decodes as 1) and keeps the detector confidence: a
+// peer's optimizer weighs class votes by it (a label-free "other" yields to a named class).
 #include <vector>
 
 #include "objects/object.h"

@@ -145,22 +145,23 @@ TEST(Codec, ChainedOdometryHasNoDriftAndNeedsThePreviousBundle) {
   EXPECT_FALSE(chainedBundle(encodeBundle(other, &*previous)));
 }
 
-TEST(Codec, TeamBundlesLeaveOutConfidenceAndTrackCounts) {
+// Team bundles leave out the tracks' observation counts (one varint byte each here) and keep
+// the detector confidence, which a peer's optimizer weighs class votes by.
+TEST(Codec, TeamBundlesLeaveOutTrackCountsAndKeepConfidence) {
   std::mt19937 rng(5);
   KeyPoseBundle b = randomBundle(rng, 3, 7);
   ASSERT_FALSE(b.objects.empty());
-  for (Object& o : b.objects) o.confidence = 0.7, o.num_observations = 12;
+  for (std::size_t i = 0; i < b.objects.size(); ++i) b.objects[i].confidence = i % 2 ? 0.05 : 0.7, b.objects[i].num_observations = 12;
   const Bytes full = encodeBundle(b), team = encodeBundle(b, nullptr, BundleDetail::Team);
-  EXPECT_EQ(full.size() - team.size(), 2 * b.objects.size());  // one byte each, per object
+  EXPECT_EQ(full.size() - team.size(), b.objects.size());  // one byte each, per object
   std::string err;
   const auto d = decodeBundle(team, 3, 7, &err);
   ASSERT_TRUE(d) << err;
   ASSERT_EQ(d->objects.size(), b.objects.size());
   for (std::size_t i = 0; i < b.objects.size(); ++i) {
-    EXPECT_EQ(d->objects[i].confidence, 1.0);
+    EXPECT_NEAR(d->objects[i].confidence, b.objects[i].confidence, 0.5 / 255);
     EXPECT_EQ(d->objects[i].num_observations, 1);
     Object expect = b.objects[i];
-    expect.confidence = 1.0;
     expect.num_observations = 1;
     expectQuantisedCopy(d->objects[i], expect);
   }
