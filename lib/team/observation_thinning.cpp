@@ -8,6 +8,7 @@ bool ObservationThinning::worthSharing(const Object& o, const Pose& odom_pose) c
   auto it = last_.find(o.id);
   if (it == last_.end()) return true;
   const Shared& s = it->second;
+  if (s.shares < policy_.min_shares) return true;
   if (s.class_id != o.class_id || s.shape != o.model.index()) return true;
   if (((o.extent() - s.extent).cwiseAbs().array() >= policy_.size_change_m).any()) return true;
   const Pose moved = s.odom_pose.inverse() * odom_pose;
@@ -21,7 +22,8 @@ KeyPoseBundle ObservationThinning::thin(const KeyPoseBundle& b) {
   out.objects.clear();
   for (const Object& o : b.objects) {
     if (!worthSharing(o, b.odom_pose)) continue;
-    last_[o.id] = {b.odom_pose, o.class_id, o.model.index(), o.extent()};
+    const auto it = last_.find(o.id);
+    last_[o.id] = {b.odom_pose, o.class_id, o.model.index(), o.extent(), it == last_.end() ? 1 : it->second.shares + 1};
     out.objects.push_back(o);
   }
   return out;

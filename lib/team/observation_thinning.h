@@ -1,6 +1,7 @@
 #pragma once
 // Which of a robot's own observations go on the team bus. A track's observation is shared when
-// it adds information for the team: the first observation of the track, or the robot moved at
+// it adds information for the team: the first `min_shares` observations of the track (a peer's
+// optimizer, like the robot's own, confirms a landmark from that many), or the robot moved at
 // least `travel_m` or turned at least `turn_deg` since the last shared observation of that
 // track, or the track's class, shape or size (any extent by `size_change_m`) changed since.
 // Everything else stays on the robot (its own stack and journal keep the full bundle); key
@@ -19,6 +20,7 @@ struct ThinningPolicy {
   double travel_m = 10.0;
   double turn_deg = 45.0;
   double size_change_m = 1.0;
+  int min_shares = 3;
 };
 
 class ObservationThinning {
@@ -33,6 +35,7 @@ class ObservationThinning {
     int class_id;
     std::size_t shape;
     Eigen::Vector3d extent;
+    int shares;
   };
   bool worthSharing(const Object& o, const Pose& odom_pose) const;
 

@@ -38,6 +38,7 @@ SyncConfig SyncConfig::fromConfig(const ConfigNode& n, std::optional<std::int32_
   c.thin_travel_m = n.get<double>("thin_travel_m", c.thin_travel_m);
   c.thin_turn_deg = n.get<double>("thin_turn_deg", c.thin_turn_deg);
   c.thin_size_change_m = n.get<double>("thin_size_change_m", c.thin_size_change_m);
+  c.thin_min_shares = n.get<int>("thin_min_shares", c.thin_min_shares);
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {
@@ -78,6 +79,7 @@ void SyncConfig::validate() const {
   if (!(thin_travel_m >= 0) || !(thin_turn_deg >= 0) || !(thin_size_change_m >= 0) || !std::isfinite(thin_travel_m) ||
       !std::isfinite(thin_turn_deg) || !std::isfinite(thin_size_change_m))
     throw std::invalid_argument("thin_travel_m, thin_turn_deg and thin_size_change_m must be finite and >= 0");
+  if (thin_min_shares < 1 || thin_min_shares > 1000) throw std::invalid_argument("thin_min_shares must be 1..1000");
   if (team.size() > 16) throw std::invalid_argument("at most 16 robots in a team (one message tag per member)");
   for (std::int32_t id : team)
     if (id < 0 || id > 32767)

@@ -40,14 +40,18 @@ struct SyncConfig {
   // A sender's message counter (µs of its clock, counters.h) may lead this robot's clock by this
   // much; beyond it the message is dropped as future_counter. Team clocks must agree this well.
   double max_counter_ahead_s = 300.0;
-  // Own observations shared on the team bus (observation_thinning.h): a track again only after
-  // this much travel or turn, or a class, shape or size change.
+  // Own observations shared on the team bus (observation_thinning.h): a track's first
+  // thin_min_shares observations, then again only after this much travel or turn, or a class,
+  // shape or size change.
   bool thin_observations = true;
   double thin_travel_m = 10.0;
   double thin_turn_deg = 45.0;
   double thin_size_change_m = 1.0;
+  int thin_min_shares = 3;
 
-  ThinningPolicy thinning() const { return {thin_observations, thin_travel_m, thin_turn_deg, thin_size_change_m}; }
+  ThinningPolicy thinning() const {
+    return {thin_observations, thin_travel_m, thin_turn_deg, thin_size_change_m, thin_min_shares};
+  }
 
   // Throws ConfigError naming the file and key on a missing or invalid value. `robot`, when
   // given (the daemon's --robot), replaces the file's optional `robot` key. Keys are not read

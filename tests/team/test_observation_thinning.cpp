@@ -36,7 +36,7 @@ std::vector<std::int64_t> ids(const KeyPoseBundle& b) {
 }  // namespace
 
 TEST(ObservationThinning, FirstObservationAlwaysThenOnlyAfterTravel) {
-  ObservationThinning t(ThinningPolicy{true, 5.0, 45.0, 0.3});
+  ObservationThinning t(ThinningPolicy{true, 5.0, 45.0, 0.3, 1});
   EXPECT_EQ(ids(t.thin(at(0, 0, 0, {trunk(1), trunk(2)}))), (std::vector<std::int64_t>{1, 2}));
   EXPECT_TRUE(t.thin(at(1, 1.4, 0, {trunk(1), trunk(2)})).objects.empty());
   // A new track is shared at once, whatever the travel.
@@ -50,7 +50,7 @@ TEST(ObservationThinning, FirstObservationAlwaysThenOnlyAfterTravel) {
 }
 
 TEST(ObservationThinning, TurnClassAndSizeChangesAreShared) {
-  ObservationThinning t(ThinningPolicy{true, 5.0, 45.0, 0.3});
+  ObservationThinning t(ThinningPolicy{true, 5.0, 45.0, 0.3, 1});
   t.thin(at(0, 0, 0, {trunk(1), trunk(2), trunk(3)}));
   Object reclassified = trunk(2);
   reclassified.class_id = 80;
@@ -58,6 +58,17 @@ TEST(ObservationThinning, TurnClassAndSizeChangesAreShared) {
   EXPECT_EQ(ids(t.thin(at(1, 0.5, 0.2, {trunk(1), reclassified, grown}))), (std::vector<std::int64_t>{2, 3}));
   EXPECT_TRUE(t.thin(at(2, 0.5, 0.7, {trunk(1)})).objects.empty());  // turned 40 deg
   EXPECT_EQ(ids(t.thin(at(3, 0.5, 0.8, {trunk(1)}))), (std::vector<std::int64_t>{1}));  // 45.8 deg
+}
+
+// A peer's optimizer confirms a landmark from min_observations (3) observations: a track's
+// first three go out whatever the travel, then only after travel (5 m here).
+TEST(ObservationThinning, ATracksFirstSharesAllGoOut) {
+  ObservationThinning t(ThinningPolicy{true, 5.0, 45.0, 0.3, 3});
+  ASSERT_EQ(ThinningPolicy{}.min_shares, 3);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(ids(t.thin(at(k, 0.5 * k, 0, {trunk(1)}))), (std::vector<std::int64_t>{1})) << k;
+  EXPECT_TRUE(t.thin(at(3, 1.5, 0, {trunk(1)})).objects.empty());
+  EXPECT_TRUE(t.thin(at(4, 5.9, 0, {trunk(1)})).objects.empty());  // 4.9 m since the third
+  EXPECT_EQ(ids(t.thin(at(5, 6.0, 0, {trunk(1)}))), (std::vector<std::int64_t>{1}));
 }
 
 TEST(ObservationThinning, DeterministicAndOffMeansEverything) {
@@ -84,13 +95,15 @@ TEST(ObservationThinning, ConfigKeysAreValidated) {
   auto load = [](const std::string& extra) {
     return SyncConfig::fromConfig(ConfigNode::parse("team: [1]\n" + extra, "t.yaml"), 1);
   };
-  const SyncConfig c = load("thin_observations: false\nthin_travel_m: 8\nthin_turn_deg: 30\nthin_size_change_m: 0.5\n");
+  const SyncConfig c =
+      load("thin_observations: false\nthin_travel_m: 8\nthin_turn_deg: 30\nthin_size_change_m: 0.5\nthin_min_shares: 2\n");
   EXPECT_FALSE(c.thinning().enabled);
   EXPECT_EQ(c.thinning().travel_m, 8.0);
   EXPECT_EQ(c.thinning().turn_deg, 30.0);
   EXPECT_EQ(c.thinning().size_change_m, 0.5);
+  EXPECT_EQ(c.thinning().min_shares, 2);
   for (const std::string bad : {"thin_travel_m: -1\n", "thin_turn_deg: -5\n", "thin_size_change_m: -0.1\n",
-                                "thin_observations: maybe\n"}) {
+                                "thin_observations: maybe\n", "thin_min_shares: 0\n"}) {
     try {
       load(bad);
       FAIL() << "accepted " << bad;
