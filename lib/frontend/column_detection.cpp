@@ -174,7 +174,6 @@ int distinctSlices(const std::vector<Blob>& blobs, const std::vector<int>& stack
   if (hi) *hi = s.empty() ? 0 : s.back();
   return static_cast<int>(std::unique(s.begin(), s.end()) - s.begin());
 }
-
 }  // namespace
 
 std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,

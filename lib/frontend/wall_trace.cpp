@@ -70,7 +70,7 @@ bool continuesAsFace(const Cloud& cloud, const ScanLines& lines, int edge, int d
   if (p.corner_run <= 0 || e.norm() < n1.norm() - p.line_tolerance) return false;
   std::vector<Eigen::Vector2f> run;
   for (int i : n) run.push_back(xy(i));
-  return straightRun(run, 0, p) || straightRun(run, 1, p);
+  return straightRun(run, 0, p) || (e.norm() >= run[1].norm() - p.line_tolerance && straightRun(run, 1, p));
 }
 
 // Is `edge`, the only return of its beam in the column, a stack between two others on one
