@@ -316,6 +316,18 @@ std::vector<Column> detectColumns(const Cloud& cloud, const std::vector<float>& 
         continue;
       }
     }
+    if (p.ceiling_max_spread > 0 && p.ceiling_min_above > 0) {
+      std::vector<float> over = lines.heightsAbove(cloud[top_point], static_cast<float>(mid.norm() - p.margin));
+      if (static_cast<int>(over.size()) >= p.ceiling_min_above) {
+        std::vector<double> z(over.begin(), over.end());
+        const double lo = quantileInPlace(z, 0.1), hi = quantileInPlace(z, 0.9);
+        if (hi - lo <= p.ceiling_max_spread && lo >= cloud[top_point].z() - p.ceiling_margin) {
+          reject(mid, "under a flat ceiling nearer (" + std::to_string(z.size()) + " returns above its top within " +
+                          std::to_string(hi - lo) + " m)");
+          continue;
+        }
+      }
+    }
     col.trunk = col.radius >= p.trunk_min_radius ||
                 (high > 0 && canopy >= p.canopy_min_fraction * (high + static_cast<int>(col.points.size())));
     if (!col.trunk && (top + p.end_margin >= std::min(ceiling + p.ceiling_margin, p.max_height) ||

@@ -64,6 +64,10 @@ struct ColumnParams {
   int ceiling_min_points = 20;
   double ceiling_full_range = 0.0;
   int ceiling_min_points_far = 20;
+  // The view above the column's top, in its azimuth, ended by at least ceiling_min_above nearer
+  // returns within ceiling_max_spread of one height, no lower than ceiling_margin under the top:
+  // a ceiling seen from below, the column a strip of far wall seen through doorways (0: off).
+  int ceiling_min_above = 0;
   // A thin column without a canopy is a pole for sure only when its top is seen with open view
   // above it: top + end_margin below both the highest visible point at its range and
   // max_height, and no nearer return just above its top (in a forest, nearer trunks and crowns

@@ -117,6 +117,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "ceiling_min_points", p.ceiling_min_points, 1);
     opt(c, "ceiling_full_range", p.ceiling_full_range, 0.0);
     opt(c, "ceiling_min_points_far", p.ceiling_min_points_far, 1);
+    opt(c, "ceiling_min_above", p.ceiling_min_above, 0);
     opt(c, "end_margin", p.end_margin, 0.0);
     opt(c, "unsure_confidence", p.unsure_confidence, 0.0, 1.0);
     if (c.has("wall")) {

@@ -122,6 +122,18 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   return false;
 }
 
+std::vector<float> ScanLines::heightsAbove(const Eigen::Vector3f& p, float range) const {
+  const Return q = polar(p, -1);
+  const int b = bin(q.azimuth);
+  std::vector<float> z;
+  for (int d = -1; d <= 1; ++d) {
+    const auto [first, last] = band((b + d + kBins) % kBins, q.tan_elevation + 1e-4f, std::numeric_limits<float>::max());
+    for (const Return* r = first; r != last; ++r)
+      if (r->range < range) z.push_back(cloud_[r->index].z());
+  }
+  return z;
+}
+
 std::optional<ScanLines::ViewTop> ScanLines::viewTop(double tolerance_deg, double min_share, double max_height) const {
   // Candidates: the highest returns of each bin (seen from the origin); the top beam's are
   // among them for any origin height up to max_height.

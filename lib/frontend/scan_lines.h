@@ -40,6 +40,10 @@ class ScanLines {
   // stands above p (a crown may be there).
   bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
 
+  // The heights (z) of the indexed returns above p in elevation, in its azimuth bin and the
+  // next one on each side, nearer than `range` (horizontal metres): what ends the view above p.
+  std::vector<float> heightsAbove(const Eigen::Vector3f& p, float range) const;
+
   // The top beam: its returns lie on z = height + r * tan_elevation (r horizontal). A
   // multi-laser head fires from emitters above the sensor frame's origin: the real
   // SemanticKITTI scans' top beam leaves at +2.0 deg from 0.2-0.24 m above it, so its

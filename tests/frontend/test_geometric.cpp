@@ -710,6 +710,38 @@ TEST(GeometricSegmenter, AFarCeilingNeedsFewerReturnsWhenTheViewReachesAboveIt) 
   EXPECT_TRUE(columnNear(columnsOf(under_ceiling, off), {20, 0}, 0.5)) << "without the rule 30 returns are too few";
 }
 
+// A strip of far wall seen through aligned doorways (22 m off, floor to ceiling) stands alone
+// in view like a pole; above its top the view ends on the ceiling nearer by, in its azimuth:
+// one flat layer from 8 to 21 m (the OS1-64's upper beams), 4 of whose returns lie within 3 m
+// of the strip (too few for the ceiling over it). Under a crown's returns, spread over a metre
+// of height at the same ranges, the same strip stays a column.
+TEST(GeometricSegmenter, AStripOfFarWallUnderACeilingSeenNearerIsNoColumn) {
+  frontend::Cloud strip;  // the floor reaches under all of it
+  for (double x = 7; x <= 25; x += 0.25)
+    for (double y = -3; y <= 3; y += 0.25) strip.emplace_back(x, y, 0);
+  for (double z = 0.1; z < 2.8; z += 0.18)
+    for (const double y : {-0.05, 0.05}) strip.emplace_back(22, y, z);
+  frontend::Cloud ceiling = strip, crown = strip;
+  int k = 0;
+  for (double e = 16.6; e > 0; e -= 0.527, ++k) {
+    const double r = 2.8 / std::tan(e * M_PI / 180);
+    if (r > 21.5) break;
+    for (const double y : {-0.05, 0.05}) {
+      ceiling.emplace_back(r, y * r / 22, 2.8);
+      const double z = 2.8 + 0.5 * (k % 3);
+      crown.emplace_back(r * z / 2.8, y * r * z / (2.8 * 22), z);  // same elevation, higher up
+    }
+  }
+  const frontend::ColumnParams p = frontend::loadDefaultFrontendConfig().geometric.column;
+  ASSERT_GT(p.ceiling_min_above, 0);
+  EXPECT_TRUE(columnNear(columnsOf(strip, p), {22, 0}, 0.5)) << "the strip alone";
+  EXPECT_FALSE(columnNear(columnsOf(ceiling, p), {22, 0}, 0.5)) << "under a ceiling seen nearer";
+  EXPECT_TRUE(columnNear(columnsOf(crown, p), {22, 0}, 0.5)) << "under a crown";
+  frontend::ColumnParams off = p;
+  off.ceiling_min_above = 0;
+  EXPECT_TRUE(columnNear(columnsOf(ceiling, off), {22, 0}, 0.5)) << "without the rule";
+}
+
 // A door jamb or a wall's end seen through a doorway stands alone in view like a pole, but a
 // ceiling spans above it: a flat layer of returns, where a tree's crown spreads over metres of
 // height. The pole under the ceiling is no column; the same pole under a crown is a trunk.
