@@ -154,6 +154,10 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "max_roughness", p.max_roughness, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
+    opt(c, "max_hidden_bottom", p.max_hidden_bottom, 0.0, 1.0);
+    opt(c, "hidden_below", p.hidden_below, 0.0);
+    opt(c, "hidden_margin", p.hidden_margin, 0.0);
+    opt(c, "max_ground_rise", p.max_ground_rise, 0.0);
   }
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }

@@ -115,6 +115,21 @@ void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<cha
   lines.markUnderTop(*top, p.tolerance_deg, static_cast<float>(p.range_tolerance), cut);
 }
 
+// Whether a cluster floats: its bottom hidden by nearer returns, and the ground estimated under
+// it well above the ground under them (CarParams::max_hidden_bottom).
+bool floats(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& cl, const ScanLines& lines,
+            const CarParams& kp) {
+  int bins = 0;
+  const std::vector<int> hiding = lines.hiddenBelow(cl, static_cast<float>(kp.hidden_below), static_cast<float>(kp.hidden_margin), bins);
+  if (hiding.empty() || static_cast<int>(hiding.size()) <= kp.max_hidden_bottom * bins) return false;
+  auto groundOf = [&](const std::vector<int>& pts) {
+    std::vector<double> g;
+    for (int i : pts) g.push_back(cloud[i].z() - h[i]);
+    return quantileInPlace(g, 0.5);
+  };
+  return groundOf(cl) - groundOf(hiding) > kp.max_ground_rise;
+}
+
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header) and are not the rest of a stack the view
 // cuts off (beside the points marked in `cut`); their points are marked taken.
@@ -176,6 +191,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
       if (beside > params.view_cut.max_beside_share * cl.size()) continue;
     }
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
+    if (kp.max_hidden_bottom < 1 && floats(cloud, h, cl, lines, kp)) continue;
     for (int i : cl) taken[i] = 1;
     cars.push_back(std::move(cl));
   }

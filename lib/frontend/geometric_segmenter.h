@@ -53,6 +53,16 @@ struct CarParams {
   // building's lower storey goes on above the cap; a car ends below it). 1 disables.
   double max_covered = 0.3;
   double cover_height = 1.0;
+  // A car stands on the ground: a cluster whose bottom is hidden (on more than max_hidden_bottom
+  // of its azimuth steps a line of sight at most hidden_below metres under its lowest return
+  // ends hidden_margin metres or more nearer: its lowest returns above ground, within the ground
+  // threshold, are no part of it) and whose ground estimate lies more than max_ground_rise above
+  // that of what hides it floats: a wall's piece seen over furniture, its own bottom edge taken
+  // for the ground there. 1 disables.
+  double max_hidden_bottom = 1.0;
+  double hidden_below = 0.5;
+  double hidden_margin = 0.5;
+  double max_ground_rise = 0.3;
 };
 
 // The top of the view: where the scan's top beam hits something in most directions (walls, a

@@ -122,6 +122,33 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   return false;
 }
 
+std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins) const {
+  std::vector<Return> lowest;  // per azimuth bin, sorted by bin
+  lowest.reserve(points.size());
+  for (int i : points) lowest.push_back(polar(cloud_[i], i));
+  std::sort(lowest.begin(), lowest.end(), [](const Return& a, const Return& b) {
+    const int ba = bin(a.azimuth), bb = bin(b.azimuth);
+    return ba != bb ? ba < bb : a.tan_elevation < b.tan_elevation;
+  });
+  lowest.erase(std::unique(lowest.begin(), lowest.end(),
+                           [](const Return& a, const Return& b) { return bin(a.azimuth) == bin(b.azimuth); }),
+               lowest.end());
+  bins = static_cast<int>(lowest.size());
+  std::vector<int> out;
+  for (const Return& q : lowest) {
+    const float hi = q.tan_elevation - 1e-4f, lo = hi - below / q.range;
+    const int b = bin(q.azimuth);
+    int found = -1;
+    for (int d = -1; d <= 1 && found < 0; ++d) {
+      const auto [first, last] = band((b + d + kBins) % kBins, lo, hi);
+      for (const Return* r = first; r != last && found < 0; ++r)
+        if (r->range < q.range - margin) found = r->index;
+    }
+    if (found >= 0) out.push_back(found);
+  }
+  return out;
+}
+
 std::vector<float> ScanLines::heightsAbove(const Eigen::Vector3f& p, float range) const {
   const Return q = polar(p, -1);
   const int b = bin(q.azimuth);

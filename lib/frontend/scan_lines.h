@@ -40,6 +40,12 @@ class ScanLines {
   // stands above p (a crown may be there).
   bool hiddenAbove(const Eigen::Vector3f& p, float range) const;
 
+  // What hides the bottom of `points` (indices into the cloud): for each of their azimuth bins
+  // whose lowest return has an indexed return on a line of sight passing at most `below` metres
+  // under it (same bin or the next one on each side) nearer by more than `margin` metres, the
+  // index of one such return. `bins` receives the number of azimuth bins of `points`.
+  std::vector<int> hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins) const;
+
   // The heights (z) of the indexed returns above p in elevation, in its azimuth bin and the
   // next one on each side, nearer than `range` (horizontal metres): what ends the view above p.
   std::vector<float> heightsAbove(const Eigen::Vector3f& p, float range) const;

@@ -257,6 +257,27 @@ static int instancesNear(const frontend::Cloud& c, const frontend::GeometricSegm
   return n;
 }
 
+// A wall 7 m off seen over a table 0.75 m tall (4-5 m off, wide enough to hide the floor up to
+// the wall): what shows of it is a smooth face 1.8 m long and 2.15 m tall, and the ground there
+// can only be estimated from its own bottom edge, 0.65 m above the floor the table stands on:
+// a car by every extent. Its bottom is hidden by the nearer table: it floats. A car behind a
+// kerb-high box 0.4 m tall stands on the ground, its hidden bottom 0.1 m above the floor.
+TEST(GeometricSegmenter, AWallSeenOverATableIsNoCarACarBehindALowBoxIs) {
+  const frontend::Cloud wall = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(4, -3, -1), Eigen::Vector3d(5, 3, -0.25)),
+                                             Eigen::AlignedBox3d(Eigen::Vector3d(7, -1, -1), Eigen::Vector3d(7.15, 0.8, 1.8))},
+                                            true);
+  const frontend::Cloud car = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(5, -3, -1), Eigen::Vector3d(6, 3, -0.6)),
+                                            Eigen::AlignedBox3d(Eigen::Vector3d(9, -1, -1), Eigen::Vector3d(13, 1, 0.5))},
+                                           true);
+  const frontend::GeometricSegmenterParams p = frontend::loadDefaultFrontendConfig().geometric;
+  ASSERT_LT(p.car.max_hidden_bottom, 1);
+  EXPECT_EQ(instancesNear(wall, p, p.car_class, {7.1f, 0}, 1.5f), 0);
+  EXPECT_EQ(instancesNear(car, p, p.car_class, {9.5f, 0}, 2.0f), 1);
+  frontend::GeometricSegmenterParams off = p;
+  off.car.max_hidden_bottom = 1;
+  EXPECT_EQ(instancesNear(wall, off, off.car_class, {7.1f, 0}, 1.5f), 1) << "without the rule the wall is a car";
+}
+
 // A car-sized box 8-12 m ahead hides most of a second one behind it (from x = 14 m): what
 // shows of the far one past the near one's edge is a compact, smooth, 0.45 m wide strip of its
 // face, which the extent tests would call "other". Its scan lines end at the nearer box beside
