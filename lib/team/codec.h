@@ -16,6 +16,9 @@
 //   cuboid dimensions        5 cm (0..12.75 m)    ellipsoid radius  1 cm (0..2.55 m),
 //                                                 ellipsoid height  5 cm (0..12.75 m)
 //   confidence               1/255 (0..1)
+//   a box's other reading    (bundles) its centre 5 cm per axis from the box's (within 100 m),
+//                            its dimensions as above; its rotation is the box's turned a
+//                            quarter about its own vertical
 //   odometry sigma           1/16 octave (relative error <= 2.2%; 1.7e-4..10.9)
 // All of these are far below the measurement noise (several cm, degrees). A value outside its
 // range is never clamped: the object carries that group of fields as float32 under a flag

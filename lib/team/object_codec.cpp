@@ -20,6 +20,7 @@ constexpr std::uint8_t kPositionFloat = 16;   // position as float32 (out of ran
 constexpr std::uint8_t kSizeFloat = 32;       // sizes as float32 (out of range)
 constexpr std::uint8_t kConfidenceFloat = 64; // bundle: confidence as float32 (outside 0..1)
 constexpr std::uint8_t kAxisDown = 128;       // bundle, tilted cylinder: axis z < 0
+constexpr std::uint8_t kOtherReading = 128;   // bundle, cuboid: its other reading follows
 constexpr std::uint8_t kMapBits = kShapeMask | kSameClass | kPositionFloat | kSizeFloat;
 
 constexpr double kPositionUnit = 0.01;     // bundles (body frame)
@@ -29,12 +30,20 @@ constexpr std::int64_t kMapPositionLimit = 1LL << 31;     // +-107000 km
 constexpr double kTiltUnit = 1e-3;                        // axis components, roll, pitch
 constexpr std::int64_t kRollPitchLimit = 3142;            // pi
 constexpr double kConfidenceUnit = 1.0 / 255;
+constexpr double kOtherOffsetUnit = 0.05;  // a box's other centre from its own: 1 byte within 3.15 m
 // Size units per shape: cylinder radius, length; cuboid dims; ellipsoid radius, height.
 constexpr double kCylinderUnits[2] = {0.01, 0.1};
 constexpr double kCuboidUnit = 0.05;
 constexpr double kEllipsoidUnits[2] = {0.01, 0.05};
 
 bool within(std::int64_t v, std::int64_t limit) { return v >= -limit && v <= limit; }
+
+// The other reading of a box is the same box turned a quarter about its own vertical: only its
+// centre and extents travel (the centre as a difference from the box's).
+bool quarterTurnOf(const Cuboid& box, const Cuboid& other) {
+  const Eigen::Matrix3d m = box.pose.linear().transpose() * other.pose.linear();
+  return std::abs(m(2, 2) - 1.0) < 1e-6 && std::abs(std::abs(std::atan2(m(1, 0), m(0, 0))) - M_PI / 2) < 1e-3;
+}
 
 std::string at(std::uint64_t i, const char* what) { return "object " + std::to_string(i) + ": " + what; }
 
@@ -94,10 +103,17 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
     const std::int64_t limit = body ? kBodyPositionLimit : kMapPositionLimit;
     const auto qp = quantiseAll({p.x(), p.y(), p.z()}, [&](double v, std::size_t) { return quantise(v, unit, limit); });
     if (!qp) tag |= kPositionFloat;
-    // Sizes.
-    const auto sizes = sizesOf(o);
+    // The other reading of a box whose length went unseen (bundles only).
+    const Cuboid* other = nullptr;
+    if (const auto* b = std::get_if<Cuboid>(&o.model); body && b && o.other_reading && quarterTurnOf(*b, *o.other_reading) &&
+                                                        o.other_reading->dims.allFinite() &&
+                                                        (o.other_reading->pose.translation() - p).norm() < 100.0)
+      other = &*o.other_reading;
+    // Sizes (the other reading's after the object's own).
+    auto sizes = sizesOf(o);
+    if (other) sizes.insert(sizes.end(), {other->dims.x(), other->dims.y(), other->dims.z()});
     const auto qs = quantiseAll(sizes, [&](double v, std::size_t i) -> std::optional<std::int64_t> {
-      const auto q = quantiseU8(v, sizeUnit(shape, i));
+      const auto q = quantiseU8(v, sizeUnit(shape, i % 3));
       return q ? std::optional<std::int64_t>(*q) : std::nullopt;
     });
     if (!qs) tag |= kSizeFloat;
@@ -119,6 +135,7 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
         tilt[0] = quantise(rpy[0], kTiltUnit, kRollPitchLimit).value_or(0);  // (non-finite: level)
         tilt[1] = quantise(rpy[1], kTiltUnit, kRollPitchLimit).value_or(0);
         if (tilt[0] != 0 || tilt[1] != 0) tag |= kOriented;
+        if (other) tag |= kOtherReading;
       }
     }
     w.u8(tag);
@@ -149,6 +166,16 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
       if (qs) w.u8(static_cast<std::uint8_t>((*qs)[i]));
       else w.f32(static_cast<float>(sizes[i]));
     }
+    if (other) {
+      // From the position as the receiver decodes it: the other centre is then as exact.
+      const Eigen::Vector3d sent = qp ? Eigen::Vector3d((*qp)[0] * unit, (*qp)[1] * unit, (*qp)[2] * unit) : p;
+      const Eigen::Vector3d d = other->pose.translation() - sent;
+      const auto qd = quantiseAll({d.x(), d.y(), d.z()}, [&](double v, std::size_t) { return quantise(v, kOtherOffsetUnit, 2000); });
+      for (int i = 0; i < 3; ++i) {
+        if (qp) w.svarint(qd ? (*qd)[i] : 0);  // (within 100 m: always quantised)
+        else w.f32(static_cast<float>(d[i]));
+      }
+    }
   }
 }
 
@@ -173,8 +200,10 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
     if (!r.ok()) return false;
     if (shape > 2) return r.fail(at(i, "shape ") + std::to_string(shape) + " unknown"), false;
     if (!body && (tag & ~kMapBits)) return r.fail(at(i, "map object tag ") + std::to_string(tag) + " has unknown bits"), false;
-    if ((tag & kAxisDown) && !(shape == 1 && (tag & kOriented)))
+    if ((tag & kAxisDown) && shape == 1 && !(tag & kOriented))
       return r.fail(at(i, "axis-down flag on an object without a tilted axis")), false;
+    if ((tag & kAxisDown) && shape == 2) return r.fail(at(i, "axis-down flag on an ellipsoid")), false;
+    const bool has_other = shape == 0 && (tag & kOtherReading);
     if (shape == 2 && (tag & kOriented)) return r.fail(at(i, "orientation flag on an ellipsoid")), false;
     o.id = wrappingAdd(prev_id, r.svarint());
     prev_id = o.id;
@@ -221,15 +250,32 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
       if (shape == 1 && tilt[0] * tilt[0] + tilt[1] * tilt[1] > 1.0 + 2e-3)
         return r.fail(at(i, "axis components exceed unit norm")), false;
     }
-    double sizes[3] = {0, 0, 0};
-    const int num_sizes = shape == 0 ? 3 : 2;
+    double sizes[6] = {0, 0, 0, 0, 0, 0};
+    const int num_sizes = (shape == 0 ? 3 : 2) * (has_other ? 2 : 1);
     for (int k = 0; k < num_sizes; ++k)
-      sizes[k] = (tag & kSizeFloat) ? readFinite(r, i, "size") : r.u8() * sizeUnit(shape, static_cast<std::size_t>(k));
+      sizes[k] = (tag & kSizeFloat) ? readFinite(r, i, "size") : r.u8() * sizeUnit(shape, static_cast<std::size_t>(k % 3));
     if (shape == 0) {
       Cuboid b;
       b.pose = poseFromXyzRpy(p, tilt[0], tilt[1], yaw);
       b.dims = {sizes[0], sizes[1], sizes[2]};
       o.model = b;
+      if (has_other) {
+        Eigen::Vector3d d;
+        for (int k = 0; k < 3; ++k) {
+          if (tag & kPositionFloat) {
+            d[k] = readFinite(r, i, "other reading's position");
+          } else {
+            const std::int64_t q = r.svarint();
+            if (r.ok() && !within(q, 2000)) return r.fail(at(i, "other reading's position out of range")), false;
+            d[k] = static_cast<double>(q) * kOtherOffsetUnit;
+          }
+        }
+        Cuboid other = b;
+        other.pose.translation() = p + d;
+        other.pose.linear() = b.pose.linear() * rotZ(M_PI / 2);
+        other.dims = {sizes[3], sizes[4], sizes[5]};
+        o.other_reading = other;
+      }
     } else if (shape == 1) {
       Cylinder c;
       c.root = p;

@@ -168,6 +168,54 @@ TEST(Codec, TeamBundlesLeaveOutTrackCountsAndKeepConfidence) {
   EXPECT_EQ(encodeBundle(*d, nullptr, BundleDetail::Team), team);  // stable
 }
 
+// A box whose length went unseen travels with its other reading (the box turned a quarter
+// about its vertical, grown from the same face): the receiving optimizer keeps the reading its
+// landmark agrees with, as it does with its own robot's. It costs the other centre's offset (5 cm
+// units) and extents, 6 bytes here; on a tilted body too.
+TEST(Codec, ABoxTravelsWithItsOtherReading) {
+  for (const double roll : {0.0, 0.05}) {
+    KeyPoseBundle b;
+    Object car;
+    car.id = 4;
+    car.class_id = 10;
+    car.confidence = 0.9;
+    const Pose body_tilt = poseFromXyzRpy(Eigen::Vector3d::Zero(), roll, -0.02, 0);
+    const Pose primary = body_tilt * poseFromXyzYaw(12.3, -4.1, 0.7, 0.4);
+    car.model = Cuboid{primary, {4.5, 1.8, 1.5}};
+    Pose turned = body_tilt * poseFromXyzYaw(12.3 + 1.35 * std::cos(0.4), -4.1 + 1.35 * std::sin(0.4), 0.7, 0.4 + M_PI / 2);
+    car.other_reading = Cuboid{turned, {4.5, 1.75, 1.5}};
+    Object single = car;
+    single.other_reading.reset();
+    b.objects = {car};
+    const Bytes with = encodeBundle(b, nullptr, BundleDetail::Team);
+    b.objects = {single};
+    const Bytes without = encodeBundle(b, nullptr, BundleDetail::Team);
+    EXPECT_EQ(with.size() - without.size(), 6u);
+    std::string err;
+    const auto d = decodeBundle(with, 0, 0, &err);
+    ASSERT_TRUE(d) << err;
+    ASSERT_EQ(d->objects.size(), 1u);
+    expectQuantisedCopy(d->objects[0], car);
+    ASSERT_TRUE(d->objects[0].other_reading.has_value());
+    Object other = car, got = d->objects[0];
+    other.model = *car.other_reading;
+    got.model = *got.other_reading;
+    got.other_reading.reset();
+    other.other_reading.reset();
+    const auto& gb = std::get<Cuboid>(got.model);
+    const auto& ob = std::get<Cuboid>(other.model);
+    EXPECT_LE((gb.pose.translation() - ob.pose.translation()).cwiseAbs().maxCoeff(), 0.025 + 1e-9);
+    EXPECT_LE(rotationError(gb.pose.linear(), ob.pose.linear()), 1e-3);
+    EXPECT_LE((gb.dims - ob.dims).cwiseAbs().maxCoeff(), 0.025 + 1e-9);
+    EXPECT_EQ(encodeBundle(*d, nullptr, BundleDetail::Team), with);  // stable
+    // The robot's own journal keeps it too.
+    b.objects = {car};
+    const auto own = decodeBundle(encodeBundle(b), 0, 0, &err);
+    ASSERT_TRUE(own) << err;
+    EXPECT_TRUE(own->objects[0].other_reading.has_value());
+  }
+}
+
 TEST(Codec, AxesPointingDownOrSidewaysComeBack) {
   KeyPoseBundle b;
   for (const Eigen::Vector3d& axis : {Eigen::Vector3d(0.1, 0.2, -0.97), Eigen::Vector3d(1, 0, 0),
@@ -305,6 +353,10 @@ TEST(Codec, MalformedFieldsAreNamed) {
   rejects(withObject({1, 0, 0xff, 0xff, 0x7f, 255, 2, 0, 0, 0, 10, 10}), "class id out of int16 range");
   rejects(withObject({2 | 8, 0, 1, 255, 2, 0, 0, 0, 10, 10, 0}), "orientation flag on an ellipsoid");
   rejects(withObject({1 | 128, 0, 71, 255, 2, 0, 0, 0, 10, 10, 0}), "axis-down flag");
+  rejects(withObject({2 | 128, 0, 1, 255, 2, 0, 0, 0, 10, 10, 0}), "axis-down flag on an ellipsoid");
+  // A box's other reading 2000 m off (40000 units of 5 cm).
+  rejects(withObject({0 | 128, 0, 10, 255, 2, 0, 0, 0, 0, 0, 90, 36, 30, 90, 36, 30, 0x80, 0xf1, 0x04, 0, 0}),
+          "other reading's position out of range");
   // A tilted axis with components (0.9, 0.9): beyond unit norm (and rounding).
   rejects(withObject({1 | 8, 0, 71, 255, 2, 0, 0, 0, 0x8c, 0x0e, 0x8c, 0x0e, 10, 10}), "axis components exceed");
   // Position 40000 cm in a body frame: beyond the int16 range that the encoder escapes.
