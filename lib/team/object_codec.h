@@ -6,7 +6,8 @@
 // recognition uses is kept. A bundle as the team bus carries it leaves out the track's
 // observation count (no peer uses it; it decodes as 1) and keeps the detector confidence: a
 // peer's optimizer weighs class votes by it (a label-free "other" yields to a named class).
-// Bundles keep a box's other reading (Object::other_reading): a peer's optimizer, like the
+// Bundles keep a box's other reading (Object::other_reading; the front-end's is the box turned a
+// quarter about its own vertical, and only such a reading travels): a peer's optimizer, like the
 // robot's own, keeps the reading its landmark agrees with.
 #include <vector>
 
