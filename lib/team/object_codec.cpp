@@ -30,7 +30,8 @@ constexpr std::int64_t kMapPositionLimit = 1LL << 31;     // +-107000 km
 constexpr double kTiltUnit = 1e-3;                        // axis components, roll, pitch
 constexpr std::int64_t kRollPitchLimit = 3142;            // pi
 constexpr double kConfidenceUnit = 1.0 / 255;
-constexpr double kOtherOffsetUnit = 0.05;  // a box's other centre from its own: 1 byte within 3.15 m
+constexpr double kOtherOffsetUnit = 0.05;  // a box's other centre from its own: 1 byte within 3.15 m ...
+constexpr std::int64_t kOtherOffsetLimit = 2000;  // ... and at most 100 m
 // Size units per shape: cylinder radius, length; cuboid dims; ellipsoid radius, height.
 constexpr double kCylinderUnits[2] = {0.01, 0.1};
 constexpr double kCuboidUnit = 0.05;
@@ -103,12 +104,20 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
     const std::int64_t limit = body ? kBodyPositionLimit : kMapPositionLimit;
     const auto qp = quantiseAll({p.x(), p.y(), p.z()}, [&](double v, std::size_t) { return quantise(v, unit, limit); });
     if (!qp) tag |= kPositionFloat;
-    // The other reading of a box whose length went unseen (bundles only).
+    // The other reading of a box whose length went unseen (bundles only): its centre as an offset
+    // from the box's as the receiver decodes it (so it is as exact), in kOtherOffsetUnit when the
+    // position is quantised.
     const Cuboid* other = nullptr;
-    if (const auto* b = std::get_if<Cuboid>(&o.model); body && b && o.other_reading && quarterTurnOf(*b, *o.other_reading) &&
-                                                        o.other_reading->dims.allFinite() &&
-                                                        (o.other_reading->pose.translation() - p).norm() < 100.0)
-      other = &*o.other_reading;
+    Eigen::Vector3d other_offset = Eigen::Vector3d::Zero();
+    std::optional<std::vector<std::int64_t>> q_offset;
+    if (const auto* b = std::get_if<Cuboid>(&o.model);
+        body && b && o.other_reading && quarterTurnOf(*b, *o.other_reading) && o.other_reading->dims.allFinite()) {
+      const Eigen::Vector3d sent = qp ? Eigen::Vector3d((*qp)[0] * unit, (*qp)[1] * unit, (*qp)[2] * unit) : p;
+      other_offset = o.other_reading->pose.translation() - sent;
+      q_offset = quantiseAll({other_offset.x(), other_offset.y(), other_offset.z()},
+                             [&](double v, std::size_t) { return quantise(v, kOtherOffsetUnit, kOtherOffsetLimit); });
+      if (qp ? q_offset.has_value() : other_offset.allFinite()) other = &*o.other_reading;
+    }
     // Sizes (the other reading's after the object's own).
     auto sizes = sizesOf(o);
     if (other) sizes.insert(sizes.end(), {other->dims.x(), other->dims.y(), other->dims.z()});
@@ -166,16 +175,11 @@ void writeObjects(ByteWriter& w, const std::vector<Object>& objects, ObjectListK
       if (qs) w.u8(static_cast<std::uint8_t>((*qs)[i]));
       else w.f32(static_cast<float>(sizes[i]));
     }
-    if (other) {
-      // From the position as the receiver decodes it: the other centre is then as exact.
-      const Eigen::Vector3d sent = qp ? Eigen::Vector3d((*qp)[0] * unit, (*qp)[1] * unit, (*qp)[2] * unit) : p;
-      const Eigen::Vector3d d = other->pose.translation() - sent;
-      const auto qd = quantiseAll({d.x(), d.y(), d.z()}, [&](double v, std::size_t) { return quantise(v, kOtherOffsetUnit, 2000); });
+    if (other)
       for (int i = 0; i < 3; ++i) {
-        if (qp) w.svarint(qd ? (*qd)[i] : 0);  // (within 100 m: always quantised)
-        else w.f32(static_cast<float>(d[i]));
+        if (qp) w.svarint((*q_offset)[i]);
+        else w.f32(static_cast<float>(other_offset[i]));
       }
-    }
   }
 }
 
@@ -266,7 +270,7 @@ bool readObjects(ByteReader& r, std::vector<Object>* out, ObjectListKind kind) {
             d[k] = readFinite(r, i, "other reading's position");
           } else {
             const std::int64_t q = r.svarint();
-            if (r.ok() && !within(q, 2000)) return r.fail(at(i, "other reading's position out of range")), false;
+            if (r.ok() && !within(q, kOtherOffsetLimit)) return r.fail(at(i, "other reading's position out of range")), false;
             d[k] = static_cast<double>(q) * kOtherOffsetUnit;
           }
         }

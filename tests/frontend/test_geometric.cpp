@@ -706,16 +706,23 @@ TEST(GeometricSegmenter, AnOfficeHasFewCarsOrColumnsItsFurnitureIsOther) {
   EXPECT_GE(without.cars, 3 * with.frames) << "the scans hold the walls and furniture the rules are for";
 }
 
+// A column 2.8 m tall at (x, 0) as the OS1-64 samples it 20 m off (two returns a beam), on a
+// floor patch from x0 to x1 metres, 6 m wide.
+static frontend::Cloud farPole(double x, double x0, double x1) {
+  frontend::Cloud c;
+  for (double fx = x0; fx <= x1; fx += 0.25)
+    for (double y = -3; y <= 3; y += 0.25) c.emplace_back(fx, y, 0);
+  for (double z = 0.1; z < 2.8; z += 0.18)
+    for (const double y : {-0.05, 0.05}) c.emplace_back(x, y, z);
+  return c;
+}
+
 // Far off (20 m), the ceiling over a door jamb gives few returns: 30 here, where 100 make a
 // ceiling near by. They are one when the view reaches well above them (a wall 5-7 m off, seen
 // up to 2.8 m); the same 30 at the very top of the view are as flat as a crown cut off by it,
 // and the pole under them stays a column.
 TEST(GeometricSegmenter, AFarCeilingNeedsFewerReturnsWhenTheViewReachesAboveIt) {
-  frontend::Cloud under_view_top;
-  for (double x = 17; x <= 23; x += 0.25)
-    for (double y = -3; y <= 3; y += 0.25) under_view_top.emplace_back(x, y, 0);
-  for (double z = 0.1; z < 2.8; z += 0.18)  // a pole as the OS1-64 samples it there: two returns a beam
-    for (const double y : {-0.05, 0.05}) under_view_top.emplace_back(19.9, y, z);
+  frontend::Cloud under_view_top = farPole(19.9, 17, 23);
   for (int k = 0; k < 30; ++k) under_view_top.emplace_back(18.2 + (k % 6) * 0.7, -2.0 + (k / 6) * 0.9, 2.85);
   frontend::Cloud under_ceiling = under_view_top;
   for (double x = 3; x <= 7; x += 0.25)
@@ -737,11 +744,7 @@ TEST(GeometricSegmenter, AFarCeilingNeedsFewerReturnsWhenTheViewReachesAboveIt) 
 // of the strip (too few for the ceiling over it). Under a crown's returns, spread over a metre
 // of height at the same ranges, the same strip stays a column.
 TEST(GeometricSegmenter, AStripOfFarWallUnderACeilingSeenNearerIsNoColumn) {
-  frontend::Cloud strip;  // the floor reaches under all of it
-  for (double x = 7; x <= 25; x += 0.25)
-    for (double y = -3; y <= 3; y += 0.25) strip.emplace_back(x, y, 0);
-  for (double z = 0.1; z < 2.8; z += 0.18)
-    for (const double y : {-0.05, 0.05}) strip.emplace_back(22, y, z);
+  const frontend::Cloud strip = farPole(22, 7, 25);  // the floor reaches under all of it
   frontend::Cloud ceiling = strip, crown = strip;
   int k = 0;
   for (double e = 16.6; e > 0; e -= 0.527, ++k) {
