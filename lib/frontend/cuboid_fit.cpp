@@ -2,6 +2,7 @@
 #include <opencv2/imgproc.hpp>
 #include <unordered_set>
 
+#include "frontend/free_space.h"
 #include "frontend/point_stats.h"
 #include "frontend/shape_fit.h"
 
@@ -73,11 +74,32 @@ double footprintYaw(const std::vector<cv::Point2f>& foot, double step, double ce
 }
 
 // Extends [lo, hi] to `len` when it is shorter than `min_len` (too short to be the whole
-// extent: part of the object went unseen), growing away from the viewpoint coordinate `v`.
-void completeInterval(double& lo, double& hi, double min_len, double len, double v) {
+// extent: part of the object went unseen). By default it grows away from the viewpoint
+// coordinate `v`; it is placed elsewhere along the axis when that covers at least `min_gain`
+// fewer of the cells seen empty (`free_along`: their coordinates on this axis; the nearest
+// such placement to the default, in steps of `step` metres).
+void completeInterval(double& lo, double& hi, double min_len, double len, double v, std::vector<double> free_along,
+                      int min_gain, double step) {
   if (hi - lo >= min_len) return;
-  if (v <= 0.5 * (lo + hi)) hi = lo + len;
-  else lo = hi - len;
+  const double slack = len - (hi - lo);
+  const double start_default = v <= 0.5 * (lo + hi) ? lo : hi - len;
+  double best = start_default;
+  if (min_gain > 0 && !free_along.empty() && slack > 0 && step > 0) {
+    std::sort(free_along.begin(), free_along.end());
+    auto covered = [&](double a) {
+      return static_cast<int>(std::upper_bound(free_along.begin(), free_along.end(), a + len) -
+                              std::lower_bound(free_along.begin(), free_along.end(), a));
+    };
+    const int base_n = covered(start_default);
+    int best_n = base_n;
+    for (double t = 0; t <= slack + 1e-9; t += step) {
+      const double a = hi - len + t;  // from grown wholly below lo ... to wholly above hi
+      const int n = covered(a);
+      if (base_n - n >= min_gain && (n < best_n || (n == best_n && std::abs(a - start_default) < std::abs(best - start_default))))
+        best_n = n, best = a;
+    }
+  }
+  lo = best, hi = best + len;
 }
 
 // Whether the longer of the two visible horizontal extents is the object's width. It is the
@@ -96,7 +118,7 @@ bool longerExtentIsWidth(double longer, double shorter, const Eigen::Vector3d& s
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
                                 const Eigen::Vector3d& size_typical, std::string* why,
-                                std::optional<Cuboid>* other_reading) {
+                                std::optional<Cuboid>* other_reading, const Cloud* free_space) {
   if (other_reading) other_reading->reset();
   if (static_cast<int>(pts.size()) < p.min_points) {
     setWhy(why, "too few points (" + std::to_string(pts.size()) + ")");
@@ -162,8 +184,26 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     const double c = std::cos(yaw_x), s = std::sin(yaw_x);
     const double min_u = std::max(size_min.x(), p.complete_fraction * size_typical.x());
     const double min_v = std::max(size_min.y(), p.complete_fraction * size_typical.y());
-    completeInterval(lu, hu, min_u, size_typical.x(), c * viewpoint.x() + s * viewpoint.y());
-    completeInterval(lv, hv, min_v, size_typical.y(), -s * viewpoint.x() + c * viewpoint.y());
+    // The cells seen empty across each axis's extent (free_space), by their coordinate along it.
+    std::vector<double> free_u, free_v;
+    auto freeAlong = [&](bool along_u, double a0, double a1, std::vector<double>& out) {
+      out.clear();
+      if (!free_space) return;
+      for (const auto& q : *free_space) {
+        const double u = c * q.x() + s * q.y(), v = -s * q.x() + c * q.y();
+        const double across = along_u ? v : u;
+        if (across >= a0 && across <= a1) out.push_back(along_u ? u : v);
+      }
+    };
+    // The length is placed across the width completed away from the viewpoint, the width across
+    // the length so placed.
+    const double view_u = c * viewpoint.x() + s * viewpoint.y(), view_v = -s * viewpoint.x() + c * viewpoint.y();
+    double wv0 = lv, wv1 = hv;
+    completeInterval(wv0, wv1, min_v, size_typical.y(), view_v, {}, 0, 0);
+    freeAlong(true, wv0, wv1, free_u);
+    completeInterval(lu, hu, min_u, size_typical.x(), view_u, free_u, p.free_cells_to_move, p.free_step);
+    freeAlong(false, lu, hu, free_v);
+    completeInterval(lv, hv, min_v, size_typical.y(), view_v, free_v, p.free_cells_to_move, p.free_step);
     if (hi_z - lo_z < size_min.z()) lo_z = hi_z - size_typical.z();
     const double cu = 0.5 * (lu + hu), cv_ = 0.5 * (lv + hv);
     Cuboid box;
@@ -180,6 +220,16 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   // No face was long enough to be the length: the length may run along either axis.
   if (box && other_reading && std::max(face_u, face_v) < size_min.x())
     *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
+  if (box && other_reading && *other_reading && free_space && p.free_cells_to_move > 0) {
+    auto freeIn = [&](const Cuboid& b) {
+      const double yaw_b = std::atan2(b.pose.linear()(1, 0), b.pose.linear()(0, 0));
+      const double cu = std::cos(yaw_b) * b.pose.translation().x() + std::sin(yaw_b) * b.pose.translation().y();
+      const double cv_ = -std::sin(yaw_b) * b.pose.translation().x() + std::cos(yaw_b) * b.pose.translation().y();
+      return freeCellsIn(*free_space, yaw_b, cu - 0.5 * b.dims.x(), cu + 0.5 * b.dims.x(), cv_ - 0.5 * b.dims.y(),
+                         cv_ + 0.5 * b.dims.y());
+    };
+    if (freeIn(*box) - freeIn(**other_reading) >= p.free_cells_to_move) std::swap(*box, **other_reading);
+  }
   return box;
 }
 

@@ -159,6 +159,15 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "hidden_margin", p.hidden_margin, 0.0);
     opt(c, "max_ground_rise", p.max_ground_rise, 0.0);
   }
+  if (n.has("free_space")) {
+    const ConfigNode c = n.child("free_space");
+    auto& p = g.free_space;
+    opt(c, "cell", p.cell, 0.0);
+    opt(c, "band_low", p.band_low, 0.0);
+    opt(c, "band_high", p.band_high, p.band_low);
+    opt(c, "margin", p.margin, 0.0);
+    opt(c, "azimuth_step_deg", p.azimuth_step_deg, 0.05, 10.0);
+  }
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }
 
@@ -190,6 +199,8 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "min_visible_fraction", p.min_visible_fraction, 0.0);
     opt(c, "size_tolerance", p.size_tolerance, 1.0);
     opt(c, "complete_fraction", p.complete_fraction, 0.0, 1.0);
+    opt(c, "free_cells_to_move", p.free_cells_to_move, 0);
+    opt(c, "free_step", p.free_step, 0.01);
     opt(c, "min_points", p.min_points, 3);
   }
   if (n.has("ellipsoid")) {

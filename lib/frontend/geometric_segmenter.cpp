@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -282,7 +283,21 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   for (std::size_t i = 0; i < cloud.size(); ++i) taken[i] |= cut[i];
 
   // 2. Cars, 3. other.
-  for (const auto& cl : carClusters(cloud, h, above, lines, cut, params_, taken)) emit(params_.car_class, cl);
+  // Each car carries the cells near it that lines of sight passed through in a car body's height
+  // band: its box is not completed over them (a hidden end lies where the view was blocked, not
+  // where it went through).
+  const std::vector<std::vector<int>> cars = carClusters(cloud, h, above, lines, cut, params_, taken);
+  std::optional<FreeSpace> free;
+  if (!cars.empty() && params_.free_space.cell > 0) free.emplace(cloud, params_.free_space);
+  const double reach = classes_.at(params_.car_class).typicalSize().x();
+  for (const auto& cl : cars) {
+    emit(params_.car_class, cl);
+    if (!free) continue;
+    std::vector<double> ground;
+    ground.reserve(cl.size());
+    for (int i : cl) ground.push_back(cloud[i].z() - h[i]);
+    out.back().free_space = free->near(cl, static_cast<float>(quantileInPlace(ground, 0.5)), reach);
+  }
   if (params_.emit_other)
     for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
       emit(params_.other_class, cl, params_.other_confidence);

@@ -11,6 +11,7 @@
 //     whose surfaces are solid (not foliage), that are seen whole (not cut off by a nearer
 //     occluder beside them; see occlusion.h) and that are no upright column.
 #include "frontend/column_detection.h"
+#include "frontend/free_space.h"
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
 #include "frontend/occlusion.h"
@@ -90,6 +91,9 @@ struct GeometricSegmenterParams {
   ColumnParams column;
   ViewCutParams view_cut;
   CarParams car;
+  // Cells a car instance's box may not be completed over: where lines of sight near it passed
+  // through a car body's height band (Instance::free_space; cell 0: none).
+  FreeSpaceParams free_space;
   GridClusterParams other_cluster{0.3, false, 30};
   bool emit_other = true;        // emit "other" instances for remaining compact clusters ...
   // ... whose range roughness (as CarParams::max_roughness) is at most this: solid things (bins,

@@ -17,6 +17,9 @@ struct Instance {
   int class_id = 0;        // key into the ClassTable
   float confidence = 1.0f;
   Cloud points;            // sensor frame
+  // Sensor frame: centres of cells near the object the sensor saw through (FreeSpace): no part
+  // of it stands there. Empty when not known.
+  Cloud free_space;
 };
 
 struct FrameInstances {

@@ -22,7 +22,7 @@ bool withinClassSize(const Object& o, const ClassInfo& info, const FitParams& p,
 
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
                                 const Eigen::Vector3d& viewpoint, std::string* why,
-                                std::optional<Object>* other_reading) {
+                                std::optional<Object>* other_reading, const Cloud* free_space) {
   if (other_reading) other_reading->reset();
   const ClassInfo* info = classes.find(class_id);
   if (!info) {
@@ -35,7 +35,7 @@ std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable
   switch (info->shape) {
     case Shape::Cuboid: {
       auto box = fitCuboid(pts, p.cuboid, viewpoint, info->size_min, info->size_max, info->typicalSize(), why,
-                           other_reading ? &other : nullptr);
+                           other_reading ? &other : nullptr, free_space);
       if (!box) return std::nullopt;
       o.model = *box;
       break;

@@ -35,6 +35,10 @@ struct CuboidFitParams {
   // A horizontal extent shorter than this fraction of the class's typical one is taken as partly
   // hidden and grows to the typical extent away from the sensor (0: only below the class minimum).
   double complete_fraction = 0.9;
+  // ... unless placed elsewhere along its axis it covers at least this many fewer of the cells
+  // seen empty (free_space; 0: never moved), tried in steps of free_step metres.
+  int free_cells_to_move = 2;
+  double free_step = 0.1;
   int min_points = 30;
 };
 
@@ -67,10 +71,13 @@ std::optional<Cylinder> fitCylinder(const Cloud& pts, const CylinderFitParams& p
 // along the other axis. When no visible face is as long as the class's shortest length, which
 // axis holds the length is a guess: *other_reading (when given) then gets the box with the
 // length along the other axis (if that fits the class), and stays empty otherwise.
+// free_space (when given): cells seen empty (FreeSpace, same frame as pts): a completed extent is
+// placed where it covers fewer of them than away from the viewpoint, when it can
+// (CuboidFitParams::free_cells_to_move).
 std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, const Eigen::Vector3d& viewpoint,
                                 const Eigen::Vector3d& size_min, const Eigen::Vector3d& size_max,
                                 const Eigen::Vector3d& size_typical, std::string* why = nullptr,
-                                std::optional<Cuboid>* other_reading = nullptr);
+                                std::optional<Cuboid>* other_reading = nullptr, const Cloud* free_space = nullptr);
 // The centroid is completed away from the viewpoint: each horizontal slice is taken as a circle
 // seen from the viewpoint (its nearest range and angular width give the centre's distance), so a
 // partly seen object is as deep as it is wide across the line of sight.
@@ -82,8 +89,9 @@ std::optional<Ellipsoid> fitEllipsoid(const Cloud& pts, const EllipsoidFitParams
 
 // The model of the object's class (ClassTable shape), with class size gates applied.
 // *other_reading (when given): a box's other reading, as fitCuboid gives it (passing the same gates).
+// free_space: cells seen empty near the object (boxes only; fitCuboid).
 std::optional<Object> fitObject(const Cloud& pts, int class_id, const ClassTable& classes, const FitParams& p,
                                 const Eigen::Vector3d& viewpoint, std::string* why = nullptr,
-                                std::optional<Object>* other_reading = nullptr);
+                                std::optional<Object>* other_reading = nullptr, const Cloud* free_space = nullptr);
 
 }  // namespace slide::frontend

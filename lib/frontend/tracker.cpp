@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <unordered_set>
 #include <opencv2/imgproc.hpp>
 
 #include "assignment/hungarian.h"
@@ -27,25 +28,19 @@ void absorb(Track& older, Track& younger, int max_observations) {
   older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
                                     [](const auto& x, const auto& y) { return x.second < y.second; })->first;
   if (younger.missed < older.missed) older.missed = younger.missed, older.last_centroid = younger.last_centroid;
-  for (std::size_t i = 0; i < younger.observations.size(); ++i) {
-    older.observations.push_back(std::move(younger.observations[i]));
-    older.viewpoints.push_back(younger.viewpoints[i]);
-  }
-  while (static_cast<int>(older.observations.size()) > max_observations) {
-    older.observations.pop_front();
-    older.viewpoints.pop_front();
-  }
+  for (auto& o : younger.observations) older.observations.push_back(std::move(o));
+  while (static_cast<int>(older.observations.size()) > max_observations) older.observations.pop_front();
   older.moving = older.moving || younger.moving;
 }
 
 // Up to `max_points` of the track's accumulated points on the ground plane, evenly spread.
 void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Point2f>& out) {
   std::size_t n = 0;
-  for (const auto& o : t.observations) n += o.size();
+  for (const auto& o : t.observations) n += o.points.size();
   const std::size_t step = std::max<std::size_t>(1, n / std::max<std::size_t>(1, max_points));
   std::size_t k = 0;
   for (const auto& o : t.observations)
-    for (const auto& p : o)
+    for (const auto& p : o.points)
       if (k++ % step == 0) out.emplace_back(p.x(), p.y());
 }
 
@@ -57,16 +52,29 @@ double centroidDistance(Shape shape, const Eigen::Vector3d& a, const Eigen::Vect
 
 Cloud Track::accumulated() const {
   Cloud out;
-  for (const auto& o : observations) out.insert(out.end(), o.begin(), o.end());
+  for (const auto& o : observations) out.insert(out.end(), o.points.begin(), o.points.end());
+  return out;
+}
+
+Cloud Track::freeSpace() const {
+  // Observations from nearby viewpoints see through the same cells: each 0.1 m cell counted once.
+  Cloud out;
+  std::unordered_set<std::int64_t> seen;
+  for (const auto& o : observations)
+    for (const auto& q : o.free_space) {
+      const std::int64_t key = (static_cast<std::int64_t>(std::floor(q.x() * 10.0f)) << 32) ^
+                               (static_cast<std::int64_t>(std::floor(q.y() * 10.0f)) & 0xffffffffLL);
+      if (seen.insert(key).second) out.push_back(q);
+    }
   return out;
 }
 
 Eigen::Vector3d Track::viewpoint() const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double n = 0;
-  for (std::size_t i = 0; i < observations.size() && i < viewpoints.size(); ++i) {
-    sum += static_cast<double>(observations[i].size()) * viewpoints[i];
-    n += static_cast<double>(observations[i].size());
+  for (const auto& o : observations) {
+    sum += static_cast<double>(o.points.size()) * o.viewpoint;
+    n += static_cast<double>(o.points.size());
   }
   return n > 0 ? Eigen::Vector3d(sum / n) : last_centroid;
 }
@@ -77,7 +85,7 @@ Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
 bool Tracker::exceedsClassSize(const Track& t) const {
   std::vector<cv::Point2f> pts;
   for (const auto& o : t.observations)
-    for (const auto& p : o) pts.emplace_back(p.x(), p.y());
+    for (const auto& p : o.points) pts.emplace_back(p.x(), p.y());
   return exceedsClassSize(pts, t.class_id);
 }
 
@@ -100,9 +108,8 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   struct Obs {
     int class_id;
     float confidence;
-    Cloud points;
+    Observation seen;
     Eigen::Vector3d centroid;
-    Eigen::Vector3d viewpoint;
   };
   std::map<int, std::vector<Obs>> by_class;
   for (const auto& inst : frame.instances) {
@@ -122,20 +129,22 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
       issues.count("empty instance");
       continue;
     }
-    Obs o{inst.class_id, inst.confidence, transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)), {},
-          frame.odom_pose.translation()};
+    Obs o{inst.class_id, inst.confidence,
+          {transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)),
+           frame.odom_pose.translation(), transformCloud(frame.odom_pose, inst.free_space)},
+          {}};
     if (params_.drop_oversized) {
       // Larger than the class on its own: several objects joined by the segmenter, not one
       // (added to a track it would make the track look moving).
       std::vector<cv::Point2f> xy;
-      xy.reserve(o.points.size());
-      for (const auto& p : o.points) xy.emplace_back(p.x(), p.y());
+      xy.reserve(o.seen.points.size());
+      for (const auto& p : o.seen.points) xy.emplace_back(p.x(), p.y());
       if (exceedsClassSize(xy, inst.class_id)) {
         issues.count("instance larger than its class");
         continue;
       }
     }
-    o.centroid = centroidOf(o.points);
+    o.centroid = centroidOf(o.seen.points);
     by_class[inst.class_id].push_back(std::move(o));
   }
 
@@ -148,12 +157,8 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.class_votes[o.class_id] += std::isfinite(o.confidence) ? std::clamp(o.confidence, 1e-3f, 1.0f) : 1e-3f;
     t.class_id = std::max_element(t.class_votes.begin(), t.class_votes.end(),
                                   [](const auto& x, const auto& y) { return x.second < y.second; })->first;
-    t.observations.push_back(std::move(o.points));
-    t.viewpoints.push_back(o.viewpoint);
-    while (static_cast<int>(t.observations.size()) > params_.max_observations) {
-      t.observations.pop_front();
-      t.viewpoints.pop_front();
-    }
+    t.observations.push_back(std::move(o.seen));
+    while (static_cast<int>(t.observations.size()) > params_.max_observations) t.observations.pop_front();
     if (!t.moving && exceedsClassSize(t)) t.moving = true;
     matched[t.id] = true;
   };
@@ -298,10 +303,12 @@ void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fi
 }
 }  // namespace
 
-std::optional<Object> Tracker::fitPoints(const Cloud& points, const Eigen::Vector3d& view, int class_id, std::int64_t id,
-                                         int hits, double confidence_sum, const Pose& T_body_odom,
-                                         std::optional<Object>* other) const {
-  auto o = fitObject(transformCloud(T_body_odom, points), class_id, classes_, fit_, T_body_odom * view, nullptr, other);
+std::optional<Object> Tracker::fitPoints(const Cloud& points, const Cloud& free_space, const Eigen::Vector3d& view,
+                                         int class_id, std::int64_t id, int hits, double confidence_sum,
+                                         const Pose& T_body_odom, std::optional<Object>* other) const {
+  const Cloud free_body = transformCloud(T_body_odom, free_space);
+  auto o = fitObject(transformCloud(T_body_odom, points), class_id, classes_, fit_, T_body_odom * view, nullptr, other,
+                     &free_body);
   if (!o) return std::nullopt;
   o->id = id;
   o->num_observations = hits;
@@ -338,7 +345,7 @@ void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<O
         continue;
       std::vector<const Track*> both = members[a];
       both.insert(both.end(), members[b].begin(), members[b].end());
-      Cloud points;
+      Cloud points, free;
       Eigen::Vector3d view = Eigen::Vector3d::Zero();  // the tracks' viewpoints weighted by their points
       int hits = 0;
       double confidence_sum = 0;
@@ -346,11 +353,13 @@ void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<O
         const Cloud c = t->accumulated();
         view += static_cast<double>(c.size()) * t->viewpoint();
         points.insert(points.end(), c.begin(), c.end());
+        const Cloud f = t->freeSpace();
+        free.insert(free.end(), f.begin(), f.end());
         hits += t->hits, confidence_sum += t->confidence_sum;
       }
       view /= std::max<double>(1.0, static_cast<double>(points.size()));
       std::optional<Object> other;
-      auto o = fitPoints(points, view, fits[a].first.class_id, fits[a].first.id, hits, confidence_sum, T_body_odom,
+      auto o = fitPoints(points, free, view, fits[a].first.class_id, fits[a].first.id, hits, confidence_sum, T_body_odom,
                          readings ? &other : nullptr);
       if (!o) continue;
       fits[a] = {std::move(*o), std::move(other)};
@@ -374,7 +383,7 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     std::optional<Object> other;
-    auto o = fitPoints(t.accumulated(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
+    auto o = fitPoints(t.accumulated(), t.freeSpace(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
                        readings ? &other : nullptr);
     if (o) fits.emplace_back(std::move(*o), std::move(other));
   }

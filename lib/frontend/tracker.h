@@ -50,6 +50,13 @@ struct TrackerParams {
   double box_overlap = 0.5;
 };
 
+// One instance added to a track, in the odometry frame.
+struct Observation {
+  Cloud points;
+  Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();  // the body position it was seen from
+  Cloud free_space;  // cells near it the sensor saw through (Instance::free_space)
+};
+
 struct Track {
   std::int64_t id = 0;
   int class_id = 0;
@@ -59,9 +66,9 @@ struct Track {
   double confidence_sum = 0;
   std::map<int, double> class_votes;  // observations per class weighed by confidence; class_id is the largest
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
-  std::deque<Cloud> observations;                           // odometry frame
-  std::deque<Eigen::Vector3d> viewpoints;  // odometry frame: the body position of each observation
+  std::deque<Observation> observations;  // the latest max_observations
   Cloud accumulated() const;
+  Cloud freeSpace() const;  // the observations' free_space cells together
   // Where the accumulated points were seen from: the mean of the observations' viewpoints,
   // weighted by their points (a partly seen object is completed away from it).
   Eigen::Vector3d viewpoint() const;
@@ -99,9 +106,10 @@ class Tracker {
   void mergeBoxTracks(std::map<std::int64_t, bool>& matched);
   // The model of `points` (odometry frame) seen from `view`, in the body frame of T_body_odom,
   // carrying the track's id, hits and mean confidence; its other reading into *other if asked.
-  std::optional<Object> fitPoints(const Cloud& points, const Eigen::Vector3d& view, int class_id, std::int64_t id,
-                                  int hits, double confidence_sum, const Pose& T_body_odom,
-                                  std::optional<Object>* other) const;
+  // free_space: cells seen empty near it (odometry frame).
+  std::optional<Object> fitPoints(const Cloud& points, const Cloud& free_space, const Eigen::Vector3d& view,
+                                  int class_id, std::int64_t id, int hits, double confidence_sum,
+                                  const Pose& T_body_odom, std::optional<Object>* other) const;
   // Reported boxes of one class whose footprints overlap by more than box_overlap of the smaller
   // one's: the older's entry becomes the fit of all their tracks' points, the younger's is dropped.
   void joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,

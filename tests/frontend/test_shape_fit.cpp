@@ -392,3 +392,37 @@ TEST(EllipsoidFit, AViewCutShortByAnOccluderKeepsTheClassTypicalHalfDepth) {
   ASSERT_TRUE(bare);
   EXPECT_LT((bare->centroid - c).head<2>().dot(ray), -0.3);
 }
+
+// A 2.0 m face 10 m off, across the line of sight (x = 10, y -1 to 1): as wide as a car's end and
+// too short for its side, so its length may run either way. The fit reads it as an end face
+// (length along x, behind it) and keeps the side reading as the other one. Cells seen empty in
+// front of the face and from 1 m behind it, where any box of that reading would stand, make the
+// readings change places; cells elsewhere do not.
+TEST(CuboidFit, TheReadingOverCellsSeenEmptyGivesWayToTheOther) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const ClassInfo& car = classes.at(10);
+  frontend::Cloud face;
+  for (double y = -1.0; y <= 1.0; y += 0.04)
+    for (double z = 0.1; z <= 1.4; z += 0.1) face.emplace_back(10.0f, static_cast<float>(y), static_cast<float>(z));
+  frontend::Cloud behind, aside;  // behind: and in front, where the lines of sight to the face passed
+  for (double x = 6.0; x <= 14.0; x += 0.2)
+    for (double y = -0.8; y <= 0.8; y += 0.2)
+      if (x < 9.6 || x > 11.0) behind.emplace_back(static_cast<float>(x), static_cast<float>(y), 0.6f);
+  for (double x = 10.2; x <= 11.8; x += 0.2) aside.emplace_back(static_cast<float>(x), 6.0f, 0.6f);
+  auto yawOfBox = [](const Cuboid& b) { return std::atan2(b.pose.linear()(1, 0), b.pose.linear()(0, 0)); };
+  auto fit = [&](const frontend::Cloud* free, std::optional<Cuboid>& other) {
+    return frontend::fitCuboid(face, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(),
+                               nullptr, &other, free);
+  };
+  std::optional<Cuboid> other;
+  const auto plain = fit(nullptr, other);
+  ASSERT_TRUE(plain && other);
+  EXPECT_LT(std::abs(std::sin(yawOfBox(*plain))), 0.05) << "an end face: the length runs along x";
+  const auto unmoved = fit(&aside, other);
+  ASSERT_TRUE(unmoved && other);
+  EXPECT_LT(std::abs(std::sin(yawOfBox(*unmoved))), 0.05) << "cells away from both readings change nothing";
+  const auto swapped = fit(&behind, other);
+  ASSERT_TRUE(swapped && other);
+  EXPECT_GT(std::abs(std::sin(yawOfBox(*swapped))), 0.99) << "the length runs along the face";
+  EXPECT_LT(std::abs(std::sin(yawOfBox(*other))), 0.05) << "the end reading is kept as the other one";
+}

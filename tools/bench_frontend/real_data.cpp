@@ -72,7 +72,8 @@ KittiScanResult evaluateKittiScan(const std::string& bin_path, const frontend::L
     const auto instances = segmenter.segment(scan, issues);
     std::vector<Object> fitted;
     for (const auto& inst : instances)
-      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero()))
+      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero(), nullptr,
+                                       nullptr, &inst.free_space))
         fitted.push_back(*o);
     r.segment_fit_wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     r.segment_fit_ms.push_back(clock::threadCpuMs() - c0);

@@ -182,7 +182,8 @@ int main(int argc, char** argv) {
     std::vector<Found> found;
     int unfitted = 0;
     for (const auto& inst : instances) {
-      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero())) {
+      if (auto o = frontend::fitObject(inst.points, inst.class_id, classes, cfg.fit, Eigen::Vector3d::Zero(), nullptr,
+                                       nullptr, &inst.free_space)) {
         o->id = inst.id;
         found.push_back({*o, static_cast<int>(inst.points.size())});
       } else {
