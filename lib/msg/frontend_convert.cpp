@@ -1,10 +1,15 @@
 #include "msg/frontend_convert.h"
 
+#include <cmath>
 #include <limits>
 
 #include "msg/convert.h"
 
 namespace slide::msg {
+
+namespace {
+constexpr float kFreeQuantum = 0.1f;  // metres per unit of object_instance_t::free_xy
+}  // namespace
 
 io::LabelledScan fromLcm(const lidar_scan_t& m, frontend::InputIssues& issues) {
   io::LabelledScan s;
@@ -94,6 +99,13 @@ frame_instances_t toLcm(const frontend::FrameInstances& f, const header_t& heade
     o.xyz.assign(inst.points.size(), std::vector<float>(3, 0.0f));
     for (std::size_t i = 0; i < inst.points.size(); ++i)
       for (int k = 0; k < 3; ++k) o.xyz[i][k] = inst.points[i][k];
+    o.free_z = inst.free_space.empty() ? 0.0f : inst.free_space.front().z();
+    for (const auto& q : inst.free_space) {
+      const float x = std::round(q.x() / kFreeQuantum), y = std::round(q.y() / kFreeQuantum);
+      if (std::abs(x) <= 32767 && std::abs(y) <= 32767)
+        o.free_xy.push_back({static_cast<int16_t>(x), static_cast<int16_t>(y)});
+    }
+    o.num_free = static_cast<int32_t>(o.free_xy.size());
     m.instances.push_back(std::move(o));
   }
   return m;
@@ -111,6 +123,11 @@ frontend::FrameInstances fromLcm(const frame_instances_t& m) {
     inst.points.reserve(o.xyz.size());
     for (const auto& p : o.xyz)
       if (p.size() == 3) inst.points.emplace_back(p[0], p[1], p[2]);
+    if (std::isfinite(o.free_z)) {
+      inst.free_space.reserve(o.free_xy.size());
+      for (const auto& c : o.free_xy)
+        if (c.size() == 2) inst.free_space.emplace_back(c[0] * kFreeQuantum, c[1] * kFreeQuantum, o.free_z);
+    }
     f.instances.push_back(std::move(inst));
   }
   return f;

@@ -161,9 +161,13 @@ TEST(Messages, FrameInstances) {
   inst.confidence = 1;
   inst.num_points = 2;
   inst.xyz = {{1, 1, 1}, {2, 2, 2}};
+  inst.num_free = 1;
+  inst.free_xy = {{-3, 7}};
+  inst.free_z = -1.2f;
   m.instances = {inst, inst};
   m.num_instances = 2;
   EXPECT_EQ(roundTrip(m).instances[1].xyz[1][2], 2.0f);
+  EXPECT_EQ(roundTrip(m).instances[1].free_xy[0][1], 7);
 }
 
 TEST(Messages, KeyPoseBundleTrajectoryMap) {

@@ -4,6 +4,7 @@
 // counted, never published.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
 #include "frontend/frontend_config.h"
@@ -185,4 +186,32 @@ TEST(FrontendNodes, PreviewIsAThinnedCopyOfAFrameEveryPeriod) {
     }
     for (int a = 0; a < 3; ++a) EXPECT_DOUBLE_EQ(m.odom_pose.position[a], f.odom_pose.position[a]);
   }
+}
+
+// The cells a car's box is not completed over travel with its instance from the segmenter to the
+// tracker: on their 0.2 m grid the bus's 0.1 m units keep them exactly; a non-finite height drops
+// them (the points stay).
+TEST(FrontendNodes, FreeCellsTravelWithTheirInstance) {
+  frontend::FrameInstances f;
+  frontend::Instance inst;
+  inst.id = 1, inst.class_id = 10;
+  inst.points = {Eigen::Vector3f(8, 1, 0), Eigen::Vector3f(8, 2, 0.5f)};
+  inst.free_space = {Eigen::Vector3f(7.9f, 0.3f, -0.9f), Eigen::Vector3f(-12.1f, 3.5f, -0.9f)};
+  f.instances = {inst};
+  header_t h{};
+  const frontend::FrameInstances back = msg::fromLcm(decoded<frame_instances_t>([&] {
+    const frame_instances_t m = msg::toLcm(f, h);
+    std::vector<uint8_t> bytes(m.getEncodedSize());
+    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    return bytes;
+  }()));
+  ASSERT_EQ(back.instances.size(), 1u);
+  ASSERT_EQ(back.instances[0].free_space.size(), 2u);
+  for (int k = 0; k < 2; ++k) EXPECT_LT((back.instances[0].free_space[k] - inst.free_space[k]).norm(), 1e-5f);
+
+  frame_instances_t hostile = msg::toLcm(f, h);
+  hostile.instances[0].free_z = std::numeric_limits<float>::quiet_NaN();
+  const frontend::FrameInstances dropped = msg::fromLcm(hostile);
+  EXPECT_TRUE(dropped.instances[0].free_space.empty());
+  EXPECT_EQ(dropped.instances[0].points.size(), 2u);
 }

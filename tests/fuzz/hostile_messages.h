@@ -138,6 +138,7 @@ inline frame_instances_t instances(int robot, int seq) {
   m.odom_pose = pose(seq * 0.5, 0);
   object_instance_t o;
   o.instance_id = 1, o.class_id = 1, o.confidence = 0.9f, o.num_points = 20;
+  o.num_free = 2, o.free_xy = {{40, 0}, {41, 1}}, o.free_z = -1.0f;
   for (int i = 0; i < 20; ++i) o.xyz.push_back({4.f + 0.02f * (i % 5), 0.02f * (i / 5), 0.1f * i});
   m.instances = {o};
   m.num_instances = 1;

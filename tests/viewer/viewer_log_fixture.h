@@ -88,6 +88,8 @@ inline frame_instances_t instancesMsg(int robot, int points) {
   o.confidence = 0.9f;
   for (int i = 0; i < points; ++i) o.xyz.push_back({10.0f + 0.01f * i, 5.0f, 0.5f});
   o.num_points = points;
+  o.num_free = 0;
+  o.free_z = 0;
   m.instances.push_back(o);
   m.num_instances = 1;
   return m;
