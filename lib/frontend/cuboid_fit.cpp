@@ -220,7 +220,7 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   // No face was long enough to be the length: the length may run along either axis.
   if (box && other_reading && std::max(face_u, face_v) < size_min.x())
     *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
-  if (box && other_reading && *other_reading && free_space && p.free_cells_to_move > 0) {
+  if (box && other_reading && *other_reading && free_space && p.free_cells_to_swap > 0) {
     auto freeIn = [&](const Cuboid& b) {
       const double yaw_b = std::atan2(b.pose.linear()(1, 0), b.pose.linear()(0, 0));
       const double cu = std::cos(yaw_b) * b.pose.translation().x() + std::sin(yaw_b) * b.pose.translation().y();
@@ -228,7 +228,7 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
       return freeCellsIn(*free_space, yaw_b, cu - 0.5 * b.dims.x(), cu + 0.5 * b.dims.x(), cv_ - 0.5 * b.dims.y(),
                          cv_ + 0.5 * b.dims.y());
     };
-    if (freeIn(*box) - freeIn(**other_reading) >= p.free_cells_to_move) std::swap(*box, **other_reading);
+    if (freeIn(*box) - freeIn(**other_reading) >= p.free_cells_to_swap) std::swap(*box, **other_reading);
   }
   return box;
 }

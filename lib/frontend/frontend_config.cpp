@@ -201,6 +201,7 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "complete_fraction", p.complete_fraction, 0.0, 1.0);
     opt(c, "free_cells_to_move", p.free_cells_to_move, 0);
     opt(c, "free_step", p.free_step, 0.01);
+    opt(c, "free_cells_to_swap", p.free_cells_to_swap, 0);
     opt(c, "min_points", p.min_points, 3);
   }
   if (n.has("ellipsoid")) {
@@ -304,6 +305,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "box_merge_growth", p.box_merge_growth, 0.0);
     opt(c, "parallel_radius", p.parallel_radius, 0.0);
     opt(c, "box_overlap", p.box_overlap, 0.0, 1.0);
+    opt(c, "box_same_centre", p.box_same_centre, 0.0);
   }
   if (root.has("keypose")) {
     const ConfigNode c = root.child("keypose");

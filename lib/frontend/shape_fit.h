@@ -39,6 +39,9 @@ struct CuboidFitParams {
   // seen empty (free_space; 0: never moved), tried in steps of free_step metres.
   int free_cells_to_move = 2;
   double free_step = 0.1;
+  // A box whose length went unseen takes its other reading when that covers at least this many
+  // fewer cells seen empty (0: off).
+  int free_cells_to_swap = 2;
   int min_points = 30;
 };
 

@@ -340,9 +340,16 @@ void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<O
   for (std::size_t a = 0; a < fits.size(); ++a) {
     if (members[a].empty() || fits[a].first.shape() != Shape::Cuboid) continue;
     for (std::size_t b = a + 1; b < fits.size(); ++b) {
-      if (members[b].empty() || fits[b].first.class_id != fits[a].first.class_id ||
-          overlapShare(rectOf(fits[a].first), rectOf(fits[b].first)) <= params_.box_overlap)
-        continue;
+      if (members[b].empty() || fits[b].first.class_id != fits[a].first.class_id) continue;
+      // A box whose length went unseen may be read the other way: two boxes on one centre (within
+      // box_same_centre) are one object when a pair of their readings overlaps so (one car tracked
+      // twice, each track reading it its own way).
+      double share = overlapShare(rectOf(fits[a].first), rectOf(fits[b].first));
+      if ((fits[a].first.position() - fits[b].first.position()).head<2>().norm() < params_.box_same_centre)
+        for (const Object* x : {&fits[a].first, fits[a].second ? &*fits[a].second : nullptr})
+          for (const Object* y : {&fits[b].first, fits[b].second ? &*fits[b].second : nullptr})
+            if (x && y) share = std::max(share, overlapShare(rectOf(*x), rectOf(*y)));
+      if (share <= params_.box_overlap) continue;
       std::vector<const Track*> both = members[a];
       both.insert(both.end(), members[b].begin(), members[b].end());
       Cloud points, free;
@@ -388,7 +395,14 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     if (o) fits.emplace_back(std::move(*o), std::move(other));
   }
   if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
-  if (readings) settleBoxReadings(fits, params_.parallel_radius);
+  if (readings) {
+    settleBoxReadings(fits, params_.parallel_radius);
+    // A box settled into its other reading may now stand on another track's box: joined, and
+    // the joint box settled in turn.
+    const std::size_t before = fits.size();
+    if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
+    if (fits.size() < before) settleBoxReadings(fits, params_.parallel_radius);
+  }
   std::vector<Object> out;
   out.reserve(fits.size());
   for (auto& [o, other] : fits) {

@@ -48,6 +48,11 @@ struct TrackerParams {
   // smaller one's are one object tracked in two pieces: reported as one box fitted to both
   // tracks' points (0: off).
   double box_overlap = 0.5;
+  // ... also when their centres lie within this (m, x-y) and a pair of their readings (each box's
+  // other reading too) overlaps so: one car tracked twice, read one way by one track and the other
+  // way by the other (0: off). Boxes are joined again once their readings are settled
+  // (parallel_radius).
+  double box_same_centre = 0.5;
 };
 
 // One instance added to a track, in the odometry frame.

@@ -335,6 +335,43 @@ TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
   }
 }
 
+// A car's side (x 18-22.5 at y = 8.5, length along x) seen in two halves, split by a pole in
+// front (x 18-20.1 and 20.4-22.5), between two cars seen whole along x. Each half is a lone face
+// as wide as a car's end: read across, its box stands on its own stretch, beside the other's
+// (not joined). Its other reading, along x, is completed where the sensor did not see through
+// (cells seen empty beyond both ends of the side): over the whole car, for either half. Once the
+// neighbours settle both halves into that reading, the two boxes stand on one centre and are
+// reported as one car; without settling they stay two.
+TEST(Tracker, TwoHalvesOfACarSettledIntoOneReadingAreReportedAsOne) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  for (double radius : {cfg.tracker.parallel_radius, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.parallel_radius = radius;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), b = carInstance(), left = carInstance(), right = carInstance();
+    addFace(a, 12.0, 5.0, 16.4, 5.0);
+    addFace(b, 26.0, 12.0, 30.4, 12.0);
+    addFace(left, 18.0, 8.5, 20.1, 8.5);
+    addFace(right, 20.4, 8.5, 22.5, 8.5);
+    frontend::Cloud free;  // in front of the side, and beyond its ends
+    for (double x = 15.1; x <= 25.5; x += 0.2)
+      for (double y = 6.5; y <= 10.3; y += 0.2)
+        if (y < 8.3 || x < 17.8 || x > 22.7) free.emplace_back(static_cast<float>(x), static_cast<float>(y), 0.6f);
+    left.free_space = right.free_space = free;
+    feedFourFrames(tracker, {a, b, left, right});
+    ASSERT_EQ(tracker.tracks().size(), 4u);
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    int middle = 0;
+    for (const auto& o : objects)
+      if (std::abs(o.position().x() - 20.25) < 2.5) {
+        ++middle;
+        if (radius > 0) EXPECT_LT((o.position().head<2>() - Eigen::Vector2d(20.25, 9.4)).norm(), 0.3) << o.position().transpose();
+      }
+    EXPECT_EQ(middle, radius > 0 ? 1 : 2) << "radius " << radius;
+  }
+}
+
 // Two cars side by side joined into one instance (3.8 x 4.4 m: wider than any car) in one
 // frame: without the size check on single instances the car's track takes it and counts as
 // moving (no object); with it the instance is dropped and counted, the car stays.

@@ -171,6 +171,78 @@ std::vector<OptimizerNode::JournalInput> readInputs(const std::string& path) {
 
 }  // namespace
 
+// The host's own bundle b added with each object's association listed: the landmark it joined
+// (new or not), that landmark's place before (host frame), and the true objects nearest to the
+// object (placed by the true key pose) and to the landmark (placed by the host's true frame).
+static void explainBundle(backend::Optimizer& opt, const KeyPoseBundle& b, const TeamTruth& truth, const ClassTable& classes,
+                          const std::map<std::pair<int, int>, Pose>& odom_of) {
+  std::map<std::int64_t, Object> before;
+  for (const Object& o : opt.landmarks(false)) before[o.id] = o;
+  // Where odometry from the latest key pose puts this one, before the update.
+  Pose T_predicted = Pose::Identity();
+  const std::vector<backend::TrajectoryPose> traj = opt.trajectory(opt.hostRobot());
+  if (!traj.empty())
+    if (const auto it = odom_of.find({opt.hostRobot(), traj.back().seq}); it != odom_of.end())
+      T_predicted = traj.back().pose * it->second.inverse() * b.odom_pose;
+  const std::vector<backend::TrajectoryPose> traj_before = opt.trajectory(opt.hostRobot());
+  const backend::UpdateResult r = opt.addBundle(b);
+  std::map<std::int64_t, Object> after;
+  for (const Object& o : opt.landmarks(false)) after[o.id] = o;
+  const RobotTruth& host = truth.robot(opt.hostRobot());
+  const StampedPose* g = truthAt(host, b.utime * 1e-6);
+  Pose T_odom_body = Pose::Identity();
+  for (const backend::TrajectoryPose& p : opt.trajectory(opt.hostRobot()))
+    if (p.seq == b.seq) T_odom_body = p.pose;
+  auto nearestTruth = [&](const Eigen::Vector3d& w, int class_id, double& d) {
+    std::int64_t id = -1;
+    d = 1e9;
+    for (const Object& t : truth.objects)
+      if (classes.sameKind(t.class_id, class_id) && (t.position() - w).head<2>().norm() < d)
+        d = (t.position() - w).head<2>().norm(), id = t.id;
+    return id;
+  };
+  // How the update moved the host's earlier key poses (a full solve may move all of them).
+  {
+    std::map<int, Pose> after_pose;
+    for (const backend::TrajectoryPose& p : opt.trajectory(opt.hostRobot())) after_pose[p.seq] = p.pose;
+    std::printf("key poses moved by the update (m, every 10th):");
+    for (std::size_t i = 0; i < traj_before.size(); i += 10)
+      if (const auto it = after_pose.find(traj_before[i].seq); it != after_pose.end())
+        std::printf(" %d:%.2f", traj_before[i].seq, (it->second.translation() - traj_before[i].pose.translation()).head<2>().norm());
+    std::printf("\n");
+  }
+  std::printf("bundle %d (%zu objects), %s%s; the key pose lies %.2f m from where odometry put it:\n", b.seq,
+              b.objects.size(), r.accepted ? "accepted" : r.reason.c_str(), r.full_solve ? ", full solve" : "",
+              (T_odom_body.translation() - T_predicted.translation()).head<2>().norm());
+  for (std::size_t k = 0; k < b.objects.size(); ++k) {
+    const Object& o = b.objects[k];
+    const Eigen::Vector3d in_host = T_odom_body * o.position(), predicted = T_predicted * o.position();
+    double d_obj = 0, d_lm = 0;
+    const std::int64_t true_obj = g ? nearestTruth(g->pose * o.position(), o.class_id, d_obj) : -1;
+    const std::int64_t id = k < r.landmark_ids.size() ? r.landmark_ids[k] : -1;
+    const auto was = before.find(id);
+    std::printf("  %-6s at (%.2f, %.2f) host", classes.at(o.class_id).name.c_str(), in_host.x(), in_host.y());
+    if (const auto* box = std::get_if<Cuboid>(&o.model))
+      std::printf(" (box %.1f x %.1f, yaw %.0f deg%s, track %lld)", box->dims.x(), box->dims.y(),
+                  std::atan2((T_odom_body.linear() * box->pose.linear())(1, 0), (T_odom_body.linear() * box->pose.linear())(0, 0)) * 180 / M_PI,
+                  o.other_reading ? ", two readings" : "", static_cast<long long>(o.id));
+    std::printf(": true object %lld at %.2f m; ", static_cast<long long>(true_obj), d_obj);
+    if (id < 0) std::printf("dropped\n");
+    else if (was == before.end()) std::printf("new landmark %lld\n", static_cast<long long>(id));
+    else {
+      const std::int64_t true_lm = nearestTruth(host.T_world_odom * was->second.position(), o.class_id, d_lm);
+      const Eigen::Vector3d now = after.count(id) ? after.at(id).position() : was->second.position();
+      std::printf("landmark %lld, was at (%.2f, %.2f) %.2f m off as odometry put it, now %.2f m off (moved %.2f m); its true "
+                  "object %lld at %.2f m%s\n",
+                  static_cast<long long>(id), was->second.position().x(), was->second.position().y(),
+                  (was->second.position() - predicted).head<2>().norm(), (now - in_host).head<2>().norm(),
+                  (now - was->second.position()).head<2>().norm(),
+                  static_cast<long long>(true_lm), d_lm,
+                  true_lm != true_obj ? "  <-- another object" : "");
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"Replay an optimizer journal (state/optimizer<N>.journal of a team run, or the .lcmlog of older runs) "
                "in-process and print, against the simulator's ground truth, what each loop closure and inter-robot transform did to the estimate",
@@ -188,6 +260,10 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "Back-end configuration")->capture_default_str();
   app.add_option("--classes", classes_path, "Class table")->capture_default_str();
   app.add_option("--every", every, "Also print the state every this many bundles")->capture_default_str();
+  int explain = -1;
+  app.add_option("--explain", explain,
+                 "List how the host's own bundle of this sequence number was associated: each object's landmark, "
+                 "where the landmark stood before, and the true objects both belong to");
   bool own_only = false, observation_errors = false;
   app.add_flag("--own-only", own_only, "Replay only the host's own inputs (no peer bundles, no inter-robot transforms)");
   app.add_flag("--observation-errors", observation_errors,
@@ -242,7 +318,8 @@ int main(int argc, char** argv) {
         const KeyPoseBundle b = msg::fromLcm(m, nullptr);
         odom_of[{b.robot, b.seq}] = b.odom_pose;
         if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
-        node.handle(e->channel, e->data, e->datalen);
+        if (b.robot == robot && b.seq == explain) explainBundle(node.optimizer(), b, truth, classes, odom_of);
+        else node.handle(e->channel, e->data, e->datalen);
         if (++bundles % every == 0) {
           char prefix[64];
           std::snprintf(prefix, sizeof prefix, "#%d %d bundles:", index, bundles);
