@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "config/config.h"
 
@@ -413,4 +414,31 @@ TEST(BackendOptimizer, MergesADuplicateThatSharesAFewKeyPoses) {
   backend::BackendConfig tolerant;
   tolerant.merge_shared_fraction = 0.25;
   EXPECT_EQ(chairBesideTable(tolerant, true).size(), 2u);
+}
+
+// Two cars parked on either side of a street, 5 m apart (y = 5 and y = 0), seen 40 m off: the
+// first from key poses 0-3, the second from 4-7. The detection's own slack (twice its bearing
+// sigma, 0.05 rad x 40 m) would widen the car's 3 m threshold by 4 m and join the second car to
+// the first's landmark; capped (association_max_slack, 0.5 m by default) it gets its own.
+TEST(BackendOptimizer, ACarFarOffIsNotJoinedToTheCarAcrossTheStreet) {
+  auto landmarksOf = [](double max_slack) {
+    backend::BackendConfig cfg = backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
+    cfg.association_max_slack = max_slack;
+    backend::Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+    std::set<std::int64_t> ids;
+    for (int k = 0; k < 8; ++k) {
+      const Pose T_body_world = poseFromXyzYaw(0.5 * k, 0, 0, 0).inverse();
+      Object o;
+      o.id = 0;
+      o.class_id = 10;
+      o.model = Cuboid{T_body_world * poseFromXyzYaw(40, k < 4 ? 5 : 0, 0.75, 0), {4.5, 1.8, 1.5}};
+      const backend::UpdateResult r = opt.addBundle(stepBundle(k, {o}));
+      EXPECT_TRUE(r.accepted) << r.reason;
+      ids.insert(r.landmark_ids.at(0));
+    }
+    return ids.size();
+  };
+  EXPECT_GT(backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml").association_max_slack, 0);
+  EXPECT_EQ(landmarksOf(0.5), 2u);
+  EXPECT_EQ(landmarksOf(0.0), 1u) << "uncapped, the far car is taken for the one across the street";
 }

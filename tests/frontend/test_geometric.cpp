@@ -290,9 +290,9 @@ TEST(GeometricSegmenter, APartlyHiddenCarIsCompletedWhereTheViewWasBlockedNotWhe
   const frontend::Cloud c = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -1, -1), Eigen::Vector3d(9.8, 3.5, 0.5)),
                                           Eigen::AlignedBox3d(Eigen::Vector3d(5, -0.8, -1), Eigen::Vector3d(5.6, 0.4, 1.0))},
                                          true);
-  frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   const ClassTable classes = ClassTable::loadDefault();
-  cfg.geometric.free_space.cell = 0.2;  // off by default (config/frontend.yaml says why)
+  ASSERT_GT(cfg.geometric.free_space.cell, 0);
   ASSERT_GT(cfg.fit.cuboid.free_cells_to_move, 0);
   io::LabelledScan scan;
   scan.xyz = c;
