@@ -61,7 +61,6 @@ BackendConfig loadBackendConfig(const std::string& path) {
     const ConfigNode n = root.child("association");
     n.read("min_observations", c.min_observations);
     n.read("association_sigmas", c.association_sigmas);
-    n.read("association_max_slack", c.association_max_slack);
     n.read("association_gate", c.association_gate);
     if (c.association_gate < 0) n.fail("association_gate", "must not be negative (0 turns it off)");
     n.read("outlier_sigmas", c.outlier_sigmas);
@@ -70,7 +69,6 @@ BackendConfig loadBackendConfig(const std::string& path) {
     if (!(c.merge_shared_fraction >= 0 && c.merge_shared_fraction < 1))
       n.fail("merge_shared_fraction", "must lie in [0, 1)");
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
-    if (c.association_max_slack < 0) n.fail("association_max_slack", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
   }
   if (root.has("peers")) {

@@ -70,9 +70,6 @@ struct BackendConfig {
   // association_sigmas times the detection's own position sigma (range-bearing model).
   int min_observations = 3;
   double association_sigmas = 2.0;
-  // ... at most this many metres (0: no cap). A far detection's bearing sigma grows with its
-  // range; without a cap a car 40 m off is associable 7 m away, across a street of parked cars.
-  double association_max_slack = 0.0;
   double association_gate = 0.0;   // > 0: Mahalanobis gate (sigmas) with the detection's covariance
   double outlier_sigmas = 4.0;     // after full solves, observations beyond this are detached
   // After full solves, two landmarks never seen from one key pose are merged when associable;

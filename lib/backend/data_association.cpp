@@ -3,6 +3,7 @@
 #include "assignment/hungarian.h"
 #include "objects/association.h"
 
+#include <algorithm>
 #include <cmath>
 #include <Eigen/Cholesky>
 
@@ -12,6 +13,7 @@ double associationCost(const Object& detection, const Object& landmark, const Cl
   if (!classes.sameKind(detection.class_id, landmark.class_id)) return -1;
   const ClassInfo* c = classes.find(detection.class_id);
   if (!c) return -1;
+  if (c->association_max_slack > 0) slack = std::min(slack, c->association_max_slack);
   const double d = associationDistance(detection, landmark) / (c->association_distance + slack);
   const double m = modelDifference(detection, landmark) / c->model_difference;
   if (!(d <= 1.0) || !(m <= 1.0)) return -1;

@@ -153,9 +153,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     R.col(1) = Eigen::Vector2d(-u.y(), u.x());
     const Eigen::Matrix2d yaw = T_w_b.linear().topLeftCorner<2, 2>();
     const Eigen::Matrix2d cov = yaw * R * Eigen::Vector2d(sr * sr, st * st).asDiagonal() * R.transpose() * yaw.transpose();
-    double slack = cfg_.association_sigmas * std::max(sr, st);
-    if (cfg_.association_max_slack > 0) slack = std::min(slack, cfg_.association_max_slack);
-    world.push_back({transformObject(T_w_b, o), slack,
+    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * std::max(sr, st),
                      cfg_.association_gate > 0 ? cov : Eigen::Matrix2d::Zero(), cfg_.association_gate});
     grid_.near(world.back().object.position(), max_association_distance_ + world.back().slack + 1.0, near);
   }

@@ -42,6 +42,8 @@ ClassTable ClassTable::load(const std::string& path) {
     info.model_difference = c.get<double>("model_difference");
     if (info.association_distance <= 0) c.fail("association_distance", "must be positive");
     if (info.model_difference <= 0) c.fail("model_difference", "must be positive");
+    if (c.has("association_max_slack")) info.association_max_slack = c.get<double>("association_max_slack");
+    if (!(info.association_max_slack >= 0)) c.fail("association_max_slack", "must not be negative (0: no cap)");
     info.size_min = vec3(c, "size_min");
     info.size_max = vec3(c, "size_max");
     if ((info.size_min.array() < 0).any() || (info.size_max.array() < info.size_min.array()).any())

@@ -17,6 +17,9 @@ struct ClassInfo {
   Shape shape = Shape::Ellipsoid;
   double association_distance = 1.0;  // metres between centres (cylinders: to the axis)
   double model_difference = 1.0;      // metres, see modelDifference()
+  // Metres a detection's own position uncertainty may widen association_distance by (0: no cap).
+  // Cars park 2.5 m apart: a car 40 m off (bearing sigma 2 m) would be associable 7 m away.
+  double association_max_slack = 0.0;
   Eigen::Vector3d size_min = Eigen::Vector3d::Zero();  // bounding-box extents, see Object::extent()
   Eigen::Vector3d size_max = Eigen::Vector3d::Constant(1e9);
   // Typical extents (completion of partly seen objects); default per axis sqrt(size_min * size_max).

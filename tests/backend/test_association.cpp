@@ -82,8 +82,13 @@ TEST(BackendAssociation, CarsParkedSideBySideAreNotOneLandmark) {
   EXPECT_LT(backend::associationCost(car(2.5, 0, M_PI / 2), landmark, classes), 0.0);
   EXPECT_GE(backend::associationCost(car(0, 2.0, M_PI / 2), landmark, classes), 0.0);
   EXPECT_GE(backend::associationCost(car(1.2, -1.4, 0), landmark, classes), 0.0);
-  // A detection far out carries slack for its own uncertainty: it widens the footprints too.
-  EXPECT_GE(backend::associationCost(car(2.5, 0, M_PI / 2), landmark, classes, 1.6), 0.0);
+  // A detection far out carries slack for its own uncertainty, for cars at most 0.5 m of it
+  // (association_max_slack): the same car 3.2 m along its length is associable with it, the
+  // neighbour still is not (uncapped, 1.6 m of slack would widen the footprints enough).
+  ASSERT_DOUBLE_EQ(classes.at(10).association_max_slack, 0.5);
+  EXPECT_LT(backend::associationCost(car(0, 3.2, M_PI / 2), landmark, classes), 0.0);
+  EXPECT_GE(backend::associationCost(car(0, 3.2, M_PI / 2), landmark, classes, 1.6), 0.0);
+  EXPECT_LT(backend::associationCost(car(2.5, 0, M_PI / 2), landmark, classes, 1.6), 0.0);
   const std::vector<backend::LandmarkCandidate> one = {{7, &landmark}};
   EXPECT_EQ(backend::associateDetections({{car(2.5, 0, M_PI / 2), 0}}, one, classes)[0], -1);
 }

@@ -419,12 +419,19 @@ TEST(BackendOptimizer, MergesADuplicateThatSharesAFewKeyPoses) {
 // Two cars parked on either side of a street, 5 m apart (y = 5 and y = 0), seen 40 m off: the
 // first from key poses 0-3, the second from 4-7. The detection's own slack (twice its bearing
 // sigma, 0.05 rad x 40 m) would widen the car's 3 m threshold by 4 m and join the second car to
-// the first's landmark; capped (association_max_slack, 0.5 m by default) it gets its own.
+// the first's landmark; capped (the class table's association_max_slack, 0.5 m for cars) it gets
+// its own.
 TEST(BackendOptimizer, ACarFarOffIsNotJoinedToTheCarAcrossTheStreet) {
-  auto landmarksOf = [](double max_slack) {
-    backend::BackendConfig cfg = backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml");
-    cfg.association_max_slack = max_slack;
-    backend::Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+  const ClassTable shipped = ClassTable::loadDefault();
+  ASSERT_GT(shipped.at(10).association_max_slack, 0);
+  auto landmarksOf = [&](double max_slack) {
+    ClassTable classes;
+    for (int id : shipped.ids()) {
+      ClassInfo c = shipped.at(id);
+      if (id == 10) c.association_max_slack = max_slack;
+      classes.add(c);
+    }
+    backend::Optimizer opt(backend::BackendConfig{}, classes, 0);
     std::set<std::int64_t> ids;
     for (int k = 0; k < 8; ++k) {
       const Pose T_body_world = poseFromXyzYaw(0.5 * k, 0, 0, 0).inverse();
@@ -438,7 +445,6 @@ TEST(BackendOptimizer, ACarFarOffIsNotJoinedToTheCarAcrossTheStreet) {
     }
     return ids.size();
   };
-  EXPECT_GT(backend::loadBackendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml").association_max_slack, 0);
-  EXPECT_EQ(landmarksOf(0.5), 2u);
+  EXPECT_EQ(landmarksOf(shipped.at(10).association_max_slack), 2u);
   EXPECT_EQ(landmarksOf(0.0), 1u) << "uncapped, the far car is taken for the one across the street";
 }
