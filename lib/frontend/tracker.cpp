@@ -20,6 +20,10 @@ Cloud subsample(const Cloud& c, int max_points) {
   return out;
 }
 
+// Free cells kept per observation, per point kept: a car's cells within its typical length number a
+// few thousand at most; a hostile instance may carry any number.
+constexpr int kFreeCellsPerPoint = 4;
+
 // Moves `younger`'s observations, votes and counts into `older` (the lower id).
 void absorb(Track& older, Track& younger, int max_observations) {
   older.hits += younger.hits;
@@ -131,7 +135,8 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     }
     Obs o{inst.class_id, inst.confidence,
           {transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)),
-           frame.odom_pose.translation(), transformCloud(frame.odom_pose, inst.free_space)},
+           frame.odom_pose.translation(),
+           transformCloud(frame.odom_pose, subsample(inst.free_space, kFreeCellsPerPoint * params_.max_points_per_observation))},
           {}};
     if (params_.drop_oversized) {
       // Larger than the class on its own: several objects joined by the segmenter, not one

@@ -455,3 +455,20 @@ TEST(KeyPoseBundler, ATrackConfirmedBetweenKeyPosesIsReportedOnce) {
   EXPECT_EQ(bundles[1].objects[0].class_id, 1);
   EXPECT_TRUE(bundles[2].objects.empty());
 }
+
+// An instance may carry any number of free cells (a hostile or broken segmenter): each
+// observation keeps a bounded share of them, spread over all.
+TEST(Tracker, AnInstancesFreeCellsAreBounded) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  frontend::Tracker tracker(classes, cfg.tracker, cfg.fit);
+  frontend::Instance car = carInstance();
+  addFace(car, 8.0, 5.0, 12.4, 5.0);
+  for (int k = 0; k < 200000; ++k) car.free_space.emplace_back(0.01f * (k % 1000), 7.0f + 0.01f * (k / 1000), 0.6f);
+  feedFourFrames(tracker, {car});
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  for (const auto& o : tracker.tracks().begin()->second.observations) {
+    EXPECT_LE(o.free_space.size(), 4u * static_cast<std::size_t>(cfg.tracker.max_points_per_observation));
+    EXPECT_GT(o.free_space.size(), 1000u);
+  }
+}
