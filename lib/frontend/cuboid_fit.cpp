@@ -2,7 +2,6 @@
 #include <opencv2/imgproc.hpp>
 #include <unordered_set>
 
-#include "frontend/free_space.h"
 #include "frontend/point_stats.h"
 #include "frontend/shape_fit.h"
 
@@ -221,12 +220,14 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
   if (box && other_reading && std::max(face_u, face_v) < size_min.x())
     *other_reading = boxAlong(yaw_x + M_PI / 2, nullptr);
   if (box && other_reading && *other_reading && free_space && p.free_cells_to_swap > 0) {
-    auto freeIn = [&](const Cuboid& b) {
-      const double yaw_b = std::atan2(b.pose.linear()(1, 0), b.pose.linear()(0, 0));
-      const double cu = std::cos(yaw_b) * b.pose.translation().x() + std::sin(yaw_b) * b.pose.translation().y();
-      const double cv_ = -std::sin(yaw_b) * b.pose.translation().x() + std::cos(yaw_b) * b.pose.translation().y();
-      return freeCellsIn(*free_space, yaw_b, cu - 0.5 * b.dims.x(), cu + 0.5 * b.dims.x(), cv_ - 0.5 * b.dims.y(),
-                         cv_ + 0.5 * b.dims.y());
+    auto freeIn = [&](const Cuboid& b) {  // cells inside the box's footprint
+      const Pose T_box_points = b.pose.inverse();
+      int n = 0;
+      for (const auto& q : *free_space) {
+        const Eigen::Vector3d l = T_box_points * q.cast<double>();
+        n += std::abs(l.x()) <= 0.5 * b.dims.x() && std::abs(l.y()) <= 0.5 * b.dims.y();
+      }
+      return n;
     };
     if (freeIn(*box) - freeIn(**other_reading) >= p.free_cells_to_swap) std::swap(*box, **other_reading);
   }

@@ -103,14 +103,4 @@ Cloud FreeSpace::near(const std::vector<int>& cluster, float ground_z, double re
   return out;
 }
 
-int freeCellsIn(const Cloud& free, double yaw, double u0, double u1, double v0, double v1) {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  int n = 0;
-  for (const auto& q : free) {
-    const double u = c * q.x() + s * q.y(), v = -s * q.x() + c * q.y();
-    n += u >= u0 && u <= u1 && v >= v0 && v <= v1;
-  }
-  return n;
-}
-
 }  // namespace slide::frontend

@@ -37,8 +37,4 @@ class FreeSpace {
   std::vector<float> range_, slope_;  // ... their horizontal ranges and z / range
 };
 
-// How many of the cells `free` (x-y) lie inside the rectangle [u0, u1] x [v0, v1] of the axes at
-// heading `yaw`.
-int freeCellsIn(const Cloud& free, double yaw, double u0, double u1, double v0, double v1);
-
 }  // namespace slide::frontend
