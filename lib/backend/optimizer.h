@@ -246,7 +246,8 @@ class Optimizer {
   // Rebuilds the graph from the recorded inputs, leaving out every transform to `peer` and
   // then (if given) merging it through `T_host_peer`.
   void rebuildWithout(int peer, const std::optional<Pose>& T_host_peer);
-  // After a full solve: while some robot left its envelope, undo the newest merge.
+  // After a full solve: while some robot left its envelope, undo its merge (a peer) or the
+  // newest merge (the host).
   void guard(UpdateResult& r);
   bool refused(int peer, const Pose& T) const;
 

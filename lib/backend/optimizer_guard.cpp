@@ -92,12 +92,14 @@ void Optimizer::rebuildWithout(int peer, const std::optional<Pose>& T_host_peer)
 void Optimizer::guard(UpdateResult& r) {
   if (!cfg_.guard_estimate || replaying_) return;
   std::string why;
-  while (robotOutsideEnvelope(&why) >= 0) {
+  for (int outside; (outside = robotOutsideEnvelope(&why)) >= 0;) {
     if (merge_order_.empty()) {
       r.warnings.push_back("estimate outside the odometry envelope, no merge left to undo: " + why);
       return;
     }
-    const int peer = merge_order_.back();
+    // A merged peer that left its own envelope was merged through the transform that bent it;
+    // when the host left its envelope, the newest merge is the suspect.
+    const int peer = outside != host_ ? outside : merge_order_.back();
     refused_[peer].push_back(robots_[peer].T_host_robot);
     r.warnings.push_back("merge of robot " + std::to_string(peer) + " undone, its transform refused: " + why);
     rebuildWithout(peer, std::nullopt);

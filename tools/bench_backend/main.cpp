@@ -131,8 +131,14 @@ void reportRealistic(bench::BenchReport& rep, const std::string& name, const Rea
   rep.add(p + "wrong_transforms", r.wrong_inter, "", true, 0.0).note =
       "inter-robot transforms given more than 1 m or 2 deg from the least-squares alignment of the two own maps over "
       "the true objects both hold (or between maps sharing none)";
+  rep.add(p + "wrong_transforms_at_place", r.wrong_inter_at_place, "", true, 0.0).note =
+      "the same against the alignment over the true objects both maps hold within " +
+      std::to_string(static_cast<int>(RealisticRunResult::kPlaceRadius)) +
+      " m of the transform's inliers (bent maps sharing several places admit no one rigid alignment)";
+  if (!r.place_error_m.empty())
+    rep.add(p + "transform_vs_place_m.median", bench::median(r.place_error_m), "m").note = "against that alignment";
   if (!r.map_error_m.empty()) {
-    rep.add(p + "transform_vs_maps_m.median", bench::median(r.map_error_m), "m").note = "against that map alignment";
+    rep.add(p + "transform_vs_maps_m.median", bench::median(r.map_error_m), "m").note = "against the maps' alignment";
     rep.add(p + "transform_vs_frames_m.median", bench::median(r.frame_error_m), "m").note =
         "against the robots' true start frames (drift included)";
   }

@@ -42,10 +42,13 @@ int majority(const Votes& votes, std::int64_t id) {
 // The truth for a transform between two bent maps: the least-squares rigid motion (x, y, z,
 // yaw) taking B's objects onto A's over the true objects both maps hold (identified by the
 // simulator's object ids, for scoring only); nullopt when they share fewer than 3.
-std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const ObjectMap& b, const Votes& vb) {
+// With `near`, over those of A's objects within `radius` (horizontally) of it only.
+std::optional<Pose> mapAlignmentTruth(const ObjectMap& a, const Votes& va, const ObjectMap& b, const Votes& vb,
+                                      const std::optional<Eigen::Vector3d>& near = std::nullopt, double radius = 0) {
   std::map<int, Eigen::Vector3d> in_a;
   for (const Object& o : a.objects())
-    if (const int t = majority(va, o.id); t >= 0) in_a[t] = o.position();
+    if (const int t = majority(va, o.id); t >= 0 && (!near || (o.position() - *near).head<2>().norm() < radius))
+      in_a[t] = o.position();
   std::vector<Eigen::Vector3d> pa, pb;
   for (const Object& o : b.objects())
     if (const int t = majority(vb, o.id); t >= 0 && in_a.count(t)) {
@@ -174,12 +177,35 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
           }
           ++out.inter_transforms;
           given[lc.robot_b] = lc.T_a_b;
-          timed([&] { return opt.addRobotTransform(lc.robot_b, lc.T_a_b); });
+          // The place: the inliers' centroid in the host's map.
+          Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+          int in_host = 0;
+          for (const auto& [ia, ib] : lc.inliers)
+            for (const Object& o : published[host].objects())
+              if (o.id == ia) centre += o.position(), ++in_host;
+          const std::optional<Pose> place =
+              in_host ? mapAlignmentTruth(published[host], votes[host], published[lc.robot_b], votes[lc.robot_b],
+                                          centre / in_host, RealisticRunResult::kPlaceRadius)
+                      : std::nullopt;
+          if (place) {
+            const eval::TransformError e = eval::transformError(lc.T_a_b, *place);
+            out.place_error_m.push_back(e.translation_m);
+            out.wrong_inter_at_place += e.translation_m > 1.0 || e.yaw_deg > 2.0;
+          } else {
+            ++out.wrong_inter_at_place;
+          }
+          const backend::UpdateResult u = timed([&] { return opt.addRobotTransform(lc.robot_b, lc.T_a_b); });
+          spdlog::debug("key pose {}: transform to robot {} ({} inliers): {:.2f} m from the maps' alignment, {:.2f} m "
+                        "from the alignment at its place, {:.1f} m from the true frames; {}{}", k, lc.robot_b,
+                        lc.inliers.size(), maps ? eval::transformError(lc.T_a_b, *maps).translation_m : -1.0,
+                        place ? eval::transformError(lc.T_a_b, *place).translation_m : -1.0, f.translation_m,
+                        u.accepted ? "accepted" : "refused: " + u.reason, opt.merged(lc.robot_b) ? "" : " (not merged)");
         }
       }
     }
   }
   opt.fullSolve();
+  spdlog::debug("after the final solve: {} peers merged, {} merges undone", opt.numPeersMerged(), opt.unmerged());
   out.keyposes = opt.numKeyPoses();
 
   // Trajectories of the host and of the peers it merged, and their odometry placed by the
@@ -194,6 +220,17 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
       ref.push_back(host0_inv * r.truth[p.seq]);
     }
     const Pose T = r.id == host ? Pose::Identity() : given.count(r.id) ? given[r.id] : Pose::Identity();
+    {
+      std::vector<Pose> e, t, o;
+      for (const backend::TrajectoryPose& p : opt.trajectory(r.id)) {
+        e.push_back(p.pose);
+        t.push_back(host0_inv * r.truth[p.seq]);
+        o.push_back(T * r.bundles[p.seq].odom_pose);
+      }
+      spdlog::debug("robot {}: {} key poses, ATE {:.2f} m, its odometry's {:.2f} m (each aligned alone)", r.id,
+                    e.size(), eval::absoluteTrajectoryError(e, t, eval::TrajectoryAlignment::Se3).rmse,
+                    eval::absoluteTrajectoryError(o, t, eval::TrajectoryAlignment::Se3).rmse);
+    }
     for (std::size_t k = 0; k < r.bundles.size(); ++k) {
       odom.push_back(T * r.bundles[k].odom_pose);
       odom_ref.push_back(host0_inv * r.truth[k]);

@@ -38,6 +38,12 @@ struct RealisticRunResult {
   // Per transform given: its error against the least-squares alignment of the two own maps over
   // the true objects both hold (the truth for bent maps), and against the robots' true frames.
   std::vector<double> map_error_m, frame_error_m;
+  // Maps bent by drift that share several places admit no one rigid alignment: the same, with
+  // the truth the alignment over the true objects both hold within kPlaceRadius of the
+  // transform's inliers in the host's map (the place it was found at).
+  static constexpr double kPlaceRadius = 60.0;
+  int wrong_inter_at_place = 0;
+  std::vector<double> place_error_m;
   int landmarks = 0, false_landmarks = 0;        // confirmed; false: most detections from false objects
   double duplicate_fraction = 0;  // confirmed landmarks beyond the first whose detections are mostly of one true object
   double landmark_rmse_m = 0;
