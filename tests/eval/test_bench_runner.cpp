@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "report/json.h"
 
@@ -104,5 +105,35 @@ TEST(BenchRunner, NamedOnlySuiteRunsItsProgramWithArgumentsAndOnlyWhenNamed) {
     place |= s.at("suite").get<std::string>() == "place";
   }
   EXPECT_TRUE(place);
+  fs::remove_all(dir);
+}
+
+// A named suite of several parts (team_scale: the team bench at 3, 5 and 10 robots) runs each
+// part with its arguments and keeps every part's figures, named after the part's label.
+TEST(BenchRunner, NamedSuiteOfSeveralPartsKeepsEachPartsFiguresUnderItsLabel) {
+  const fs::path dir = fakeSuites("slide_bench_parts_", {"team"});
+  const std::string cmd = "SLIDE_NO_BUILD=1 SLIDE_BUILD='" + std::string(SLIDE_BINARY_DIR) + "' SLIDE_BENCH_BIN='" +
+                          (dir / "bin").string() + "' '" + SLIDE_SOURCE_DIR + "/slide' bench team_scale --out '" +
+                          (dir / "out").string() + "' --json '" + (dir / "all.json").string() + "' > '" +
+                          (dir / "out.txt").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const report::Json doc = report::readJsonFile((dir / "all.json").string());
+  ASSERT_EQ(doc.at("suites").size(), 1u);
+  const report::Json& suite = doc.at("suites")[0];
+  EXPECT_EQ(suite.at("suite").get<std::string>(), "team_scale");
+  EXPECT_EQ(suite.at("status").get<std::string>(), "ok");
+  std::vector<std::string> names;
+  for (const report::Json& r : suite.at("results")) names.push_back(r.at("name").get<std::string>());
+  EXPECT_EQ(names, (std::vector<std::string>{"robots3.team.ate_m", "robots3.team.f1", "robots5.team.ate_m",
+                                             "robots5.team.f1", "robots10.team.ate_m", "robots10.team.f1"}));
+  std::ifstream out_in(dir / "out.txt");
+  std::stringstream out;
+  out << out_in.rdbuf();
+  for (const char* robots : {"3", "5", "10"})
+    EXPECT_NE(out.str().find(std::string("slide-bench-team --robots ") + robots + " --keyposes 1000 --json"),
+              std::string::npos)
+        << out.str();
   fs::remove_all(dir);
 }
