@@ -9,8 +9,8 @@ declare -A BENCH_NAMED_SUITES=(
   [backend_scale]="slide-bench-backend --keyposes 1000 --background-solves --final-seconds 30;
                    slide-bench-backend --keyposes 4000 --background-solves --final-seconds 30;
                    slide-bench-backend --keyposes 10000 --background-solves --final-seconds 30"
-  [team_scale]="robots3: slide-bench-team --robots 3 --keyposes 1000; robots5: slide-bench-team --robots 5 --keyposes 1000;
-                robots10: slide-bench-team --robots 10 --keyposes 1000"
+  [team_scale]="robots3: slide-bench-team --robots 3; robots5: slide-bench-team --robots 5;
+                robots10: slide-bench-team --robots 10"
   [system_scale]="slide-bench-system --worlds forest-5robots,forest-400m --no-view"
 )
 
@@ -25,7 +25,7 @@ Named only (the scale suite of long missions and big teams; each may run long):
   place_scale    place recognition on maps of 1,000, 10,000 and 30,000 objects (~30 min)
   backend_scale  the back-end at 1,000, 4,000 and 10,000 key poses on a route that returns to
                  its start, full solves in the background (~20 min)
-  team_scale     peer sync with 3, 5 and 10 robots, 1,000 key poses each (~5 min)
+  team_scale     peer sync with 3, 5 and 10 robots, 200 key poses each (~2 min)
   system_scale   the demo with 5 robots, and with 3 robots driving 400 m each (~25 min)
 A suite whose program is missing is reported as missing; a suite that fails is reported with
 its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
