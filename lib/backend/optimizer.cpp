@@ -234,8 +234,19 @@ UpdateResult Optimizer::addRobotTransform(int peer, const Pose& T_host_peer) {
       const Eigen::Vector4d d = xyzYawOf(held->inverse() * T_host_peer);
       const double dt = (T_host_peer.translation() - held->translation()).norm();
       if (dt > cfg_.remerge_translation_m || std::abs(wrapAngle(d[3])) * 180.0 / M_PI > cfg_.remerge_yaw_deg) {
+        // Re-merging throws away the alignment the graph holds now: only for a transform under
+        // which more of the peer's landmarks meet the host's than meet them now.
+        const std::optional<Pose> frame = mergedFrame(peer);
+        const int now = frame ? landmarksMet(peer, Pose::Identity()) : 0;
+        const int then = frame ? landmarksMet(peer, T_host_peer * frame->inverse()) : 0;
+        if (frame && then <= now)
+          return reject(r, "contradicted transform held back: robot " + std::to_string(peer) + "'s new transform is " +
+                               std::to_string(dt) + " m from the one it was merged through, and " +
+                               std::to_string(then) + " of its landmarks would meet the host's through it against " +
+                               std::to_string(now) + " now");
         r.warnings.push_back("robot " + std::to_string(peer) + " un-merged and merged again: the new transform is " +
-                             std::to_string(dt) + " m from the one it was merged through");
+                             std::to_string(dt) + " m from the one it was merged through (" + std::to_string(then) +
+                             " of its landmarks meet the host's through it, " + std::to_string(now) + " now)");
         rebuildWithout(peer, T_host_peer);
         ++unmerged_;
         r.full_solve = true;
@@ -344,6 +355,35 @@ int robotOf(const std::unordered_map<int, int>& robot_of_var, int var) {
   return it == robot_of_var.end() ? -1 : it->second;
 }
 }  // namespace
+
+int Optimizer::landmarksMet(int peer, const Pose& C) const {
+  const auto robot_of = robotOfPoseVar();
+  std::vector<const Landmark*> host, other;
+  for (const Landmark& lm : landmarks_) {
+    if (!lm.alive) continue;
+    bool by_host = false, by_peer = false;
+    for (const Observation& o : lm.seen) {
+      const int r = robotOf(robot_of, o.pose_var);
+      by_host = by_host || r == host_;
+      by_peer = by_peer || r == peer;
+    }
+    if (by_host) host.push_back(&lm);
+    if (by_peer) other.push_back(&lm);
+  }
+  std::vector<Eigen::Vector3d> at(host.size());
+  for (std::size_t i = 0; i < host.size(); ++i) at[i] = landmarkObject(*host[i]).position();
+  int met = 0;
+  for (const Landmark* lm : other) {
+    const Eigen::Vector3d p = C * landmarkObject(*lm).position();
+    const double gate = classes_.at(lm->class_id).association_distance;
+    for (std::size_t i = 0; i < host.size(); ++i)
+      if (host[i]->class_id == lm->class_id && (at[i] - p).head<2>().norm() <= gate) {
+        ++met;
+        break;
+      }
+  }
+  return met;
+}
 
 int Optimizer::sharedLandmarks(int peer) const {
   const auto robot_of = robotOfPoseVar();

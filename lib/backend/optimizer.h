@@ -65,7 +65,8 @@ class Optimizer {
   // landmarks with the host (then the graph aligns the two and they change nothing); one that
   // contradicts it (remerge_* apart) un-merges the
   // peer (its observations leave the graph, which is rebuilt from the recorded inputs) and
-  // merges it again through the new transform. A merge after which some robot's trajectory
+  // merges it again through the new transform, when more of the peer's landmarks meet the
+  // host's through it than meet them now (else it is rejected: held back). A merge after which some robot's trajectory
   // leaves its odometry envelope is undone and that transform refused from then on.
   UpdateResult addRobotTransform(int peer, const Pose& T_host_peer);
   // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
@@ -243,6 +244,10 @@ class Optimizer {
   // odometry envelope, or -1.
   int robotOutsideEnvelope(std::string* why = nullptr) const;
   std::optional<Pose> mergedFrame(int peer) const;
+  // Landmarks `peer` observed that, moved by C (host frame), lie within their class's
+  // association distance of a landmark of that class the host observed (C identity: shared
+  // ones meet themselves).
+  int landmarksMet(int peer, const Pose& C) const;
   // Rebuilds the graph from the recorded inputs, leaving out every transform to `peer` and
   // then (if given) merging it through `T_host_peer`.
   void rebuildWithout(int peer, const std::optional<Pose>& T_host_peer);
