@@ -356,9 +356,9 @@ int robotOf(const std::unordered_map<int, int>& robot_of_var, int var) {
 }
 }  // namespace
 
-int Optimizer::landmarksMet(int peer, const Pose& C) const {
+// The alive landmarks the host observed and those `peer` observed (one landmark may be in both).
+void Optimizer::observedBy(int peer, std::vector<const Landmark*>& host, std::vector<const Landmark*>& other) const {
   const auto robot_of = robotOfPoseVar();
-  std::vector<const Landmark*> host, other;
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive) continue;
     bool by_host = false, by_peer = false;
@@ -370,6 +370,11 @@ int Optimizer::landmarksMet(int peer, const Pose& C) const {
     if (by_host) host.push_back(&lm);
     if (by_peer) other.push_back(&lm);
   }
+}
+
+int Optimizer::landmarksMet(int peer, const Pose& C) const {
+  std::vector<const Landmark*> host, other;
+  observedBy(peer, host, other);
   std::vector<Eigen::Vector3d> at(host.size());
   for (std::size_t i = 0; i < host.size(); ++i) at[i] = landmarkObject(*host[i]).position();
   int met = 0;
@@ -386,18 +391,11 @@ int Optimizer::landmarksMet(int peer, const Pose& C) const {
 }
 
 int Optimizer::sharedLandmarks(int peer) const {
-  const auto robot_of = robotOfPoseVar();
+  std::vector<const Landmark*> host, other;
+  observedBy(peer, host, other);
+  std::sort(host.begin(), host.end());
   int n = 0;
-  for (const Landmark& lm : landmarks_) {
-    if (!lm.alive) continue;
-    bool host = false, other = false;
-    for (const Observation& o : lm.seen) {
-      const int r = robotOf(robot_of, o.pose_var);
-      host = host || r == host_;
-      other = other || r == peer;
-    }
-    n += host && other;
-  }
+  for (const Landmark* lm : other) n += std::binary_search(host.begin(), host.end(), lm);
   return n;
 }
 

@@ -248,6 +248,7 @@ class Optimizer {
   // association distance of a landmark of that class the host observed (C identity: shared
   // ones meet themselves).
   int landmarksMet(int peer, const Pose& C) const;
+  void observedBy(int peer, std::vector<const Landmark*>& host, std::vector<const Landmark*>& other) const;
   // Rebuilds the graph from the recorded inputs, leaving out every transform to `peer` and
   // then (if given) merging it through `T_host_peer`.
   void rebuildWithout(int peer, const std::optional<Pose>& T_host_peer);
