@@ -376,16 +376,18 @@ int Optimizer::landmarksMet(int peer, const Pose& C) const {
   std::vector<const Landmark*> host, other;
   observedBy(peer, host, other);
   std::vector<Eigen::Vector3d> at(host.size());
-  for (std::size_t i = 0; i < host.size(); ++i) at[i] = landmarkObject(*host[i]).position();
+  LandmarkGrid grid;  // of the host's landmarks: linear in the map sizes
+  for (std::size_t i = 0; i < host.size(); ++i) grid.move(static_cast<int>(i), at[i] = landmarkObject(*host[i]).position());
   int met = 0;
+  std::vector<int> near;
   for (const Landmark* lm : other) {
     const Eigen::Vector3d p = C * landmarkObject(*lm).position();
     const double gate = classes_.at(lm->class_id).association_distance;
-    for (std::size_t i = 0; i < host.size(); ++i)
-      if (host[i]->class_id == lm->class_id && (at[i] - p).head<2>().norm() <= gate) {
-        ++met;
-        break;
-      }
+    near.clear();
+    grid.near(p, gate, near);
+    met += std::any_of(near.begin(), near.end(), [&](int i) {
+      return host[i]->class_id == lm->class_id && (at[i] - p).head<2>().norm() <= gate;
+    });
   }
   return met;
 }
