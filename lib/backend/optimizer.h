@@ -66,8 +66,9 @@ class Optimizer {
   // contradicts it (remerge_* apart) un-merges the
   // peer (its observations leave the graph, which is rebuilt from the recorded inputs) and
   // merges it again through the new transform, when more of the peer's landmarks meet the
-  // host's through it than meet them now (else it is rejected: held back). A merge after which some robot's trajectory
-  // leaves its odometry envelope is undone and that transform refused from then on.
+  // host's through it than meet them now (else it is rejected: held back). A merge after which
+  // some robot's trajectory leaves its odometry envelope is undone and that transform refused
+  // from then on.
   UpdateResult addRobotTransform(int peer, const Pose& T_host_peer);
   // Intra-robot loop closure: pose of key pose seq_b's body in key pose seq_a's body.
   // A repeated (robot, seq_a, seq_b) replaces the earlier one. Refused when it is further from

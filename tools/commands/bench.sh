@@ -2,7 +2,7 @@
 BENCH_KNOWN_SUITES=(frontend backend place team system sim)
 # Suites that run suite programs with arguments; they may run long, so they run only when named
 # (never in a plain `./slide bench`, nor in CI). A suite of several parts separates them with
-# ';'; a part "LABEL: program args" has its figures' names prefixed with LABEL. (the team bench
+# ';'; a part "LABEL: program args" has its figures' names prefixed with "LABEL." (the team bench
 # names its figures the same whatever the team size).
 declare -A BENCH_NAMED_SUITES=(
   [place_scale]="slide-bench-place --only scale"
@@ -24,9 +24,9 @@ Without SUITE: ${BENCH_KNOWN_SUITES[*]}, plus any other slide-bench-* present.
 Named only (the scale suite of long missions and big teams; each may run long):
   place_scale    place recognition on maps of 1,000, 10,000 and 30,000 objects (~30 min)
   backend_scale  the back-end at 1,000, 4,000 and 10,000 key poses on a route that returns to
-                 its start, full solves in the background (~20 min)
+                 its start, full solves in the background (~10 min)
   team_scale     peer sync with 3, 5 and 10 robots, 200 key poses each (~2 min)
-  system_scale   the demo with 5 robots, and with 3 robots driving 400 m each (~25 min)
+  system_scale   the demo with 5 robots, and with 3 robots driving 400 m each (~12 min)
 A suite whose program is missing is reported as missing; a suite that fails is reported with
 its exit code and the run goes on. Exit status 0 only when every suite ran and succeeded.
   --out DIR       where suite JSON files and logs go (default: build/bench/<UTC time>,
