@@ -95,7 +95,7 @@ main() {
     local parts=("|slide-bench-$suite")
     if [[ -n "${BENCH_NAMED_SUITES[$suite]:-}" ]]; then
       parts=()
-      local part label
+      local part label named
       IFS=';' read -r -a named <<< "$(tr '\n' ' ' <<< "${BENCH_NAMED_SUITES[$suite]}")"
       for part in "${named[@]}"; do
         label=""

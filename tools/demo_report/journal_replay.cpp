@@ -180,11 +180,10 @@ static void explainBundle(backend::Optimizer& opt, const KeyPoseBundle& b, const
   for (const Object& o : opt.landmarks(false)) before[o.id] = o;
   // Where odometry from the latest key pose puts this one, before the update.
   Pose T_predicted = Pose::Identity();
-  const std::vector<backend::TrajectoryPose> traj = opt.trajectory(opt.hostRobot());
-  if (!traj.empty())
-    if (const auto it = odom_of.find({opt.hostRobot(), traj.back().seq}); it != odom_of.end())
-      T_predicted = traj.back().pose * it->second.inverse() * b.odom_pose;
   const std::vector<backend::TrajectoryPose> traj_before = opt.trajectory(opt.hostRobot());
+  if (!traj_before.empty())
+    if (const auto it = odom_of.find({opt.hostRobot(), traj_before.back().seq}); it != odom_of.end())
+      T_predicted = traj_before.back().pose * it->second.inverse() * b.odom_pose;
   const backend::UpdateResult r = opt.addBundle(b);
   std::map<std::int64_t, Object> after;
   for (const Object& o : opt.landmarks(false)) after[o.id] = o;
