@@ -1,6 +1,8 @@
 #include "frontend/range_net_labeler.h"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
@@ -79,20 +81,32 @@ void RangeNetLabeler::label(io::LabelledScan& scan) const {
   const std::size_t pixels = static_cast<std::size_t>(p.height) * p.width;
   const float* scores = out.ptr<float>();
   std::vector<uint16_t> pixel_labels(pixels, 0);
+  // Softmax gate on logits without an exp per class where the two best scores decide it: the
+  // winner's probability is 1 / sum_c exp(s_c - top), at most 1 / (1 + exp(second - top)) and
+  // at least 1 / (1 + (k - 1) exp(second - top)).
+  const double odds = min_confidence_ > 0 && min_confidence_ < 1 ? 1.0 / min_confidence_ - 1.0 : 0.0;
+  const float inf = std::numeric_limits<float>::infinity();
+  const float fail_gap = odds > 0 ? static_cast<float>(std::log(1.0 / odds)) : -inf;  // odds 0: never decided early
+  const float sure_gap = odds > 0 ? static_cast<float>(std::log(std::max(1, k - 1) / odds)) : inf;
   for (std::size_t px = 0; px < pixels; ++px) {
     if (img.point_of_pixel[px] < 0) continue;
     int best = 0;
-    float top = scores[px];
-    for (int c = 1; c < k; ++c)
-      if (scores[c * pixels + px] > top) top = scores[c * pixels + px], best = c;
+    float top = scores[px], second = -inf;
+    for (int c = 1; c < k; ++c) {
+      const float s = scores[c * pixels + px];
+      if (s > top) second = top, top = s, best = c;
+      else if (s > second) second = s;
+    }
     if (min_confidence_ > 0) {
-      double confidence = top;
-      if (config_.logits) {  // softmax probability of the winner
+      if (!config_.logits) {
+        if (top < min_confidence_) continue;
+      } else if (top - second < fail_gap) {  // probability below 1 / (1 + odds) = min_confidence
+        continue;
+      } else if (top - second < sure_gap) {  // undecided: the whole softmax
         double sum = 0;
         for (int c = 0; c < k; ++c) sum += std::exp(double(scores[c * pixels + px]) - top);
-        confidence = 1.0 / sum;
+        if (1.0 / sum < min_confidence_) continue;
       }
-      if (confidence < min_confidence_) continue;
     }
     pixel_labels[px] = config_.classes[best].label;
   }

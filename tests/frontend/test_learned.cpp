@@ -7,7 +7,9 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
+#include <random>
 #include <stdexcept>
 
 #include "config/config.h"
@@ -103,6 +105,41 @@ TEST(RangeImage, HiddenPointsTakeTheirNearestShownNeighboursLabel) {
   frontend::RangeProjection own = p;  // no window: only the pixel's own point is a candidate
   own.search_cols = 0;
   EXPECT_EQ(frontend::backProjectLabels(s, img, pixel, own), (std::vector<uint16_t>{80, 80, 50, 80}));
+}
+
+// The back-projection prunes its window by angle; it must pick the same neighbour as a search
+// of the whole window. A dense random scan (several points per pixel, ranges 1-40 m, every
+// pixel a label of its own) compared point by point against the whole-window search.
+TEST(RangeImage, PrunedBackProjectionFindsTheWholeWindowsNearestShownPoint) {
+  frontend::RangeProjection p;
+  p.height = 16, p.width = 64, p.fov_up_deg = 10, p.fov_down_deg = -20, p.search_rows = 2, p.search_cols = 4;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> yaw(-180, 180), pitch(-22, 12), range(1, 40);
+  io::LabelledScan s;
+  for (int i = 0; i < 6000; ++i) s.xyz.push_back(polar(range(rng), yaw(rng), pitch(rng)));
+  const frontend::RangeImage img = frontend::projectScan(s, p);
+  std::vector<uint16_t> pixel(img.point_of_pixel.size());
+  for (std::size_t q = 0; q < pixel.size(); ++q) pixel[q] = static_cast<uint16_t>(q + 1);
+  const std::vector<uint16_t> labels = frontend::backProjectLabels(s, img, pixel, p);
+  int hidden = 0, checked = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const int px = img.pixel_of_point[i];
+    if (img.point_of_pixel[px] == static_cast<int>(i)) continue;
+    ++hidden;
+    const int v0 = px / p.width, u0 = px % p.width;
+    double best = std::numeric_limits<double>::infinity();
+    for (int v = std::max(0, v0 - p.search_rows); v <= std::min(p.height - 1, v0 + p.search_rows); ++v)
+      for (int du = -p.search_cols; du <= p.search_cols; ++du) {
+        const int j = img.point_of_pixel[v * p.width + (u0 + du + p.width) % p.width];
+        if (j >= 0) best = std::min(best, double((s.xyz[j] - s.xyz[i]).squaredNorm()));
+      }
+    const int chosen = img.point_of_pixel[labels[i] - 1];
+    ASSERT_GE(chosen, 0);
+    EXPECT_NEAR((s.xyz[chosen] - s.xyz[i]).squaredNorm(), best, 1e-4 * (1 + best)) << "point " << i;
+    checked += chosen != img.point_of_pixel[px];
+  }
+  EXPECT_GT(hidden, 3000);
+  EXPECT_GT(checked, 500);  // many hidden points are nearer a neighbouring pixel's point than their own pixel's
 }
 
 TEST(RangeModelConfig, ReadsTheModelsDescription) {
