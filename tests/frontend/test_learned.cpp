@@ -188,12 +188,16 @@ TEST(RangeNetLabeler, LabelsEveryPointFromTheModelsScores) {
 }
 
 TEST(RangeNetLabeler, ConfidenceGateLeavesUnsurePixelsUnlabelled) {
-  // Normalised range 1 (12 m): logits (0.5, 1, -1), softmax 0.574; 2 (14 m): 0.805.
+  // Normalised range n = (r - 10) / 2, logits (0.5, n, -n). The gate decides from the two best
+  // logits alone when their gap is below log(1 / odds) = 0.405 (unsure) or at least
+  // log(2 / odds) = 1.10 (sure), odds = 1 / 0.6 - 1; between, from the whole softmax.
+  // 12 m: gap 0.5, softmax 0.574 (dropped); 14 m: gap 1.5 (kept, 0.805); 11.5 m: gap 0.25
+  // (dropped, 0.500); 12.6 m: gap 0.8, softmax 0.656 (kept).
   const frontend::RangeNetLabeler labeler(frontend::loadRangeModelConfig(kModels + "range3.yaml"), 0.6);
   io::LabelledScan s;
-  s.xyz = {polar(12, 0, 0), polar(14, 90, 0)};
+  s.xyz = {polar(12, 0, 0), polar(14, 90, 0), polar(11.5, -90, 0), polar(12.6, 180, 0)};
   labeler.label(s);
-  EXPECT_EQ(s.semantic, (std::vector<uint16_t>{0, 70}));
+  EXPECT_EQ(s.semantic, (std::vector<uint16_t>{0, 70, 0, 70}));
 }
 
 TEST(RangeNetLabeler, BadModelsFailAtLoadNamingTheFileAndTheExpectation) {
