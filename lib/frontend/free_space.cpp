@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "frontend/azimuth.h"
+
 namespace slide::frontend {
 
 FreeSpace::FreeSpace(const Cloud& cloud, FreeSpaceParams params) : cloud_(cloud), p_(params) {
@@ -14,7 +16,7 @@ FreeSpace::FreeSpace(const Cloud& cloud, FreeSpaceParams params) : cloud_(cloud)
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Eigen::Vector3f& q = cloud[i];
     if (!q.allFinite() || q.head<2>().squaredNorm() < 1e-6f) continue;
-    bin_of[i] = std::clamp(static_cast<int>((std::atan2(q.y(), q.x()) + M_PI) * scale), 0, bins_ - 1);
+    bin_of[i] = std::clamp(static_cast<int>((azimuthOf(q.y(), q.x()) + M_PI) * scale), 0, bins_ - 1);
     ++start_[bin_of[i] + 1];
   }
   for (int b = 0; b < bins_; ++b) start_[b + 1] += start_[b];

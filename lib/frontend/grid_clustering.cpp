@@ -11,6 +11,7 @@ namespace slide::frontend {
 
 namespace {
 constexpr std::int64_t kLimit = 1 << 20;  // cell coordinates beyond +-2^20 are dropped
+constexpr std::size_t kRadixMin = 256;    // fewer points are sorted by comparison
 
 int findRoot(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -88,7 +89,10 @@ std::vector<std::vector<int>> clusterGrid(const Cloud& cloud, const std::vector<
     std::vector<std::uint64_t> packed(point.size());
     for (std::size_t k = 0; k < point.size(); ++k)
       packed[k] = key(coord[k]) << point_bits | static_cast<std::uint64_t>(point[k]);
-    radixSort(packed, bits[0] + bits[1] + bits[2] + point_bits);
+    if (packed.size() < kRadixMin)  // a radix pass walks 256 counters whatever the size
+      std::sort(packed.begin(), packed.end());
+    else
+      radixSort(packed, bits[0] + bits[1] + bits[2] + point_bits);
     const std::uint64_t mask = (std::uint64_t{1} << point_bits) - 1;
     for (std::size_t k = 0; k < packed.size(); ++k)
       cell_of[k] = packed[k] >> point_bits, order[k] = static_cast<int>(packed[k] & mask);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "frontend/azimuth.h"
 #include "frontend/point_stats.h"
 
 namespace slide::frontend {
@@ -17,13 +18,13 @@ std::optional<std::pair<std::vector<int>, std::vector<int>>> splitAtNotch(const 
   zs.reserve(idx.size());
   for (int i : idx) mean += cloud[i].head<2>().cast<double>(), zs.push_back(cloud[i].z());
   if (mean.norm() < 1e-6) return std::nullopt;
-  const double ref = std::atan2(mean.y(), mean.x());
+  const Eigen::Vector2f u = mean.normalized().cast<float>();  // the mean bearing
   const double bottom = quantileInPlace(zs, 0.05);
   std::vector<double> az(idx.size());
   double lo = std::numeric_limits<double>::max(), hi = -lo;
   for (std::size_t k = 0; k < idx.size(); ++k) {
     const Eigen::Vector3f& q = cloud[idx[k]];
-    az[k] = std::remainder(std::atan2(q.y(), q.x()) - ref, 2 * M_PI);
+    az[k] = azimuthOf(u.x() * q.y() - u.y() * q.x(), u.x() * q.x() + u.y() * q.y());  // from the mean bearing
     lo = std::min(lo, az[k]), hi = std::max(hi, az[k]);
   }
   const double bin = p.bin_deg * M_PI / 180.0;
@@ -37,7 +38,7 @@ std::optional<std::pair<std::vector<int>, std::vector<int>>> splitAtNotch(const 
     const Eigen::Vector3f& q = cloud[idx[k]];
     if (q.z() < bottom + p.band_low || q.z() > bottom + p.band_high) continue;
     double& r = near[binOf(az[k])];
-    r = std::min(r, std::hypot(double(q.x()), double(q.y())));
+    r = std::min(r, double(q.head<2>().norm()));
   }
   int first = 0, last = n - 1;
   while (first < n && near[first] == inf) ++first;
