@@ -269,6 +269,20 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
   }
   int extra = 0;
   for (const auto& [i, n] : per_truth) extra += n - 1;
+  if (spdlog::should_log(spdlog::level::debug)) {  // each duplicated object: its landmarks' classes, offsets, observations
+    std::map<int, std::vector<Object>> of_truth;
+    for (const Object& lm : opt.landmarks(true))
+      if (votes[host].count(lm.id) && majority(votes[host], lm.id) >= 0)
+        of_truth[majority(votes[host], lm.id)].push_back(transformObject(to_world, lm));
+    for (const auto& [i, lms] : of_truth) {
+      if (lms.size() < 2) continue;
+      std::string t;
+      for (const Object& lm : lms)
+        t += fmt::format(" [class {} obs {} off {:.2f} m]", lm.class_id, lm.num_observations,
+                         horizontalError(lm, s.landmarks[i]));
+      spdlog::debug("duplicated object {} (class {}):{}", i, s.landmarks[i].class_id, t);
+    }
+  }
   out.duplicate_fraction = scored ? static_cast<double>(extra) / scored : 0;
   out.landmark_rmse_m = scored ? std::sqrt(sq / scored) : 0;
   return out;
