@@ -4,6 +4,8 @@
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
+#include "frontend/mat_shape.h"
+
 namespace slide::frontend {
 
 struct RangeNetLabeler::Net {
@@ -11,12 +13,6 @@ struct RangeNetLabeler::Net {
 };
 
 namespace {
-std::string shapeText(const cv::MatSize& s) {
-  std::string t = "[";
-  for (int d = 0; d < s.dims(); ++d) t += (d ? ", " : "") + std::to_string(s[d]);
-  return t + "]";
-}
-
 // Runs the network on `blob` (1 x C x H x W) and returns its output; exceptions name the file.
 cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelConfig& c) {
   const int dims[4] = {1, static_cast<int>(c.channels.size()), c.projection.height, c.projection.width};
@@ -33,7 +29,7 @@ cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelCon
   const int k = static_cast<int>(c.classes.size());
   if (out.dims != 4 || out.size[0] != 1 || out.size[1] != k || out.size[2] != dims[2] || out.size[3] != dims[3] ||
       out.type() != CV_32F)
-    throw std::runtime_error(c.model_path + ": output " + shapeText(out.size) + ", expected float [1, " + std::to_string(k) +
+    throw std::runtime_error(c.model_path + ": output " + shapeText(out) + ", expected float [1, " + std::to_string(k) +
                              " classes (" + c.file + "), " + std::to_string(dims[2]) + ", " + std::to_string(dims[3]) + "]");
   return out;
 }
