@@ -5,15 +5,16 @@
 #include <stdexcept>
 
 #include "config/config.h"
+#include "frontend/mask_detector_loader.h"
 
 namespace slide::frontend {
 
 YoloSegConfig loadYoloSegConfig(const std::string& path, const ClassTable& classes) {
   const ConfigNode root = ConfigNode::load(path);
+  if (detectorTypeOf(root) != "yolov8-seg") root.fail("type", "a YOLOv8-seg model YAML has type yolov8-seg (or none)");
   YoloSegConfig c;
   c.file = path;
-  const std::filesystem::path model = root.get<std::string>("model");
-  c.model_path = model.is_absolute() ? model.string() : (std::filesystem::path(path).parent_path() / model).string();
+  c.model_path = modelPathOf(root);
   YoloSegParams& p = c.params;
   const ConfigNode input = root.child("input");
   input.read("width", p.input_width);
@@ -29,16 +30,9 @@ YoloSegConfig loadYoloSegConfig(const std::string& path, const ClassTable& class
   if (!(p.nms_iou >= 0 && p.nms_iou <= 1)) root.fail("nms_iou", "must be 0..1");
   if (!(p.mask_threshold >= 0 && p.mask_threshold <= 1)) root.fail("mask_threshold", "must be 0..1");
   if (p.max_detections < 1 || p.max_detections > 1000) root.fail("max_detections", "must be 1..1000");
-  const ConfigNode list = root.child("classes");
-  if (list.size() < 1 || list.size() > 1000) root.fail("classes", "expected a list of 1..1000 classes");
-  for (std::size_t k = 0; k < list.size(); ++k) {
-    const ConfigNode e = list[k];
-    c.model_classes.push_back(e.get<std::string>("name"));
-    const std::string ours = e.get<std::string>("class");
-    const ClassInfo* info = ours == "none" ? nullptr : classes.findByName(ours);
-    if (ours != "none" && !info) e.fail("class", "no class named '" + ours + "' in the class table (or none)");
-    c.class_of_model.push_back(info ? info->id : -1);
-  }
+  ModelClasses m = readModelClasses(root, classes);
+  c.model_classes = std::move(m.names);
+  c.class_of_model = std::move(m.class_of_model);
   root.rejectUnknownKeys();
   return c;
 }
