@@ -145,6 +145,45 @@ TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
   EXPECT_EQ(out[0].instances[0].num_points, 32 * 16);
 }
 
+// segmenter.rgbd.detector naming a `type: semantic` model YAML: the segmenter builds the
+// per-pixel detector (the fixture tests/data/models/semantic: red -> chair, blue -> car) and
+// splits its classes into instances by depth: the red half of the image, its left and right
+// quarters 1 m apart, is two chairs.
+TEST(FrontendNodes, RgbdSemanticDetectorSplitsClassesByDepth) {
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::FrontendConfig cfg = frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
+  cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/semantic.yaml";
+  cfg.rgbd.erode_px = 0;
+  std::vector<frame_instances_t> out;
+  SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
+    out.push_back(decoded<frame_instances_t>(b));
+    return true;
+  });
+  rgbd_frame_t m{};
+  m.header = driveByHeader(0);
+  m.intrinsics = {64, 32, 40.0, 40.0, 32.0, 16.0, 0.001};
+  m.color.assign(64 * 32 * 3, 0);
+  for (int v = 0; v < 32; ++v)
+    for (int u = 0; u < 64; ++u) {
+      if (v < 16) m.color[3 * (v * 64 + u) + 2] = 255;  // top half red
+      const int mm = v < 16 && u >= 32 ? 3000 : 2000;
+      m.depth.push_back(mm & 0xff), m.depth.push_back(mm >> 8);
+    }
+  m.color_size = static_cast<int>(m.color.size());
+  m.depth_size = static_cast<int>(m.depth.size());
+  m.mask_size = 0;
+  m.num_instances = 0;
+  segmenter.onRgbd(m);
+  segmenter.onOdom(driveByOdometry(0));
+  segmenter.onOdom(driveByOdometry(1));
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 2u);
+  for (const auto& inst : out[0].instances) {
+    EXPECT_EQ(inst.class_id, classes.findByName("chair")->id);
+    EXPECT_EQ(inst.num_points, 32 * 16);
+  }
+}
+
 // The preview (setPreview): a thinned copy of the published frames, at most one per period of
 // frame time and at most max_points points, each instance keeping its class and id; none
 // without a preview channel.
