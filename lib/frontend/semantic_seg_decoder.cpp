@@ -34,18 +34,28 @@ PixelClasses classifyPixels(const cv::Mat& s, int classes, int image_w, int imag
   std::vector<int> best(n, 0);
   std::vector<float> top(d, d + n);
   for (int c = 1; c < classes; ++c) {
-    const float* plane = d + c * n;
-    for (std::size_t i = 0; i < n; ++i)
-      if (plane[i] > top[i]) top[i] = plane[i], best[i] = c;
+    const float* __restrict plane = d + c * n;
+    float* __restrict t = top.data();
+    int* __restrict b = best.data();
+    for (std::size_t i = 0; i < n; ++i) {  // branch-free (a bit mask), so that the compiler vectorises it
+      const float x = plane[i], y = t[i];
+      const int higher = -static_cast<int>(x > y);  // all ones where class c scores higher
+      b[i] = (c & higher) | (b[i] & ~higher);
+      t[i] = x > y ? x : y;
+    }
   }
   std::vector<float> prob = top;
-  if (p.logits) {  // softmax of the winner: 1 / sum_c exp(score_c - top)
-    std::vector<float> sum(n, 0.0f);
+  if (p.logits) {  // softmax of the winner: 1 / sum_c exp(score_c - top), OpenCV's vectorised exp
+    const int len = static_cast<int>(n);
+    const cv::Mat top_row(1, len, CV_32F, top.data());
+    cv::Mat sum(1, len, CV_32F, cv::Scalar(0)), e;
     for (int c = 0; c < classes; ++c) {
-      const float* plane = d + c * n;
-      for (std::size_t i = 0; i < n; ++i) sum[i] += std::exp(plane[i] - top[i]);
+      cv::subtract(cv::Mat(1, len, CV_32F, const_cast<float*>(d + c * n)), top_row, e);
+      cv::exp(e, e);
+      sum += e;
     }
-    for (std::size_t i = 0; i < n; ++i) prob[i] = 1.0f / sum[i];
+    const float* s_sum = sum.ptr<float>();
+    for (std::size_t i = 0; i < n; ++i) prob[i] = 1.0f / s_sum[i];
   }
   for (std::size_t i = 0; i < n; ++i)
     if (!(prob[i] >= p.min_confidence)) best[i] = -1, prob[i] = 0.0f;  // NaN scores too
