@@ -23,15 +23,17 @@ std::unique_ptr<MaskDetector> loadMaskDetector(const std::string& path, const Cl
 
 // The YAML's `type` (yolov8-seg when absent); ConfigError unless it is one of the two.
 std::string detectorTypeOf(const ConfigNode& root);
+// The model YAML at `path`; ConfigError (naming the file) for a missing or unparsable file, and
+// at `type` unless its type is `type`.
+ConfigNode loadModelYaml(const std::string& path, const std::string& type);
 // The `model` key resolved against the YAML's folder (an absolute path is kept).
 std::string modelPathOf(const ConfigNode& root);
-
-struct ModelClasses {
-  std::vector<std::string> names;   // the model's class names, in output order
-  std::vector<int> class_of_model;  // our class id per model class, -1: none (dropped)
-};
-// The `classes` list: 1..1000 entries {name: <the model's>, class: <ours> | none}; a class
-// name not in `classes` is a ConfigError.
-ModelClasses readModelClasses(const ConfigNode& root, const ClassTable& classes);
+// The required `input` map's width and height (each kept when absent), each min_side..4096.
+void readInputSize(const ConfigNode& root, int min_side, int& width, int& height);
+// The `classes` list: 1..1000 entries {name: <the model's>, class: <ours> | none}, into the
+// model's class names (output order) and our class id per model class (-1: none, dropped); a
+// class name not in `classes` is a ConfigError.
+void readModelClasses(const ConfigNode& root, const ClassTable& classes, std::vector<std::string>& names,
+                      std::vector<int>& class_of_model);
 
 }  // namespace slide::frontend

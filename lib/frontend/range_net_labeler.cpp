@@ -1,10 +1,10 @@
 #include "frontend/range_net_labeler.h"
 
-#include <filesystem>
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
 #include "frontend/mat_shape.h"
+#include "frontend/onnx_file.h"
 
 namespace slide::frontend {
 
@@ -37,15 +37,7 @@ cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelCon
 
 RangeNetLabeler::RangeNetLabeler(RangeModelConfig config, double min_confidence)
     : config_(std::move(config)), min_confidence_(min_confidence), net_(std::make_unique<Net>()) {
-  const std::string& path = config_.model_path;
-  if (!std::filesystem::is_regular_file(path))
-    throw std::runtime_error(path + ": no such model file (named by " + config_.file + ")");
-  try {
-    net_->net = cv::dnn::readNetFromONNX(path);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(path + ": not a readable ONNX model (" + e.what() + ")");
-  }
-  if (net_->net.empty()) throw std::runtime_error(path + ": not a readable ONNX model (empty network)");
+  net_->net = readOnnxFile(config_.model_path, config_.file, [](const std::string& p) { return cv::dnn::readNetFromONNX(p); });
   net_->net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net_->net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   std::vector<float> blank(config_.channels.size() * config_.projection.height * config_.projection.width, 0.0f);

@@ -40,6 +40,11 @@ class MaskDetector {
   virtual void detect(RgbdFrame& frame) const = 0;
 };
 
+// What a MaskDetector's detect does first: empties the instances (classes, confidences, the
+// mask all 0 at the intrinsics' size), and says whether the frame has a colour image of that
+// size to detect on.
+bool resetDetections(RgbdFrame& frame);
+
 struct RgbdSegmenterParams {
   double min_confidence = 0.25;
   double band_fraction = 0.8;  // keep depths between the (0.5 -+ band/2) quantiles of the mask

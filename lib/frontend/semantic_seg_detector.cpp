@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -10,20 +9,15 @@
 #include "config/config.h"
 #include "frontend/mask_detector_loader.h"
 #include "frontend/mat_shape.h"
+#include "frontend/onnx_file.h"
 
 namespace slide::frontend {
 
 SemanticSegConfig loadSemanticSegConfig(const std::string& path, const ClassTable& classes) {
-  const ConfigNode root = ConfigNode::load(path);
-  if (detectorTypeOf(root) != "semantic") root.fail("type", "a semantic segmentation model YAML has type semantic");
+  const ConfigNode root = loadModelYaml(path, "semantic");
   SemanticSegConfig c;
-  c.file = path;
-  c.model_path = modelPathOf(root);
-  const ConfigNode input = root.child("input");
-  input.read("width", c.input_width);
-  input.read("height", c.input_height);
-  if (c.input_width < 1 || c.input_width > 4096) input.fail("width", "must be 1..4096");
-  if (c.input_height < 1 || c.input_height > 4096) input.fail("height", "must be 1..4096");
+  c.file = path, c.model_path = modelPathOf(root);
+  readInputSize(root, 1, c.input_width, c.input_height);
   root.read("swap_rb", c.swap_rb);
   if (root.has("mean")) {
     const auto v = root.getList<double>("mean", 3);
@@ -50,9 +44,7 @@ SemanticSegConfig loadSemanticSegConfig(const std::string& path, const ClassTabl
     if (!(p.depth_step_fraction >= 0 && p.depth_step_fraction <= 1)) cc.fail("depth_step_fraction", "must be 0..1");
     if (p.min_pixels < 1) cc.fail("min_pixels", "must be at least 1");
   }
-  ModelClasses m = readModelClasses(root, classes);
-  c.model_classes = std::move(m.names);
-  c.class_of_model = std::move(m.class_of_model);
+  readModelClasses(root, classes, c.model_classes, c.class_of_model);
   root.rejectUnknownKeys();
   return c;
 }
@@ -106,14 +98,7 @@ cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const SemanticSegCo
 }  // namespace
 
 SemanticSegDetector::SemanticSegDetector(SemanticSegConfig config) : config_(std::move(config)), net_(std::make_unique<Net>()) {
-  const std::string& path = config_.model_path;
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": no such model file (named by " + config_.file + ")");
-  try {
-    net_->net = cv::dnn::readNetFromONNX(path);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(path + ": not a readable ONNX model (" + e.what() + ")");
-  }
-  if (net_->net.empty()) throw std::runtime_error(path + ": not a readable ONNX model (empty network)");
+  net_->net = readOnnxFile(config_.model_path, config_.file, [](const std::string& p) { return cv::dnn::readNetFromONNX(p); });
   const cv::Mat blank(config_.input_height, config_.input_width, CV_8UC3, cv::Scalar(114, 114, 114));
   std::vector<float> blob = semanticSegInput(blank, config_);
   forward(net_->net, blob, config_);
@@ -122,12 +107,8 @@ SemanticSegDetector::SemanticSegDetector(SemanticSegConfig config) : config_(std
 SemanticSegDetector::~SemanticSegDetector() = default;
 
 void SemanticSegDetector::detect(RgbdFrame& f) const {
+  if (!resetDetections(f) || f.depth.size() != f.mask.size()) return;
   const int w = f.intrinsics.width, h = f.intrinsics.height;
-  f.instance_class.clear();
-  f.instance_confidence.clear();
-  f.mask.assign(static_cast<std::size_t>(std::max(0, w)) * std::max(0, h), 0);
-  const std::size_t n = f.mask.size();
-  if (w <= 0 || h <= 0 || f.color.size() != n * 3 || f.depth.size() != n) return;
   std::vector<float> blob = semanticSegInput(cv::Mat(h, w, CV_8UC3, f.color.data()), config_);
   const cv::Mat scores = forward(net_->net, blob, config_);
   const int k = static_cast<int>(config_.class_of_model.size());
