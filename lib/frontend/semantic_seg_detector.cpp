@@ -21,6 +21,8 @@ SemanticSegConfig loadSemanticSegConfig(const std::string& path, const ClassTabl
   root.read("swap_rb", c.swap_rb);
   if (root.has("mean")) {
     const auto v = root.getList<double>("mean", 3);
+    for (double m : v)
+      if (!std::isfinite(m)) root.fail("mean", "must be three finite numbers");
     std::copy(v.begin(), v.end(), c.mean.begin());
   }
   if (root.has("std")) {

@@ -290,6 +290,7 @@ TEST(SemanticSegDetector, BadConfigsNameFileAndKey) {
   };
   EXPECT_NE(error("scores: softmax\n").find("expected logits or probabilities"), std::string::npos);
   EXPECT_NE(error("std: [1, 0, 1]\n").find("must be three positive numbers"), std::string::npos);
+  EXPECT_NE(error("mean: [1, .nan, 1]\n").find("must be three finite numbers"), std::string::npos);
   EXPECT_NE(error("components: {min_pixels: 0}\n").find("min_pixels"), std::string::npos);
   EXPECT_NE(error("components: {min_pixel: 5}\n").find("unknown key"), std::string::npos);
   EXPECT_NE(error("").find("(nothing thrown)"), std::string::npos);
