@@ -1,5 +1,6 @@
 #include "frontend/range_net_labeler.h"
 
+#include <filesystem>
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
