@@ -29,7 +29,7 @@ SegmenterNode::SegmenterNode(int robot, std::string out_channel, const ClassTabl
         frontend::RangeNetLabeler::fromParams(cfg.learned),
         std::make_shared<frontend::LabelledSegmenter>(classes, cfg.labelled));
   if (!cfg.rgbd_detector.empty())
-    detector_ = std::make_unique<frontend::YoloSegDetector>(frontend::loadYoloSegConfig(cfg.rgbd_detector, classes));
+    detector_ = frontend::loadMaskDetector(cfg.rgbd_detector, classes);
 }
 
 void SegmenterNode::onScan(const lidar_scan_t& m) {

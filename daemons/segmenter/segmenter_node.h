@@ -17,7 +17,7 @@
 #include "frontend/input_issues.h"
 #include "frontend/labelled_segmenter.h"
 #include "frontend/odometry_buffer.h"
-#include "frontend/yolo_seg_detector.h"
+#include "frontend/mask_detector_loader.h"
 #include "msg/publisher.h"
 #include "slide/lidar_scan_t.hpp"
 #include "slide/odometry_t.hpp"
@@ -64,7 +64,7 @@ class SegmenterNode {
   frontend::LabelledSegmenter labelled_;
   frontend::GeometricSegmenter geometric_;
   std::unique_ptr<frontend::LidarSegmenter> learned_;  // lidar_mode learned only
-  std::unique_ptr<frontend::YoloSegDetector> detector_;  // rgbd.detector set only: masks from the colour image
+  std::unique_ptr<frontend::MaskDetector> detector_;  // rgbd.detector set only: masks from the colour image (and depth)
   std::size_t max_pending_;
   msg::Publisher publish_;
   frontend::OdometryBuffer odom_;

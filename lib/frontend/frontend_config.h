@@ -22,7 +22,7 @@ struct FrontendConfig {
   LearnedLidarParams learned;  // model path resolved against the config file's folder
   GeometricSegmenterParams geometric;
   RgbdSegmenterParams rgbd;
-  std::string rgbd_detector;  // YOLOv8-seg model YAML (yolo_seg_detector.h); empty: the frames' own masks
+  std::string rgbd_detector;  // model YAML (mask_detector_loader.h: YOLOv8-seg or per-pixel semantic); empty: the frames' own masks
   FitParams fit;
   TrackerParams tracker;
   KeyPoseParams keypose;

@@ -6,6 +6,9 @@
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
+#include "frontend/mat_shape.h"
+#include "frontend/onnx_file.h"
+
 namespace slide::frontend {
 
 struct RangeNetLabeler::Net {
@@ -13,12 +16,6 @@ struct RangeNetLabeler::Net {
 };
 
 namespace {
-std::string shapeText(const cv::MatSize& s) {
-  std::string t = "[";
-  for (int d = 0; d < s.dims(); ++d) t += (d ? ", " : "") + std::to_string(s[d]);
-  return t + "]";
-}
-
 // Runs the network on `blob` (1 x C x H x W) and returns its output; exceptions name the file.
 cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelConfig& c) {
   const int dims[4] = {1, static_cast<int>(c.channels.size()), c.projection.height, c.projection.width};
@@ -35,7 +32,7 @@ cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelCon
   const int k = static_cast<int>(c.classes.size());
   if (out.dims != 4 || out.size[0] != 1 || out.size[1] != k || out.size[2] != dims[2] || out.size[3] != dims[3] ||
       out.type() != CV_32F)
-    throw std::runtime_error(c.model_path + ": output " + shapeText(out.size) + ", expected float [1, " + std::to_string(k) +
+    throw std::runtime_error(c.model_path + ": output " + shapeText(out) + ", expected float [1, " + std::to_string(k) +
                              " classes (" + c.file + "), " + std::to_string(dims[2]) + ", " + std::to_string(dims[3]) + "]");
   return out;
 }
@@ -43,15 +40,7 @@ cv::Mat forward(cv::dnn::Net& net, std::vector<float>& blob, const RangeModelCon
 
 RangeNetLabeler::RangeNetLabeler(RangeModelConfig config, double min_confidence)
     : config_(std::move(config)), min_confidence_(min_confidence), net_(std::make_unique<Net>()) {
-  const std::string& path = config_.model_path;
-  if (!std::filesystem::is_regular_file(path))
-    throw std::runtime_error(path + ": no such model file (named by " + config_.file + ")");
-  try {
-    net_->net = cv::dnn::readNetFromONNX(path);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(path + ": not a readable ONNX model (" + e.what() + ")");
-  }
-  if (net_->net.empty()) throw std::runtime_error(path + ": not a readable ONNX model (empty network)");
+  net_->net = readOnnxFile(config_.model_path, config_.file, [](const std::string& p) { return cv::dnn::readNetFromONNX(p); });
   net_->net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
   net_->net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   std::vector<float> blank(config_.channels.size() * config_.projection.height * config_.projection.width, 0.0f);

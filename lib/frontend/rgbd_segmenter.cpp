@@ -1,5 +1,6 @@
 #include "frontend/rgbd_segmenter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "frontend/depth_filter.h"
@@ -18,6 +19,14 @@ bool onMaskEdge(const std::vector<std::uint16_t>& mask, int w, int h, int u, int
   return false;
 }
 }  // namespace
+
+bool resetDetections(RgbdFrame& f) {
+  const int w = f.intrinsics.width, h = f.intrinsics.height;
+  f.instance_class.clear();
+  f.instance_confidence.clear();
+  f.mask.assign(static_cast<std::size_t>(std::max(0, w)) * std::max(0, h), 0);
+  return w > 0 && h > 0 && f.color.size() == f.mask.size() * 3;
+}
 
 std::vector<Instance> segmentRgbd(const RgbdFrame& f, const ClassTable& classes, const RgbdSegmenterParams& p,
                                   InputIssues& issues) {

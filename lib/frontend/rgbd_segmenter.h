@@ -3,8 +3,9 @@
 // (depth_filter.h), then the mask is backprojected with the depth image, keeping only
 // pixels whose depth lies in a percentile band around the mask's median depth (drops the
 // background and mixed edge pixels), after a detector-confidence gate. Pixels at the mask's
-// edge are judged by their own depth against that band. A learned detector
-// (YOLO-style) plugs in as a MaskDetector that fills the masks from the colour image.
+// edge are judged by their own depth against that band. A learned detector (YOLOv8-seg, or a
+// per-pixel semantic model split by depth; mask_detector_loader.h) plugs in as a MaskDetector
+// that fills the masks from the colour image.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,13 +32,18 @@ struct RgbdFrame {
 };
 
 // A learned image detector: fills frame.mask, instance_class and instance_confidence from
-// frame.color.
+// frame.color (and frame.depth, which a semantic model's instances are split by).
 class MaskDetector {
  public:
   virtual ~MaskDetector() = default;
   virtual std::string name() const = 0;
   virtual void detect(RgbdFrame& frame) const = 0;
 };
+
+// What a MaskDetector's detect does first: empties the instances (classes, confidences, the
+// mask all 0 at the intrinsics' size), and says whether the frame has a colour image of that
+// size to detect on.
+bool resetDetections(RgbdFrame& frame);
 
 struct RgbdSegmenterParams {
   double min_confidence = 0.25;

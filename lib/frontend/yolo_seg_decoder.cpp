@@ -8,15 +8,11 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/mat_shape.h"
+
 namespace slide::frontend {
 
 namespace {
-std::string shapeOf(const cv::Mat& m) {
-  std::string t = "[";
-  for (int d = 0; d < m.dims; ++d) t += (d ? ", " : "") + std::to_string(m.size[d]);
-  return t + "]";
-}
-
 struct Candidate {
   int anchor, cls;
   float score;
@@ -65,10 +61,10 @@ std::vector<YoloInstance> decodeYoloSeg(const cv::Mat& out0, const cv::Mat& out1
                                         int image_h, const YoloSegParams& p) {
   const int rows = 4 + classes + 32;
   if (out0.type() != CV_32F || out0.dims != 3 || out0.size[0] != 1 || out0.size[1] != rows)
-    throw std::invalid_argument("YOLOv8-seg output0 " + shapeOf(out0) + ": expected float [1, " + std::to_string(rows) +
+    throw std::invalid_argument("YOLOv8-seg output0 " + shapeText(out0) + ": expected float [1, " + std::to_string(rows) +
                                 " (4 box + " + std::to_string(classes) + " classes + 32 mask coefficients), anchors]");
   if (out1.type() != CV_32F || out1.dims != 4 || out1.size[0] != 1 || out1.size[1] != 32 || out1.size[2] < 1 || out1.size[3] < 1)
-    throw std::invalid_argument("YOLOv8-seg output1 " + shapeOf(out1) + ": expected float [1, 32, mask height, mask width]");
+    throw std::invalid_argument("YOLOv8-seg output1 " + shapeText(out1) + ": expected float [1, 32, mask height, mask width]");
   const int anchors = out0.size[2];
   const float* d = out0.ptr<float>();
   auto at = [&](int row, int a) { return d[static_cast<std::size_t>(row) * anchors + a]; };

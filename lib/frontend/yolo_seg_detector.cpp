@@ -1,25 +1,20 @@
 #include "frontend/yolo_seg_detector.h"
 
-#include <filesystem>
 #include <opencv2/dnn.hpp>
 #include <stdexcept>
 
 #include "config/config.h"
+#include "frontend/mask_detector_loader.h"
+#include "frontend/onnx_file.h"
 
 namespace slide::frontend {
 
 YoloSegConfig loadYoloSegConfig(const std::string& path, const ClassTable& classes) {
-  const ConfigNode root = ConfigNode::load(path);
+  const ConfigNode root = loadModelYaml(path, "yolov8-seg");
   YoloSegConfig c;
-  c.file = path;
-  const std::filesystem::path model = root.get<std::string>("model");
-  c.model_path = model.is_absolute() ? model.string() : (std::filesystem::path(path).parent_path() / model).string();
+  c.file = path, c.model_path = modelPathOf(root);
   YoloSegParams& p = c.params;
-  const ConfigNode input = root.child("input");
-  input.read("width", p.input_width);
-  input.read("height", p.input_height);
-  if (p.input_width < 32 || p.input_width > 4096) input.fail("width", "must be 32..4096");
-  if (p.input_height < 32 || p.input_height > 4096) input.fail("height", "must be 32..4096");
+  readInputSize(root, 32, p.input_width, p.input_height);
   root.read("swap_rb", c.swap_rb);
   root.read("score_threshold", p.score_threshold);
   root.read("nms_iou", p.nms_iou);
@@ -29,16 +24,7 @@ YoloSegConfig loadYoloSegConfig(const std::string& path, const ClassTable& class
   if (!(p.nms_iou >= 0 && p.nms_iou <= 1)) root.fail("nms_iou", "must be 0..1");
   if (!(p.mask_threshold >= 0 && p.mask_threshold <= 1)) root.fail("mask_threshold", "must be 0..1");
   if (p.max_detections < 1 || p.max_detections > 1000) root.fail("max_detections", "must be 1..1000");
-  const ConfigNode list = root.child("classes");
-  if (list.size() < 1 || list.size() > 1000) root.fail("classes", "expected a list of 1..1000 classes");
-  for (std::size_t k = 0; k < list.size(); ++k) {
-    const ConfigNode e = list[k];
-    c.model_classes.push_back(e.get<std::string>("name"));
-    const std::string ours = e.get<std::string>("class");
-    const ClassInfo* info = ours == "none" ? nullptr : classes.findByName(ours);
-    if (ours != "none" && !info) e.fail("class", "no class named '" + ours + "' in the class table (or none)");
-    c.class_of_model.push_back(info ? info->id : -1);
-  }
+  readModelClasses(root, classes, c.model_classes, c.class_of_model);
   root.rejectUnknownKeys();
   return c;
 }
@@ -71,13 +57,7 @@ std::pair<cv::Mat, cv::Mat> run(cv::dnn::Net& net, const std::vector<std::string
 
 YoloSegDetector::YoloSegDetector(YoloSegConfig config) : config_(std::move(config)), net_(std::make_unique<Net>()) {
   const std::string& path = config_.model_path;
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": no such model file (named by " + config_.file + ")");
-  try {
-    net_->net = cv::dnn::readNetFromONNX(path);
-  } catch (const cv::Exception& e) {
-    throw std::runtime_error(path + ": not a readable ONNX model (" + e.what() + ")");
-  }
-  if (net_->net.empty()) throw std::runtime_error(path + ": not a readable ONNX model (empty network)");
+  net_->net = readOnnxFile(path, config_.file, [](const std::string& p) { return cv::dnn::readNetFromONNX(p); });
   net_->outputs = net_->net.getUnconnectedOutLayersNames();
   const YoloSegParams& p = config_.params;
   const cv::Mat blank(p.input_height, p.input_width, CV_8UC3, cv::Scalar(114, 114, 114));
@@ -94,11 +74,8 @@ YoloSegDetector::YoloSegDetector(YoloSegConfig config) : config_(std::move(confi
 YoloSegDetector::~YoloSegDetector() = default;
 
 void YoloSegDetector::detect(RgbdFrame& f) const {
+  if (!resetDetections(f)) return;
   const int w = f.intrinsics.width, h = f.intrinsics.height;
-  f.instance_class.clear();
-  f.instance_confidence.clear();
-  f.mask.assign(static_cast<std::size_t>(std::max(0, w)) * std::max(0, h), 0);
-  if (w <= 0 || h <= 0 || f.color.size() != static_cast<std::size_t>(w) * h * 3) return;
   const YoloSegParams& p = config_.params;
   const cv::Mat bgr(h, w, CV_8UC3, f.color.data());
   const Letterbox lb = letterboxOf(w, h, p.input_width, p.input_height);

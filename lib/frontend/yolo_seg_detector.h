@@ -1,6 +1,7 @@
 #pragma once
 // A YOLOv8-seg instance segmentation network (the ultralytics ONNX export) run through OpenCV
-// DNN as a MaskDetector, described by a YAML file:
+// DNN as a MaskDetector, described by a YAML file (mask_detector_loader.h picks the kind):
+//   type: yolov8-seg               # optional (the default)
 //   model: yolov8n-seg.onnx        # relative to this YAML
 //   input: {width: 640, height: 640}
 //   swap_rb: true                  # the network takes RGB (ultralytics); frames are BGR

@@ -4,6 +4,8 @@
 // counted, never published.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -114,13 +116,14 @@ TEST(FrontendNodes, LearnedModeSegmentsTheModelsLabels) {
   }
 }
 
-// segmenter.rgbd.detector: the segmenter takes the masks from the colour image through the
-// YOLOv8-seg model (the fixture tests/data/models/yolo_seg: one "car" box, columns 16-47 and
-// rows 0-15 of a 64 x 32 image), not from the frame, and back-projects them with the depth.
-TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
-  const ClassTable classes = ClassTable::loadDefault();
+namespace {
+// A 64 x 32 RGBD frame without masks, of colour colour(u, v) (BGR) and depth depth_mm(u, v),
+// through a segmenter whose segmenter.rgbd.detector is the fixture `model_yaml`: what it publishes.
+std::vector<frame_instances_t> segmentWithDetector(const ClassTable& classes, const std::string& model_yaml,
+                                                   const std::function<std::array<uint8_t, 3>(int, int)>& colour,
+                                                   const std::function<int(int, int)>& depth_mm) {
   frontend::FrontendConfig cfg = frontend::loadFrontendConfig(std::string(SLIDE_SOURCE_DIR) + "/config/frontend.yaml");
-  cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/yolo_seg.yaml";
+  cfg.rgbd_detector = std::string(SLIDE_SOURCE_DIR) + "/tests/data/models/" + model_yaml;
   cfg.rgbd.erode_px = 0;
   std::vector<frame_instances_t> out;
   SegmenterNode segmenter(0, "INSTANCES", classes, cfg, 50, [&](const std::string&, const std::vector<uint8_t>& b) {
@@ -130,19 +133,52 @@ TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
   rgbd_frame_t m{};
   m.header = driveByHeader(0);
   m.intrinsics = {64, 32, 40.0, 40.0, 32.0, 16.0, 0.001};
-  m.color.assign(64 * 32 * 3, 80);
+  for (int v = 0; v < 32; ++v)
+    for (int u = 0; u < 64; ++u) {
+      for (uint8_t c : colour(u, v)) m.color.push_back(c);
+      const int mm = depth_mm(u, v);
+      m.depth.push_back(mm & 0xff), m.depth.push_back(mm >> 8);
+    }
   m.color_size = static_cast<int>(m.color.size());
-  for (int i = 0; i < 64 * 32; ++i) m.depth.push_back(0xd0), m.depth.push_back(0x07);  // 2000 mm
   m.depth_size = static_cast<int>(m.depth.size());
   m.mask_size = 0;  // no masks on the bus
   m.num_instances = 0;
   segmenter.onRgbd(m);
   segmenter.onOdom(driveByOdometry(0));
   segmenter.onOdom(driveByOdometry(1));
+  return out;
+}
+}  // namespace
+
+// segmenter.rgbd.detector: the segmenter takes the masks from the colour image through the
+// YOLOv8-seg model (the fixture tests/data/models/yolo_seg: one "car" box, columns 16-47 and
+// rows 0-15 of a 64 x 32 image), not from the frame, and back-projects them with the depth.
+TEST(FrontendNodes, RgbdDetectorMasksTheColourImage) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const auto out = segmentWithDetector(
+      classes, "yolo_seg.yaml", [](int, int) { return std::array<uint8_t, 3>{80, 80, 80}; }, [](int, int) { return 2000; });
   ASSERT_EQ(out.size(), 1u);
   ASSERT_EQ(out[0].instances.size(), 1u);
   EXPECT_EQ(out[0].instances[0].class_id, classes.findByName("car")->id);
   EXPECT_EQ(out[0].instances[0].num_points, 32 * 16);
+}
+
+// segmenter.rgbd.detector naming a `type: semantic` model YAML: the segmenter builds the
+// per-pixel detector (the fixture tests/data/models/semantic: red -> chair, blue -> car) and
+// splits its classes into instances by depth: the red top half of the image, its left and
+// right quarters 1 m apart, is two chairs.
+TEST(FrontendNodes, RgbdSemanticDetectorSplitsClassesByDepth) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const auto out = segmentWithDetector(
+      classes, "semantic.yaml",
+      [](int, int v) { return std::array<uint8_t, 3>{0, 0, static_cast<uint8_t>(v < 16 ? 255 : 0)}; },
+      [](int u, int v) { return v < 16 && u >= 32 ? 3000 : 2000; });
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].instances.size(), 2u);
+  for (const auto& inst : out[0].instances) {
+    EXPECT_EQ(inst.class_id, classes.findByName("chair")->id);
+    EXPECT_EQ(inst.num_points, 32 * 16);
+  }
 }
 
 // The preview (setPreview): a thinned copy of the published frames, at most one per period of

@@ -223,6 +223,16 @@ int main(int argc, char** argv) {
           "thread CPU: YOLOv8-seg decoding (80 classes, 8400 anchors, 10 detections, prototypes 160 x 160 -> 640 x 480) "
           "+ mask back-projection, synthetic outputs (the network's inference excluded), median of " + std::to_string(ms.size());
     }
+    for (const int factor : {4, 1}) {  // the model's output at a quarter of its 640 x 480 input (SegFormer), or all of it
+      const std::vector<double> ms = timeSemanticDecode(classes, cfg, runs, factor);
+      const std::string size = std::to_string(480 / factor) + ", " + std::to_string(640 / factor);
+      report.add(factor == 1 ? "rgbd.semantic_full_output_decode_backproject_ms.median" : "rgbd.semantic_decode_backproject_ms.median",
+                 bench::median(ms), "ms", true, factor == 1 ? std::nullopt : std::optional<double>(15.0))
+          .note = "thread CPU: per-pixel semantic decoding (logits [1, 40, " + size + "]: best class + softmax per output "
+                  "pixel, nearest-neighbour to 640 x 480) + depth-aware 4-connected components + mask back-projection, "
+                  "10 chairs before a wall, synthetic outputs (the network's inference excluded), median of " +
+                  std::to_string(ms.size());
+    }
     if (skip_real) {
       report.printTable(std::cout);
       if (!json.empty()) report.writeJson(json);
