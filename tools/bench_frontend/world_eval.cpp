@@ -435,9 +435,11 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
             if (hit[j]) continue;
             double nearest = 1e9;
             for (const auto* e : E) nearest = std::min(nearest, (e->position() - G[j]->position()).head<2>().norm());
-            std::printf("  missed %s %s id %ld at (%.1f, %.1f): seen in %d frames, max %d points, nearest estimate %.2f m\n",
-                        r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id), G[j]->position().x(),
-                        G[j]->position().y(), seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
+            const ClassInfo* truth_class = classes.find(G[j]->class_id);
+            std::printf("  missed %s %s id %ld (a %s) at (%.1f, %.1f): seen in %d frames, max %d points, nearest estimate %.2f m\n",
+                        r.mode.c_str(), info.name.c_str(), static_cast<long>(G[j]->id),
+                        truth_class ? truth_class->name.c_str() : "?", G[j]->position().x(), G[j]->position().y(),
+                        seen.at(static_cast<int>(G[j]->id)), max_points[G[j]->id], nearest);
             for (const auto* e : E)  // the estimates near it (matched to a neighbour, or too far off)
               if ((e->position() - G[j]->position()).head<2>().norm() < 4.0) {
                 const auto* b = std::get_if<Cuboid>(&e->model);
