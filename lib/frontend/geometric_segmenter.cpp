@@ -212,11 +212,53 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   std::vector<int> mark(cloud.size(), -1);
   std::vector<char> in_cluster(cloud.size(), 0);
   int label = 0;
-  for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
+  const double max_height = p.other_max_height > 0 ? std::min(p.other_max_height, other.size_max.z()) : other.size_max.z();
+  const double max_diagonal = std::hypot(other.size_max.x(), other.size_max.y());
+  // Height (2nd-98th percentile above ground) when the cluster stands like an "other": its
+  // height fits the class, its bottom is low; nullopt otherwise.
+  auto standingHeight = [&](const std::vector<int>& cl) -> std::optional<double> {
     const double bottom = quantileOf(h, cl, 0.02), height = quantileOf(h, cl, 0.98) - bottom;
-    const double max_height = p.other_max_height > 0 ? std::min(p.other_max_height, other.size_max.z()) : other.size_max.z();
-    if (height > max_height || height < other.size_min.z() || bottom > p.other_max_bottom) continue;
-    const Footprint f = footprintOf(cloud, cl, std::hypot(other.size_max.x(), other.size_max.y()));
+    if (height > max_height || height < other.size_min.z() || bottom > p.other_max_bottom) return std::nullopt;
+    return height;
+  };
+  struct Candidate {
+    std::vector<int> points;
+    double height;
+    Footprint footprint;
+  };
+  std::vector<Candidate> todo;
+  // Cells half as large: pieces of furniture standing centimetres apart fall apart.
+  const GridClusterParams fine{0.5 * p.other_cluster.cell, false, 1};
+  for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
+    const std::optional<double> height = standingHeight(cl);
+    if (!height) continue;
+    const Footprint f = footprintOf(cloud, cl, max_diagonal);
+    // A long cluster may be several pieces: it is split when at least two parts of
+    // other_split_min_points hold 90 % of its points, not when it crumbles into scraps (far
+    // off, a LiDAR's beams lie farther apart than the finer cells).
+    std::vector<std::vector<int>> parts;
+    if (p.other_split_length > 0 && f.length > p.other_split_length) {
+      parts = clusterGrid(cloud, cl, fine);
+      std::size_t kept = 0;
+      parts.erase(std::remove_if(parts.begin(), parts.end(),
+                                 [&](const std::vector<int>& part) {
+                                   return static_cast<int>(part.size()) < p.other_split_min_points;
+                                 }),
+                  parts.end());
+      for (const auto& part : parts) kept += part.size();
+      if (kept < 0.9 * cl.size()) parts.clear();
+    }
+    if (parts.size() < 2) {
+      todo.push_back({std::move(cl), *height, f});
+      continue;
+    }
+    for (auto& part : parts)
+      if (const std::optional<double> part_height = standingHeight(part)) {
+        const Footprint part_f = footprintOf(cloud, part, max_diagonal);
+        todo.push_back({std::move(part), *part_height, part_f});
+      }
+  }
+  for (auto& [cl, height, f] : todo) {
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;
     if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;

@@ -95,6 +95,11 @@ struct GeometricSegmenterParams {
   // through a car body's height band (Instance::free_space; cell 0: none).
   FreeSpaceParams free_space;
   GridClusterParams other_cluster{0.3, false, 30};
+  // An "other" cluster whose footprint is longer than this is clustered again on cells half as
+  // large (a chair pushed to a table stands a decimetre from it), each part of at least
+  // other_split_min_points becoming a cluster of its own when there are two or more; 0: off.
+  double other_split_length = 0.0;
+  int other_split_min_points = 120;
   bool emit_other = true;        // emit "other" instances for remaining compact clusters ...
   // ... whose range roughness (as CarParams::max_roughness) is at most this: solid things (bins,
   // boxes, furniture), not foliage (bushes, low crowns; real SemanticKITTI vegetation: median

@@ -389,6 +389,24 @@ TEST(GeometricSegmenter, AFloorToCeilingPieceOfWallIsNoOtherATableIs) {
   EXPECT_EQ(instancesNear(c, off, off.other_class, {7.1f, 0}, 1.0f), 1);
 }
 
+// A chair (0.45 x 0.45 x 0.9 m) pushed to a table (1.2 x 0.6 m, 0.75 m tall), 0.09 m from its
+// side: on 0.1 m cells their returns fall into neighbouring cells and join into one cluster, on
+// 0.05 m cells an empty cell lies between them. With the split the two are two "other"
+// objects; without it one.
+TEST(GeometricSegmenter, AChairPushedToATableIsAnOtherOfItsOwn) {
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(3, -0.3, -1), Eigen::Vector3d(4.2, 0.3, -0.25)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(3, 0.39, -1), Eigen::Vector3d(3.45, 0.84, -0.1))});
+  const frontend::GeometricSegmenterParams p = frontend::loadDefaultFrontendConfig().geometric;
+  ASSERT_GT(p.other_split_length, 0);
+  ASSERT_NEAR(p.other_cluster.cell, 0.1, 1e-9);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {3.0f, 0}, 0.2f), 1) << "the table";
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {3.05f, 0.62f}, 0.2f), 1) << "the chair";
+  frontend::GeometricSegmenterParams off = p;
+  off.other_split_length = 0;
+  EXPECT_EQ(instancesNear(c, off, off.other_class, {3.0f, 0.3f}, 1.5f), 1) << "one cluster without the split";
+}
+
 // A building's face behind a parked car (seen side-on, 5 m long), past the car's roof: the
 // ground before the face is hidden, so the face's lowest visible returns pass for ground and
 // the strip of face above them, under the car height cap, can fit a car's footprint and height. The face goes on above
