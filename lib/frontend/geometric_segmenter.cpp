@@ -200,7 +200,8 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
 }
 
 // Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
-// are solid and are seen whole.
+// are solid and are seen whole; a long one that falls into big pieces on finer cells counts as
+// those pieces (furniture standing centimetres apart).
 std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                             const ScanLines& lines, const GeometricSegmenterParams& p,
                                             const ClassInfo& other, const std::vector<char>& taken) {
