@@ -251,7 +251,7 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
 
   // Confirmed landmarks against the object most of their detections came from.
   const Pose to_world = s.robots[0].truth.front() * ate.alignment.T;
-  std::map<int, int> per_truth;
+  std::map<int, std::vector<Object>> of_truth;  // confirmed landmarks (world frame) by true object
   double sq = 0;
   int scored = 0;
   for (const Object& lm : opt.landmarks(true)) {
@@ -262,26 +262,20 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
       ++out.false_landmarks;
       continue;
     }
-    ++per_truth[best];
-    const double e = horizontalError(transformObject(to_world, lm), s.landmarks[best]);
+    of_truth[best].push_back(transformObject(to_world, lm));
+    const double e = horizontalError(of_truth[best].back(), s.landmarks[best]);
     sq += e * e;
     ++scored;
   }
   int extra = 0;
-  for (const auto& [i, n] : per_truth) extra += n - 1;
-  if (spdlog::should_log(spdlog::level::debug)) {  // each duplicated object: its landmarks' classes, offsets, observations
-    std::map<int, std::vector<Object>> of_truth;
-    for (const Object& lm : opt.landmarks(true))
-      if (votes[host].count(lm.id) && majority(votes[host], lm.id) >= 0)
-        of_truth[majority(votes[host], lm.id)].push_back(transformObject(to_world, lm));
-    for (const auto& [i, lms] : of_truth) {
-      if (lms.size() < 2) continue;
-      std::string t;
-      for (const Object& lm : lms)
-        t += fmt::format(" [class {} obs {} off {:.2f} m]", lm.class_id, lm.num_observations,
-                         horizontalError(lm, s.landmarks[i]));
-      spdlog::debug("duplicated object {} (class {}):{}", i, s.landmarks[i].class_id, t);
-    }
+  for (const auto& [i, lms] : of_truth) {
+    extra += static_cast<int>(lms.size()) - 1;
+    if (lms.size() < 2 || !spdlog::should_log(spdlog::level::debug)) continue;
+    std::string t;  // each duplicated object: its landmarks' classes, observations, offsets
+    for (const Object& lm : lms)
+      t += fmt::format(" [class {} obs {} off {:.2f} m]", lm.class_id, lm.num_observations,
+                       horizontalError(lm, s.landmarks[i]));
+    spdlog::debug("duplicated object {} (class {}):{}", i, s.landmarks[i].class_id, t);
   }
   out.duplicate_fraction = scored ? static_cast<double>(extra) / scored : 0;
   out.landmark_rmse_m = scored ? std::sqrt(sq / scored) : 0;
