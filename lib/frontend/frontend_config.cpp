@@ -300,6 +300,9 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "max_observations", p.max_observations, 1);
     opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
+    opt(c, "moving_vacated_share", p.moving_vacated_share, 0.0, 1.0);
+    opt(c, "moving_vacated_min_points", p.moving_vacated_min_points, 1);
+    opt(c, "moving_vacated_depth", p.moving_vacated_depth, 0.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);

@@ -48,6 +48,60 @@ void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Poi
       if (k++ % step == 0) out.emplace_back(p.x(), p.y());
 }
 
+// The cells a scan saw through near an object (Observation::free_space) on the ground plane, in
+// pixels of `pixel` metres: each cell covers the pixels within about half a pixel of its centre
+// and the 8 around. A point lies deep in free space when every pixel within `depth` of its own
+// is covered: lines of sight passed all around it, not just along a face beside it.
+class FreeRaster {
+ public:
+  FreeRaster(const Cloud& free, double pixel, double depth)
+      : inv_(1.0 / pixel), reach_(static_cast<int>(std::ceil(depth / pixel - 1e-9))) {
+    if (free.empty()) return;
+    Eigen::Vector2f lo = free.front().head<2>(), hi = lo;
+    for (const auto& q : free) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
+    origin_ = lo.cast<double>() - Eigen::Vector2d::Constant(2 * pixel);
+    nx_ = static_cast<int>((hi.x() - origin_.x()) * inv_) + 3;
+    ny_ = static_cast<int>((hi.y() - origin_.y()) * inv_) + 3;
+    std::vector<char> covered(static_cast<std::size_t>(nx_) * ny_, 0);
+    for (const auto& q : free)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = pixelOf(q.x(), origin_.x()) + dx, v = pixelOf(q.y(), origin_.y()) + dy;
+          if (u >= 0 && v >= 0 && u < nx_ && v < ny_) covered[static_cast<std::size_t>(v) * nx_ + u] = 1;
+        }
+    // Summed-area table: covered pixels in any block in constant time.
+    sum_.assign(static_cast<std::size_t>(nx_ + 1) * (ny_ + 1), 0);
+    for (int v = 0; v < ny_; ++v)
+      for (int u = 0; u < nx_; ++u)
+        sum_[(v + 1) * (nx_ + 1) + u + 1] = covered[static_cast<std::size_t>(v) * nx_ + u] + sum_[v * (nx_ + 1) + u + 1] +
+                                            sum_[(v + 1) * (nx_ + 1) + u] - sum_[v * (nx_ + 1) + u];
+  }
+  // How many of up to `max_points` of `pts` (evenly spread) lie deep in free space, and of how many.
+  std::pair<int, int> count(const Cloud& pts, std::size_t max_points) const {
+    if (sum_.empty() || pts.empty()) return {0, 0};
+    const std::size_t step = std::max<std::size_t>(1, pts.size() / max_points);
+    const int side = 2 * reach_ + 1;
+    int in = 0, n = 0;
+    for (std::size_t k = 0; k < pts.size(); k += step, ++n) {
+      const int u0 = pixelOf(pts[k].x(), origin_.x()) - reach_, v0 = pixelOf(pts[k].y(), origin_.y()) - reach_;
+      const int u1 = u0 + side, v1 = v0 + side;
+      if (u0 < 0 || v0 < 0 || u1 > nx_ || v1 > ny_) continue;
+      const int covered = sum_[v1 * (nx_ + 1) + u1] - sum_[v0 * (nx_ + 1) + u1] - sum_[v1 * (nx_ + 1) + u0] +
+                          sum_[v0 * (nx_ + 1) + u0];
+      in += covered == side * side;
+    }
+    return {in, n};
+  }
+
+ private:
+  int pixelOf(float c, double origin) const { return static_cast<int>(std::floor((c - origin) * inv_)); }
+  double inv_;
+  int reach_;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> sum_;
+};
+
 double centroidDistance(Shape shape, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   // Cylinders are compared on the ground plane: the visible part of a trunk varies in height.
   return shape == Shape::Cylinder ? (a - b).head<2>().norm() : (a - b).norm();
@@ -154,7 +208,19 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 
   std::map<std::int64_t, bool> matched;
+  // Whether the track's object has left where it was: its earlier points lie where the newest
+  // observation's lines of sight passed through (TrackerParams::moving_vacated_share).
+  auto vacated = [&](const Track& t, const Observation& newest) {
+    if (params_.moving_vacated_share <= 0 || newest.free_space.empty() || t.observations.empty()) return false;
+    const FreeRaster free(newest.free_space, 0.1, params_.moving_vacated_depth);
+    for (const auto& earlier : t.observations) {
+      const auto [in, n] = free.count(earlier.points, 200);
+      if (in >= params_.moving_vacated_min_points && in > params_.moving_vacated_share * n) return true;
+    }
+    return false;
+  };
   auto apply = [&](Track& t, Obs& o) {
+    if (!t.moving && vacated(t, o.seen)) t.moving = true;
     ++t.hits;
     t.missed = 0;
     t.confidence_sum += o.confidence;

@@ -26,6 +26,14 @@ struct TrackerParams {
   int max_observations = 10;         // sliding window of observations per track
   int max_points_per_observation = 1500;
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
+  // A track is moving also when more than this share of an earlier observation's points (and at
+  // least moving_vacated_min_points of them) stand where the newest observation's lines of sight
+  // passed through (Observation::free_space), with free space at least moving_vacated_depth
+  // metres all around them: the object has left that place. A parked car's body blocks every
+  // line of sight at its height; grazing lines of sight pass beside its faces. 0: off.
+  double moving_vacated_share = 0.0;
+  int moving_vacated_min_points = 10;
+  double moving_vacated_depth = 0.3;
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
   // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several

@@ -472,3 +472,48 @@ TEST(Tracker, AnInstancesFreeCellsAreBounded) {
     EXPECT_GT(o.free_space.size(), 1000u);
   }
 }
+
+namespace {
+// Free cells (0.2 m, as the segmenter's) filling the rectangle [x0, x1] x [y0, y1] at band height.
+void addFreeCells(frontend::Instance& inst, double x0, double y0, double x1, double y1) {
+  for (double x = x0 + 0.1; x < x1; x += 0.2)
+    for (double y = y0 + 0.1; y < y1; y += 0.2)
+      inst.free_space.emplace_back(static_cast<float>(x), static_cast<float>(y), 0.6f);
+}
+}  // namespace
+
+// A car seen side on from the origin (its near side at x = 10, 4.4 m long along y) drives along
+// y at 0.5 m per frame: too slowly for its track's points to outgrow a car by the minimum age.
+// The lines of sight of each frame pass through where it stood a frame earlier (free cells from
+// the sensor to 3 m beyond its side, over y where it no longer is): it is judged moving and never
+// reported. A parked car whose free cells reach up to 0.1 m from its faces (lines of sight
+// grazing them, and those in front) is not.
+TEST(Tracker, ACarWhoseEarlierPlaceWasSeenThroughIsMovingAParkedOneIsNot) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.moving_vacated_share, 0) << "on by default";
+  for (double step : {0.5, 0.0}) {
+    for (bool check : {true, false}) {
+      frontend::TrackerParams p = cfg.tracker;
+      if (!check) p.moving_vacated_share = 0;
+      frontend::Tracker tracker(classes, p, cfg.fit);
+      frontend::InputIssues issues;
+      for (int k = 0; k < 5; ++k) {
+        const double y0 = -2.2 + step * k;  // the car's rear end
+        frontend::Instance car = carInstance();
+        addFace(car, 10.0, y0, 10.0, y0 + 4.4);
+        addFreeCells(car, 5.0, y0 - 4.0, 9.9, y0 + 8.4);  // in front of its side
+        addFreeCells(car, 9.9, y0 - 4.0, 13.0, y0 - 0.1);  // behind it, beyond its rear end
+        addFreeCells(car, 9.9, y0 + 4.5, 13.0, y0 + 8.4);  // beyond its front end
+        frontend::FrameInstances f;
+        f.utime = k * 100000;
+        f.instances = {car};
+        tracker.update(f, issues);
+      }
+      ASSERT_EQ(tracker.tracks().size(), 1u);
+      const bool moving = step > 0 && check;
+      EXPECT_EQ(tracker.tracks().begin()->second.moving, moving) << "step " << step << " check " << check;
+      EXPECT_EQ(tracker.objectsInBody(Pose::Identity()).size(), moving ? 0u : 1u) << "step " << step << " check " << check;
+    }
+  }
+}
