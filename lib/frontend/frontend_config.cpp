@@ -152,6 +152,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "min_split_cell", p.min_split_cell, 0.02);
     opt(c, "max_split_length", p.max_split_length, 0.0);
     opt(c, "gap_cell", p.gap_cell, 0.0);
+    opt(c, "gap_angle_deg", p.gap_angle_deg, 0.0);
+    opt(c, "gap_min_points", p.gap_min_points, 1);
     if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
@@ -160,6 +162,11 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "hidden_below", p.hidden_below, 0.0);
     opt(c, "hidden_margin", p.hidden_margin, 0.0);
     opt(c, "max_ground_rise", p.max_ground_rise, 0.0);
+    opt(c, "min_points_far", p.min_points_far, 1);
+    opt(c, "near_range", p.near_range, 0.0);
+    opt(c, "seen_ground_search", p.seen_ground_search, 0.0);
+    opt(c, "seen_ground_rise", p.seen_ground_rise, 0.0);
+    opt(c, "seen_ground_slope", p.seen_ground_slope, 0.0);
   }
   if (n.has("free_space")) {
     const ConfigNode c = n.child("free_space");

@@ -131,11 +131,41 @@ bool floats(const Cloud& cloud, const std::vector<float>& h, const std::vector<i
   return groundOf(cl) - groundOf(hiding) > kp.max_ground_rise;
 }
 
+// Whether the cluster's ground estimate (h: height above it) lies above the ground seen nearest
+// to it (CarParams::seen_ground_search).
+bool aboveSeenGround(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& cl,
+                     const SeenGround& seen, double cell, const CarParams& kp) {
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (int i : cl) c += cloud[i].head<2>().cast<double>();
+  c /= static_cast<double>(cl.size());
+  double radius = 0;
+  std::vector<double> g;
+  g.reserve(cl.size());
+  for (int i : cl) {
+    radius = std::max(radius, (cloud[i].head<2>().cast<double>() - c).norm());
+    g.push_back(cloud[i].z() - h[i]);
+  }
+  const double own = quantileInPlace(g, 0.5);
+  // Cells by distance from the cluster's edge, from 1 m out (its own cells and the window that
+  // set its ground) to seen_ground_search: the nearest that saw the ground decide.
+  const int reach = static_cast<int>(std::ceil((radius + kp.seen_ground_search) / cell));
+  double best_d = std::numeric_limits<double>::infinity();
+  float best_z = 0;
+  for (int v = -reach; v <= reach; ++v)
+    for (int u = -reach; u <= reach; ++u) {
+      const double d = std::hypot(u * cell, v * cell) - radius;
+      if (d < 1.0 || d > kp.seen_ground_search || d >= best_d) continue;
+      const float z = seen.at(c.x() + u * cell, c.y() + v * cell);
+      if (std::isfinite(z)) best_d = d, best_z = z;
+    }
+  return std::isfinite(best_d) && own - best_z > kp.seen_ground_rise + kp.seen_ground_slope * best_d;
+}
+
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header) and are not the rest of a stack the view
 // cuts off (beside the points marked in `cut`); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
-                                          const ScanLines& lines, const std::vector<char>& cut,
+                                          const ScanLines& lines, const std::vector<char>& cut, const SeenGround& seen,
                                           const GeometricSegmenterParams& params, std::vector<char>& taken) {
   const CarParams& kp = params.car;
   const bool any_cut = params.view_cut.max_beside_share < 1 && std::find(cut.begin(), cut.end(), 1) != cut.end();
@@ -155,15 +185,22 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   // by side or back to back with gaps of a few decimetres join at `cell`; each part is then
   // tested as a cluster of its own.
   std::vector<std::pair<std::vector<int>, double>> todo;  // cluster, the cell it was clustered on
-  for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, kp.min_points})) todo.emplace_back(std::move(cl), kp.cell);
+  const int fewest = std::min(kp.min_points, kp.min_points_far);
+  // The returns a car at horizontal range r gives at least (CarParams::min_points_far).
+  auto needed = [&](double r) {
+    if (r <= kp.near_range) return kp.min_points;
+    return std::max(fewest, static_cast<int>(std::ceil(kp.min_points * kp.near_range * kp.near_range / (r * r))));
+  };
+  for (auto& cl : clusterGrid(cloud, low, {kp.cell, false, fewest})) todo.emplace_back(std::move(cl), kp.cell);
   for (std::size_t k = 0; k < todo.size(); ++k) {
     std::vector<int> cl = std::move(todo[k].first);
     const double cell = todo[k].second;
     if (auto parts = splitAtNotch(cloud, cl, kp.notch)) {
       for (auto* part : {&parts->first, &parts->second})
-        if (static_cast<int>(part->size()) >= kp.min_points) todo.emplace_back(std::move(*part), cell);
+        if (static_cast<int>(part->size()) >= fewest) todo.emplace_back(std::move(*part), cell);
       continue;
     }
+    if (static_cast<int>(cl.size()) < needed(nearestRange(cloud, cl))) continue;
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
@@ -172,17 +209,18 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
     if (f.length > kp.max_length || f.width > kp.max_width) {
       if (0.5 * cell >= kp.min_split_cell - 1e-9 && boxSide(cloud, cl) <= kp.max_split_length)
-        for (auto& part : clusterGrid(cloud, cl, {0.5 * cell, false, kp.min_points})) todo.emplace_back(std::move(part), 0.5 * cell);
+        for (auto& part : clusterGrid(cloud, cl, {0.5 * cell, false, fewest})) todo.emplace_back(std::move(part), 0.5 * cell);
       continue;
     }
     if (f.length < kp.min_length) continue;
     // Car-sized, but falling apart on gap_cell cells into two or more parts of at least
     // min_points (the end face of a car and a stripe of the next one's side, seen through the gap
     // between them, join on `cell`): each part is tested as a cluster of its own.
-    if (kp.gap_cell > 0 && cell > kp.gap_cell + 1e-9) {
-      auto parts = clusterGrid(cloud, cl, {kp.gap_cell, false, kp.min_points});
+    const double gap = std::max(kp.gap_cell, nearestRange(cloud, cl) * kp.gap_angle_deg * M_PI / 180.0);
+    if (kp.gap_cell > 0 && cell > gap + 1e-9) {
+      auto parts = clusterGrid(cloud, cl, {gap, false, kp.gap_min_points});
       if (parts.size() >= 2) {
-        for (auto& part : parts) todo.emplace_back(std::move(part), kp.gap_cell);
+        for (auto& part : parts) todo.emplace_back(std::move(part), gap);
         continue;
       }
     }
@@ -193,6 +231,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     }
     if (kp.max_covered < 1 && coveredFraction(cloud, cl, over, 1.0 / kp.cell) > kp.max_covered) continue;
     if (kp.max_hidden_bottom < 1 && floats(cloud, h, cl, lines, kp)) continue;
+    if (kp.seen_ground_search > 0 && aboveSeenGround(cloud, h, cl, seen, params.ground.cell, kp)) continue;
     for (int i : cl) taken[i] = 1;
     cars.push_back(std::move(cl));
   }
@@ -297,7 +336,8 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
 
   GroundParams gp = params_.ground;
   gp.max_range = params_.max_range;
-  const std::vector<float> h = heightAboveGround(cloud, gp);
+  SeenGround seen;
+  const std::vector<float> h = heightAboveGround(cloud, gp, &seen);
   std::vector<int> above;
   above.reserve(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i)
@@ -329,7 +369,7 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   // Each car carries the cells near it that lines of sight passed through in a car body's height
   // band: its box is not completed over them (a hidden end lies where the view was blocked, not
   // where it went through).
-  const std::vector<std::vector<int>> cars = carClusters(cloud, h, above, lines, cut, params_, taken);
+  const std::vector<std::vector<int>> cars = carClusters(cloud, h, above, lines, cut, seen, params_, taken);
   std::optional<FreeSpace> free;
   if (!cars.empty() && params_.free_space.cell > 0) free.emplace(cloud, params_.free_space);
   const double reach = classes_.at(params_.car_class).typicalSize().x();

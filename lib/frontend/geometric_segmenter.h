@@ -25,6 +25,10 @@ struct CarParams {
   double height_cap = 2.6;       // points above this height are left out of car clusters
   double cell = 0.3;
   int min_points = 40;
+  // Beyond near_range metres (nearest return) a car gives fewer returns, down to min_points_far
+  // (min_points x (near_range / range)^2, at least min_points_far; min_points_far >= min_points: off).
+  int min_points_far = 40;
+  double near_range = 25.0;
   // 95th percentile of height above ground. Cars stand 1.4 m or taller: the 95th percentile of
   // their sides reaches 1.2 m even when the roof is out of sight (a table with monitors on it,
   // 1.15 m, does not; at 1.0 indoor table groups were cars).
@@ -45,6 +49,8 @@ struct CarParams {
   // min_points is split into them (an end face joined on `cell` to a stripe of the next car's
   // side seen through the gap; 0: off).
   double gap_cell = 0.15;
+  double gap_angle_deg = 0.0;  // ... or, where wider, this angle at the cluster's range (a LiDAR's columns spread apart with range)
+  int gap_min_points = 40;
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test.
@@ -64,6 +70,14 @@ struct CarParams {
   double hidden_below = 0.5;
   double hidden_margin = 0.5;
   double max_ground_rise = 0.3;
+  // A car stands on the ground seen around it: where the ground's own returns were seen nearest
+  // to the cluster (SeenGround cells 1 to seen_ground_search metres from its edge), its ground
+  // estimate lies at most seen_ground_rise + seen_ground_slope x that distance above them. A crown's or a
+  // roof's underside far off, where no ground return falls within the ground window, makes its
+  // own ground (0: off).
+  double seen_ground_search = 0.0;
+  double seen_ground_rise = 0.5;
+  double seen_ground_slope = 0.15;
 };
 
 // The top of the view: where the scan's top beam hits something in most directions (walls, a

@@ -72,7 +72,13 @@ std::vector<float> growGround(const std::vector<float>& cand, const std::vector<
 }
 }  // namespace
 
-std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params) {
+float SeenGround::at(double x, double y) const {
+  const int cx = static_cast<int>(std::floor((x - min_x_) * inv_cell_)), cy = static_cast<int>(std::floor((y - min_y_) * inv_cell_));
+  if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return std::numeric_limits<float>::quiet_NaN();
+  return z_[static_cast<std::size_t>(cy) * nx_ + cx];
+}
+
+std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params, SeenGround* seen) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::vector<float> h(cloud.size(), nan);
   float min_x = std::numeric_limits<float>::infinity(), min_y = min_x, max_x = -min_x, max_y = -min_x;
@@ -152,6 +158,12 @@ std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& par
         for (int u = std::max(0, c % nx - params.window); u <= std::min(nx - 1, c % nx + params.window); ++u) check[v * nx + u] = 1;
   }
   const std::vector<float> ground = params.max_step > 0 ? growGround(cand, envelope, nx, ny, params.max_step, params.max_rise) : envelope;
+  if (seen) {
+    seen->min_x_ = min_x, seen->min_y_ = min_y, seen->inv_cell_ = inv, seen->nx_ = nx, seen->ny_ = ny;
+    seen->z_.assign(cand.size(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t c = 0; c < cand.size(); ++c)
+      if (std::isfinite(cand[c]) && cand[c] <= ground[c] + params.threshold) seen->z_[c] = cand[c];
+  }
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (cell_of[i] < 0) continue;
     float g = ground[cell_of[i]];

@@ -25,8 +25,22 @@ struct GroundParams {
   double under_tolerance = 0.0;
 };
 
+// Where the ground itself was seen: the grid's cells whose own returns lie on the estimate.
+class SeenGround {
+ public:
+  // The height (z) of the ground returns in the cell holding (x, y); NaN where the cell holds
+  // none (no returns, or only objects' returns above the estimate).
+  float at(double x, double y) const;
+
+ private:
+  friend std::vector<float> heightAboveGround(const Cloud&, const GroundParams&, SeenGround*);
+  double min_x_ = 0, min_y_ = 0, inv_cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<float> z_;
+};
+
 // Height of every point above the local ground estimate; NaN for non-finite or out-of-range
-// points.
-std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params);
+// points. `seen` (optional) receives where the ground was seen.
+std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params, SeenGround* seen = nullptr);
 
 }  // namespace slide::frontend

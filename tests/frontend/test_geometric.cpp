@@ -416,8 +416,13 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   auto carsNear = [&](const frontend::Cloud& c, const frontend::GeometricSegmenterParams& p, const Eigen::Vector2f& xy,
                       float d) { return instancesNear(c, p, p.car_class, xy, d); };
-  frontend::GeometricSegmenterParams off = cfg.geometric;
-  off.car.max_covered = 1;  // without the test
+  // The strip also stands above the ground seen around it (CarParams::seen_ground_search): each
+  // test alone turns it down.
+  frontend::GeometricSegmenterParams covered_only = cfg.geometric, off = cfg.geometric;
+  covered_only.car.seen_ground_search = 0;
+  off.car.seen_ground_search = 0;
+  off.car.max_covered = 1;  // without either test
+  off.car.gap_min_points = 40;  // (parts of 25 returns break the strip apart too)
   int face_cars_without = 0;
   for (double x = 26; x <= 36; x += 1.0) {
     const frontend::Cloud c =
@@ -426,6 +431,7 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
                      true);
     EXPECT_EQ(carsNear(c, cfg.geometric, {10, 0}, 1.0f), 1) << x;
     EXPECT_EQ(carsNear(c, cfg.geometric, {static_cast<float>(x), 0}, 2.0f), 0) << x;
+    EXPECT_EQ(carsNear(c, covered_only, {static_cast<float>(x), 0}, 2.0f), 0) << x;
     face_cars_without += carsNear(c, off, {static_cast<float>(x), 0}, 2.0f);
   }
   EXPECT_GE(face_cars_without, 1);
@@ -451,10 +457,51 @@ TEST(GeometricSegmenter, ACarSizedClusterBeyondTheCarRangeIsNoCar) {
   EXPECT_EQ(instancesNear(c, off, car, {0, 42}, 1.0f), 1);
 }
 
+// A car-sized box floating 2.5 m above the ground 27-28.8 m off (a crown's underside seen far
+// off: the ground rings fall at 24.2 and 31.1 m, outside the ground window, so its own bottom
+// makes its ground) is no car: the ground was seen 3 m nearer, 2.5 m below its own. The same box
+// on the ground (24.5-26.3 m off) is a car.
+TEST(GeometricSegmenter, ACarSizedBoxFloatingOverTheGroundSeenNearItIsNoCar) {
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.geometric.car.seen_ground_search, 0) << "on by default";
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(27, -2.25, 1.5), Eigen::Vector3d(28.8, 2.25, 3.0)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(-26.3, -2.25, -1), Eigen::Vector3d(-24.5, 2.25, 0.5))},
+                   true);
+  const int car = cfg.geometric.car_class;
+  EXPECT_EQ(instancesNear(c, cfg.geometric, car, {27, 0}, 1.5f), 0);
+  EXPECT_EQ(instancesNear(c, cfg.geometric, car, {-24.5, 0}, 1.5f), 1);
+  frontend::GeometricSegmenterParams off = cfg.geometric;
+  off.car.seen_ground_search = 0;  // without the test the floating box is a car
+  EXPECT_EQ(instancesNear(c, off, car, {27, 0}, 1.5f), 1);
+}
+
+// A car's end face seen with 30 returns (6 across, 5 up) is a car 30 m off, where a car gives
+// few returns, and no car 12 m off, where 30 returns are a scrap (CarParams::min_points_far).
+TEST(GeometricSegmenter, ThirtyReturnsAreACarFarOffAndAScrapNear) {
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::CarParams& kp = cfg.geometric.car;
+  ASSERT_LE(kp.min_points_far, 30);
+  ASSERT_GT(kp.min_points, 30);
+  ASSERT_GE(kp.near_range, 12.0);
+  ASSERT_LE(kp.min_points * kp.near_range * kp.near_range / (30.0 * 30.0), 30.0);
+  for (double range : {30.0, 12.0}) {
+    frontend::Cloud c;
+    for (double x = -36; x <= 36; x += 0.25)
+      for (double y = -36; y <= 36; y += 0.25) c.emplace_back(x, y, 0.0);
+    for (int i = 0; i < 6; ++i)
+      for (int k = 0; k < 5; ++k) c.emplace_back(range, -0.9 + 0.36 * i, 0.35 + 0.3 * k);
+    EXPECT_EQ(instancesNear(c, cfg.geometric, cfg.geometric.car_class, {static_cast<float>(range), 0}, 1.0f),
+              range > 20 ? 1 : 0)
+        << range;
+  }
+}
+
 // A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
 // the next car's side seen through the gap between them (0.8 m deep at x = 7.15) join on the car
-// cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart, and
-// the car is the face alone (the stripe is too short for a car).
+// cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart: no
+// car holds both (the stripe, longer than min_length, is a car of its own: the tracker joins it
+// to the next car's track).
 TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
   frontend::Cloud c;
   addGround(c);
@@ -468,16 +515,16 @@ TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
     io::LabelledScan scan;
     scan.xyz = c;
     frontend::InputIssues issues;
-    int cars = 0;
+    int cars = 0, both = 0;
     for (const auto& inst : frontend::GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
       if (inst.class_id != p.car_class) continue;
       ++cars;
-      float max_x = -1e9f;
-      for (const auto& q : inst.points) max_x = std::max(max_x, q.x());
-      if (gap_cell > 0) EXPECT_LT(max_x, 6.9f) << "the face alone";
-      else EXPECT_GT(max_x, 7.1f) << "the face with the stripe";
+      float min_x = 1e9f, max_x = -1e9f;
+      for (const auto& q : inst.points) min_x = std::min(min_x, q.x()), max_x = std::max(max_x, q.x());
+      both += min_x < 6.9f && max_x > 7.1f;
     }
-    EXPECT_EQ(cars, 1) << gap_cell;
+    EXPECT_EQ(both, gap_cell > 0 ? 0 : 1) << gap_cell;
+    EXPECT_EQ(cars, gap_cell > 0 ? 2 : 1) << gap_cell;
   }
 }
 
