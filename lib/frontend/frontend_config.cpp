@@ -47,6 +47,14 @@ void loadNotch(const ConfigNode& c, NotchSplitParams& p) {
   opt(c, "band_high", p.band_high, p.band_low);
 }
 
+void loadFreeSpace(const ConfigNode& c, FreeSpaceParams& p) {
+  opt(c, "cell", p.cell, 0.0);
+  opt(c, "band_low", p.band_low, 0.0);
+  opt(c, "band_high", p.band_high, p.band_low);
+  opt(c, "margin", p.margin, 0.0);
+  opt(c, "azimuth_step_deg", p.azimuth_step_deg, 0.05, 10.0);
+}
+
 void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "max_range", g.max_range, 1.0, 1000.0);
   opt(n, "emit_other", g.emit_other);
@@ -168,15 +176,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "seen_ground_rise", p.seen_ground_rise, 0.0);
     opt(c, "seen_ground_slope", p.seen_ground_slope, 0.0);
   }
-  if (n.has("free_space")) {
-    const ConfigNode c = n.child("free_space");
-    auto& p = g.free_space;
-    opt(c, "cell", p.cell, 0.0);
-    opt(c, "band_low", p.band_low, 0.0);
-    opt(c, "band_high", p.band_high, p.band_low);
-    opt(c, "margin", p.margin, 0.0);
-    opt(c, "azimuth_step_deg", p.azimuth_step_deg, 0.05, 10.0);
-  }
+  if (n.has("free_space")) loadFreeSpace(n.child("free_space"), g.free_space);
   if (n.has("other_cluster")) loadCluster(n.child("other_cluster"), g.other_cluster);
 }
 
@@ -269,6 +269,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "ground_cell", cfg.labelled.ground_cell, 0.05);
       if (c.has("ground_labels")) cfg.labelled.ground_labels = c.getList<int>("ground_labels");
       if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
+      if (c.has("free_space")) loadFreeSpace(c.child("free_space"), cfg.labelled.free_space);
       if (c.has("cluster_cell_by_class")) {
         const ConfigNode cells = c.child("cluster_cell_by_class");
         for (const std::string& name : cells.keys()) {

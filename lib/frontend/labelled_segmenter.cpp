@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/point_stats.h"
+
 namespace slide::frontend {
 
 namespace {
@@ -107,6 +109,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
   issues.count("non-finite point", bad);
 
   std::vector<Instance> out;
+  std::optional<FreeSpace> free;  // built when a cuboid-class instance is emitted
   for (const auto& [group, idx] : groups) {
     GridClusterParams cp = params_.cluster;
     // Columns are vertical: cluster their points on x, y so a trunk split by occlusion or
@@ -167,6 +170,16 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       inst.class_id = best;
       inst.points.reserve(cluster.size());
       for (int i : cluster) inst.points.push_back(scan.xyz[i]);
+      const ClassInfo& info = classes_.at(best);
+      if (info.shape == Shape::Cuboid && params_.free_space.cell > 0) {
+        if (!ground) ground.emplace(scan, params_.ground_labels, params_.ground_cell, params_.max_range);
+        std::vector<double> g;
+        for (int i : cluster)
+          if (const float z = ground->lowestNear(scan.xyz[i]); std::isfinite(z)) g.push_back(z);
+        if (!free) free.emplace(scan.xyz, params_.free_space);
+        const float ground_z = g.empty() ? z_lo : static_cast<float>(quantileInPlace(g, 0.5));
+        inst.free_space = free->near(cluster, ground_z, info.typicalSize().x());
+      }
       out.push_back(std::move(inst));
     }
   }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "frontend/grid_clustering.h"
+#include "frontend/free_space.h"
 #include "frontend/view_notch.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -47,6 +48,10 @@ struct LabelledSegmenterParams {
   double ground_cell = 0.5;          // metres
   std::vector<int> ground_labels{40, 44, 48, 49, 60, 72};  // the labeller's ground (SemanticKITTI ids: road, parking, ...)
   NotchSplitParams notch{0.4, 0.0};  // depth 0: off (config/frontend.yaml says why); on, a cuboid-class cluster with a notch in its view is split there (view_notch.h)
+  // Each cuboid-class instance carries the cells near it that the scan saw through in a car
+  // body's height band (Instance::free_space; cell 0: none), its ground the lowest labelled
+  // ground near its points.
+  FreeSpaceParams free_space{0.0};
 };
 
 class LabelledSegmenter : public LidarSegmenter {

@@ -369,3 +369,49 @@ TEST(LabelledSegmenter, GroundLabelledCarAtACarsFootIsLeftOut) {
   p.cuboid_ground_strip = 0;
   EXPECT_LT(nearest(p), 9.2f) << "the bled ground strip in the car";
 }
+
+// A car's side 10 m off (labelled car, y -2.2 to 2.2), the road in front of it and, 15-20 m off,
+// beyond both of its ends (labelled road): with free_space on, the car carries the cells that
+// lines of sight crossed in its body's height band (in front of it and past its ends), none
+// within its body; the tracker then completes it and judges its motion from them.
+TEST(LabelledSegmenter, ACarCarriesTheCellsSeenThroughNearItNoneInItsBody) {
+  io::LabelledScan scan;
+  auto point = [&](double x, double y, double z, std::uint16_t label) {
+    scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+    scan.intensity.push_back(0.5f);
+    scan.semantic.push_back(label);
+    scan.instance.push_back(0);
+  };
+  for (double y = -2.2; y <= 2.2 + 1e-9; y += 0.05)
+    for (double z = -0.9; z <= 0.4 + 1e-9; z += 0.1) point(10.0, y, z, 10);
+  for (double x = 4.0; x < 10.0; x += 0.1)
+    for (double y = -2.2; y <= 2.2 + 1e-9; y += 0.1) point(x, y, -1.0, 40);
+  for (double x = 15.0; x <= 20.0; x += 0.1)  // seen past the car's ends: |y| / x > 2.2 / 10
+    for (double y = 0.25 * x; y <= 0.25 * x + 2.5; y += 0.05) point(x, y, -1.0, 40), point(x, -y, -1.0, 40);
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.free_space.cell, 0.0) << "on by default";
+  for (double cell : {p.free_space.cell, 0.0}) {
+    p.free_space.cell = cell;
+    frontend::InputIssues issues;
+    int cars = 0;
+    for (const auto& inst : frontend::LabelledSegmenter(classes, p).segment(scan, issues)) {
+      if (inst.class_id != 10) continue;
+      ++cars;
+      if (cell == 0) {
+        EXPECT_TRUE(inst.free_space.empty());
+        continue;
+      }
+      int in_body = 0, in_front = 0, past_ends = 0;
+      for (const auto& q : inst.free_space) {
+        in_body += q.x() > 10.1f && q.x() < 11.8f && std::abs(q.y()) < 2.0f;
+        in_front += q.x() < 9.8f && std::abs(q.y()) < 2.0f;
+        past_ends += q.x() > 10.5f && std::abs(q.y()) > 2.6f;
+      }
+      EXPECT_EQ(in_body, 0);
+      EXPECT_GT(in_front, 10);
+      EXPECT_GT(past_ends, 10);
+    }
+    EXPECT_EQ(cars, 1) << cell;
+  }
+}
