@@ -1,7 +1,9 @@
 #pragma once
 // Hand-made labelled LiDAR scans for front-end tests: points on the sensor-facing surfaces of
-// upright cylinders (trunks, class 71) and boxes (cars, class 10) plus flat ground, with
-// SemanticKITTI labels and instance ids (object index + 1).
+// upright cylinders (trunks, class 71) and boxes (cars, class 10) plus flat ground where no
+// object hides it, with SemanticKITTI labels and instance ids (object index + 1).
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -36,9 +38,39 @@ inline io::LabelledScan syntheticScan(const std::vector<SceneObject>& objects, c
     s.semantic.push_back(static_cast<uint16_t>(sem));
     s.instance.push_back(static_cast<uint16_t>(inst));
   };
-  // Ground ring around the sensor.
+  // Whether an object stands between the sensor and world point p (the line of sight ends there).
+  auto hidden = [&](const Eigen::Vector3d& p) {
+    for (const SceneObject& o : objects) {
+      if (o.semantic == 10) {  // slab test in the box's frame
+        const Eigen::Matrix3d Rt = rotZ(o.yaw).transpose();
+        const Eigen::Vector3d half = o.dims / 2;
+        const Eigen::Vector3d a = Rt * (eye - o.center - Eigen::Vector3d(0, 0, half.z()));
+        const Eigen::Vector3d d = Rt * (p - eye);
+        double t0 = 0, t1 = 1;
+        for (int k = 0; k < 3 && t0 <= t1; ++k) {
+          if (std::abs(d[k]) < 1e-12) {
+            if (std::abs(a[k]) > half[k]) t1 = -1;
+            continue;
+          }
+          const double ta = (-half[k] - a[k]) / d[k], tb = (half[k] - a[k]) / d[k];
+          t0 = std::max(t0, std::min(ta, tb)), t1 = std::min(t1, std::max(ta, tb));
+        }
+        if (t0 <= t1 && t0 < 1 - 1e-9) return true;  // it enters the box before p (ground under the box too)
+      } else {  // the line of sight's nearest approach to the axis, below the top
+        const Eigen::Vector2d e = eye.head<2>(), d = (p - eye).head<2>();
+        const double t = std::clamp((o.center.head<2>() - e).dot(d) / std::max(d.squaredNorm(), 1e-12), 0.0, 1.0);
+        const double z = eye.z() + t * (p.z() - eye.z());
+        if (t < 1 - 1e-9 && (e + t * d - o.center.head<2>()).norm() < o.radius && z < o.center.z() + o.height) return true;
+      }
+    }
+    return false;
+  };
+  // Ground ring around the sensor, where no object hides it.
   for (double r = 2.0; r < 20.0; r += ground_step)
-    for (double a = 0; a < 2 * M_PI; a += ground_step / r) add(eye + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), -eye.z()), 40, 0);
+    for (double a = 0; a < 2 * M_PI; a += ground_step / r) {
+      const Eigen::Vector3d g = eye + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), -eye.z());
+      if (!hidden(g)) add(g, 40, 0);
+    }
   for (std::size_t k = 0; k < objects.size(); ++k) {
     const SceneObject& o = objects[k];
     const int inst = static_cast<int>(k) + 1;

@@ -33,6 +33,14 @@ const frontend::Instance* nearest(const std::vector<frontend::Instance>& v, int 
   }
   return best;
 }
+
+// One return of a hand-made labelled scan (no instance id).
+void addLabelledPoint(io::LabelledScan& scan, double x, double y, double z, std::uint16_t label) {
+  scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+  scan.intensity.push_back(0.5f);
+  scan.semantic.push_back(label);
+  scan.instance.push_back(0);
+}
 }  // namespace
 
 TEST(GridClustering, SplitsSeparatedBlobsAndDropsSmallOnes) {
@@ -343,12 +351,7 @@ TEST(ViewNotch, SplitsTwoCarsNoseOutAndKeepsOneCarWhole) {
 // boundary errors do: left in, the strip stretches the car's footprint 1 m towards the sensor.
 TEST(LabelledSegmenter, GroundLabelledCarAtACarsFootIsLeftOut) {
   io::LabelledScan scan;
-  auto point = [&](double x, double y, double z, std::uint16_t label) {
-    scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
-    scan.intensity.push_back(0.5f);
-    scan.semantic.push_back(label);
-    scan.instance.push_back(0);
-  };
+  auto point = [&](double x, double y, double z, std::uint16_t label) { addLabelledPoint(scan, x, y, z, label); };
   for (double y = -2.2; y <= 2.2 + 1e-9; y += 0.05) {
     for (double z = -0.9; z <= 0.4 + 1e-9; z += 0.1) point(10.0, y, z, 10);
     for (double x = 4.0; x < 10.0; x += 0.1) point(x, y, -1.0, x >= 9.0 ? 10 : 40);
@@ -376,12 +379,7 @@ TEST(LabelledSegmenter, GroundLabelledCarAtACarsFootIsLeftOut) {
 // within its body; the tracker then completes it and judges its motion from them.
 TEST(LabelledSegmenter, ACarCarriesTheCellsSeenThroughNearItNoneInItsBody) {
   io::LabelledScan scan;
-  auto point = [&](double x, double y, double z, std::uint16_t label) {
-    scan.xyz.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
-    scan.intensity.push_back(0.5f);
-    scan.semantic.push_back(label);
-    scan.instance.push_back(0);
-  };
+  auto point = [&](double x, double y, double z, std::uint16_t label) { addLabelledPoint(scan, x, y, z, label); };
   for (double y = -2.2; y <= 2.2 + 1e-9; y += 0.05)
     for (double z = -0.9; z <= 0.4 + 1e-9; z += 0.1) point(10.0, y, z, 10);
   for (double x = 4.0; x < 10.0; x += 0.1)

@@ -366,7 +366,9 @@ TEST(Tracker, TwoHalvesOfACarSettledIntoOneReadingAreReportedAsOne) {
     for (const auto& o : objects)
       if (std::abs(o.position().x() - 20.25) < 2.5) {
         ++middle;
-        if (radius > 0) EXPECT_LT((o.position().head<2>() - Eigen::Vector2d(20.25, 9.4)).norm(), 0.3) << o.position().transpose();
+        if (radius > 0) {
+          EXPECT_LT((o.position().head<2>() - Eigen::Vector2d(20.25, 9.4)).norm(), 0.3) << o.position().transpose();
+        }
       }
     EXPECT_EQ(middle, radius > 0 ? 1 : 2) << "radius " << radius;
   }
