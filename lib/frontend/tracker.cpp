@@ -361,15 +361,22 @@ double headingOf(const Object& o) {
 // reading) of its class within `radius` agree with more: the sum over them of cos(2 x the
 // heading difference), +1 parallel and -1 across. Without sure boxes nearby it keeps its first
 // reading.
-void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fits, double radius) {
+void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fits, double radius, double fallback) {
   for (auto& [o, other] : fits) {
     if (!other) continue;
     const double first = headingOf(o), second = headingOf(*other);
-    double vote = 0;  // > 0: the other reading
-    for (const auto& [s, s_other] : fits)
-      if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= radius)
-        vote += std::cos(2 * (second - headingOf(s))) - std::cos(2 * (first - headingOf(s)));
-    if (vote > 0) std::swap(o.model, other->model);
+    // Boxes seen whole within `radius` vote, or within `fallback` when none is that near.
+    for (double r : {radius, fallback}) {
+      double vote = 0;  // > 0: the other reading
+      int voters = 0;
+      for (const auto& [s, s_other] : fits)
+        if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= r) {
+          vote += std::cos(2 * (second - headingOf(s))) - std::cos(2 * (first - headingOf(s)));
+          ++voters;
+        }
+      if (vote > 0) std::swap(o.model, other->model);
+      if (voters > 0) break;
+    }
   }
 }
 }  // namespace
@@ -467,12 +474,12 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
   }
   if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
   if (readings) {
-    settleBoxReadings(fits, params_.parallel_radius);
+    settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
     // A box settled into its other reading may now stand on another track's box: joined, and
     // the joint box settled in turn.
     const std::size_t before = fits.size();
     if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
-    if (fits.size() < before) settleBoxReadings(fits, params_.parallel_radius);
+    if (fits.size() < before) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
   }
   std::vector<Object> out;
   out.reserve(fits.size());

@@ -52,6 +52,9 @@ struct TrackerParams {
   // length was seen agree with more (modulo 180 deg). Parked cars stand parallel to their
   // neighbours. 0: off (the fit's own guess).
   double parallel_radius = 10.0;
+  // ... or within this radius when no box seen whole stands within parallel_radius (a row of
+  // cars seen end-on from an aisle, none seen lengthwise).
+  double parallel_fallback_radius = 10.0;
   // Two reported boxes of one class whose footprints overlap by more than this share of the
   // smaller one's are one object tracked in two pieces: reported as one box fitted to both
   // tracks' points (0: off).

@@ -519,3 +519,32 @@ TEST(Tracker, ACarWhoseEarlierPlaceWasSeenThroughIsMovingAParkedOneIsNot) {
     }
   }
 }
+
+// The lone 1.8 m face of the test above, its neighbours seen along their sides now 12-15 m off
+// (x 4 to 8.4 and 33 to 37.4 at y = 8.5): beyond parallel_radius, within
+// parallel_fallback_radius. With the fallback it takes their heading; without it (fallback no
+// wider than the radius) the fit's own guess, an end face.
+TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.parallel_fallback_radius, 16.0) << "on by default";
+  ASSERT_LT(cfg.tracker.parallel_radius, 12.0);
+  for (double fallback : {cfg.tracker.parallel_fallback_radius, cfg.tracker.parallel_radius}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.parallel_fallback_radius = fallback;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), b = carInstance(), c = carInstance();
+    addFace(a, 4.0, 8.5, 8.4, 8.5);
+    addFace(b, 33.0, 8.5, 37.4, 8.5);
+    addFace(c, 20.0, 8.5, 21.8, 8.5);
+    feedFourFrames(tracker, {a, b, c});
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    ASSERT_EQ(objects.size(), 3u);
+    for (const auto& o : objects) {
+      if (std::abs(o.position().x() - 21) > 2.5) continue;
+      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
+      const double across = std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI));  // 0: length along x
+      EXPECT_NEAR(across, fallback > cfg.tracker.parallel_radius ? 0.0 : M_PI / 2, 0.1) << "fallback " << fallback;
+    }
+  }
+}
