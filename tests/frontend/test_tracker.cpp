@@ -3,6 +3,7 @@
 // poses by travelled distance with relative odometry.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 
 #include "config/config.h"
@@ -303,6 +304,28 @@ TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
   }
 }
 
+namespace {
+// Cars each seen as one face (x0, y0, x1, y1) in four frames: each reported box's x and how far
+// its length turns from the x axis (0 to pi / 2).
+std::vector<std::pair<double, double>> headingsAcross(const ClassTable& classes, const frontend::TrackerParams& p,
+                                                      const frontend::FitParams& fit,
+                                                      const std::vector<std::array<double, 4>>& faces) {
+  frontend::Tracker tracker(classes, p, fit);
+  std::vector<frontend::Instance> cars;
+  for (const auto& f : faces) {
+    cars.push_back(carInstance());
+    addFace(cars.back(), f[0], f[1], f[2], f[3]);
+  }
+  feedFourFrames(tracker, cars);
+  std::vector<std::pair<double, double>> out;
+  for (const auto& o : tracker.objectsInBody(Pose::Identity())) {
+    const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
+    out.emplace_back(o.position().x(), std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI)));
+  }
+  return out;
+}
+}  // namespace
+
 // Two cars seen along their sides (length along x, at y = 5 and y = 12) and, between them, a
 // 1.8 m stretch of a third one's side seen through a gap (x 20 to 21.8 at y = 8.5: a lone face
 // with the width of a car). Alone, the fit takes that face for the car's end (its length across
@@ -314,20 +337,12 @@ TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
   for (double radius : {cfg.tracker.parallel_radius, 0.0}) {
     frontend::TrackerParams p = cfg.tracker;
     p.parallel_radius = radius;
-    frontend::Tracker tracker(classes, p, cfg.fit);
-    frontend::Instance a = carInstance(), b = carInstance(), c = carInstance();
-    addFace(a, 8.0, 5.0, 12.4, 5.0);
-    addFace(b, 28.0, 12.0, 32.4, 12.0);
-    addFace(c, 20.0, 8.5, 21.8, 8.5);
-    feedFourFrames(tracker, {a, b, c});
-    const auto objects = tracker.objectsInBody(Pose::Identity());
-    ASSERT_EQ(objects.size(), 3u);
-    for (const auto& o : objects) {
-      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
-      const double across = std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI));  // 0: length along x
-      const bool stretch = std::abs(o.position().x() - 21) < 2.5;
+    const auto headings = headingsAcross(classes, p, cfg.fit, {{8.0, 5.0, 12.4, 5.0}, {28.0, 12.0, 32.4, 12.0}, {20.0, 8.5, 21.8, 8.5}});
+    ASSERT_EQ(headings.size(), 3u);
+    for (const auto& [x, across] : headings) {
+      const bool stretch = std::abs(x - 21) < 2.5;
       if (!stretch || radius > 0) {
-        EXPECT_LT(across, 0.1) << "radius " << radius << " at x " << o.position().x();
+        EXPECT_LT(across, 0.1) << "radius " << radius << " at x " << x;
       } else {
         EXPECT_NEAR(across, M_PI / 2, 0.1) << "alone, the lone face is taken for an end";
       }
@@ -532,19 +547,10 @@ TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
   for (double fallback : {cfg.tracker.parallel_fallback_radius, cfg.tracker.parallel_radius}) {
     frontend::TrackerParams p = cfg.tracker;
     p.parallel_fallback_radius = fallback;
-    frontend::Tracker tracker(classes, p, cfg.fit);
-    frontend::Instance a = carInstance(), b = carInstance(), c = carInstance();
-    addFace(a, 4.0, 8.5, 8.4, 8.5);
-    addFace(b, 33.0, 8.5, 37.4, 8.5);
-    addFace(c, 20.0, 8.5, 21.8, 8.5);
-    feedFourFrames(tracker, {a, b, c});
-    const auto objects = tracker.objectsInBody(Pose::Identity());
-    ASSERT_EQ(objects.size(), 3u);
-    for (const auto& o : objects) {
-      if (std::abs(o.position().x() - 21) > 2.5) continue;
-      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
-      const double across = std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI));  // 0: length along x
-      EXPECT_NEAR(across, fallback > cfg.tracker.parallel_radius ? 0.0 : M_PI / 2, 0.1) << "fallback " << fallback;
-    }
+    const auto headings = headingsAcross(classes, p, cfg.fit, {{4.0, 8.5, 8.4, 8.5}, {33.0, 8.5, 37.4, 8.5}, {20.0, 8.5, 21.8, 8.5}});
+    ASSERT_EQ(headings.size(), 3u);
+    for (const auto& [x, across] : headings)
+      if (std::abs(x - 21) < 2.5)
+        EXPECT_NEAR(across, fallback > cfg.tracker.parallel_radius ? 0.0 : M_PI / 2, 0.1) << "fallback " << fallback;
   }
 }
