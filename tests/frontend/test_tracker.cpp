@@ -549,8 +549,10 @@ TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
     p.parallel_fallback_radius = fallback;
     const auto headings = headingsAcross(classes, p, cfg.fit, {{4.0, 8.5, 8.4, 8.5}, {33.0, 8.5, 37.4, 8.5}, {20.0, 8.5, 21.8, 8.5}});
     ASSERT_EQ(headings.size(), 3u);
-    for (const auto& [x, across] : headings)
-      if (std::abs(x - 21) < 2.5)
+    for (const auto& [x, across] : headings) {
+      if (std::abs(x - 21) < 2.5) {
         EXPECT_NEAR(across, fallback > cfg.tracker.parallel_radius ? 0.0 : M_PI / 2, 0.1) << "fallback " << fallback;
+      }
+    }
   }
 }
