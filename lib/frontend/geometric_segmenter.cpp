@@ -149,16 +149,20 @@ bool aboveSeenGround(const Cloud& cloud, const std::vector<float>& h, const std:
   // Cells by distance from the cluster's edge, from 1 m out (its own cells and the window that
   // set its ground) to seen_ground_search: the nearest that saw the ground decide.
   const int reach = static_cast<int>(std::ceil((radius + kp.seen_ground_search) / cell));
-  double best_d = std::numeric_limits<double>::infinity();
+  // Distances in squared cells from the centre: from (radius + 1 m)^2 to (radius + search)^2.
+  const double lo = std::pow((radius + 1.0) / cell, 2), hi = std::pow((radius + kp.seen_ground_search) / cell, 2);
+  double best = std::numeric_limits<double>::infinity();
   float best_z = 0;
   for (int v = -reach; v <= reach; ++v)
     for (int u = -reach; u <= reach; ++u) {
-      const double d = std::hypot(u * cell, v * cell) - radius;
-      if (d < 1.0 || d > kp.seen_ground_search || d >= best_d) continue;
+      const double d2 = static_cast<double>(u * u + v * v);
+      if (d2 < lo || d2 > hi || d2 >= best) continue;
       const float z = seen.at(c.x() + u * cell, c.y() + v * cell);
-      if (std::isfinite(z)) best_d = d, best_z = z;
+      if (std::isfinite(z)) best = d2, best_z = z;
     }
-  return std::isfinite(best_d) && own - best_z > kp.seen_ground_rise + kp.seen_ground_slope * best_d;
+  if (!std::isfinite(best)) return false;
+  const double d = std::sqrt(best) * cell - radius;
+  return own - best_z > kp.seen_ground_rise + kp.seen_ground_slope * d;
 }
 
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
