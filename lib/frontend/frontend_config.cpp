@@ -310,7 +310,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);
     opt(c, "moving_vacated_share", p.moving_vacated_share, 0.0, 1.0);
     opt(c, "moving_vacated_min_points", p.moving_vacated_min_points, 1);
-    opt(c, "moving_vacated_depth", p.moving_vacated_depth, 0.0);
+    opt(c, "moving_vacated_depth", p.moving_vacated_depth, 0.0, 2.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);

@@ -73,9 +73,9 @@ std::vector<float> growGround(const std::vector<float>& cand, const std::vector<
 }  // namespace
 
 float SeenGround::at(double x, double y) const {
-  const int cx = static_cast<int>(std::floor((x - min_x_) * inv_cell_)), cy = static_cast<int>(std::floor((y - min_y_) * inv_cell_));
-  if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return std::numeric_limits<float>::quiet_NaN();
-  return z_[static_cast<std::size_t>(cy) * nx_ + cx];
+  const double cx = std::floor((x - min_x_) * inv_cell_), cy = std::floor((y - min_y_) * inv_cell_);
+  if (!(cx >= 0 && cy >= 0 && cx < nx_ && cy < ny_)) return std::numeric_limits<float>::quiet_NaN();
+  return z_[static_cast<std::size_t>(cy) * nx_ + static_cast<std::size_t>(cx)];
 }
 
 std::vector<float> heightAboveGround(const Cloud& cloud, const GroundParams& params, SeenGround* seen) {

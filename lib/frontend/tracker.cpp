@@ -54,21 +54,25 @@ void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Poi
 // is covered: lines of sight passed all around it, not just along a face beside it.
 class FreeRaster {
  public:
-  FreeRaster(const Cloud& free, double pixel, double depth)
+  // Only the cells within `region` (where the points to test lie; at most kMaxSide metres on a
+  // side, else nothing is covered) are rasterised: a hostile instance may carry cells anywhere.
+  FreeRaster(const Cloud& free, double pixel, double depth, const Eigen::AlignedBox2d& region)
       : inv_(1.0 / pixel), reach_(static_cast<int>(std::ceil(depth / pixel - 1e-9))) {
-    if (free.empty()) return;
-    Eigen::Vector2f lo = free.front().head<2>(), hi = lo;
-    for (const auto& q : free) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
-    origin_ = lo.cast<double>() - Eigen::Vector2d::Constant(2 * pixel);
-    nx_ = static_cast<int>((hi.x() - origin_.x()) * inv_) + 3;
-    ny_ = static_cast<int>((hi.y() - origin_.y()) * inv_) + 3;
+    if (free.empty() || region.isEmpty() || (region.sizes().array() > kMaxSide).any()) return;
+    origin_ = region.min() - Eigen::Vector2d::Constant(depth + 2 * pixel);
+    nx_ = static_cast<int>((region.sizes().x() + 2 * depth) * inv_) + 5;
+    ny_ = static_cast<int>((region.sizes().y() + 2 * depth) * inv_) + 5;
     std::vector<char> covered(static_cast<std::size_t>(nx_) * ny_, 0);
-    for (const auto& q : free)
+    for (const auto& q : free) {
+      if (!q.allFinite() || q.x() < origin_.x() - pixel || q.y() < origin_.y() - pixel ||
+          q.x() > origin_.x() + (nx_ + 1) * pixel || q.y() > origin_.y() + (ny_ + 1) * pixel)
+        continue;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int u = pixelOf(q.x(), origin_.x()) + dx, v = pixelOf(q.y(), origin_.y()) + dy;
           if (u >= 0 && v >= 0 && u < nx_ && v < ny_) covered[static_cast<std::size_t>(v) * nx_ + u] = 1;
         }
+    }
     // Summed-area table: covered pixels in any block in constant time.
     sum_.assign(static_cast<std::size_t>(nx_ + 1) * (ny_ + 1), 0);
     for (int v = 0; v < ny_; ++v)
@@ -83,7 +87,10 @@ class FreeRaster {
     const int side = 2 * reach_ + 1;
     int in = 0, n = 0;
     for (std::size_t k = 0; k < pts.size(); k += step, ++n) {
-      const int u0 = pixelOf(pts[k].x(), origin_.x()) - reach_, v0 = pixelOf(pts[k].y(), origin_.y()) - reach_;
+      if (!pts[k].allFinite()) continue;
+      const double fu = std::floor((pts[k].x() - origin_.x()) * inv_), fv = std::floor((pts[k].y() - origin_.y()) * inv_);
+      if (!(fu >= 0 && fv >= 0 && fu < nx_ && fv < ny_)) continue;
+      const int u0 = static_cast<int>(fu) - reach_, v0 = static_cast<int>(fv) - reach_;
       const int u1 = u0 + side, v1 = v0 + side;
       if (u0 < 0 || v0 < 0 || u1 > nx_ || v1 > ny_) continue;
       const int covered = sum_[v1 * (nx_ + 1) + u1] - sum_[v0 * (nx_ + 1) + u1] - sum_[v1 * (nx_ + 1) + u0] +
@@ -94,6 +101,7 @@ class FreeRaster {
   }
 
  private:
+  static constexpr double kMaxSide = 30.0;  // metres: a car track spread wider is moving already
   int pixelOf(float c, double origin) const { return static_cast<int>(std::floor((c - origin) * inv_)); }
   double inv_;
   int reach_;
@@ -212,7 +220,10 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   // observation's lines of sight passed through (TrackerParams::moving_vacated_share).
   auto vacated = [&](const Track& t, const Observation& newest) {
     if (params_.moving_vacated_share <= 0 || newest.free_space.empty() || t.observations.empty()) return false;
-    const FreeRaster free(newest.free_space, 0.1, params_.moving_vacated_depth);
+    Eigen::AlignedBox2d region;  // where the earlier points lie
+    for (const auto& earlier : t.observations)
+      for (const auto& p : earlier.points) region.extend(p.head<2>().cast<double>());
+    const FreeRaster free(newest.free_space, 0.1, params_.moving_vacated_depth, region);
     for (const auto& earlier : t.observations) {
       const auto [in, n] = free.count(earlier.points, 200);
       if (in >= params_.moving_vacated_min_points && in > params_.moving_vacated_share * n) return true;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <fstream>
+#include <limits>
 
 #include "config/config.h"
 #include "frontend/frontend_config.h"
@@ -555,4 +556,21 @@ TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
       }
     }
   }
+}
+
+// A hostile instance's free cells may lie anywhere the bus encoding reaches (±3.2 km): the moving
+// test rasterises only the cells around the track's own points, so an observation with cells
+// 3 km apart neither takes gigabytes nor makes a parked car look moving.
+TEST(Tracker, FreeCellsKilometresApartAreLeftOutOfTheMovingTest) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  frontend::Tracker tracker(classes, cfg.tracker, cfg.fit);
+  frontend::Instance car = carInstance();
+  addFace(car, 8.0, 5.0, 12.4, 5.0);
+  car.free_space = {Eigen::Vector3f(-3200.0f, -3200.0f, 0.6f), Eigen::Vector3f(3200.0f, 3200.0f, 0.6f),
+                    Eigen::Vector3f(std::numeric_limits<float>::quiet_NaN(), 1.0f, 0.6f)};
+  feedFourFrames(tracker, {car});
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_FALSE(tracker.tracks().begin()->second.moving);
+  EXPECT_EQ(tracker.objectsInBody(Pose::Identity()).size(), 1u);
 }
