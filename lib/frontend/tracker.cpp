@@ -59,9 +59,11 @@ class FreeRaster {
   FreeRaster(const Cloud& free, double pixel, double depth, const Eigen::AlignedBox2d& region)
       : inv_(1.0 / pixel), reach_(static_cast<int>(std::ceil(depth / pixel - 1e-9))) {
     if (free.empty() || region.isEmpty() || (region.sizes().array() > kMaxSide).any()) return;
-    origin_ = region.min() - Eigen::Vector2d::Constant(depth + 2 * pixel);
-    nx_ = static_cast<int>((region.sizes().x() + 2 * depth) * inv_) + 5;
-    ny_ = static_cast<int>((region.sizes().y() + 2 * depth) * inv_) + 5;
+    // On the 0.1 m grid through the odometry origin: the same cells cover the same pixels
+    // whichever points the track holds.
+    origin_ = ((region.min() - Eigen::Vector2d::Constant(depth + 2 * pixel)) * inv_).array().floor().matrix() * pixel;
+    nx_ = static_cast<int>((region.sizes().x() + 2 * depth) * inv_) + 6;
+    ny_ = static_cast<int>((region.sizes().y() + 2 * depth) * inv_) + 6;
     std::vector<char> covered(static_cast<std::size_t>(nx_) * ny_, 0);
     for (const auto& q : free) {
       if (!q.allFinite() || q.x() < origin_.x() - pixel || q.y() < origin_.y() - pixel ||
