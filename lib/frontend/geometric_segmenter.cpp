@@ -22,6 +22,14 @@ double nearestRange(const Cloud& cloud, const std::vector<int>& cluster) {
   return r;
 }
 
+// Median height of the ground under the points (z minus their height above it, h).
+double groundUnder(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& pts) {
+  std::vector<double> g;
+  g.reserve(pts.size());
+  for (int i : pts) g.push_back(cloud[i].z() - h[i]);
+  return quantileInPlace(g, 0.5);
+}
+
 struct Footprint {
   double length = 0, width = 0;
 };
@@ -123,12 +131,7 @@ bool floats(const Cloud& cloud, const std::vector<float>& h, const std::vector<i
   int bins = 0;
   const std::vector<int> hiding = lines.hiddenBelow(cl, static_cast<float>(kp.hidden_below), static_cast<float>(kp.hidden_margin), bins);
   if (hiding.empty() || static_cast<int>(hiding.size()) <= kp.max_hidden_bottom * bins) return false;
-  auto groundOf = [&](const std::vector<int>& pts) {
-    std::vector<double> g;
-    for (int i : pts) g.push_back(cloud[i].z() - h[i]);
-    return quantileInPlace(g, 0.5);
-  };
-  return groundOf(cl) - groundOf(hiding) > kp.max_ground_rise;
+  return groundUnder(cloud, h, cl) - groundUnder(cloud, h, hiding) > kp.max_ground_rise;
 }
 
 // Whether the cluster's ground estimate (h: height above it) lies above the ground seen nearest
@@ -139,13 +142,8 @@ bool aboveSeenGround(const Cloud& cloud, const std::vector<float>& h, const std:
   for (int i : cl) c += cloud[i].head<2>().cast<double>();
   c /= static_cast<double>(cl.size());
   double radius = 0;
-  std::vector<double> g;
-  g.reserve(cl.size());
-  for (int i : cl) {
-    radius = std::max(radius, (cloud[i].head<2>().cast<double>() - c).norm());
-    g.push_back(cloud[i].z() - h[i]);
-  }
-  const double own = quantileInPlace(g, 0.5);
+  for (int i : cl) radius = std::max(radius, (cloud[i].head<2>().cast<double>() - c).norm());
+  const double own = groundUnder(cloud, h, cl);
   // Cells by distance from the cluster's edge, from 1 m out (its own cells and the window that
   // set its ground) to seen_ground_search: the nearest that saw the ground decide.
   const int reach = static_cast<int>(std::ceil((radius + kp.seen_ground_search) / cell));
@@ -204,12 +202,13 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
         if (static_cast<int>(part->size()) >= fewest) todo.emplace_back(std::move(*part), cell);
       continue;
     }
-    if (static_cast<int>(cl.size()) < needed(nearestRange(cloud, cl))) continue;
+    const double range = nearestRange(cloud, cl);
+    if (static_cast<int>(cl.size()) < needed(range)) continue;
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
     if (rough > kp.max_roughness) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
-    if (kp.max_range > 0 && nearestRange(cloud, cl) > kp.max_range) continue;
+    if (kp.max_range > 0 && range > kp.max_range) continue;
     const Footprint f = footprintOf(cloud, cl, std::hypot(kp.max_length, kp.max_width));
     if (f.length > kp.max_length || f.width > kp.max_width) {
       if (0.5 * cell >= kp.min_split_cell - 1e-9 && boxSide(cloud, cl) <= kp.max_split_length)
@@ -220,7 +219,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     // Car-sized, but falling apart on gap_cell cells into two or more parts of at least
     // min_points (the end face of a car and a stripe of the next one's side, seen through the gap
     // between them, join on `cell`): each part is tested as a cluster of its own.
-    const double gap = std::max(kp.gap_cell, nearestRange(cloud, cl) * kp.gap_angle_deg * M_PI / 180.0);
+    const double gap = std::max(kp.gap_cell, range * kp.gap_angle_deg * M_PI / 180.0);
     if (kp.gap_cell > 0 && cell > gap + 1e-9) {
       auto parts = clusterGrid(cloud, cl, {gap, false, kp.gap_min_points});
       if (parts.size() >= 2) {
@@ -380,10 +379,7 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   for (const auto& cl : cars) {
     emit(params_.car_class, cl);
     if (!free) continue;
-    std::vector<double> ground;
-    ground.reserve(cl.size());
-    for (int i : cl) ground.push_back(cloud[i].z() - h[i]);
-    out.back().free_space = free->near(cl, static_cast<float>(quantileInPlace(ground, 0.5)), reach);
+    out.back().free_space = free->near(cl, static_cast<float>(groundUnder(cloud, h, cl)), reach);
   }
   if (params_.emit_other)
     for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
