@@ -218,10 +218,12 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (f.length < kp.min_length) continue;
     // Car-sized, but falling apart on gap_cell cells into two or more parts of at least
     // min_points (the end face of a car and a stripe of the next one's side, seen through the gap
-    // between them, join on `cell`): each part is tested as a cluster of its own.
+    // between them, join on `cell`): each part is tested as a cluster of its own. Clustered on
+    // the footprint, as the gap between two cars is a vertical slot and a far car's faces must
+    // not fall into one strip per beam.
     const double gap = std::max(kp.gap_cell, range * kp.gap_angle_deg * M_PI / 180.0);
     if (kp.gap_cell > 0 && cell > gap + 1e-9) {
-      auto parts = clusterGrid(cloud, cl, {gap, false, kp.gap_min_points});
+      auto parts = clusterGrid(cloud, cl, {gap, true, kp.gap_min_points});
       if (parts.size() >= 2) {
         for (auto& part : parts) todo.emplace_back(std::move(part), gap);
         continue;

@@ -47,7 +47,7 @@ struct CarParams {
   NotchSplitParams notch;          // a cluster with a notch in its view is split there (cars parked nose out)
   // A car-sized cluster that falls apart on cells this large into two or more parts of at least
   // min_points is split into them (an end face joined on `cell` to a stripe of the next car's
-  // side seen through the gap; 0: off).
+  // side seen through the gap; 0: off). Clustered on x, y: the gap between cars is a vertical slot.
   double gap_cell = 0.15;
   double gap_angle_deg = 0.0;  // ... or, where wider, this angle at the cluster's range (a LiDAR's columns spread apart with range)
   int gap_min_points = 40;

@@ -137,9 +137,11 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
         const cv::Size2f r = cv::minAreaRect(xy).size;
         const bool oversized = std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y();
         // Car-sized, but falling apart on gap_cluster cells (an end face joined to a stripe of the
-        // next car's side seen through the gap): each part is a cluster of its own.
+        // next car's side seen through the gap): each part is a cluster of its own. The gap
+        // between two cars is a vertical slot: clustered on the footprint, where a far car's
+        // faces do not fall into one strip per beam, each under gap_cluster.min_points.
         if (!oversized && params_.gap_cluster.cell > 0 && cell > params_.gap_cluster.cell + 1e-9) {
-          auto parts = clusterGrid(scan.xyz, c, params_.gap_cluster);
+          auto parts = clusterGrid(scan.xyz, c, {params_.gap_cluster.cell, true, params_.gap_cluster.min_points});
           if (parts.size() >= 2) {
             for (auto& part : parts) todo.emplace_back(std::move(part), params_.gap_cluster.cell);
             continue;

@@ -39,7 +39,8 @@ struct LabelledSegmenterParams {
   double min_split_cell = 0.15;
   // A cuboid-class cluster within the class's size that falls apart on these cells into two or
   // more parts of at least min_points is split into them (cell 0: off; geometric car.gap_cell).
-  GridClusterParams gap_cluster{0.15, false, 40};
+  // Clustered on x, y whatever `planar` says: the gap between two cars is a vertical slot.
+  GridClusterParams gap_cluster{0.15, true, 40};
   // Points of a cuboid class at most this high above the lowest point labelled ground within
   // about ground_cell of them are left out: ground bled into a car's labels stretches its
   // footprint towards the sensor (0: off). Where nothing near is labelled ground (a car's far

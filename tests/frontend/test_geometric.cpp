@@ -528,6 +528,37 @@ TEST(GeometricSegmenter, AnEndFaceAndAStripeOfTheNextCarsSideAreNotOneCar) {
   }
 }
 
+// Two cars parked side by side (1.8 m wide, 0.6 m apart), their end faces towards the sensor
+// 12-28 m off, the near one's side seen too, with two mixed returns in the gap (a beam grazing
+// both edges) that join them on the car cells: the gap split keeps them apart at every range
+// (its cells widen with range as the beams spread; LabelledSegmenter's test has the strips).
+TEST(GeometricSegmenter, TwoCarsSideBySideSeenEndOnFarOffAreTwoCars) {
+  const frontend::GeometricSegmenterParams p = frontend::loadDefaultFrontendConfig().geometric;
+  int joined = 0, cars = 0;
+  for (double x = 12; x <= 28; x += 2) {
+    frontend::Cloud c =
+        scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(x, 0.8, -1), Eigen::Vector3d(x + 4.5, 2.6, 0.5)),
+                      Eigen::AlignedBox3d(Eigen::Vector3d(x, 3.2, -1), Eigen::Vector3d(x + 4.5, 5.0, 0.5))},
+                     true);
+    for (float z : {-0.4f, 0.0f}) c.emplace_back(static_cast<float>(x), 2.9f, z);
+    io::LabelledScan scan;
+    scan.xyz = c;
+    frontend::InputIssues issues;
+    for (const auto& inst : frontend::GeometricSegmenter(ClassTable::loadDefault(), p).segment(scan, issues)) {
+      if (inst.class_id != p.car_class) continue;
+      float lo = 1e9f, hi = -1e9f;
+      for (const auto& q : inst.points) lo = std::min(lo, q.y()), hi = std::max(hi, q.y());
+      ++cars;
+      if (lo < 2.7f && hi > 3.1f) {
+        ++joined;
+        ADD_FAILURE() << "one car over both at x = " << x << ": y " << lo << " to " << hi;
+      }
+    }
+  }
+  EXPECT_EQ(joined, 0);
+  EXPECT_GE(cars, 14) << "of 18";
+}
+
 namespace {
 // Stacks of returns at the given (x, y), one return per beam `beams` of the OS1-64 (rows of
 // 33.2 / 63 deg from -16.6), in that order; the first `column` stacks are the column candidate.

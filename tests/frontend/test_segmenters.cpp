@@ -161,6 +161,40 @@ TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
   EXPECT_THROW(frontend::LabelledSegmenter(classes, p), std::invalid_argument);
 }
 
+// Two cars' end faces side by side (label car, each 1.8 m wide, 0.6 m apart along y = 4), seen
+// far off: one return every 0.05 m along a beam, beams 0.35 m apart in height, so each face
+// falls into strips of 37 returns on 3-D gap cells, every one under gap_cluster.min_points. Two
+// mixed returns in the gap (a beam grazing both edges) join the faces on 0.3 m cells. The gap
+// split works on the footprint (the gap between two cars is a vertical slot): two clusters.
+TEST(LabelledSegmenter, TwoEndFacesSideBySideSeenFarOffAreTwoClusters) {
+  io::LabelledScan scan;
+  for (double x0 : {5.0, 7.4})
+    for (double x = x0; x <= x0 + 1.8 + 1e-9; x += 0.05)
+      for (double z = -1.0; z <= 0.45; z += 0.35) {
+        scan.xyz.emplace_back(static_cast<float>(x), 4.0f, static_cast<float>(z));
+        scan.intensity.push_back(0.5f);
+        scan.semantic.push_back(10);
+        scan.instance.push_back(0);
+      }
+  for (float z : {-0.65f, -0.3f}) {
+    scan.xyz.emplace_back(7.1f, 4.0f, z);
+    scan.intensity.push_back(0.5f);
+    scan.semantic.push_back(10);
+    scan.instance.push_back(0);
+  }
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.gap_cluster.min_points, 37) << "a strip alone is no part";
+  frontend::InputIssues issues;
+  const auto instances = frontend::LabelledSegmenter(classes, p).segment(scan, issues);
+  ASSERT_EQ(instances.size(), 2u);
+  for (const auto& inst : instances) {
+    float lo = 1e9f, hi = -1e9f;
+    for (const auto& q : inst.points) lo = std::min(lo, q.x()), hi = std::max(hi, q.x());
+    EXPECT_LT(hi - lo, 1.9f);
+  }
+}
+
 // A car's end face (label car, 1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a
 // stripe of the next car's side (0.8 m deep at x = 7.15) join on 0.3 m cells into one car-sized
 // cluster; on gap_cluster cells they are two, and the car is the face alone.
