@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "app/app.h"
+#include "backend/backend_config.h"
 #include "bench/report.h"
 #include "bench/stats.h"
 #include "frontend/geometric_segmenter.h"
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   app::addCommonOptions(app, common);
   std::string json, data_dir = SLIDE_DATA_DIR, config_file, classes_file;
   std::string detection_config = std::string(SLIDE_SOURCE_DIR) + "/config/detections.yaml";
+  std::string backend_config = std::string(SLIDE_SOURCE_DIR) + "/config/backend.yaml";
   std::vector<std::uint64_t> seeds{1};
   int runs = 10;
   std::vector<std::string> worlds{"forest", "urban", "indoor"};
@@ -60,6 +62,9 @@ int main(int argc, char** argv) {
   app.add_option("--json", json, "Write the results as JSON (BENCHMARKS.md) to this file");
   app.add_option("--data-dir", data_dir, "Folder of the shared real data sets")->capture_default_str();
   app.add_option("--config", config_file, "Front-end YAML (default: config/frontend.yaml)");
+  app.add_option("--backend-config", backend_config,
+                 "Back-end YAML: its min_observations says which landmarks the confirmed_* figures keep")
+      ->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML (default: config/classes.yaml)");
   app.add_option("--runs", runs, "Timing runs per scan and mode")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--worlds", worlds, "Simulated worlds to evaluate (forest urban indoor)")->capture_default_str();
@@ -83,6 +88,7 @@ int main(int argc, char** argv) {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
     const frontend::FrontendConfig cfg =
         config_file.empty() ? frontend::loadDefaultFrontendConfig() : frontend::loadFrontendConfig(config_file);
+    const int confirm_observations = backend::loadBackendConfig(backend_config).min_observations;
     bench::BenchReport report("frontend");
     cv::setNumThreads(1);  // the learned model's inference on one core, as the paper's figures
 
@@ -104,6 +110,7 @@ int main(int argc, char** argv) {
         spec.data_dir = data_dir;
         spec.verbose = verbose;
         spec.match_distance = match_distance;
+        spec.confirm_observations = confirm_observations;
         spec.diagnose = diagnose;
         spec.emulator = emulator;
         spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "rgbd.oracle", "geometric", "emulated", "oracle"}
@@ -148,6 +155,7 @@ int main(int argc, char** argv) {
             for (const auto& [name, v] : m.along_ray) t.along_ray[name].insert(t.along_ray[name].end(), v.begin(), v.end());
             t.estimated += m.estimated, t.ground_truth += m.ground_truth, t.matched += m.matched;
             t.duplicates += m.duplicates, t.false_objects += m.false_objects, t.ignored += m.ignored;
+            t.confirmed_estimated += m.confirmed_estimated, t.confirmed_matched += m.confirmed_matched;
             for (const auto& [name, n] : m.scored_as) t.scored_as[name] += n;
             for (const auto& [name, c] : m.per_class)
               for (int j = 0; j < 3; ++j) t.per_class[name][j] += c[j];
@@ -188,6 +196,13 @@ int main(int argc, char** argv) {
         report.add(prefix + ".recall", m.recall, "", false, tr, paper_r).note = note;
         report.add(prefix + ".f1", m.f1, "", false).note = note;
         report.add(prefix + ".duplicates", m.duplicates, "", true).note = "unmatched estimates of matched objects, " + seeds_text;
+        const std::string confirmed_note =
+            "the same map with only the landmarks the back-end publishes (at least " + std::to_string(confirm_observations) +
+            " key-pose detections, backend.yaml min_observations); " + input + "; scored by simulator truth, " + seeds_text;
+        report.add(prefix + ".confirmed_precision", m.confirmed_estimated ? double(m.confirmed_matched) / m.confirmed_estimated : 0.0, "", false)
+            .note = confirmed_note;
+        report.add(prefix + ".confirmed_recall", m.ground_truth ? double(m.confirmed_matched) / m.ground_truth : 0.0, "", false)
+            .note = confirmed_note;
         if (seeds.size() > 1)
           for (const auto& [name, c] : m.per_class)
             std::printf("%s %-11s %-8s estimated %3d  ground truth %3d  matched %3d (%s)\n", w.c_str(), m.mode.c_str(),

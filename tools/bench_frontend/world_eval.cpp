@@ -350,7 +350,9 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
     // visibility criterion (too far, too few returns) than to any scored one, and within the
     // match distance of it, is neither credited nor penalised (counted as ignored).
     std::vector<Object> estimates;
-    for (const Object& o : r.landmarks) {
+    std::vector<int> detections;  // per estimate: the key-pose detections behind its landmark
+    for (std::size_t l = 0; l < r.landmarks.size(); ++l) {
+      const Object& o = r.landmarks[l];
       const ClassInfo* c = classes.find(o.class_id);
       if (!c || !producible(r.mode, *c, cfg)) continue;
       const int grp = o.class_id;
@@ -365,8 +367,26 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         continue;
       }
       estimates.push_back(o);
+      detections.push_back(static_cast<int>(r.evidence[l].centres.size()));
     }
     for (const auto& o : estimates) est[o.class_id].push_back(&o);
+    ModeResult& m = r.result;
+    // The landmarks the back-end would publish, scored alone (no verbose listing).
+    {
+      std::map<int, std::vector<const Object*>> confirmed;
+      for (std::size_t i = 0; i < estimates.size(); ++i)
+        if (detections[i] >= spec.confirm_observations) confirmed[estimates[i].class_id].push_back(&estimates[i]);
+      for (const auto& [g, E] : confirmed) {
+        m.confirmed_estimated += static_cast<int>(E.size());
+        const auto it = gt.find(g);
+        if (it == gt.end() || it->second.empty()) continue;
+        const auto& G = it->second;
+        Eigen::MatrixXd cost(E.size(), G.size());
+        for (std::size_t i = 0; i < E.size(); ++i)
+          for (std::size_t j = 0; j < G.size(); ++j) cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
+        for (int a : assignment::solveGatedAssignment(cost, spec.match_distance)) m.confirmed_matched += a >= 0;
+      }
+    }
     // --verbose: the real object nearest to an estimate (any class), its distance in `d`.
     auto nearestTruth = [&](const Object& o, double& d) {
       const io::GroundTruthObject* near = nullptr;
@@ -376,7 +396,6 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       }
       return near;
     };
-    ModeResult& m = r.result;
     std::set<int> groups;
     for (const auto& [g, v] : gt) groups.insert(g);
     for (const auto& [g, v] : est) groups.insert(g);

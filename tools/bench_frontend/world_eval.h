@@ -38,6 +38,9 @@ struct WorldEvalSpec {
   double max_range = 40.0;   // ... within this horizontal range (metres) ...
   int min_frames = 3;        // ... in this many frames
   double match_distance = 1.0;  // an estimate matches a real object within this horizontal distance (m)
+  // The back-end publishes a landmark once this many key-pose detections back it
+  // (backend.yaml min_observations): the map is also scored with those landmarks alone.
+  int confirm_observations = 3;
   bool verbose = false;      // print every missed ground-truth object
   bool diagnose = false;     // print per-frame segmentation outcomes per class (segment_diagnosis.h)
 };
@@ -48,6 +51,8 @@ struct ModeResult {
   int duplicates = 0;        // unmatched estimates within the class's association distance of a matched object
   int false_objects = 0;     // other unmatched estimates
   int ignored = 0;           // estimates of real objects below the visibility criterion (not scored)
+  // The same map with only the landmarks the back-end would publish (WorldEvalSpec::confirm_observations).
+  int confirmed_estimated = 0, confirmed_matched = 0;
   std::map<std::string, double> iou;  // emulated and learned modes: per-class point IoU of their labels
   double precision = 0, recall = 0, f1 = 0;
   std::map<std::string, std::array<int, 3>> per_class;  // name -> (estimated, gt, matched)
