@@ -82,6 +82,9 @@ struct BackendConfig {
   // the forest (noise x2), but on KITTI 05 the changed maps let place recognition merge a
   // second peer through a wrong transform (team ATE 6.6 -> 11.8 m); BENCHMARKS.md, issue 20.
   double merge_shared_fraction = 0.0;
+  // A box read two ways takes the reading that the landmarks seen whole within this radius (m)
+  // agree with (Optimizer::settleReading); 0: the front-end's choice.
+  double reading_vote_radius = 30.0;
 
   // Incremental solving.
   int window_poses = 3;            // own latest poses optimized in each local solve

@@ -67,13 +67,38 @@ int Optimizer::addLandmark(const Object& w) {
   return index;
 }
 
+int Optimizer::wholeViews(const Landmark& lm) {
+  int whole = 0;
+  for (const Observation& s : lm.seen) whole += !s.body.other_reading;
+  return whole;
+}
+
+void Optimizer::settleReading(Object& seen, const Pose& T_w_b) const {
+  if (cfg_.reading_vote_radius <= 0 || !seen.other_reading || !std::holds_alternative<Cuboid>(seen.model)) return;
+  const Object w = transformObject(T_w_b, seen);
+  std::vector<int> near;
+  grid_.near(w.position(), cfg_.reading_vote_radius, near);
+  std::vector<double> headings;
+  for (int i : near) {
+    const Landmark& lm = landmarks_[i];
+    if (!lm.alive || lm.class_id != seen.class_id || lm.shape != Shape::Cuboid || wholeViews(lm) < kWholeViewsToChooseReading)
+      continue;
+    const Object o = landmarkObject(lm);
+    if ((o.position() - w.position()).head<2>().norm() <= cfg_.reading_vote_radius)
+      headings.push_back(headingOf(std::get<Cuboid>(o.model)));
+  }
+  if (otherReadingAgreesMore(w, headings)) {
+    const Cuboid first = std::get<Cuboid>(seen.model);
+    seen.model = *seen.other_reading;
+    seen.other_reading = first;
+  }
+}
+
 void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& seen, Landmark& lm) {
   const double a = cfg_.ellipsoid_size_ema;
   // A box read two ways is the reading the landmark agrees with, once boxes read one way only
   // (whole views) have fixed it; before, the front-end's choice.
-  int whole = 0;
-  if (seen.other_reading)
-    for (const Observation& s : lm.seen) whole += !s.body.other_reading;
+  const int whole = seen.other_reading ? wholeViews(lm) : 0;
   const Object o = whole >= kWholeViewsToChooseReading
                        ? nearestReading(seen, transformObject(T_w_b.inverse(), landmarkObject(lm)))
                        : seen;

@@ -97,7 +97,7 @@ UpdateResult Optimizer::addBundle(const KeyPoseBundle& b) {
 
 int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector<int>& touched, bool& loop) {
   Robot& robot = robots_[b.robot];
-  const std::vector<Object> objects = usableObjects(b, r);
+  std::vector<Object> objects = usableObjects(b, r);
   Pose T_w_b;
   int prev_var = -1;
   Pose relative = b.relative_odom;
@@ -137,6 +137,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   robot.keyposes.push_back(static_cast<int>(keyposes_.size()) - 1);
   ++step_;
 
+  for (Object& o : objects) settleReading(o, T_w_b);
   // Association in the host frame against landmarks near each detection.
   std::vector<Detection> world;
   world.reserve(objects.size());

@@ -212,6 +212,13 @@ class Optimizer {
   void yieldToLoop();
   int addLandmark(const Object& world);
   void addObservation(int pose_var, const Pose& T_w_b, const Object& body_obj, Landmark& lm);
+  // Detections of the landmark read one way only (Object::other_reading unset).
+  static int wholeViews(const Landmark& lm);
+  // A box read two ways (body frame, key pose T_w_b) takes the reading the map's landmarks of its
+  // class within reading_vote_radius, each fixed by kWholeViewsToChooseReading whole views, agree
+  // with more (otherReadingAgreesMore): parked cars stand parallel to their neighbours, and the
+  // map holds many more cars seen whole than the front-end has in view. Before association.
+  void settleReading(Object& seen, const Pose& T_w_b) const;
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);

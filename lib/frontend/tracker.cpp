@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "assignment/hungarian.h"
+#include "objects/association.h"
 
 namespace slide::frontend {
 
@@ -365,30 +366,22 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
 }
 
 namespace {
-double headingOf(const Object& o) {
-  const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
-  return std::atan2(R(1, 0), R(0, 0));
-}
-
 // Each box with an other reading takes the reading whose heading the sure boxes (no other
-// reading) of its class within `radius` agree with more: the sum over them of cos(2 x the
-// heading difference), +1 parallel and -1 across. Without sure boxes nearby it keeps its first
-// reading.
+// reading) of its class within `radius` agree with more (otherReadingAgreesMore). Without sure
+// boxes nearby it keeps its first reading.
 void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fits, double radius, double fallback) {
   for (auto& [o, other] : fits) {
     if (!other) continue;
-    const double first = headingOf(o), second = headingOf(*other);
     // Boxes seen whole within `radius` vote, or within `fallback` when none is that near.
     for (double r : {radius, fallback}) {
-      double vote = 0;  // > 0: the other reading
-      int voters = 0;
+      std::vector<double> headings;
       for (const auto& [s, s_other] : fits)
-        if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= r) {
-          vote += std::cos(2 * (second - headingOf(s))) - std::cos(2 * (first - headingOf(s)));
-          ++voters;
-        }
-      if (vote > 0) std::swap(o.model, other->model);
-      if (voters > 0) break;
+        if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= r)
+          headings.push_back(headingOf(std::get<Cuboid>(s.model)));
+      Object both = o;
+      both.other_reading = std::get<Cuboid>(other->model);
+      if (otherReadingAgreesMore(both, headings)) std::swap(o.model, other->model);
+      if (!headings.empty()) break;
     }
   }
 }

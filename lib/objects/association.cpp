@@ -43,6 +43,20 @@ Object nearestReading(const Object& detection, const Object& landmark) {
   return score(other) < score(detection) ? other : detection;
 }
 
+double headingOf(const Cuboid& box) {
+  const Eigen::Matrix3d& R = box.pose.linear();
+  return std::atan2(R(1, 0), R(0, 0));
+}
+
+bool otherReadingAgreesMore(const Object& detection, const std::vector<double>& whole_headings) {
+  const auto* first = std::get_if<Cuboid>(&detection.model);
+  if (!first || !detection.other_reading) return false;
+  const double a = headingOf(*first), b = headingOf(*detection.other_reading);
+  double vote = 0;
+  for (const double h : whole_headings) vote += std::cos(2 * (b - h)) - std::cos(2 * (a - h));
+  return vote > 0;
+}
+
 double associationDistance(const Object& a, const Object& b) {
   const auto* ca = std::get_if<Cylinder>(&a.model);
   const auto* cb = std::get_if<Cylinder>(&b.model);

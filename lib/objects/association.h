@@ -2,6 +2,8 @@
 // How far apart two objects of the map are, in position, footprint and model (the back-end's
 // data association weighs them against the class table's thresholds).
 // Vocabulary: in namespace slide itself, not slide::objects, as every area uses it (README).
+#include <vector>
+
 #include "objects/object.h"
 
 namespace slide {
@@ -23,6 +25,14 @@ Object nearestReading(const Object& detection, const Object& landmark);
 // only (whole views) fixed it; before, the detection keeps the front-end's reading (a landmark
 // begun from one partial view would keep choosing its own reading).
 constexpr int kWholeViewsToChooseReading = 2;
+
+// Whether the other reading of a box read two ways (Object::other_reading) agrees more with
+// the headings of boxes seen whole around it (parked cars stand parallel to their neighbours):
+// the sum over them of cos(2 x heading difference), +1 parallel and -1 across, is larger for it.
+// False for a detection with one reading or no headings.
+bool otherReadingAgreesMore(const Object& detection, const std::vector<double>& whole_headings);
+// The horizontal heading (rad) of a box's length axis.
+double headingOf(const Cuboid& box);
 
 // Model difference in metres: cuboids, norm of the extent difference (length and width may
 // swap); cylinders, radius difference; ellipsoids, norm of (radius, height) difference.

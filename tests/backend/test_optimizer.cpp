@@ -362,6 +362,49 @@ TEST(BackendOptimizer, AnUnnamedObjectTakesTheClassADetectorGivesIt) {
   }
 }
 
+// A row of cars parked nose in (along y, 2.6 m apart) seen whole from key poses 0-5; the next
+// car in the row is seen from key poses 6-11 only by its end face, which the front-end read as
+// a car across (centre 1.35 m to the side and 1.5 m short) with the right box as the other
+// reading. Its landmark has no whole view to choose by, but the map's parallel neighbours
+// settle the reading: the landmark stands on the car, along y. With reading_vote_radius 0 it
+// keeps the front-end's reading, across.
+TEST(BackendOptimizer, ABoxReadTwoWaysTakesTheReadingItsParkedNeighboursAgreeWith) {
+  auto carAt = [](const Pose& T_body_world, double x, double y, double yaw) {
+    Object o;
+    o.class_id = 10;
+    o.model = Cuboid{T_body_world * poseFromXyzYaw(x, y, 0.75, yaw), {4.5, 1.8, 1.5}};
+    return o;
+  };
+  auto run = [&](double radius) {
+    backend::BackendConfig cfg;
+    cfg.reading_vote_radius = radius;
+    backend::Optimizer opt(cfg, ClassTable::loadDefault(), 0);
+    for (int k = 0; k < 12; ++k) {
+      const Pose T_body_world = poseFromXyzYaw(0.5 * k, 0, 0, 0).inverse();
+      std::vector<Object> seen;
+      for (int c = 0; c < 3; ++c) {
+        seen.push_back(carAt(T_body_world, 2.6 * c, 6, M_PI / 2));
+        seen.back().id = c;
+      }
+      if (k >= 6) {
+        Object face = carAt(T_body_world, 7.8 + 1.35, 6 - 1.5, 0);
+        face.id = 3;
+        face.other_reading = std::get<Cuboid>(carAt(T_body_world, 7.8, 6, M_PI / 2).model);
+        seen.push_back(face);
+      }
+      const backend::UpdateResult r = opt.addBundle(stepBundle(k, seen));
+      EXPECT_TRUE(r.accepted) << r.reason;
+    }
+    opt.fullSolve();
+    double best = 1e9;
+    for (const Object& lm : opt.landmarks()) best = std::min(best, (lm.position() - Eigen::Vector3d(7.8, 6, 0.75)).head<2>().norm());
+    return best;
+  };
+  EXPECT_GT(backend::BackendConfig{}.reading_vote_radius, 0) << "on by default";
+  EXPECT_LT(run(backend::BackendConfig{}.reading_vote_radius), 0.05);
+  EXPECT_GT(run(0), 1.0);
+}
+
 // A car along y at (6, 3), seen whole from key poses 0-7; from key poses 8-15 only its end
 // face, which the front-end read as a car across (its centre 1.35 m to the side) with the
 // right box as the other reading. The landmark keeps the reading it agrees with and stays on

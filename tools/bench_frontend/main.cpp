@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   app.add_option("--data-dir", data_dir, "Folder of the shared real data sets")->capture_default_str();
   app.add_option("--config", config_file, "Front-end YAML (default: config/frontend.yaml)");
   app.add_option("--backend-config", backend_config,
-                 "Back-end YAML: its min_observations says which landmarks the confirmed_* figures keep")
+                 "Back-end YAML: its min_observations says which landmarks the confirmed_* figures keep, reading_vote_radius how the map settles boxes read two ways")
       ->capture_default_str();
   app.add_option("--classes", classes_file, "Class table YAML (default: config/classes.yaml)");
   app.add_option("--runs", runs, "Timing runs per scan and mode")->capture_default_str()->check(CLI::PositiveNumber);
@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
     const frontend::FrontendConfig cfg =
         config_file.empty() ? frontend::loadDefaultFrontendConfig() : frontend::loadFrontendConfig(config_file);
-    const int confirm_observations = backend::loadBackendConfig(backend_config).min_observations;
+    const backend::BackendConfig backend_cfg = backend::loadBackendConfig(backend_config);
+    const int confirm_observations = backend_cfg.min_observations;
     bench::BenchReport report("frontend");
     cv::setNumThreads(1);  // the learned model's inference on one core, as the paper's figures
 
@@ -111,6 +112,7 @@ int main(int argc, char** argv) {
         spec.verbose = verbose;
         spec.match_distance = match_distance;
         spec.confirm_observations = confirm_observations;
+        spec.reading_vote_radius = backend_cfg.reading_vote_radius;
         spec.diagnose = diagnose;
         spec.emulator = emulator;
         spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "rgbd.oracle", "geometric", "emulated", "oracle"}

@@ -94,11 +94,29 @@ struct LandmarkEvidence {
 // per-axis median of all its detections' centres (the back-end fits a landmark to all its
 // observations under a robust loss: one late, wrong view moves it little), and, as in the
 // back-end, the class with the most confidence-weighted votes; an unassociated object becomes
-// a new landmark. No evaluator-side merging.
-void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, std::vector<Object>& map,
-              std::vector<LandmarkEvidence>& evidence) {
+// a new landmark. A box read two ways first takes the reading its map neighbours seen whole agree
+// with, as in the back-end. No evaluator-side merging.
+void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const ClassTable& classes, double vote_radius,
+              std::vector<Object>& map, std::vector<LandmarkEvidence>& evidence) {
   std::vector<backend::Detection> detections;
-  for (const auto& o : bundle.objects) detections.push_back({transformObject(T_world_body, o)});
+  for (const auto& o : bundle.objects) {
+    detections.push_back({transformObject(T_world_body, o)});
+    // As the back-end (Optimizer::settleReading): a box read two ways takes the reading that the
+    // landmarks of its class within vote_radius, each fixed by whole views, agree with more.
+    Object& d = detections.back().object;
+    if (vote_radius <= 0 || !d.other_reading || !std::holds_alternative<Cuboid>(d.model)) continue;
+    std::vector<double> headings;
+    for (std::size_t i = 0; i < map.size(); ++i)
+      if (evidence[i].whole_views >= kWholeViewsToChooseReading && map[i].class_id == d.class_id &&
+          std::holds_alternative<Cuboid>(map[i].model) &&
+          (map[i].position() - d.position()).head<2>().norm() <= vote_radius)
+        headings.push_back(headingOf(std::get<Cuboid>(map[i].model)));
+    if (otherReadingAgreesMore(d, headings)) {
+      const Cuboid first = std::get<Cuboid>(d.model);
+      d.model = *d.other_reading;
+      d.other_reading = first;
+    }
+  }
   std::vector<backend::LandmarkCandidate> candidates;
   for (std::size_t i = 0; i < map.size(); ++i)
     if ((map[i].position() - T_world_body.translation()).head<2>().norm() < 100.0)
@@ -303,7 +321,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       r.result.frame_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       r.result.issues += issues.total();
       if (bundle) {
-        addToMap(*bundle, T_world_body, classes, r.landmarks, r.evidence);
+        addToMap(*bundle, T_world_body, classes, spec.reading_vote_radius, r.landmarks, r.evidence);
         for (const Object& o : bundle->objects) {
           const Eigen::Vector3d p = T_world_body * o.position();
           const Object* best = nullptr;

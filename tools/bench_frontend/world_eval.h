@@ -41,6 +41,7 @@ struct WorldEvalSpec {
   // The back-end publishes a landmark once this many key-pose detections back it
   // (backend.yaml min_observations): the map is also scored with those landmarks alone.
   int confirm_observations = 3;
+  double reading_vote_radius = 30.0;  // backend.yaml: a box read two ways takes the reading its map neighbours agree with
   bool verbose = false;      // print every missed ground-truth object
   bool diagnose = false;     // print per-frame segmentation outcomes per class (segment_diagnosis.h)
 };
