@@ -87,11 +87,7 @@ void Optimizer::settleReading(Object& seen, const Pose& T_w_b) const {
     if ((o.position() - w.position()).head<2>().norm() <= cfg_.reading_vote_radius)
       headings.push_back(headingOf(std::get<Cuboid>(o.model)));
   }
-  if (otherReadingAgreesMore(w, headings)) {
-    const Cuboid first = std::get<Cuboid>(seen.model);
-    seen.model = *seen.other_reading;
-    seen.other_reading = first;
-  }
+  if (otherReadingAgreesMore(w, headings)) seen = otherReadingOf(seen);
 }
 
 void Optimizer::addObservation(int pose_var, const Pose& T_w_b, const Object& seen, Landmark& lm) {

@@ -34,11 +34,17 @@ bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin) {
   return true;
 }
 
-Object nearestReading(const Object& detection, const Object& landmark) {
+Object otherReadingOf(const Object& detection) {
   if (!detection.other_reading || !std::holds_alternative<Cuboid>(detection.model)) return detection;
   Object other = detection;
   other.model = *detection.other_reading;
   other.other_reading = std::get<Cuboid>(detection.model);
+  return other;
+}
+
+Object nearestReading(const Object& detection, const Object& landmark) {
+  if (!detection.other_reading || !std::holds_alternative<Cuboid>(detection.model)) return detection;
+  const Object other = otherReadingOf(detection);
   const auto score = [&](const Object& o) { return associationDistance(o, landmark) + modelDifference(o, landmark); };
   return score(other) < score(detection) ? other : detection;
 }

@@ -21,6 +21,9 @@ bool footprintsOverlap(const Cuboid& a, const Cuboid& b, double margin = 0.0);
 // The detection as the reading of its box (Object::other_reading) nearer `landmark`: least
 // centre distance plus model difference. The detection itself when it has one reading.
 Object nearestReading(const Object& detection, const Object& landmark);
+// The detection read its other way: Object::other_reading its box, its box the other reading.
+// The detection itself when it has one reading.
+Object otherReadingOf(const Object& detection);
 // A landmark chooses between a detection's readings once this many detections read one way
 // only (whole views) fixed it; before, the detection keeps the front-end's reading (a landmark
 // begun from one partial view would keep choosing its own reading).

@@ -111,11 +111,7 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
           std::holds_alternative<Cuboid>(map[i].model) &&
           (map[i].position() - d.position()).head<2>().norm() <= vote_radius)
         headings.push_back(headingOf(std::get<Cuboid>(map[i].model)));
-    if (otherReadingAgreesMore(d, headings)) {
-      const Cuboid first = std::get<Cuboid>(d.model);
-      d.model = *d.other_reading;
-      d.other_reading = first;
-    }
+    if (otherReadingAgreesMore(d, headings)) d = otherReadingOf(d);
   }
   std::vector<backend::LandmarkCandidate> candidates;
   for (std::size_t i = 0; i < map.size(); ++i)
