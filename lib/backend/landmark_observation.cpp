@@ -81,10 +81,11 @@ void Optimizer::settleReading(Object& seen, const Pose& T_w_b) const {
   std::vector<double> headings;
   for (int i : near) {
     const Landmark& lm = landmarks_[i];
-    if (!lm.alive || lm.class_id != seen.class_id || lm.shape != Shape::Cuboid || wholeViews(lm) < kWholeViewsToChooseReading)
-      continue;
+    if (!lm.alive || lm.class_id != seen.class_id || lm.shape != Shape::Cuboid) continue;
     const Object o = landmarkObject(lm);
-    if ((o.position() - w.position()).head<2>().norm() <= cfg_.reading_vote_radius)
+    // The grid gives whole cells: the distance first, then the count over the landmark's views.
+    if ((o.position() - w.position()).head<2>().norm() <= cfg_.reading_vote_radius &&
+        wholeViews(lm) >= kWholeViewsToChooseReading)
       headings.push_back(headingOf(std::get<Cuboid>(o.model)));
   }
   if (otherReadingAgreesMore(w, headings)) seen = otherReadingOf(seen);

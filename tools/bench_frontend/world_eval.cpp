@@ -143,6 +143,14 @@ void addToMap(const KeyPoseBundle& bundle, const Pose& T_world_body, const Class
   }
 }
 
+// Horizontal centre distances between estimates (rows) and real objects (columns).
+Eigen::MatrixXd horizontalDistances(const std::vector<const Object*>& E, const std::vector<const Object*>& G) {
+  Eigen::MatrixXd cost(E.size(), G.size());
+  for (std::size_t i = 0; i < E.size(); ++i)
+    for (std::size_t j = 0; j < G.size(); ++j) cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
+  return cost;
+}
+
 struct Runner {
   std::string mode;
   std::unique_ptr<frontend::LidarSegmenter> lidar;
@@ -395,10 +403,8 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
         const auto it = gt.find(g);
         if (it == gt.end() || it->second.empty()) continue;
         const auto& G = it->second;
-        Eigen::MatrixXd cost(E.size(), G.size());
-        for (std::size_t i = 0; i < E.size(); ++i)
-          for (std::size_t j = 0; j < G.size(); ++j) cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
-        for (int a : assignment::solveGatedAssignment(cost, spec.match_distance)) m.confirmed_matched += a >= 0;
+        for (int a : assignment::solveGatedAssignment(horizontalDistances(E, G), spec.match_distance))
+          m.confirmed_matched += a >= 0;
       }
     }
     // --verbose: the real object nearest to an estimate (any class), its distance in `d`.
@@ -419,10 +425,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
       const ClassInfo& info = classes.at(g);
       int matched = 0;
       if (!G.empty() && !E.empty()) {
-        Eigen::MatrixXd cost(E.size(), G.size());
-        for (std::size_t i = 0; i < E.size(); ++i)
-          for (std::size_t j = 0; j < G.size(); ++j)
-            cost(i, j) = (E[i]->position() - G[j]->position()).head<2>().norm();
+        const Eigen::MatrixXd cost = horizontalDistances(E, G);
         const auto assign = assignment::solveGatedAssignment(cost, spec.match_distance);
         std::vector<char> hit(G.size(), 0);
         for (int a : assign)
