@@ -112,7 +112,8 @@ Scenario buildScenario(const ScenarioSpec& spec) {
     run.ground_truth = followRoute(routes[r], sc.world.terrain, motion, length, spec.frames);
     std::vector<Eigen::Vector2d> driven;
     for (const Pose& p : run.ground_truth.poses) driven.push_back(p.translation().head<2>());
-    sc.world.clearAlong(driven, clearance, {label::kBuilding});
+    // A ground robot passes under crowns; what hangs lower than a metre above its sensor is cleared.
+    sc.world.clearAlong(driven, clearance, {label::kBuilding}, motion.height + 1.0);
     sc.robots.push_back(run);
   }
   addOdometry(sc);

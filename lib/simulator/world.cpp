@@ -37,6 +37,14 @@ Eigen::Vector2d footprintCentre(const ObjectModel& m) {
   return std::get<Ellipsoid>(m).centroid.head<2>();
 }
 
+double bottomOf(const ObjectModel& m) {
+  if (const auto* c = std::get_if<Cuboid>(&m))
+    return c->pose.translation().z() - 0.5 * (c->pose.linear().cwiseAbs() * c->dims).z();
+  if (const auto* c = std::get_if<Cylinder>(&m)) return std::min(c->root.z(), c->root.z() + c->length * c->axis.z());
+  const auto& e = std::get<Ellipsoid>(m);
+  return e.centroid.z() - 0.5 * e.height;
+}
+
 namespace {
 bool nearPolyline(const ObjectModel& m, const std::vector<Eigen::Vector2d>& line, double clearance) {
   const Eigen::Vector2d c = footprintCentre(m);
@@ -48,17 +56,20 @@ bool nearPolyline(const ObjectModel& m, const std::vector<Eigen::Vector2d>& line
 }  // namespace
 
 void World::clearAlong(const std::vector<Eigen::Vector2d>& polyline, double clearance,
-                       const std::vector<uint16_t>& keep_semantic) {
-  objects.erase(
-      std::remove_if(objects.begin(), objects.end(),
-                     [&](const io::GroundTruthObject& g) { return nearPolyline(g.object.model, polyline, clearance); }),
-      objects.end());
+                       const std::vector<uint16_t>& keep_semantic, double headroom) {
+  auto inTheWay = [&](const ObjectModel& m) {
+    const Eigen::Vector2d c = footprintCentre(m);
+    return bottomOf(m) - terrain.height(c.x(), c.y()) <= headroom && nearPolyline(m, polyline, clearance);
+  };
+  objects.erase(std::remove_if(objects.begin(), objects.end(),
+                               [&](const io::GroundTruthObject& g) { return inTheWay(g.object.model); }),
+                objects.end());
   structures.erase(std::remove_if(structures.begin(), structures.end(),
                                   [&](const Structure& s) {
                                     if (std::find(keep_semantic.begin(), keep_semantic.end(), s.semantic) !=
                                         keep_semantic.end())
                                       return false;
-                                    return nearPolyline(s.model, polyline, clearance);
+                                    return inTheWay(s.model);
                                   }),
                    structures.end());
   renumber();

@@ -2,6 +2,7 @@
 // A simulated world: ground-truth objects (the landmarks a map should contain), scenery that
 // only occludes and returns points (walls, tree crowns, clutter), the ground, and a graph of
 // drivable routes robots follow. Every world is generated from a seed and is reproducible.
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,15 +38,20 @@ struct World {
   // Renumbers object ids to index + 1 (call after adding or removing objects).
   void renumber();
   // Removes every object and structure whose footprint comes within `clearance` metres of a
-  // segment of the polyline (keeps structures whose semantic is in `keep`).
+  // segment of the polyline (keeps structures whose semantic is in `keep`), unless all of it
+  // stands higher than `headroom` above the ground under it (a crown over the path of a robot
+  // that passes below it).
   void clearAlong(const std::vector<Eigen::Vector2d>& polyline, double clearance,
-                  const std::vector<uint16_t>& keep_semantic = {});
+                  const std::vector<uint16_t>& keep_semantic = {},
+                  double headroom = std::numeric_limits<double>::infinity());
 };
 
 // Horizontal distance from point p to segment ab.
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 // Horizontal footprint radius of a model around its centre (bounding circle).
 double footprintRadius(const ObjectModel& m);
+// Height of a model's lowest point.
+double bottomOf(const ObjectModel& m);
 // Horizontal centre of a model's footprint.
 Eigen::Vector2d footprintCentre(const ObjectModel& m);
 

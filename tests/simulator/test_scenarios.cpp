@@ -2,6 +2,7 @@
 // robots on their own frames, odometry drift of the configured size.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -9,6 +10,7 @@
 #include "simulator/indoor_world.h"
 #include "simulator/kitti_world.h"
 #include "simulator/robot_path.h"
+#include "simulator/semantic_labels.h"
 #include "simulator/urban_world.h"
 
 using namespace slide;
@@ -131,6 +133,47 @@ TEST(Scenario, RobotsStartApartAndDriveTheirDistanceClearOfObjects) {
   const Eigen::Vector3d s0 = sc.robots[0].ground_truth.poses[0].translation();
   const Eigen::Vector3d s1 = sc.robots[1].ground_truth.poses[0].translation();
   EXPECT_GT((s0 - s1).head<2>().norm(), 40);
+}
+
+TEST(Worlds, ClearingAPathKeepsWhatHangsAboveTheHeadroom) {
+  simulator::World w;
+  w.structures.push_back({Ellipsoid{{0.0, 1.0, 6.0}, 2.5, 4.0}, simulator::label::kVegetation});  // bottom at 4 m
+  w.structures.push_back({Ellipsoid{{0.0, -1.5, 1.0}, 1.0, 2.0}, simulator::label::kVegetation});  // a bush
+  w.objects.push_back({});
+  w.objects.back().object.model = Cylinder{{0.0, 1.0, -0.1}, Eigen::Vector3d::UnitZ(), 0.2, 5.0};
+  const std::vector<Eigen::Vector2d> path{{-10.0, 0.0}, {10.0, 0.0}};
+  simulator::World ground = w, aerial = w;
+  ground.clearAlong(path, 1.0, {}, 2.0);
+  ASSERT_EQ(ground.structures.size(), 1u);  // the crown stays, the bush goes
+  EXPECT_DOUBLE_EQ(std::get<Ellipsoid>(ground.structures[0].model).centroid.y(), 1.0);
+  EXPECT_TRUE(ground.objects.empty());  // the trunk stands in the way
+  aerial.clearAlong(path, 1.0, {}, 5.0);
+  EXPECT_TRUE(aerial.structures.empty());
+}
+
+TEST(Scenario, GroundRobotsPassUnderCrownsAndEveryUrbanTreeKeepsItsCrown) {
+  // The urban trees stand at the ends of the parking rows, 2.9 m from the cross lanes; their
+  // crowns (3.5 m and more above the ground) reach over the lanes. Clearing them for ground
+  // robots left bare trunks that look like light poles.
+  simulator::ScenarioSpec spec;
+  spec.world = "urban";
+  spec.robots = 3;
+  spec.distance = 150;
+  for (const uint64_t seed : {1u, 2u}) {
+    spec.seed = seed;
+    const simulator::Scenario sc = simulator::buildScenario(spec);
+    int trees = 0;
+    for (const auto& g : sc.world.objects) {
+      if (g.semantic != simulator::label::kTrunk) continue;
+      ++trees;
+      const Eigen::Vector2d at = simulator::footprintCentre(g.object.model);
+      const bool crown = std::any_of(sc.world.structures.begin(), sc.world.structures.end(), [&](const auto& s) {
+        return s.semantic == simulator::label::kVegetation && (simulator::footprintCentre(s.model) - at).norm() < 0.01;
+      });
+      EXPECT_TRUE(crown) << "seed " << seed << ": the tree at " << at.transpose() << " lost its crown";
+    }
+    EXPECT_GT(trees, 5);
+  }
 }
 
 TEST(Odometry, DriftGrowsWithDistanceWhileRollPitchStayExact) {
