@@ -263,6 +263,11 @@ int main(int argc, char** argv) {
   app.add_option("--explain", explain,
                  "List how the host's own bundle of this sequence number was associated: each object's landmark, "
                  "where the landmark stood before, and the true objects both belong to");
+  std::vector<double> votes_near;
+  app.add_option("--votes-near", votes_near,
+                 "List the host's own detections that lie within 1 m of this world point (x y; placed by the true key "
+                 "pose): key pose, range, class and the confidence it votes with")
+      ->expected(2);
   bool own_only = false, observation_errors = false;
   app.add_flag("--own-only", own_only, "Replay only the host's own inputs (no peer bundles, no inter-robot transforms)");
   app.add_flag("--observation-errors", observation_errors,
@@ -317,6 +322,16 @@ int main(int argc, char** argv) {
         const KeyPoseBundle b = msg::fromLcm(m, nullptr);
         odom_of[{b.robot, b.seq}] = b.odom_pose;
         if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
+        if (votes_near.size() == 2 && b.robot == robot)
+          if (const StampedPose* g = truthAt(truth.robot(robot), b.utime * 1e-6))
+            for (const Object& o : b.objects) {
+              const Eigen::Vector3d w = g->pose * o.position();
+              if ((w.head<2>() - Eigen::Vector2d(votes_near[0], votes_near[1])).norm() > 1.0) continue;
+              const Eigen::Vector3d e = o.extent();
+              std::printf("key pose %d: %s, confidence %.2f, range %.1f m, extent %.2f x %.2f x %.2f\n", b.seq,
+                          classes.at(o.class_id).name.c_str(), o.confidence, o.position().head<2>().norm(), e.x(), e.y(),
+                          e.z());
+            }
         if (b.robot == robot && b.seq == explain) explainBundle(node.optimizer(), b, truth, classes, odom_of);
         else node.handle(e->channel, e->data, e->datalen);
         if (++bundles % every == 0) {

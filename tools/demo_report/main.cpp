@@ -147,6 +147,12 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
     auto& c = f.landmark_classes[in_world[i].class_id];
     ++c[0];
     ++c[right[i] ? 1 : somewhere[i] ? 2 : 3];
+    if (!right[i]) {
+      const Eigen::Vector3d x = in_world[i].position(), e = in_world[i].extent();
+      spdlog::debug("robot {} landmark {} (class {}, {} observations, extent {:.2f} {:.2f} {:.2f}) at world ({:.1f}, {:.1f}): {}",
+                    a, in_world[i].id, in_world[i].class_id, in_world[i].num_observations, e.x(), e.y(), e.z(), x.x(),
+                    x.y(), somewhere[i] ? "at a real object of another class" : "no real object within the match distance");
+    }
   }
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
