@@ -305,6 +305,15 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "min_age", p.min_age, 1);
     opt(c, "max_missed", p.max_missed, 0);
     opt(c, "report_max_missed", p.report_max_missed, 0);
+    opt(c, "report_max_range", p.report_max_range, 0.0);
+    if (c.has("report_max_range_by_class")) {
+      const ConfigNode ranges = c.child("report_max_range_by_class");
+      for (const std::string& name : ranges.keys()) {
+        double range = 0;
+        opt(ranges, name, range, 0.0);
+        p.report_max_range_by_class[name] = range;
+      }
+    }
     opt(c, "max_observations", p.max_observations, 1);
     opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);

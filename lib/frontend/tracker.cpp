@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <unordered_set>
 #include <opencv2/imgproc.hpp>
 
@@ -149,7 +150,18 @@ Eigen::Vector3d Track::viewpoint() const {
 }
 
 Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
-    : classes_(std::move(classes)), params_(params), fit_(fit) {}
+    : classes_(std::move(classes)), params_(params), fit_(fit) {
+  for (const auto& [name, range] : params_.report_max_range_by_class) {
+    const ClassInfo* c = classes_.findByName(name);
+    if (!c) throw std::invalid_argument("report_max_range_by_class: no class named '" + name + "' in the class table");
+    report_range_of_class_[c->id] = range;
+  }
+}
+
+double Tracker::reportRange(int class_id) const {
+  const auto it = report_range_of_class_.find(class_id);
+  return it != report_range_of_class_.end() ? it->second : params_.report_max_range;
+}
 
 bool Tracker::exceedsClassSize(const Track& t) const {
   std::vector<cv::Point2f> pts;
@@ -490,6 +502,7 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
   std::vector<Object> out;
   out.reserve(fits.size());
   for (auto& [o, other] : fits) {
+    if (const double range = reportRange(o.class_id); range > 0 && o.position().head<2>().norm() > range) continue;
     if (other)
       if (const auto* box = std::get_if<Cuboid>(&other->model)) o.other_reading = *box;
     out.push_back(std::move(o));

@@ -7,6 +7,7 @@
 // segmentation error and is dropped).
 #include <deque>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <opencv2/core/types.hpp>
@@ -23,6 +24,8 @@ struct TrackerParams {
   int min_age = 3;                   // observations before a track yields objects
   int max_missed = 30;               // consecutive missed frames before deletion (a column lost behind another for a while keeps its track)
   int report_max_missed = 1;         // tracks missed longer ago are not reported
+  double report_max_range = 0;       // objects farther from the body (m, x-y) are not reported (0: off); they are still tracked, their class votes counted
+  std::map<std::string, double> report_max_range_by_class;  // class name -> its own report_max_range (larger objects fit well farther off)
   int max_observations = 10;         // sliding window of observations per track
   int max_points_per_observation = 1500;
   double moving_tolerance = 1.25;    // accumulated extents > class size_max * this: moving
@@ -108,6 +111,8 @@ class Tracker {
   const ClassTable& classes() const { return classes_; }
 
  private:
+  // report_max_range of a class (report_max_range_by_class or the common one; 0: no limit).
+  double reportRange(int class_id) const;
   bool exceedsClassSize(const Track& t) const;
   bool exceedsClassSize(const std::vector<cv::Point2f>& xy, int class_id) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
@@ -132,6 +137,7 @@ class Tracker {
                             bool readings) const;
 
   ClassTable classes_;
+  std::map<int, double> report_range_of_class_;  // report_max_range_by_class by class id
   TrackerParams params_;
   FitParams fit_;
   std::map<std::int64_t, Track> tracks_;

@@ -141,6 +141,54 @@ TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
   EXPECT_THROW(frontend::loadFrontendConfig(path), ConfigError);
 }
 
+// Objects beyond report_max_range are tracked but not reported; once nearer, the report carries
+// every observation, the far ones included.
+TEST(Tracker, AnObjectBeyondTheReportRangeIsTrackedButReportedOnlyOnceNearer) {
+  Pipeline p;
+  p.cfg.tracker.report_max_range = 25;
+  p.bundler = frontend::KeyPoseBundler{frontend::Tracker(p.classes, p.cfg.tracker, p.cfg.fit), p.cfg.keypose};
+  const auto bundles = p.run({{71, {34, 2, 0}, 0.3, 6.0}}, 36);  // from 34 m to 16.5 m off
+  ASSERT_GE(bundles.size(), 10u);
+  int far = 0, near = 0;
+  for (const KeyPoseBundle& b : bundles) {
+    const double range = (Eigen::Vector2d(34, 2) - b.odom_pose.translation().head<2>()).norm();
+    if (range > 25.5 && p.bundler.tracker().tracks().size() == 1) {
+      EXPECT_TRUE(b.objects.empty()) << "key pose " << b.seq << " reported the trunk " << range << " m off";
+      far += b.seq > 1;  // the track is old enough from the second key pose on
+    } else if (range < 24.5) {
+      ASSERT_EQ(b.objects.size(), 1u) << "key pose " << b.seq << ", the trunk " << range << " m off";
+      EXPECT_EQ(b.objects[0].class_id, 71);
+      ++near;
+    }
+  }
+  EXPECT_GE(far, 2);
+  EXPECT_GE(near, 3);
+  ASSERT_EQ(p.bundler.tracker().tracks().size(), 1u);
+  EXPECT_GE(bundles.back().objects.at(0).num_observations, 30) << "the far observations count too (17 frames see it within 25 m)";
+}
+
+// A class of its own report range: a car 30 m off is reported where a trunk as far is not; a
+// class name that is not in the table is an error that names it.
+TEST(Tracker, AClassWithItsOwnReportRangeIsReportedFartherOff) {
+  Pipeline p;
+  p.cfg.tracker.report_max_range = 25;
+  p.cfg.tracker.report_max_range_by_class = {{"car", 40.0}};
+  p.bundler = frontend::KeyPoseBundler{frontend::Tracker(p.classes, p.cfg.tracker, p.cfg.fit), p.cfg.keypose};
+  const auto bundles = p.run({{71, {30, 3, 0}, 0.3, 6.0}, {10, {30, -4, 0}, 0, 0, 0.4}}, 8);  // 26.5-30 m off
+  ASSERT_GE(bundles.size(), 3u);
+  ASSERT_EQ(bundles.back().objects.size(), 1u);
+  EXPECT_EQ(bundles.back().objects[0].class_id, 10);
+  EXPECT_EQ(p.bundler.tracker().tracks().size(), 2u);
+  frontend::TrackerParams bad;
+  bad.report_max_range_by_class = {{"lamp", 10.0}};
+  try {
+    frontend::Tracker t(p.classes, bad, p.cfg.fit);
+    FAIL() << "an unknown class name was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'lamp'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
   const ClassTable classes = ClassTable::loadDefault();
   frontend::Tracker tracker(classes, {}, {});
