@@ -21,6 +21,7 @@
 #include "eval/object_matching.h"
 #include "eval/time_association.h"
 #include "eval/transform_error.h"
+#include "frontend/frontend_config.h"
 #include "objects/class_table.h"
 #include "plot/map_plot.h"
 #include "own_map.h"
@@ -248,6 +249,27 @@ std::string num(double v, int prec = 3) {
   return s.str();
 }
 
+// What range of the scene reached the robots' maps, from the run's front-end configuration.
+std::string frontEndRange(const std::string& path) {
+  if (!std::filesystem::exists(path)) return "Front end: no " + path + " (range not stated).";
+  try {
+    const frontend::FrontendConfig c = frontend::loadFrontendConfig(path);
+    std::ostringstream s;
+    s << "Front end (`" << path << "`): the label-free segmenter took returns up to " << num(c.geometric.max_range, 0)
+      << " m off; key-pose bundles carried ";
+    if (c.tracker.report_max_range <= 0 && c.tracker.report_max_range_by_class.empty()) {
+      s << "every tracked object.";
+    } else {
+      s << "objects within " << (c.tracker.report_max_range > 0 ? num(c.tracker.report_max_range, 0) + " m" : "any range");
+      for (const auto& [name, r] : c.tracker.report_max_range_by_class) s << " (" << name << ": " << num(r, 0) << " m)";
+      s << " of the robot; farther ones were tracked, their class votes counted, but not mapped.";
+    }
+    return s.str();
+  } catch (const std::exception& e) {
+    return std::string("Front end: ") + e.what();
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -432,6 +454,7 @@ int main(int argc, char** argv) {
     md << "Perception: **" << perception << "**."
        << (oracle ? " **ORACLE run: ground-truth labels or masks reached the robots; every figure is an upper bound.**" : "")
        << "\n\n";
+    md << frontEndRange(opts.run_dir + "/config/frontend.yaml") << "\n\n";
     md << "| figure | value | unit | target | paper | note |\n|---|---|---|---|---|---|\n";
     for (const bench::BenchResult& r : report.results())
       md << "| " << r.name << " | " << num(r.value) << " | " << r.unit << " | " << (r.target ? num(*r.target) : "-")
