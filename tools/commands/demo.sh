@@ -93,7 +93,7 @@ main() {
   mission=$(awk -v f="$frames" -v r="$rate" -v d="$(head -2 "$data/robot0/odom.txt" | awk 'NR==1{a=$1} NR==2{print $1-a}')" \
     'BEGIN { printf "%d", (f * d) / (r > 0 ? r : 1) + 1 }')
   local duration=$((mission + settle))
-  team_run_write_config "$out" "$data" "$robots" "$rate" "$perception"
+  team_run_write_config "$out" "$data" "$robots" "$rate" "$perception" || die "demo: cannot write the run's configuration in $out/config"
   [[ "$perception" != oracle ]] || log "ORACLE run: ground-truth labels reach the robots; its figures are an upper bound"
   local viewer_pid=""
   if [[ -n "$view_port" ]]; then
