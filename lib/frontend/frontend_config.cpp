@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "config/config.h"
 
@@ -32,6 +34,21 @@ void sixVector(const ConfigNode& n, const std::string& key, std::array<double, 6
     if (list[i] < 0) n.fail(key, "values must be non-negative");
     v[i] = list[i];
   }
+}
+
+// A map of class name: value, each at least `min` (the class names are checked against the
+// class table where it is known: the segmenter and the tracker).
+std::map<std::string, double> loadByClass(const ConfigNode& parent, const std::string& key, double min) {
+  std::map<std::string, double> out;
+  if (!parent.has(key)) return out;
+  const ConfigNode m = parent.child(key);
+  if (m.size() > 0) parent.fail(key, "expected a map of class name: value, got a list");
+  for (const std::string& name : m.keys()) {
+    double v = 0;
+    opt(m, name, v, min);
+    out[name] = v;
+  }
+  return out;
 }
 
 void loadCluster(const ConfigNode& n, GridClusterParams& c) {
@@ -270,14 +287,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       if (c.has("ground_labels")) cfg.labelled.ground_labels = c.getList<int>("ground_labels");
       if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
       if (c.has("free_space")) loadFreeSpace(c.child("free_space"), cfg.labelled.free_space);
-      if (c.has("cluster_cell_by_class")) {
-        const ConfigNode cells = c.child("cluster_cell_by_class");
-        for (const std::string& name : cells.keys()) {
-          double cell = 0;
-          opt(cells, name, cell, 1e-3);
-          cfg.labelled.cluster_cell_by_class[name] = cell;
-        }
-      }
+      if (c.has("cluster_cell_by_class")) cfg.labelled.cluster_cell_by_class = loadByClass(c, "cluster_cell_by_class", 1e-3);
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);
     if (s.has("rgbd")) {
@@ -306,14 +316,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "max_missed", p.max_missed, 0);
     opt(c, "report_max_missed", p.report_max_missed, 0);
     opt(c, "report_max_range", p.report_max_range, 0.0);
-    if (c.has("report_max_range_by_class")) {
-      const ConfigNode ranges = c.child("report_max_range_by_class");
-      for (const std::string& name : ranges.keys()) {
-        double range = 0;
-        opt(ranges, name, range, 0.0);
-        p.report_max_range_by_class[name] = range;
-      }
-    }
+    if (c.has("report_max_range_by_class")) p.report_max_range_by_class = loadByClass(c, "report_max_range_by_class", 0.0);
     opt(c, "max_observations", p.max_observations, 1);
     opt(c, "max_points_per_observation", p.max_points_per_observation, 10);
     opt(c, "moving_tolerance", p.moving_tolerance, 1.0);

@@ -153,7 +153,7 @@ Tracker::Tracker(ClassTable classes, TrackerParams params, FitParams fit)
     : classes_(std::move(classes)), params_(params), fit_(fit) {
   for (const auto& [name, range] : params_.report_max_range_by_class) {
     const ClassInfo* c = classes_.findByName(name);
-    if (!c) throw std::invalid_argument("report_max_range_by_class: no class named '" + name + "' in the class table");
+    if (!c) throw std::invalid_argument("tracker.report_max_range_by_class: no class named '" + name + "' in the class table");
     report_range_of_class_[c->id] = range;
   }
 }
@@ -390,9 +390,8 @@ void settleBoxReadings(std::vector<std::pair<Object, std::optional<Object>>>& fi
       for (const auto& [s, s_other] : fits)
         if (!s_other && s.class_id == o.class_id && (s.position() - o.position()).head<2>().norm() <= r)
           headings.push_back(headingOf(std::get<Cuboid>(s.model)));
-      Object both = o;
-      both.other_reading = std::get<Cuboid>(other->model);
-      if (otherReadingAgreesMore(both, headings)) std::swap(o.model, other->model);
+      if (otherReadingAgreesMore(std::get<Cuboid>(o.model), std::get<Cuboid>(other->model), headings))
+        std::swap(o.model, other->model);
       if (!headings.empty()) break;
     }
   }

@@ -56,8 +56,11 @@ double headingOf(const Cuboid& box) {
 
 bool otherReadingAgreesMore(const Object& detection, const std::vector<double>& whole_headings) {
   const auto* first = std::get_if<Cuboid>(&detection.model);
-  if (!first || !detection.other_reading) return false;
-  const double a = headingOf(*first), b = headingOf(*detection.other_reading);
+  return first && detection.other_reading && otherReadingAgreesMore(*first, *detection.other_reading, whole_headings);
+}
+
+bool otherReadingAgreesMore(const Cuboid& first, const Cuboid& second, const std::vector<double>& whole_headings) {
+  const double a = headingOf(first), b = headingOf(second);
   double vote = 0;
   for (const double h : whole_headings) vote += std::cos(2 * (b - h)) - std::cos(2 * (a - h));
   return vote > 0;

@@ -34,6 +34,8 @@ constexpr int kWholeViewsToChooseReading = 2;
 // the sum over them of cos(2 x heading difference), +1 parallel and -1 across, is larger for it.
 // False for a detection with one reading or no headings.
 bool otherReadingAgreesMore(const Object& detection, const std::vector<double>& whole_headings);
+// The same for a box `first` whose other reading is `second`.
+bool otherReadingAgreesMore(const Cuboid& first, const Cuboid& second, const std::vector<double>& whole_headings);
 // The horizontal heading (rad) of a box's length axis.
 double headingOf(const Cuboid& box);
 

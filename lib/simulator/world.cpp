@@ -37,6 +37,8 @@ Eigen::Vector2d footprintCentre(const ObjectModel& m) {
   return std::get<Ellipsoid>(m).centroid.head<2>();
 }
 
+namespace {
+// Height of a model's lowest point.
 double bottomOf(const ObjectModel& m) {
   if (const auto* c = std::get_if<Cuboid>(&m))
     return c->pose.translation().z() - 0.5 * (c->pose.linear().cwiseAbs() * c->dims).z();
@@ -45,7 +47,6 @@ double bottomOf(const ObjectModel& m) {
   return e.centroid.z() - 0.5 * e.height;
 }
 
-namespace {
 bool nearPolyline(const ObjectModel& m, const std::vector<Eigen::Vector2d>& line, double clearance) {
   const Eigen::Vector2d c = footprintCentre(m);
   const double r = footprintRadius(m) + clearance;

@@ -50,8 +50,6 @@ struct World {
 double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 // Horizontal footprint radius of a model around its centre (bounding circle).
 double footprintRadius(const ObjectModel& m);
-// Height of a model's lowest point.
-double bottomOf(const ObjectModel& m);
 // Horizontal centre of a model's footprint.
 Eigen::Vector2d footprintCentre(const ObjectModel& m);
 

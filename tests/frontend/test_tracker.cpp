@@ -139,6 +139,18 @@ TEST(FrontendConfig, DefaultLoadsAndErrorsNameTheKey) {
     std::ofstream(path) << "segmenter:\n  lidar_mode: magic\n";
   }
   EXPECT_THROW(frontend::loadFrontendConfig(path), ConfigError);
+  // A per-class map given as a list would have been read as empty.
+  for (const char* bad : {"tracker:\n  report_max_range_by_class: [car, 40]\n",
+                          "segmenter:\n  labelled:\n    cluster_cell_by_class: [0.15]\n",
+                          "tracker:\n  report_max_range_by_class: {car: -1}\n"}) {
+    std::ofstream(path) << bad;
+    try {
+      frontend::loadFrontendConfig(path);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("_by_class"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // Objects beyond report_max_range are tracked but not reported; once nearer, the report carries

@@ -255,8 +255,8 @@ std::string frontEndRange(const std::string& path) {
   try {
     const frontend::FrontendConfig c = frontend::loadFrontendConfig(path);
     std::ostringstream s;
-    s << "Front end (`" << path << "`): the label-free segmenter took returns up to " << num(c.geometric.max_range, 0)
-      << " m off; key-pose bundles carried ";
+    s << "Front end (`" << path << "`): the segmenters took returns up to " << num(c.geometric.max_range, 0)
+      << " m off (label-free), " << num(c.labelled.max_range, 0) << " m (labelled); key-pose bundles carried ";
     if (c.tracker.report_max_range <= 0 && c.tracker.report_max_range_by_class.empty()) {
       s << "every tracked object.";
     } else {
