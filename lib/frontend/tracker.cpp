@@ -412,22 +412,60 @@ std::optional<Object> Tracker::fitPoints(const Cloud& points, const Cloud& free_
   return o;
 }
 
+namespace {
+
+cv::RotatedRect footprintRect(const Object& o) {
+  const Cuboid& c = std::get<Cuboid>(o.model);
+  const Eigen::Matrix3d& R = c.pose.linear();
+  return cv::RotatedRect(cv::Point2f(c.pose.translation().x(), c.pose.translation().y()), cv::Size2f(c.dims.x(), c.dims.y()),
+                         std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI);
+}
+
+// Area (m^2) both footprints cover.
+double overlapArea(const cv::RotatedRect& a, const cv::RotatedRect& b) {
+  const double reach = 0.5 * (std::hypot(a.size.width, a.size.height) + std::hypot(b.size.width, b.size.height));
+  std::vector<cv::Point2f> poly, hull;
+  if (cv::norm(a.center - b.center) > reach || cv::rotatedRectangleIntersection(a, b, poly) == cv::INTERSECT_NONE ||
+      poly.size() < 3)
+    return 0.0;
+  cv::convexHull(poly, hull);
+  return cv::contourArea(hull);
+}
+
+}  // namespace
+
+void Tracker::dropBoxesAcrossNeighbours(std::vector<std::pair<Object, std::optional<Object>>>& fits) const {
+  std::vector<cv::RotatedRect> rects(fits.size());
+  std::vector<bool> box(fits.size()), dropped(fits.size(), false);
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    if ((box[i] = fits[i].first.shape() == Shape::Cuboid)) rects[i] = footprintRect(fits[i].first);
+  // The share of a box's footprint that the other boxes of its class cover (they stand apart: a sum).
+  auto covered = [&](std::size_t i) {
+    double area = 0;
+    for (std::size_t j = 0; j < fits.size(); ++j)
+      if (j != i && box[j] && !dropped[j] && fits[j].first.class_id == fits[i].first.class_id)
+        area += overlapArea(rects[i], rects[j]);
+    return area / std::max(1e-9f, rects[i].size.area());
+  };
+  for (;;) {  // the most covered first: once it is gone, the boxes it stood on are judged without it
+    double most = params_.box_across;
+    std::size_t worst = fits.size();
+    for (std::size_t i = 0; i < fits.size(); ++i)
+      if (box[i] && !dropped[i])
+        if (const double c = covered(i); c > most) most = c, worst = i;
+    if (worst == fits.size()) break;
+    dropped[worst] = true;
+  }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    if (!dropped[i]) fits[k++] = std::move(fits[i]);
+  fits.resize(k);
+}
+
 void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,
                                    bool readings) const {
-  auto rectOf = [](const Object& o) {
-    const Cuboid& c = std::get<Cuboid>(o.model);
-    const Eigen::Matrix3d& R = c.pose.linear();
-    return cv::RotatedRect(cv::Point2f(c.pose.translation().x(), c.pose.translation().y()),
-                           cv::Size2f(c.dims.x(), c.dims.y()), std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI);
-  };
   auto overlapShare = [](const cv::RotatedRect& a, const cv::RotatedRect& b) {
-    const double reach = 0.5 * (std::hypot(a.size.width, a.size.height) + std::hypot(b.size.width, b.size.height));
-    std::vector<cv::Point2f> poly, hull;
-    if (cv::norm(a.center - b.center) > reach || cv::rotatedRectangleIntersection(a, b, poly) == cv::INTERSECT_NONE ||
-        poly.size() < 3)
-      return 0.0;
-    cv::convexHull(poly, hull);
-    return cv::contourArea(hull) / std::max(1e-9f, std::min(a.size.area(), b.size.area()));
+    return overlapArea(a, b) / std::max(1e-9f, std::min(a.size.area(), b.size.area()));
   };
   // Each entry's tracks: an entry that took another in is fitted to all of theirs.
   std::vector<std::vector<const Track*>> members(fits.size());
@@ -439,11 +477,11 @@ void Tracker::joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<O
       // A box whose length went unseen may be read the other way: two boxes on one centre (within
       // box_same_centre) are one object when a pair of their readings overlaps so (one car tracked
       // twice, each track reading it its own way).
-      double share = overlapShare(rectOf(fits[a].first), rectOf(fits[b].first));
+      double share = overlapShare(footprintRect(fits[a].first), footprintRect(fits[b].first));
       if ((fits[a].first.position() - fits[b].first.position()).head<2>().norm() < params_.box_same_centre)
         for (const Object* x : {&fits[a].first, fits[a].second ? &*fits[a].second : nullptr})
           for (const Object* y : {&fits[b].first, fits[b].second ? &*fits[b].second : nullptr})
-            if (x && y) share = std::max(share, overlapShare(rectOf(*x), rectOf(*y)));
+            if (x && y) share = std::max(share, overlapShare(footprintRect(*x), footprintRect(*y)));
       if (share <= params_.box_overlap) continue;
       std::vector<const Track*> both = members[a];
       both.insert(both.end(), members[b].begin(), members[b].end());
@@ -498,6 +536,7 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
     if (fits.size() < before) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
   }
+  if (params_.box_across > 0) dropBoxesAcrossNeighbours(fits);
   std::vector<Object> out;
   out.reserve(fits.size());
   for (auto& [o, other] : fits) {

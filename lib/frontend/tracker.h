@@ -67,6 +67,10 @@ struct TrackerParams {
   // way by the other (0: off). Boxes are joined again once their readings are settled
   // (parallel_radius).
   double box_same_centre = 0.5;
+  // A reported box of which the other reported boxes of its class cover more than this share
+  // of the footprint stands across its neighbours (the end faces of two cars parked side by
+  // side, read as one car's side): not reported (0: off).
+  double box_across = 0.2;
 };
 
 // One instance added to a track, in the odometry frame.
@@ -135,6 +139,8 @@ class Tracker {
   // one's: the older's entry becomes the fit of all their tracks' points, the younger's is dropped.
   void joinOverlappingBoxes(std::vector<std::pair<Object, std::optional<Object>>>& fits, const Pose& T_body_odom,
                             bool readings) const;
+  // Drops the boxes that stand across their neighbours (box_across), the most covered first.
+  void dropBoxesAcrossNeighbours(std::vector<std::pair<Object, std::optional<Object>>>& fits) const;
 
   ClassTable classes_;
   std::map<int, double> report_range_of_class_;  // report_max_range_by_class by class id

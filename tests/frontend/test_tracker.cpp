@@ -345,6 +345,7 @@ TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
   for (double overlap : {cfg.tracker.box_overlap, 0.0}) {
     frontend::TrackerParams p = cfg.tracker;
     p.box_overlap = overlap;
+    p.box_across = overlap;  // off with it: the two boxes stand on each other
     frontend::Tracker tracker(classes, p, cfg.fit);
     frontend::Instance face = carInstance(), stripe = carInstance();
     addFace(face, 9.1, -2.8, 10.9, -2.8);
@@ -362,6 +363,37 @@ TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
       for (const auto& o : objects) worst = std::max(worst, (o.position().head<2>() - Eigen::Vector2d(10.0, -5.0)).norm());
       EXPECT_GT(worst, 1.5) << "the stripe alone is completed the wrong way";
     }
+  }
+}
+
+// Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
+// noses at y = -2.8), each seen as an L (its nose and the near part of its side). A third track
+// holds the inner parts of both noses seen as one face (x 9.9 to 12.6): a car's side, its box
+// laid across both cars. That box is not reported; A's and B's are.
+TEST(Tracker, ABoxLaidAcrossTwoParkedCarsIsNotReported) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.box_across, 0.0) << "on by default";
+  for (double across : {cfg.tracker.box_across, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.box_across = across;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), b = carInstance(), noses = carInstance();
+    addFace(a, 9.1, -2.8, 10.9, -2.8);
+    addFace(a, 9.1, -2.8, 9.1, -5.8);
+    addFace(b, 11.6, -2.8, 13.4, -2.8);
+    addFace(b, 11.6, -2.8, 11.6, -5.8);
+    addFace(noses, 9.9, -2.75, 12.6, -2.75);
+    feedFourFrames(tracker, {a, b, noses});
+    ASSERT_EQ(tracker.tracks().size(), 3u);
+    const auto objects = tracker.objectsInBody(Pose::Identity());
+    ASSERT_EQ(objects.size(), across > 0 ? 2u : 3u) << across;
+    int along_y = 0;
+    for (const auto& o : objects) {
+      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
+      along_y += std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI)) > 1.2;
+    }
+    EXPECT_EQ(along_y, 2) << "A and B keep their boxes, lengths along y";
   }
 }
 
