@@ -345,7 +345,7 @@ TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
   for (double overlap : {cfg.tracker.box_overlap, 0.0}) {
     frontend::TrackerParams p = cfg.tracker;
     p.box_overlap = overlap;
-    p.box_across = overlap;  // off with it: the two boxes stand on each other
+    p.box_across = overlap > 0 ? cfg.tracker.box_across : 0.0;  // off with it: the two boxes stand on each other
     frontend::Tracker tracker(classes, p, cfg.fit);
     frontend::Instance face = carInstance(), stripe = carInstance();
     addFace(face, 9.1, -2.8, 10.9, -2.8);
