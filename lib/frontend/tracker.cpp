@@ -416,9 +416,8 @@ namespace {
 
 cv::RotatedRect footprintRect(const Object& o) {
   const Cuboid& c = std::get<Cuboid>(o.model);
-  const Eigen::Matrix3d& R = c.pose.linear();
   return cv::RotatedRect(cv::Point2f(c.pose.translation().x(), c.pose.translation().y()), cv::Size2f(c.dims.x(), c.dims.y()),
-                         std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI);
+                         headingOf(c) * 180.0 / M_PI);
 }
 
 // Area (m^2) both footprints cover.
@@ -435,29 +434,32 @@ double overlapArea(const cv::RotatedRect& a, const cv::RotatedRect& b) {
 }  // namespace
 
 void Tracker::dropBoxesAcrossNeighbours(std::vector<std::pair<Object, std::optional<Object>>>& fits) const {
-  std::vector<cv::RotatedRect> rects(fits.size());
-  std::vector<bool> box(fits.size()), dropped(fits.size(), false);
-  for (std::size_t i = 0; i < fits.size(); ++i)
-    if ((box[i] = fits[i].first.shape() == Shape::Cuboid)) rects[i] = footprintRect(fits[i].first);
-  // The share of a box's footprint that the other boxes of its class cover (they stand apart: a sum).
-  auto covered = [&](std::size_t i) {
-    double area = 0;
-    for (std::size_t j = 0; j < fits.size(); ++j)
-      if (j != i && box[j] && !dropped[j] && fits[j].first.class_id == fits[i].first.class_id)
-        area += overlapArea(rects[i], rects[j]);
-    return area / std::max(1e-9f, rects[i].size.area());
-  };
+  const std::size_t n = fits.size();
+  // The share of each box's footprint that each other box of its class covers (boxes only
+  // leave, so the shares are found once); a box's cover is the sum (they stand apart).
+  Eigen::MatrixXd share = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const Object &a = fits[i].first, &b = fits[j].first;
+      if (a.shape() != Shape::Cuboid || b.shape() != Shape::Cuboid || a.class_id != b.class_id) continue;
+      const cv::RotatedRect ra = footprintRect(a), rb = footprintRect(b);
+      const double area = overlapArea(ra, rb);
+      share(i, j) = area / std::max(1e-9f, ra.size.area());
+      share(j, i) = area / std::max(1e-9f, rb.size.area());
+    }
+  std::vector<bool> dropped(n, false);
   for (;;) {  // the most covered first: once it is gone, the boxes it stood on are judged without it
     double most = params_.box_across;
-    std::size_t worst = fits.size();
-    for (std::size_t i = 0; i < fits.size(); ++i)
-      if (box[i] && !dropped[i])
-        if (const double c = covered(i); c > most) most = c, worst = i;
-    if (worst == fits.size()) break;
+    std::size_t worst = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!dropped[i])
+        if (const double c = share.row(i).sum(); c > most) most = c, worst = i;
+    if (worst == n) break;
     dropped[worst] = true;
+    share.col(worst).setZero();
   }
   std::size_t k = 0;
-  for (std::size_t i = 0; i < fits.size(); ++i)
+  for (std::size_t i = 0; i < n; ++i)
     if (!dropped[i]) fits[k++] = std::move(fits[i]);
   fits.resize(k);
 }

@@ -12,6 +12,7 @@
 #include "frontend/keypose.h"
 #include "frontend/labelled_segmenter.h"
 #include "frontend/odometry_buffer.h"
+#include "objects/association.h"
 #include "synthetic_scene.h"
 
 using namespace slide;
@@ -389,10 +390,7 @@ TEST(Tracker, ABoxLaidAcrossTwoParkedCarsIsNotReported) {
     const auto objects = tracker.objectsInBody(Pose::Identity());
     ASSERT_EQ(objects.size(), across > 0 ? 2u : 3u) << across;
     int along_y = 0;
-    for (const auto& o : objects) {
-      const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
-      along_y += std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI)) > 1.2;
-    }
+    for (const auto& o : objects) along_y += std::abs(std::remainder(headingOf(std::get<Cuboid>(o.model)), M_PI)) > 1.2;
     EXPECT_EQ(along_y, 2) << "A and B keep their boxes, lengths along y";
   }
 }
@@ -412,8 +410,7 @@ std::vector<std::pair<double, double>> headingsAcross(const ClassTable& classes,
   feedFourFrames(tracker, cars);
   std::vector<std::pair<double, double>> out;
   for (const auto& o : tracker.objectsInBody(Pose::Identity())) {
-    const Eigen::Matrix3d& R = std::get<Cuboid>(o.model).pose.linear();
-    out.emplace_back(o.position().x(), std::abs(std::remainder(std::atan2(R(1, 0), R(0, 0)), M_PI)));
+    out.emplace_back(o.position().x(), std::abs(std::remainder(headingOf(std::get<Cuboid>(o.model)), M_PI)));
   }
   return out;
 }
