@@ -155,6 +155,14 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
                     x.y(), somewhere[i] ? "at a real object of another class" : "no real object within the match distance");
     }
   }
+  std::vector<char> found(visible.size(), 0);
+  for (const eval::ObjectMatch& m : f.objects.matches) found[m.gt] = 1;
+  for (std::size_t i = 0; i < visible.size(); ++i)
+    if (!found[i]) {
+      const Eigen::Vector3d x = visible[i].position();
+      spdlog::debug("robot {} missed real object {} (class {}) at world ({:.1f}, {:.1f})", a, visible[i].id,
+                    visible[i].class_id, x.x(), x.y());
+    }
   const double p = f.objects.overall.precision, r = f.objects.overall.recall;
   f.objects.overall.f1 = p + r > 0 ? 2 * p * r / (p + r) : 0.0;
   for (const auto& [b, c] : log.closures) {
