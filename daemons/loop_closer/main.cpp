@@ -15,6 +15,41 @@
 
 using namespace slide;
 
+namespace {
+// --replay: the recording's maps and trajectory through the node in their order, polled every
+// 100 ms of the recording's time (the daemon's loop); each found transform is logged by the
+// node with its consensus outcome.
+int replayLog(const std::string& path, const place::LoopCloserParams& params, const LoopCloserChannels& ch) {
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw std::runtime_error(path + ": cannot open the LCM log");
+  long published = 0;
+  LoopCloserNode node(params, ch, [&](const std::string&, const std::vector<uint8_t>&) { return ++published, true; });
+  double t0 = -1, next_poll = 0;
+  long events = 0, undecodable = 0, maps = 0;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    const double t = ev->timestamp * 1e-6;
+    if (t0 < 0) t0 = t, next_poll = t;
+    for (; next_poll <= t; next_poll += 0.1) node.poll(next_poll);
+    ++events;
+    if (ev->channel == ch.own_map || ev->channel == ch.peer_maps) {
+      object_map_t m;
+      if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) { ++undecodable; continue; }
+      node.onMap(ev->channel, m, t);
+      ++maps;
+    } else if (ev->channel == ch.trajectory) {
+      trajectory_t m;
+      if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) { ++undecodable; continue; }
+      node.onTrajectory(m);
+    }
+  }
+  node.poll(next_poll);
+  if (maps == 0) spdlog::warn("{}: no map on '{}' or '{}' (was the own map recorded?)", path, ch.own_map, ch.peer_maps);
+  spdlog::info("{}: {} events over {:.1f} s, {} maps, {} undecodable; {} closures would have been published", path, events,
+               t0 < 0 ? 0.0 : next_poll - t0, maps, undecodable, published);
+  return 0;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"Loop closer: intra-robot (by proximity, against the robot's older objects) and inter-robot (own map\n"
                "against each peer's map, staggered, re-checked when maps change) place recognition; publishes\n"
@@ -29,6 +64,12 @@ int main(int argc, char** argv) {
   app.get_option("--lcm-url")->description("Robot bus URL (overrides the config's; default the robot's own bus)");
   app.add_option("--method", method, "slidegraph or slidematch (overrides the config)")
       ->check(CLI::IsMember({"slidegraph", "slidematch"}));
+  std::string replay;
+  app.add_option("--replay", replay,
+                 "Instead of the bus: run on a recorded robot bus (an lcm-logger file with the own map, the peers'\n"
+                 "maps and the trajectory) as fast as it goes, on the recording's clock, printing every check's\n"
+                 "outcome and publishing nothing")
+      ->check(CLI::ExistingFile);
   return app::runApp(app, common, argc, argv, [&]() {
     const ConfigNode cfg = ConfigNode::load(config_path);
     place::LoopCloserParams params = place::loadLoopCloserParams(cfg);
@@ -38,6 +79,7 @@ int main(int argc, char** argv) {
     if (robot_opt->count()) params.robot = bus.robot;
     else bus.robot = params.robot;
     if (!method.empty()) params.method = place::parsePlaceMethod(method);
+    if (!replay.empty()) return replayLog(replay, params, ch);
     const std::string url = bus.resolve(cfg_url);
 
     lcm::LCM lcm(url);

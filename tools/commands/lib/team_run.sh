@@ -66,7 +66,7 @@ team_run_write_config() {
       # segmenter's thinned INSTANCES_PREVIEW (a few KB twice a second; INSTANCES is ~100 KB a scan).
       cat <<PMD
 group "robot$r" {
-  cmd "logger-$r" { exec = "lcm-logger -f --lcm-url=$url -c (OBJECT_MAP|TRAJECTORY|LOOP_CLOSURE|OPTIMIZER_STATUS|KEYPOSE_BUNDLE|INSTANCES_PREVIEW|PEER_BUNDLE|PEER_MAP|SENSOR_STATUS) $run/logs/robot$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
+  cmd "logger-$r" { exec = "lcm-logger -f --lcm-url=$url -c (OBJECT_MAP|OWN_MAP|TRAJECTORY|LOOP_CLOSURE|OPTIMIZER_STATUS|KEYPOSE_BUNDLE|INSTANCES_PREVIEW|PEER_BUNDLE|PEER_MAP|SENSOR_STATUS) $run/logs/robot$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "team-logger-$r" { exec = "lcm-logger -f --lcm-url=$team_url $run/logs/team$r.lcmlog"; deputy = "$dep"; stop_signal = 2; stop_time_allowed = 3; }
   cmd "optimizer-$r" { exec = "slide-optimizer $common --config $SLIDE_ROOT/config/backend.yaml --journal $run/state/optimizer$r.journal --out-dir $o"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 10; }
   cmd "loop-closer-$r" { exec = "slide-loop-closer $common --config $SLIDE_ROOT/config/loop_closer.yaml"; deputy = "$dep"; auto_respawn = "true"; stop_signal = 2; stop_time_allowed = 5; }
