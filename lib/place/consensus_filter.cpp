@@ -12,7 +12,8 @@ Pose ConsensusFilter::Cluster::mean() const {
 
 int ConsensusFilter::supportOf(int id) const { return static_cast<int>(std::count(recent_.begin(), recent_.end(), id)); }
 
-ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight) {
+ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool may_establish) {
+  if (!may_establish && held_ < 0) return {};
   weight = std::max(weight, 1e-9);
   const Eigen::Vector4d v = xyzYawOf(T);
   // The agreeing cluster nearest in translation, or a new one.

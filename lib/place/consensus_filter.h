@@ -36,8 +36,13 @@ class ConsensusFilter {
 
   explicit ConsensusFilter(ConsensusParams params = {}) : params_(params) {}
 
-  // Adds a found transform with its weight (e.g. inlier count, > 0).
-  Update add(const Pose& T, double weight);
+  // Adds a found transform with its weight (e.g. inlier count, > 0). A result that may not
+  // establish (the stronger alignment of a check that found another nearly as strong) counts
+  // only once a transform is held: as support for the alignment it agrees with, so that an
+  // alignment every later check finds stronger than the held one replaces it (an alias of a
+  // periodic scene, held while the maps were small, is then met by checks that call it the
+  // weaker); it never makes the first transform.
+  Update add(const Pose& T, double weight, bool may_establish = true);
   // The held transform, if any.
   std::optional<Pose> held() const;
 

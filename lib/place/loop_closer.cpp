@@ -62,22 +62,23 @@ const KeyPose* LoopCloser::keyPose(int seq) const {
 
 LoopClosure LoopCloser::run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
                             const std::vector<std::size_t>& ib, ConsensusFilter& filter,
-                            const std::function<Pose(const Pose&)>& express) {
+                            const std::function<Pose(const Pose&)>& express, bool contest_held) {
   const std::vector<Landmark> la = subset(a, ia), lb = subset(b, ib);
   LoopClosure lc;
   lc.method = params_.method;
   lc.result = recognizePlace(params_.method, la, lb, params_.place);
   if (lc.result.budget_exhausted) ++counts_.budget_exceeded;
-  if (!lc.result.found) {
+  const bool contest = contest_held && lc.result.ambiguous && filter.held();
+  if (!lc.result.found && !contest) {
     last_reason_ = lc.result.reason;
     return lc;
   }
   for (const LandmarkMatch& m : lc.result.inliers) lc.inliers.emplace_back(a[la[m.a].index].id, b[lb[m.b].index].id);
   const Pose T = express ? express(lc.result.T_a_b) : lc.result.T_a_b;
-  const ConsensusFilter::Update u = filter.add(T, static_cast<double>(lc.result.inliers.size()));
+  const ConsensusFilter::Update u = filter.add(T, static_cast<double>(lc.result.inliers.size()), lc.result.found);
   lc.outcome = u.outcome;
   lc.T_a_b = u.outcome == ConsensusFilter::Outcome::Pending ? T : u.T;
-  last_reason_.clear();
+  last_reason_ = lc.result.found ? "" : lc.result.reason;
   return lc;
 }
 
@@ -89,8 +90,8 @@ std::optional<LoopClosure> LoopCloser::checkPeer(int robot, Peer& peer) {
                    std::to_string(peer.map.size()) + " peer)";
     return std::nullopt;
   }
-  LoopClosure lc = run(own_, everything(own_), peer.map, everything(peer.map), peer.filter);
-  if (!lc.result.found) {
+  LoopClosure lc = run(own_, everything(own_), peer.map, everything(peer.map), peer.filter, nullptr, true);
+  if (!lc.result.found && lc.outcome == ConsensusFilter::Outcome::Pending) {
     last_reason_ = "robot " + std::to_string(robot) + ": " + last_reason_;
     return std::nullopt;
   }

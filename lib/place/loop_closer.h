@@ -100,10 +100,12 @@ class LoopCloser {
   };
   std::optional<LoopClosure> checkIntra();
   // Place recognition of the sub-maps (fills result and inliers), then the consensus filter
-  // over `T` (the result's transform, or what it says in another form) when found.
+  // over `T` (the result's transform, or what it says in another form) when found. With
+  // contest_held, an ambiguous result's stronger alignment also goes to the filter once it
+  // holds a transform (ConsensusFilter::add, may_establish false): it may replace the held one.
   LoopClosure run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
                   const std::vector<std::size_t>& ib, ConsensusFilter& filter,
-                  const std::function<Pose(const Pose&)>& express = nullptr);
+                  const std::function<Pose(const Pose&)>& express = nullptr, bool contest_held = false);
   const KeyPose* keyPose(int seq) const;
 
   LoopCloserParams params_;

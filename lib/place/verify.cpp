@@ -140,6 +140,7 @@ const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResul
 bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best) {
   if (!best.found || !rival || strengthOf(best) >= params.rival_ratio * strengthOf(*rival)) return best.found;
   best.found = false;
+  best.ambiguous = true;
   char buf[200];
   std::snprintf(buf, sizeof buf, "ambiguous: best hypothesis matches %zu of %zu covered landmarks, another alignment %zu of %zu",
                 best.inliers.size(), best.covered, rival->inliers.size(), rival->covered);

@@ -58,3 +58,23 @@ TEST(ConsensusFilter, YawDifferenceAloneMeansDisagreement) {
   EXPECT_EQ(u.outcome, place::ConsensusFilter::Outcome::Refined);
   EXPECT_NEAR(std::abs(yawOf(u.T.linear())), M_PI, 1e-9);
 }
+
+// An ambiguous check (its stronger alignment had a rival nearly as strong) gives a result that
+// may not establish: without a held transform it changes nothing; once one is held it counts
+// like any other. An alias held while the maps were small, then called the weaker alignment by
+// every later check, is replaced (the urban half-turn alias of the held-out demo mission).
+TEST(ConsensusFilter, AmbiguousResultsNeverMakeTheFirstTransformButMayReplaceAHeldOne) {
+  using Outcome = place::ConsensusFilter::Outcome;
+  place::ConsensusFilter f(place::ConsensusParams{1.0, 3.0, 2, 3, 10});
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(f.add(kTrue, 60, false).outcome, Outcome::Pending);
+  EXPECT_FALSE(f.held());
+  EXPECT_EQ(f.add(kAlias, 16).outcome, Outcome::Pending);
+  EXPECT_EQ(f.add(kAlias, 28).outcome, Outcome::Accepted);
+  // Ambiguous checks agreeing with the held alias support it; then the true alignment is the
+  // stronger one in every check: it replaces the alias once it has more support in the window.
+  EXPECT_EQ(f.add(kAlias, 45, false).outcome, Outcome::Refined);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(f.add(kTrue, 60, false).outcome, Outcome::Pending) << k;
+  const auto u = f.add(kTrue, 68, false);
+  EXPECT_EQ(u.outcome, Outcome::Replaced);
+  EXPECT_NEAR((u.T.translation() - kTrue.translation()).norm(), 0, 1e-9);
+}
