@@ -1,10 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
 
 #include "eval/transform_error.h"
 #include "place/loop_closer.h"
 #include "place/map_perturb.h"
+#include "io/object_map_text.h"
+#include "objects/class_table.h"
 
 using namespace slide;
 
@@ -232,4 +235,48 @@ TEST(LoopCloser, LargeMapsAreBoundedByTheTimeBudgetAndTheMapSizeLimit) {
   ASSERT_TRUE(small.setPeerMap(2, movedCopy(own, poseFromXyzYaw(1, 2, 0, 0.3), 1000, 2), 0.0));
   EXPECT_EQ(small.poll(10.0).size(), 1u) << small.lastReason();  // the kept 80-object own map still matches
   EXPECT_EQ(small.counts().budget_exceeded, 0);
+}
+
+namespace {
+ObjectMap recordedObjects(const std::string& path) {
+  const std::string file = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/" + path;
+  return io::readObjectMapText(file, ClassTable::loadDefault(), io::MissingSize::Zero).map;
+}
+}  // namespace
+
+// tests/data/recorded/urban_half_turn_alias_held/README.md: robot 0 held robot 1 through a half
+// turn of the block grid found in two checks of the small early maps; every later check of the grown
+// maps found the true alignment stronger but the alias nearly as strong (ambiguous: no result),
+// so the alias stayed to the end of the run. With ambiguous_may_replace the later checks' true
+// alignment replaces it.
+TEST(LoopCloser, AHalfTurnAliasHeldFromSmallMapsIsReplacedWhenLaterChecksFindTheTruthStronger) {
+  auto map = [](const std::string& name) { return recordedObjects("urban_half_turn_alias_held/" + name + ".txt"); };
+  const Pose truth = poseFromXyzYaw(-55.872, -68.475, 0.0, M_PI / 2);  // the simulator's start poses
+  for (const bool may_replace : {true, false}) {
+    place::LoopCloserParams p;
+    p.robot = 0;
+    p.consensus = place::ConsensusParams{1.0, 3.0, 2, 3, 10};  // config/loop_closer.yaml
+    p.ambiguous_may_replace = may_replace;
+    place::LoopCloser lc(p);
+    std::optional<Pose> held;
+    double t = 0;
+    auto check = [&](const ObjectMap& own, const ObjectMap& peer) {
+      lc.setOwnMap(own, t);
+      lc.setPeerMap(1, peer, t);
+      for (const place::LoopClosure& c : lc.poll(t += 5.0))
+        if (c.robot_b == 1 && c.outcome != place::ConsensusFilter::Outcome::Pending) held = c.T_a_b;
+    };
+    check(map("own_1"), map("peer_1"));
+    check(map("own_2"), map("peer_2"));
+    ASSERT_TRUE(held) << lc.lastReason();
+    EXPECT_GT(eval::transformError(*held, truth).translation_m, 50.0) << "the early maps' answer is the alias";
+    for (int k = 0; k < 5; ++k) check(map("own_late"), map("peer_late"));
+    const eval::TransformError e = eval::transformError(*held, truth);
+    if (may_replace) {
+      EXPECT_LT(e.translation_m, 1.0);
+      EXPECT_LT(e.yaw_deg, 2.0);
+    } else {
+      EXPECT_GT(e.translation_m, 50.0) << "without it the alias stays";
+    }
+  }
 }

@@ -74,3 +74,42 @@ TEST(LoopCloserDaemon, PublishesTheTransformBetweenTwoRobotsMaps) {
   ASSERT_EQ(lc.num_inliers, 70);
   for (int i = 0; i < lc.num_inliers; ++i) EXPECT_EQ(lc.inliers_b[i], lc.inliers_a[i] + 100);
 }
+
+// --replay: a recorded robot bus (an lcm-logger file) through the loop closer on the recording's
+// clock: the two maps, recorded again and again over 12 s, give the transform (printed with its
+// consensus outcome), nothing is sent; a missing file is refused by name.
+TEST(LoopCloserDaemon, ReplaysARecordedBus) {
+  const std::string log_path = ::testing::TempDir() + "loop_closer_replay.lcmlog";
+  const auto [own, peer] = slide::testing::twoRobotViews(poseFromXyzYaw(-15, 22, 0.5, -2.0));
+  object_map_t own_msg = slide::testing::mapMsg(0, own), peer_msg = slide::testing::mapMsg(1, peer);
+  {
+    lcm::LogFile log(log_path, "w");
+    ASSERT_TRUE(log.good());
+    std::vector<uint8_t> buf;
+    auto write = [&](const std::string& channel, const object_map_t& m, int64_t utime) {
+      buf.resize(m.getEncodedSize());
+      m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+      lcm::LogEvent ev;
+      ev.timestamp = utime;
+      ev.channel = channel;
+      ev.datalen = static_cast<int32_t>(buf.size());
+      ev.data = buf.data();
+      ASSERT_EQ(log.writeEvent(&ev), 0);
+    };
+    for (int k = 0; k < 12; ++k) {
+      write("OWN_MAP", own_msg, 1'700'000'000'000'000 + k * 1'000'000LL);
+      write("PEER_MAP", peer_msg, 1'700'000'000'000'000 + k * 1'000'000LL + 1000);
+    }
+  }
+  const std::string bin = std::string(SLIDE_BINARY_DIR) + "/bin/slide-loop-closer";
+  const std::string out = ::testing::TempDir() + "loop_closer_replay.txt";
+  ASSERT_EQ(std::system((bin + " --robot 0 --replay " + log_path + " > " + out + " 2>&1").c_str()), 0);
+  std::ifstream f(out);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("robot 0 <- robot 1: accepted (70 inliers"), std::string::npos) << text;
+  EXPECT_NE(text.find("24 maps"), std::string::npos) << text;
+  EXPECT_NE(std::system((bin + " --robot 0 --replay /nonexistent/bus.lcmlog > " + out + " 2>&1").c_str()), 0);
+  std::ifstream g(out);
+  const std::string refused((std::istreambuf_iterator<char>(g)), std::istreambuf_iterator<char>());
+  EXPECT_NE(refused.find("/nonexistent/bus.lcmlog"), std::string::npos) << refused;
+}
