@@ -13,7 +13,7 @@ Pose ConsensusFilter::Cluster::mean() const {
 int ConsensusFilter::supportOf(int id) const { return static_cast<int>(std::count(recent_.begin(), recent_.end(), id)); }
 
 ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool may_establish) {
-  if (!may_establish && held_ < 0) return {};
+  if (!may_establish && (held_ < 0 || !params_.ambiguous_may_replace)) return {};
   weight = std::max(weight, 1e-9);
   const Eigen::Vector4d v = xyzYawOf(T);
   // The agreeing cluster nearest in translation, or a new one.
@@ -28,12 +28,22 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
       id = cid;
     }
   }
+  if (id < 0 && !may_establish) {  // a contender of its own: only another alignment
+    const Eigen::Vector4d h = xyzYawOf(clusters_.at(held_).mean());
+    if ((h.head<3>() - v.head<3>()).norm() <= params_.contest_min_offset &&
+        std::abs(wrapAngle(h[3] - v[3])) * 180.0 / M_PI <= params_.contest_min_yaw_deg)
+      return {Outcome::Pending, clusters_.at(held_).mean(), 0};
+  }
   if (id < 0) id = next_id_++;
+  // One that agrees with the held transform supports it, but neither moves nor re-sends it.
+  const bool support_only = !may_establish && id == held_;
   Cluster& c = clusters_[id];
-  c.t_sum += weight * v.head<3>();
-  c.cos_sum += weight * std::cos(v[3]);
-  c.sin_sum += weight * std::sin(v[3]);
-  c.weight += weight;
+  if (!support_only) {
+    c.t_sum += weight * v.head<3>();
+    c.cos_sum += weight * std::cos(v[3]);
+    c.sin_sum += weight * std::sin(v[3]);
+    c.weight += weight;
+  }
 
   recent_.push_back(id);
   while (static_cast<int>(recent_.size()) > std::max(1, params_.window)) recent_.pop_front();
@@ -49,7 +59,7 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
       u.outcome = Outcome::Accepted;
     }
   } else if (id == held_) {
-    u.outcome = Outcome::Refined;
+    u.outcome = support_only ? Outcome::Pending : Outcome::Refined;
   } else if (u.support >= params_.change_confirmations && u.support > supportOf(held_)) {
     clusters_.erase(held_);
     held_ = id;

@@ -18,6 +18,13 @@ struct ConsensusParams {
   int initial_confirmations = 1;  // agreeing results needed before the first transform is held
   int change_confirmations = 3;   // agreeing results needed to replace the held transform
   int window = 10;                // recent results that count as support
+  // Results that may not establish (add()) count once a transform is held; false: ignored.
+  bool ambiguous_may_replace = true;
+  // ... and only when they agree with a cluster or lie farther from the held transform than
+  // this (translation) or this yaw: another alignment, not a variant of the held one (a bent
+  // map aligned on another part of the overlap, as the rival test of verify.h tells them apart).
+  double contest_min_offset = 3.0;
+  double contest_min_yaw_deg = 5.0;
 };
 
 class ConsensusFilter {
@@ -38,10 +45,12 @@ class ConsensusFilter {
 
   // Adds a found transform with its weight (e.g. inlier count, > 0). A result that may not
   // establish (the stronger alignment of a check that found another nearly as strong) counts
-  // only once a transform is held: as support for the alignment it agrees with, so that an
-  // alignment every later check finds stronger than the held one replaces it (an alias of a
-  // periodic scene, held while the maps were small, is then met by checks that call it the
-  // weaker); it never makes the first transform.
+  // only once a transform is held: as support for the alignment it agrees with (the held one:
+  // support only, neither refined nor re-sent, Pending), so that another alignment every later
+  // check finds the stronger replaces the held one (an alias of a periodic scene, held while
+  // the maps were small, is then met by checks that call it the weaker); it never makes the
+  // first transform, and one near the held transform (contest_min_offset) is ignored. Ignored
+  // altogether without ambiguous_may_replace.
   Update add(const Pose& T, double weight, bool may_establish = true);
   // The held transform, if any.
   std::optional<Pose> held() const;

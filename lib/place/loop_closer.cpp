@@ -90,8 +90,7 @@ std::optional<LoopClosure> LoopCloser::checkPeer(int robot, Peer& peer) {
                    std::to_string(peer.map.size()) + " peer)";
     return std::nullopt;
   }
-  LoopClosure lc =
-      run(own_, everything(own_), peer.map, everything(peer.map), peer.filter, nullptr, params_.ambiguous_may_replace);
+  LoopClosure lc = run(own_, everything(own_), peer.map, everything(peer.map), peer.filter, nullptr, true);
   if (!lc.result.found && lc.outcome == ConsensusFilter::Outcome::Pending) {
     last_reason_ = "robot " + std::to_string(robot) + ": " + last_reason_;
     return std::nullopt;

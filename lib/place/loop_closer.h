@@ -21,9 +21,6 @@ struct LoopCloserParams {
   PlaceMethod method = PlaceMethod::SlideGraph;
   PlaceConfig place;
   ConsensusParams consensus;
-  // Inter-robot: an ambiguous check's stronger alignment also counts in the peer's consensus
-  // once a transform is held, and may replace it (ConsensusFilter::add, may_establish false).
-  bool ambiguous_may_replace = true;
   double inter_period_s = 5.0;         // each peer is re-checked at most this often
   double stagger_s = 1.0;              // first checks of peers are spread by this much
   double intra_period_s = 2.0;
@@ -106,7 +103,7 @@ class LoopCloser {
   // over `T` (the result's transform, or what it says in another form) when found. With
   // contest_held, an ambiguous result's stronger alignment also goes to the filter once it
   // holds a transform (ConsensusFilter::add, may_establish false): it may replace the held one
-  // (LoopCloserParams::ambiguous_may_replace).
+  // (ConsensusParams::ambiguous_may_replace). Inter-robot checks contest; intra-robot ones do not.
   LoopClosure run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
                   const std::vector<std::size_t>& ib, ConsensusFilter& filter,
                   const std::function<Pose(const Pose&)>& express = nullptr, bool contest_held = false);

@@ -62,7 +62,7 @@ LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
     n.read("initial_confirmations", p.consensus.initial_confirmations);
     n.read("change_confirmations", p.consensus.change_confirmations);
     n.read("window", p.consensus.window);
-    n.read("ambiguous_may_replace", p.ambiguous_may_replace);
+    n.read("ambiguous_may_replace", p.consensus.ambiguous_may_replace);
     if (p.consensus.window < 1) n.fail("window", "must be at least 1");
   }
   return p;

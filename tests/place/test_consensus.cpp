@@ -70,9 +70,15 @@ TEST(ConsensusFilter, AmbiguousResultsNeverMakeTheFirstTransformButMayReplaceAHe
   EXPECT_FALSE(f.held());
   EXPECT_EQ(f.add(kAlias, 16).outcome, Outcome::Pending);
   EXPECT_EQ(f.add(kAlias, 28).outcome, Outcome::Accepted);
-  // Ambiguous checks agreeing with the held alias support it; then the true alignment is the
-  // stronger one in every check: it replaces the alias once it has more support in the window.
-  EXPECT_EQ(f.add(kAlias, 45, false).outcome, Outcome::Refined);
+  // An ambiguous check agreeing with the held alias supports it (not re-sent, not moved); one
+  // 2 m off it is a variant of it, no contender. Then the true alignment is the stronger one in
+  // every check: it replaces the alias once it has more support in the window.
+  const Pose held = *f.held();
+  const auto support = f.add(kAlias * poseFromXyzYaw(0.5, 0, 0, 0), 45, false);
+  EXPECT_EQ(support.outcome, Outcome::Pending);
+  EXPECT_EQ(support.support, 3);
+  EXPECT_NEAR((f.held()->translation() - held.translation()).norm(), 0, 1e-12);
+  EXPECT_EQ(f.add(kAlias * poseFromXyzYaw(2.0, 0, 0, 0), 45, false).support, 0);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(f.add(kTrue, 60, false).outcome, Outcome::Pending) << k;
   const auto u = f.add(kTrue, 68, false);
   EXPECT_EQ(u.outcome, Outcome::Replaced);

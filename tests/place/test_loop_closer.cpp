@@ -256,7 +256,7 @@ TEST(LoopCloser, AHalfTurnAliasHeldFromSmallMapsIsReplacedWhenLaterChecksFindThe
     place::LoopCloserParams p;
     p.robot = 0;
     p.consensus = place::ConsensusParams{1.0, 3.0, 2, 3, 10};  // config/loop_closer.yaml
-    p.ambiguous_may_replace = may_replace;
+    p.consensus.ambiguous_may_replace = may_replace;
     place::LoopCloser lc(p);
     std::optional<Pose> held;
     double t = 0;

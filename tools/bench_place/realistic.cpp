@@ -375,15 +375,18 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMet
       if (b.size() < 6) continue;  // the loop closer's minimum
       ++f.queries;
       const place::PlaceResult r = place::recognizePlace(method, p.a.lms, b, config);
-      if (!r.found) continue;
-      ++f.raw_found;
-      ++fed;
+      // As the loop closer: an ambiguous result's stronger alignment may contest a held transform.
+      if (!r.found && !(r.ambiguous && filter.held())) continue;
       const simulator::SharedTruth t = simulator::sharedObjectTruth(p.a.lms, b);
       const auto correct = [&](const Pose& T) { return p.overlapping && t.ok && withinTolerance(errorAt(T, t)); };
-      const bool raw_ok = correct(r.T_a_b);
-      f.raw_wrong += !raw_ok;
-      if (raw_ok && first_correct_s < 0) first_correct_s = s;
-      const place::ConsensusFilter::Update u = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()));
+      if (r.found) {
+        ++f.raw_found;
+        ++fed;
+        const bool raw_ok = correct(r.T_a_b);
+        f.raw_wrong += !raw_ok;
+        if (raw_ok && first_correct_s < 0) first_correct_s = s;
+      }
+      const place::ConsensusFilter::Update u = filter.add(r.T_a_b, static_cast<double>(r.inliers.size()), r.found);
       if (u.outcome == place::ConsensusFilter::Outcome::Pending) continue;
       if (correct(u.T)) {
         if (!published_correct) {
