@@ -28,11 +28,12 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
       id = cid;
     }
   }
-  if (id < 0 && !may_establish) {  // a contender of its own: only another alignment
-    const Eigen::Vector4d h = xyzYawOf(clusters_.at(held_).mean());
-    if ((h.head<3>() - v.head<3>()).norm() <= params_.contest_min_offset &&
-        std::abs(wrapAngle(h[3] - v[3])) * 180.0 / M_PI <= params_.contest_min_yaw_deg)
-      return {Outcome::Pending, clusters_.at(held_).mean(), 0};
+  if (!may_establish && id != held_) {  // a contender: another alignment, stronger than the held one's evidence
+    const Cluster& h = clusters_.at(held_);
+    const Eigen::Vector4d m = xyzYawOf(h.mean());
+    const bool variant = (m.head<3>() - v.head<3>()).norm() <= params_.contest_min_offset &&
+                         std::abs(wrapAngle(m[3] - v[3])) * 180.0 / M_PI <= params_.contest_min_yaw_deg;
+    if (variant || weight <= h.strongest) return {Outcome::Pending, h.mean(), 0};
   }
   if (id < 0) id = next_id_++;
   // One that agrees with the held transform supports it, but neither moves nor re-sends it.
@@ -43,6 +44,7 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
     c.cos_sum += weight * std::cos(v[3]);
     c.sin_sum += weight * std::sin(v[3]);
     c.weight += weight;
+    c.strongest = std::max(c.strongest, weight);
   }
 
   recent_.push_back(id);

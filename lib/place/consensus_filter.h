@@ -20,9 +20,10 @@ struct ConsensusParams {
   int window = 10;                // recent results that count as support
   // Results that may not establish (add()) count once a transform is held; false: ignored.
   bool ambiguous_may_replace = true;
-  // ... and only when they agree with a cluster or lie farther from the held transform than
-  // this (translation) or this yaw: another alignment, not a variant of the held one (a bent
-  // map aligned on another part of the overlap, as the rival test of verify.h tells them apart).
+  // ... and, against the held transform, only when they outweigh every result that made or
+  // refined it (later, stronger evidence: more inliers) and lie farther from it than this
+  // (translation) or this yaw: another alignment, not a variant of the held one (a bent map
+  // aligned on another part of the overlap, as the rival test of verify.h tells them apart).
   double contest_min_offset = 3.0;
   double contest_min_yaw_deg = 5.0;
 };
@@ -49,8 +50,8 @@ class ConsensusFilter {
   // support only, neither refined nor re-sent, Pending), so that another alignment every later
   // check finds the stronger replaces the held one (an alias of a periodic scene, held while
   // the maps were small, is then met by checks that call it the weaker); it never makes the
-  // first transform, and one near the held transform (contest_min_offset) is ignored. Ignored
-  // altogether without ambiguous_may_replace.
+  // first transform; one near the held transform (contest_min_offset) or weaker than the
+  // strongest result behind it is ignored. Ignored altogether without ambiguous_may_replace.
   Update add(const Pose& T, double weight, bool may_establish = true);
   // The held transform, if any.
   std::optional<Pose> held() const;
@@ -59,6 +60,7 @@ class ConsensusFilter {
   struct Cluster {
     Eigen::Vector3d t_sum = Eigen::Vector3d::Zero();
     double cos_sum = 0, sin_sum = 0, weight = 0;
+    double strongest = 0;  // the largest weight of one result
     Pose mean() const;
   };
   int supportOf(int id) const;

@@ -79,6 +79,9 @@ TEST(ConsensusFilter, AmbiguousResultsNeverMakeTheFirstTransformButMayReplaceAHe
   EXPECT_EQ(support.support, 3);
   EXPECT_NEAR((f.held()->translation() - held.translation()).norm(), 0, 1e-12);
   EXPECT_EQ(f.add(kAlias * poseFromXyzYaw(2.0, 0, 0, 0), 45, false).support, 0);
+  // Another alignment no stronger than the strongest result behind the held one (28 inliers)
+  // is no contender either: later evidence must outweigh what made the held transform.
+  EXPECT_EQ(f.add(kTrue, 28, false).support, 0);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(f.add(kTrue, 60, false).outcome, Outcome::Pending) << k;
   const auto u = f.add(kTrue, 68, false);
   EXPECT_EQ(u.outcome, Outcome::Replaced);
