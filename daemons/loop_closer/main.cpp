@@ -25,7 +25,7 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
   long published = 0;
   LoopCloserNode node(params, ch, [&](const std::string&, const std::vector<uint8_t>&) { return ++published, true; });
   double t0 = -1, next_poll = 0;
-  long events = 0, undecodable = 0, maps = 0;
+  long events = 0, undecodable = 0, maps = 0, own_maps = 0;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     const double t = ev->timestamp * 1e-6;
     if (t0 < 0) t0 = t, next_poll = t;
@@ -36,6 +36,7 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
       if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) { ++undecodable; continue; }
       node.onMap(ev->channel, m, t);
       ++maps;
+      own_maps += m.robot == params.robot;
     } else if (ev->channel == ch.trajectory) {
       trajectory_t m;
       if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) { ++undecodable; continue; }
@@ -43,7 +44,9 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
     }
   }
   node.poll(next_poll);
-  if (maps == 0) spdlog::warn("{}: no map on '{}' or '{}' (was the own map recorded?)", path, ch.own_map, ch.peer_maps);
+  if (own_maps == 0)
+    spdlog::warn("{}: no map of robot {} on '{}' or '{}' (was the own map recorded? is --robot the recording's?)", path,
+                 params.robot, ch.own_map, ch.peer_maps);
   spdlog::info("{}: {} events over {:.1f} s, {} maps, {} undecodable; {} closures would have been published", path, events,
                t0 < 0 ? 0.0 : next_poll - t0, maps, undecodable, published);
   return 0;

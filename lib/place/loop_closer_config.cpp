@@ -63,6 +63,10 @@ LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
     n.read("change_confirmations", p.consensus.change_confirmations);
     n.read("window", p.consensus.window);
     n.read("ambiguous_may_replace", p.consensus.ambiguous_may_replace);
+    n.read("contest_min_offset", p.consensus.contest_min_offset);
+    n.read("contest_min_yaw_deg", p.consensus.contest_min_yaw_deg);
+    if (!(p.consensus.contest_min_offset >= 0)) n.fail("contest_min_offset", "must not be negative");
+    if (!(p.consensus.contest_min_yaw_deg >= 0)) n.fail("contest_min_yaw_deg", "must not be negative");
     if (p.consensus.window < 1) n.fail("window", "must be at least 1");
   }
   return p;
