@@ -24,11 +24,15 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
   if (!log.good()) throw std::runtime_error(path + ": cannot open the LCM log");
   long published = 0;
   LoopCloserNode node(params, ch, [&](const std::string&, const std::vector<uint8_t>&) { return ++published, true; });
-  double t0 = -1, next_poll = 0;
+  constexpr double kCatchUpS = 10.0;
+  double t0 = -1, next_poll = 0, skipped_s = 0;
   long events = 0, undecodable = 0, maps = 0, own_maps = 0;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     const double t = ev->timestamp * 1e-6;
     if (t0 < 0) t0 = t, next_poll = t;
+    // A gap in the recording (or a corrupt timestamp far ahead) is crossed with the last 10 s
+    // of polls: every check falls due within its period (at most a few seconds) anyway.
+    if (t - next_poll > kCatchUpS) skipped_s += t - kCatchUpS - next_poll, next_poll = t - kCatchUpS;
     for (; next_poll <= t; next_poll += 0.1) node.poll(next_poll);
     ++events;
     if (ev->channel == ch.own_map || ev->channel == ch.peer_maps) {
@@ -47,6 +51,7 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
   if (own_maps == 0)
     spdlog::warn("{}: no map of robot {} on '{}' or '{}' (was the own map recorded? is --robot the recording's?)", path,
                  params.robot, ch.own_map, ch.peer_maps);
+  if (skipped_s > 0) spdlog::warn("{}: {:.0f} s of gaps between recorded events were not polled", path, skipped_s);
   spdlog::info("{}: {} events over {:.1f} s, {} maps, {} undecodable; {} closures would have been published", path, events,
                t0 < 0 ? 0.0 : next_poll - t0, maps, undecodable, published);
   return 0;
