@@ -328,6 +328,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "drop_oversized", p.drop_oversized);
     opt(c, "box_merge_width", p.box_merge_width, 0.0);
     opt(c, "box_merge_growth", p.box_merge_growth, 0.0);
+    opt(c, "box_merge_view_quantile", p.box_merge_view_quantile, 0.0, 1.0);
     opt(c, "parallel_radius", p.parallel_radius, 0.0);
     opt(c, "parallel_fallback_radius", p.parallel_fallback_radius, 0.0);
     opt(c, "box_overlap", p.box_overlap, 0.0, 1.0);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <unordered_set>
 #include <opencv2/imgproc.hpp>
@@ -40,6 +41,24 @@ void absorb(Track& older, Track& younger, int max_observations) {
 }
 
 // Up to `max_points` of the track's accumulated points on the ground plane, evenly spread.
+// What one view of a track shows along `axis` (x-y, unit): the `quantile` of its observations'
+// extents along it.
+double viewLength(const Track& t, const cv::Point2f& axis, double quantile) {
+  std::vector<double> lengths;
+  for (const auto& o : t.observations) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const auto& p : o.points) {
+      const float d = p.x() * axis.x + p.y() * axis.y;
+      lo = std::min(lo, d), hi = std::max(hi, d);
+    }
+    if (hi > lo) lengths.push_back(hi - lo);
+  }
+  if (lengths.empty()) return 0.0;
+  const auto k = std::min(lengths.size() - 1, static_cast<std::size_t>(quantile * static_cast<double>(lengths.size())));
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(k), lengths.end());
+  return lengths[k];
+}
+
 void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Point2f>& out) {
   std::size_t n = 0;
   for (const auto& o : t.observations) n += o.points.size();
@@ -349,7 +368,6 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
       }
       pts.clear();
       footprintSample(older, 300, pts);
-      const std::size_t n_older = pts.size();
       footprintSample(younger, 300, pts);
       const cv::RotatedRect rect = cv::minAreaRect(pts);
       const double length = std::max(rect.size.width, rect.size.height);
@@ -359,12 +377,9 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
         rect.points(c);
         cv::Point2f axis = cv::norm(c[1] - c[0]) >= cv::norm(c[2] - c[1]) ? c[1] - c[0] : c[2] - c[1];
         axis *= 1.0f / std::max(1e-6f, static_cast<float>(cv::norm(axis)));
-        auto extent = [&](std::size_t from, std::size_t to) {
-          float lo = 1e30f, hi = -1e30f;
-          for (std::size_t k = from; k < to; ++k) lo = std::min(lo, pts[k].dot(axis)), hi = std::max(hi, pts[k].dot(axis));
-          return hi > lo ? double(hi - lo) : 0.0;
-        };
-        merge = length <= std::max(extent(0, n_older), extent(n_older, pts.size())) + params_.box_merge_growth;
+        merge = length <= std::max(viewLength(older, axis, params_.box_merge_view_quantile),
+                                   viewLength(younger, axis, params_.box_merge_view_quantile)) +
+                              params_.box_merge_growth;
       }
       if (!merge) {
         ++b;

@@ -49,6 +49,11 @@ struct TrackerParams {
   // ... and whose joint footprint is at most this much longer than the longer of the two: one
   // holds the other (two cars' end faces side by side, seen from an aisle, are not merged).
   double box_merge_growth = 0.5;
+  // A track's length there is what one view of it shows: this quantile of its observations'
+  // extents along the joint footprint's length (1: the longest single view), not all its points
+  // together, so that one view joining two neighbours (the noses of two cars parked side by
+  // side taken in as one cluster) does not make a track hold its neighbour.
+  double box_merge_view_quantile = 0.8;
   // A box none of whose faces was seen as long as its class's shortest length may have its length
   // along either axis (a car's lone end face, or a stretch of its side seen through a gap): it
   // takes the reading whose heading the boxes of its class within this radius (m, x-y) whose

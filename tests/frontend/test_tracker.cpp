@@ -368,6 +368,46 @@ TEST(Tracker, TwoOverlappingBoxesOfOneCarAreReportedAsOne) {
 }
 
 // Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
+// noses at y = -2.8), seen end-on from far off: A's nose alone for five frames, then one view in
+// which both noses come as one cluster (A's track takes it: B has none yet), then each nose on its
+// own. A's track now holds B's nose among its points, but no single view of A but the one shows
+// it: B keeps a track of its own (box_merge_view_quantile), where all of A's points together
+// would have taken B's nose in, frame after frame.
+TEST(Tracker, OneViewJoiningTwoNeighboursDoesNotMakeATrackHoldTheOther) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_LT(cfg.tracker.box_merge_view_quantile, 1.0) << "the default leaves out a track's rarest views";
+  for (double quantile : {cfg.tracker.box_merge_view_quantile, 1.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.box_merge_view_quantile = quantile;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance a = carInstance(), b = carInstance(), both = carInstance();
+    addFace(a, 9.1, -2.8, 10.9, -2.8);
+    addFace(b, 11.6, -2.8, 13.4, -2.8);
+    addFace(both, 9.1, -2.8, 10.9, -2.8);
+    addFace(both, 11.6, -2.8, 13.4, -2.8);
+    frontend::InputIssues issues;
+    int k = 0;
+    auto frame = [&](const std::vector<frontend::Instance>& instances) {
+      frontend::FrameInstances f;
+      f.utime = 100000 * k++;
+      f.instances = instances;
+      tracker.update(f, issues);
+    };
+    for (int i = 0; i < 5; ++i) frame({a});
+    frame({both});
+    ASSERT_EQ(tracker.tracks().size(), 1u) << "A's track took the joined view";
+    for (int i = 0; i < 4; ++i) frame({a, b});
+    EXPECT_EQ(tracker.tracks().size(), quantile < 1 ? 2u : 1u) << quantile;
+    if (quantile < 1) {
+      int hits_b = 0;
+      for (const auto& [id, t] : tracker.tracks()) hits_b = std::max(hits_b, t.last_centroid.x() > 11.5 ? t.hits : 0);
+      EXPECT_EQ(hits_b, 4) << "B's track has every view of B";
+    }
+  }
+}
+
+// Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
 // noses at y = -2.8), each seen as an L (its nose and the near part of its side). A third track
 // holds the inner parts of both noses seen as one face (x 9.9 to 12.6): a car's side, its box
 // laid across both cars. That box is not reported; A's and B's are.
