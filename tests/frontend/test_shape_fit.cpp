@@ -146,9 +146,19 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   EXPECT_GE(completed->dims.x(), car.size_min.x() - 1e-9);
   EXPECT_GE(completed->dims.y(), car.size_min.y() - 1e-9);
   EXPECT_GT(completed->pose.translation().x(), 10.0) << "grown away from the sensor";
+  // A far car's nose seen over 0.8 m of its width (the rest hidden by its neighbour): still a car.
+  frontend::Cloud nose;
+  for (double z = -0.75; z <= 0.75; z += 0.1)
+    for (double y = -0.4; y <= 0.4; y += 0.1) nose.push_back(Eigen::Vector3f(30, y, z));
+  const auto far = frontend::fitCuboid(nose, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize());
+  ASSERT_TRUE(far) << "0.8 m of end face";
+  EXPECT_GT(far->pose.translation().x(), 30.0) << "grown away from the sensor";
+  frontend::CuboidFitParams strict;
+  strict.min_visible_fraction = 0.4;  // 1 m of a car's 2.5 m shortest length
+  EXPECT_FALSE(frontend::fitCuboid(nose, strict, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize()));
   frontend::Cloud sliver;
   for (double z = -0.75; z <= 0.75; z += 0.05)
-    for (double y = -0.3; y <= 0.3; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
+    for (double y = -0.25; y <= 0.25; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
   std::string why;
   EXPECT_FALSE(
       frontend::fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(), &why))
