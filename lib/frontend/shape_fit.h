@@ -30,9 +30,9 @@ struct CuboidFitParams {
   double high_percentile = 0.98;
   double footprint_cell = 0.05;    // footprint thinning before the rectangle search
   double yaw_step_deg = 1.0;       // heading search step (0: minimum-area rectangle instead)
-  // Visible length / class min length required: a car's 2.5 m times 0.24 is the 0.6 m of end face
+  // Visible length / class min length required: a car's 2.5 m times 0.2 is the 0.5 m of end face
   // the geometric segmenter's car clusters need (geometric.car.min_length).
-  double min_visible_fraction = 0.24;
+  double min_visible_fraction = 0.2;
   double size_tolerance = 1.1;     // fitted extents may exceed the class maximum by this factor
   // A horizontal extent shorter than this fraction of the class's typical one is taken as partly
   // hidden and grows to the typical extent away from the sensor (0: only below the class minimum).
