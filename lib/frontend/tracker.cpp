@@ -40,7 +40,6 @@ void absorb(Track& older, Track& younger, int max_observations) {
   older.moving = older.moving || younger.moving;
 }
 
-// Up to `max_points` of the track's accumulated points on the ground plane, evenly spread.
 // What one view of a track shows along `axis` (x-y, unit): the `quantile` of its observations'
 // extents along it.
 double viewLength(const Track& t, const cv::Point2f& axis, double quantile) {
@@ -59,6 +58,7 @@ double viewLength(const Track& t, const cv::Point2f& axis, double quantile) {
   return lengths[k];
 }
 
+// Up to `max_points` of the track's accumulated points on the ground plane, evenly spread.
 void footprintSample(const Track& t, std::size_t max_points, std::vector<cv::Point2f>& out) {
   std::size_t n = 0;
   for (const auto& o : t.observations) n += o.points.size();

@@ -158,7 +158,7 @@ TEST(CuboidFit, PartlySeenCarGetsYawExtentsAndCompletion) {
   EXPECT_FALSE(frontend::fitCuboid(nose, strict, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize()));
   frontend::Cloud sliver;
   for (double z = -0.75; z <= 0.75; z += 0.05)
-    for (double y = -0.25; y <= 0.25; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
+    for (double y = -0.2; y <= 0.2; y += 0.05) sliver.push_back(Eigen::Vector3f(10, y, z));
   std::string why;
   EXPECT_FALSE(
       frontend::fitCuboid(sliver, {}, Eigen::Vector3d::Zero(), car.size_min, car.size_max, car.typicalSize(), &why))
