@@ -20,6 +20,9 @@ struct PlaceConfig {
   // landmarks of two urban robots' maps, the true alignment (the simulator's start poses) 12, and
   // only the alias was verified (tests/data/recorded/urban_half_turn_alias).
   std::size_t rival_search_max_landmarks = 400;
+  // An ambiguous result (verify.h, the rival test) is checked again with the maps' roles
+  // swapped; its stronger alignment stands when that check finds the same one unambiguously.
+  bool ambiguous_recheck_swapped = true;
 };
 
 // Every key is optional (defaults of the structs above); a wrong type or value throws

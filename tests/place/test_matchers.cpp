@@ -315,6 +315,29 @@ TEST(PlaceRecognition, RecordedIndoorLidarAndRgbdMapsAlignByShapeFamily) {
   }
 }
 
+TEST(PlaceRecognition, RecordedAlignmentAmbiguousOneWayStandsWhenTheOtherWayIsClear) {
+  // tests/data/recorded/urban_ambiguous_one_way/README.md: robot 1's check called the true
+  // alignment 1.99 times as strong as the block grid's half turn (the test asks for 2); robot 0's
+  // check the other way round found it clearly.
+  const std::vector<place::Landmark> own = recordedMap("urban_ambiguous_one_way/own.txt");
+  const std::vector<place::Landmark> peer = recordedMap("urban_ambiguous_one_way/peer.txt");
+  const Pose truth = poseFromXyzYaw(68.475, -55.872, 0.0, -M_PI / 2);  // the simulator's start poses
+  place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  ASSERT_TRUE(config.ambiguous_recheck_swapped);
+  const place::PlaceResult r = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
+  ASSERT_TRUE(r.found) << r.reason;
+  const eval::TransformError e = eval::transformError(r.T_a_b, truth);
+  EXPECT_LT(e.translation_m, 1.0);
+  EXPECT_LT(e.yaw_deg, 2.0);
+  EXPECT_GE(r.inliers.size(), 70u);
+
+  config.ambiguous_recheck_swapped = false;
+  const place::PlaceResult one_way = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
+  EXPECT_FALSE(one_way.found);
+  EXPECT_TRUE(one_way.ambiguous) << one_way.reason;
+  EXPECT_LT(eval::transformError(one_way.T_a_b, truth).translation_m, 1.0) << "the stronger alignment is the truth";
+}
+
 TEST(PlaceRecognition, RecordedHalfTurnAliasOfABlockGridIsAmbiguous) {
   // tests/data/recorded/urban_half_turn_alias/README.md: CLIPPER's densest sets held only the
   // alias, so SlideGraph alone accepted it; SlideMatch's exhaustive search also verifies the true
