@@ -206,6 +206,9 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (static_cast<int>(cl.size()) < needed(range)) continue;
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
     if (rough > kp.max_roughness) continue;
+    // Fewer returns than min_points pass only with a face shown smooth (far cars do; a bush's
+    // scattered returns give too few scan-order triplets to measure).
+    if (kp.max_roughness > 0 && std::isnan(rough) && static_cast<int>(cl.size()) < kp.min_points) continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
     if (kp.max_range > 0 && range > kp.max_range) continue;

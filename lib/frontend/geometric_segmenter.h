@@ -53,7 +53,8 @@ struct CarParams {
   int gap_min_points = 40;
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
-  // fewer than 10 consecutive triplets (unordered scans) skip the test.
+  // fewer than 10 consecutive triplets (unordered scans) skip the test when they hold min_points returns, and are no car
+  // when they hold fewer (min_points_far is for faces that show their smoothness).
   double max_roughness = 0.07;
   // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
   // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a

@@ -497,6 +497,35 @@ TEST(GeometricSegmenter, ThirtyReturnsAreACarFarOffAndAScrapNear) {
   }
 }
 
+// Fewer returns than min_points make a car only where they show a smooth face (CarParams::
+// max_roughness measured over scan-order triplets): 20 returns of an end face 30 m off are a car
+// in scan order and no car when each stands between returns of the ground far from it (a bush's
+// scattered returns give no triplets either); 40 such returns are a car either way (an unordered
+// scan keeps the min_points rule).
+TEST(GeometricSegmenter, FewFarReturnsAreACarOnlyWhenTheyShowASmoothFace) {
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::CarParams& kp = cfg.geometric.car;
+  ASSERT_LE(kp.min_points_far, 20);
+  ASSERT_GT(kp.max_roughness, 0.0);
+  ASSERT_LE(kp.min_points * kp.near_range * kp.near_range / (30.0 * 30.0), 20.0);
+  for (const auto& [across, up] : {std::pair{5, 4}, std::pair{8, 5}})
+    for (bool ordered : {true, false}) {
+      std::vector<Eigen::Vector3f> face;
+      for (int i = 0; i < across; ++i)
+        for (int k = 0; k < up; ++k) face.emplace_back(30.0f, -0.9f + 1.44f * i / (across - 1), 0.35f + 0.96f * k / (up - 1));
+      frontend::Cloud c;
+      std::size_t next = 0;
+      for (double x = -36; x <= 36; x += 0.25)
+        for (double y = -36; y <= 36; y += 0.25) {
+          c.emplace_back(x, y, 0.0);
+          if (!ordered && next < face.size()) c.push_back(face[next++]);
+        }
+      if (ordered) c.insert(c.end(), face.begin(), face.end());
+      EXPECT_EQ(instancesNear(c, cfg.geometric, cfg.geometric.car_class, {30, 0}, 1.0f), ordered || up * across >= kp.min_points ? 1 : 0)
+          << across * up << " returns, " << (ordered ? "in scan order" : "scattered in the scan order");
+    }
+}
+
 // A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
 // the next car's side seen through the gap between them (0.8 m deep at x = 7.15) join on the car
 // cells (0.3 m) into one car-sized cluster 2.15 m long; on gap_cell cells they fall apart: no
