@@ -477,15 +477,15 @@ TEST(GeometricSegmenter, ACarSizedBoxFloatingOverTheGroundSeenNearItIsNoCar) {
 }
 
 // A car's end face seen with 30 returns (6 across, 5 up) is a car 30 m off, where a car gives
-// few returns, and no car 12 m off, where 30 returns are a scrap (CarParams::min_points_far).
+// few returns, and no car 8 m off, where 30 returns are a scrap (CarParams::min_points_far).
 TEST(GeometricSegmenter, ThirtyReturnsAreACarFarOffAndAScrapNear) {
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   const frontend::CarParams& kp = cfg.geometric.car;
   ASSERT_LE(kp.min_points_far, 30);
   ASSERT_GT(kp.min_points, 30);
-  ASSERT_GE(kp.near_range, 12.0);
+  ASSERT_GE(kp.near_range, 8.0);
   ASSERT_LE(kp.min_points * kp.near_range * kp.near_range / (30.0 * 30.0), 30.0);
-  for (double range : {30.0, 12.0}) {
+  for (double range : {30.0, 8.0}) {
     frontend::Cloud c;
     for (double x = -36; x <= 36; x += 0.25)
       for (double y = -36; y <= 36; y += 0.25) c.emplace_back(x, y, 0.0);
