@@ -199,6 +199,20 @@ bool Tracker::exceedsClassSize(const std::vector<cv::Point2f>& pts, int class_id
   return len > info.size_max.x() * tol || wid > info.size_max.y() * tol;
 }
 
+bool Tracker::vacated(const Track& t, const Observation& newest) const {
+  if (params_.moving_vacated_share <= 0 || newest.free_space.empty() || t.observations.empty()) return false;
+  Eigen::AlignedBox2d region;  // where the earlier points lie
+  for (const auto& earlier : t.observations)
+    for (const auto& p : earlier.points) region.extend(p.head<2>().cast<double>());
+  const FreeRaster free(newest.free_space, 0.1, params_.moving_vacated_depth, region);
+  for (const auto& earlier : t.observations) {
+    if (&earlier == &newest) continue;
+    const auto [in, n] = free.count(earlier.points, 200);
+    if (in >= params_.moving_vacated_min_points && in > params_.moving_vacated_share * n) return true;
+  }
+  return false;
+}
+
 void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   if (!frame.odom_pose.matrix().allFinite()) {
     issues.count("non-finite odometry pose");
@@ -250,20 +264,6 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 
   std::map<std::int64_t, bool> matched;
-  // Whether the track's object has left where it was: its earlier points lie where the newest
-  // observation's lines of sight passed through (TrackerParams::moving_vacated_share).
-  auto vacated = [&](const Track& t, const Observation& newest) {
-    if (params_.moving_vacated_share <= 0 || newest.free_space.empty() || t.observations.empty()) return false;
-    Eigen::AlignedBox2d region;  // where the earlier points lie
-    for (const auto& earlier : t.observations)
-      for (const auto& p : earlier.points) region.extend(p.head<2>().cast<double>());
-    const FreeRaster free(newest.free_space, 0.1, params_.moving_vacated_depth, region);
-    for (const auto& earlier : t.observations) {
-      const auto [in, n] = free.count(earlier.points, 200);
-      if (in >= params_.moving_vacated_min_points && in > params_.moving_vacated_share * n) return true;
-    }
-    return false;
-  };
   auto apply = [&](Track& t, Obs& o) {
     if (!t.moving && vacated(t, o.seen)) t.moving = true;
     ++t.hits;
@@ -386,6 +386,9 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
         continue;
       }
       absorb(older, younger, params_.max_observations);
+      // A car driving faster than the gate leaves a track per frame, which this merge joins: the
+      // joint track is moving when its newest view saw through where an earlier one stood.
+      if (!older.moving && vacated(older, older.observations.back())) older.moving = true;
       if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
       b = tracks_.erase(b);
     }

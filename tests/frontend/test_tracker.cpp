@@ -672,6 +672,38 @@ TEST(Tracker, ACarWhoseEarlierPlaceWasSeenThroughIsMovingAParkedOneIsNot) {
   }
 }
 
+// A car driving away from the sensor, seen end-on (its 1.8 m rear face across x at y = 10, then
+// 11.6): it moved 1.6 m, beyond the 1.5 m gate, so the second view starts a track of its own,
+// and the box merge joins the two (together 1.8 x 1.6 m, one holding the other). The second
+// view's lines of sight passed through where the face stood: the joint track is moving. With
+// the vacated test off it is not.
+TEST(Tracker, ACarTrackedAnewEachFrameIsMovingOnceItsTracksJoin) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.moving_vacated_share, 0) << "on by default";
+  ASSERT_LT(cfg.tracker.gate_scale * classes.at(10).association_distance, 1.6);
+  ASSERT_GT(cfg.tracker.box_merge_width, 1.6);
+  for (bool check : {true, false}) {
+    frontend::TrackerParams p = cfg.tracker;
+    if (!check) p.moving_vacated_share = 0;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::InputIssues issues;
+    for (int k = 0; k < 2; ++k) {
+      const double y = 10.0 + 1.6 * k;
+      frontend::Instance car = carInstance();
+      addFace(car, -0.9, y, 0.9, y);
+      addFreeCells(car, -2.0, 1.0, 2.0, y - 0.1);  // from the sensor to the face
+      frontend::FrameInstances f;
+      f.utime = k * 100000;
+      f.instances = {car};
+      tracker.update(f, issues);
+    }
+    ASSERT_EQ(tracker.tracks().size(), 1u) << "check " << check;
+    EXPECT_EQ(tracker.tracks().begin()->second.hits, 2);
+    EXPECT_EQ(tracker.tracks().begin()->second.moving, check) << "check " << check;
+  }
+}
+
 // The lone 1.8 m face of the test above, its neighbours seen along their sides now 12-15 m off
 // (x 4 to 8.4 and 33 to 37.4 at y = 8.5): beyond parallel_radius, within
 // parallel_fallback_radius. With the fallback it takes their heading; without it (fallback no
