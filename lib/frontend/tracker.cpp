@@ -387,7 +387,8 @@ void Tracker::mergeBoxTracks(std::map<std::int64_t, bool>& matched) {
       }
       absorb(older, younger, params_.max_observations);
       // A car driving faster than the gate leaves a track per frame, which this merge joins: the
-      // joint track is moving when its newest view saw through where an earlier one stood.
+      // joint track is moving when its last view (the younger track's) saw through where another
+      // stood (either way round, the object was not in one place).
       if (!older.moving && vacated(older, older.observations.back())) older.moving = true;
       if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
       b = tracks_.erase(b);

@@ -124,8 +124,9 @@ class Tracker {
   double reportRange(int class_id) const;
   bool exceedsClassSize(const Track& t) const;
   bool exceedsClassSize(const std::vector<cv::Point2f>& xy, int class_id) const;
-  // Whether the track's object has left where it was: its earlier points lie where the newest
-  // observation's lines of sight passed through (TrackerParams::moving_vacated_share).
+  // Whether the track's object has left where it was: the points of its other observations lie
+  // where `newest`'s lines of sight passed through (TrackerParams::moving_vacated_share).
+  // `newest` may be one of t's observations (then it is not tested against itself).
   bool vacated(const Track& t, const Observation& newest) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
   // or pole (its instances alternated between them, or it was split in a frame): merged. A
