@@ -448,7 +448,7 @@ int main(int argc, char** argv) {
         std::to_string(traffic.payload) + " bytes of LCM payload)";
     const double all = std::max<double>(1.0, double(team_bytes));
     report.add("demo.share.bundles", double(traffic.bundles) / all, "").note = "of the wire bytes: observation bundles";
-    report.add("demo.share.maps", double(traffic.maps) / all, "").note = "object maps";
+    report.add("demo.share.maps", double(traffic.maps) / all, "").note = "object maps, whole and as changes";
     report.add("demo.share.heartbeats", double(traffic.heartbeats) / all, "");
     report.add("demo.share.acks", double(traffic.acks) / all, "");
     report.add("demo.bytes_per_landmark", bw.bytes_per_landmark, "bytes", true, 200.0, 1800.0);

@@ -93,7 +93,11 @@ TeamTraffic readTeamTraffic(const std::string& path, int robot) {
       if (decode(ev, m)) sender = m.sender, kind = &out.heartbeats;
     } else if (ev->channel == app::channels::kTeamChunk) {
       sync_chunk_t m{};
-      if (decode(ev, m)) sender = m.sender, kind = m.kind == sync_chunk_t::MAP ? &out.maps : &out.bundles;
+      if (decode(ev, m)) {  // whole maps and map changes count as maps; an unknown kind as undecodable
+        sender = m.sender;
+        if (m.kind == sync_chunk_t::BUNDLE) kind = &out.bundles;
+        if (m.kind == sync_chunk_t::MAP || m.kind == sync_chunk_t::MAP_DELTA) kind = &out.maps;
+      }
     } else if (ev->channel == app::channels::kTeamAck) {
       sync_ack_t m{};
       if (decode(ev, m)) sender = m.sender, kind = &out.acks;
