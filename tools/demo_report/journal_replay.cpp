@@ -13,6 +13,7 @@
 #include "app/app.h"
 #include "backend/backend_config.h"
 #include "bench/stats.h"
+#include "eval/alignment.h"
 #include "eval/transform_error.h"
 #include "objects/class_table.h"
 #include "bundle_messages.h"
@@ -37,6 +38,7 @@ const StampedPose* truthAt(const RobotTruth& r, double t) {
 
 struct TrajectoryError {
   double rmse = NAN, last = NAN;
+  double aligned_rmse = NAN;  // after the best rigid (SE3) alignment to the truth, as the demo report's ATE
   int poses = 0;
 };
 
@@ -47,6 +49,7 @@ TrajectoryError trajectoryError(const backend::Optimizer& opt, int robot, const 
   TrajectoryError e;
   const Pose T_host_world = truth.robot(opt.hostRobot()).T_world_odom.inverse();
   double sq = 0;
+  std::vector<Eigen::Vector3d> est, ref;
   for (const backend::TrajectoryPose& p : opt.trajectory(robot)) {
     const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
     if (!g) continue;
@@ -56,12 +59,21 @@ TrajectoryError trajectoryError(const backend::Optimizer& opt, int robot, const 
       if (o == odom_of->end()) continue;
       estimate = o->second;
     }
-    const double d = (estimate.translation() - (T_host_world * g->pose).translation()).norm();
+    const Eigen::Vector3d truth_at = (T_host_world * g->pose).translation();
+    const double d = (estimate.translation() - truth_at).norm();
     sq += d * d;
+    est.push_back(estimate.translation());
+    ref.push_back(truth_at);
     e.last = d;
     ++e.poses;
   }
   if (e.poses) e.rmse = std::sqrt(sq / e.poses);
+  if (e.poses >= 3) {
+    const Pose T = eval::align(est, ref, eval::TrajectoryAlignment::Se3).T;
+    double asq = 0;
+    for (std::size_t i = 0; i < est.size(); ++i) asq += (T * est[i] - ref[i]).squaredNorm();
+    e.aligned_rmse = std::sqrt(asq / static_cast<double>(est.size()));
+  }
   return e;
 }
 
@@ -79,8 +91,10 @@ void printState(const backend::Optimizer& opt, const TeamTruth& truth,
                 const std::map<std::pair<int, int>, Pose>& odom_of, const char* prefix) {
   const TrajectoryError own = trajectoryError(opt, opt.hostRobot(), truth),
                         odom = trajectoryError(opt, opt.hostRobot(), truth, &odom_of);
-  std::printf("%s own %d poses rmse %.3f m last %.3f m (odometry %.3f / %.3f m); landmarks %d", prefix, own.poses,
-              own.rmse, own.last, odom.rmse, odom.last, opt.numLandmarks());
+  std::printf("%s own %d poses rmse %.3f m last %.3f m, SE3-aligned %.3f m (odometry %.3f / %.3f m, aligned %.3f m); "
+              "landmarks %d",
+              prefix, own.poses, own.rmse, own.last, own.aligned_rmse, odom.rmse, odom.last, odom.aligned_rmse,
+              opt.numLandmarks());
   for (int r : opt.robots()) {
     if (r == opt.hostRobot()) continue;
     const auto e = mergedFrameError(opt, r, truth, odom_of);
