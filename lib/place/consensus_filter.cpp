@@ -13,7 +13,8 @@ Pose ConsensusFilter::Cluster::mean() const {
 int ConsensusFilter::supportOf(int id) const { return static_cast<int>(std::count(recent_.begin(), recent_.end(), id)); }
 
 ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool may_establish) {
-  if (!may_establish && (held_ < 0 || !params_.ambiguous_may_replace)) return {};
+  if (!may_establish && !params_.ambiguous_may_replace) return {};
+  if (!may_establish && held_ < 0 && !params_.ambiguous_may_confirm) return {};
   weight = std::max(weight, 1e-9);
   const Eigen::Vector4d v = xyzYawOf(T);
   // The agreeing cluster nearest in translation, or a new one.
@@ -27,6 +28,10 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
       best = dt;
       id = cid;
     }
+  }
+  if (!may_establish && held_ < 0) {  // nothing held: only a confirmation of a pending alignment
+    if (id < 0 || weight < clusters_.at(id).strongest) return {};
+    return confirm(id);
   }
   if (!may_establish && id != held_) {  // a contender: another alignment, stronger than the held one's evidence
     const Cluster& h = clusters_.at(held_);
@@ -47,12 +52,7 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
     c.strongest = std::max(c.strongest, weight);
   }
 
-  recent_.push_back(id);
-  while (static_cast<int>(recent_.size()) > std::max(1, params_.window)) recent_.pop_front();
-  // Forget contenders without recent support (the held cluster always stays).
-  for (auto it = clusters_.begin(); it != clusters_.end();)
-    it = (it->first != held_ && supportOf(it->first) == 0) ? clusters_.erase(it) : std::next(it);
-
+  remember(id);
   Update u;
   u.support = supportOf(id);
   if (held_ < 0) {
@@ -71,9 +71,34 @@ ConsensusFilter::Update ConsensusFilter::add(const Pose& T, double weight, bool 
   return u;
 }
 
+void ConsensusFilter::remember(int id) {
+  recent_.push_back(id);
+  while (static_cast<int>(recent_.size()) > std::max(1, params_.window)) recent_.pop_front();
+  // Forget contenders without recent support (the held cluster always stays).
+  for (auto it = clusters_.begin(); it != clusters_.end();)
+    it = (it->first != held_ && supportOf(it->first) == 0) ? clusters_.erase(it) : std::next(it);
+}
+
+ConsensusFilter::Update ConsensusFilter::confirm(int id) {
+  remember(id);
+  Update u;
+  if (!clusters_.count(id)) return u;  // (it had fallen out of the window)
+  u.support = supportOf(id);
+  if (u.support >= params_.initial_confirmations) {
+    held_ = id;
+    u.outcome = Outcome::Accepted;
+    u.T = clusters_.at(id).mean();
+  }
+  return u;
+}
+
 std::optional<Pose> ConsensusFilter::held() const {
   if (held_ < 0) return std::nullopt;
   return clusters_.at(held_).mean();
+}
+
+bool feedsAmbiguous(PlaceMethod method, const ConsensusFilter& filter) {
+  return filter.held() || method == PlaceMethod::SlideGraph;
 }
 
 const char* outcomeName(ConsensusFilter::Outcome o) {

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "geometry/pose.h"
+#include "place/place_result.h"
 
 namespace slide::place {
 
@@ -26,6 +27,10 @@ struct ConsensusParams {
   // aligned on another part of the overlap, as the rival test of verify.h tells them apart).
   double contest_min_offset = 3.0;
   double contest_min_yaw_deg = 5.0;
+  // Before a transform is held, such a result counts as one confirmation of a pending alignment
+  // it agrees with (one that a result that may establish started) when it has at least that
+  // alignment's inliers; it never starts one. (Only SlideGraph's results: feedsAmbiguous.)
+  bool ambiguous_may_confirm = true;
 };
 
 class ConsensusFilter {
@@ -50,8 +55,11 @@ class ConsensusFilter {
   // support only, neither refined nor re-sent, Pending), so that another alignment every later
   // check finds the stronger replaces the held one (an alias of a periodic scene, held while
   // the maps were small, is then met by checks that call it the weaker); it never makes the
-  // first transform; one near the held transform (contest_min_offset) or weaker than the
-  // strongest result behind it is ignored. Ignored altogether without ambiguous_may_replace.
+  // first transform, but before one is held it confirms a pending alignment it agrees with
+  // (ambiguous_may_confirm: the same alignment found the stronger again, as in TCAFF's
+  // hypotheses kept while they stay consistent); one near the held transform
+  // (contest_min_offset) or weaker than the strongest result behind it is ignored. Ignored
+  // altogether without ambiguous_may_replace.
   Update add(const Pose& T, double weight, bool may_establish = true);
   // The held transform, if any.
   std::optional<Pose> held() const;
@@ -64,6 +72,10 @@ class ConsensusFilter {
     Pose mean() const;
   };
   int supportOf(int id) const;
+  // Records a result of cluster `id` among the recent ones; forgets contenders left without support.
+  void remember(int id);
+  // An ambiguous result agreeing with pending cluster `id` (nothing held): support only.
+  Update confirm(int id);
 
   ConsensusParams params_;
   std::map<int, Cluster> clusters_;
@@ -73,5 +85,11 @@ class ConsensusFilter {
 };
 
 const char* outcomeName(ConsensusFilter::Outcome o);
+
+// Whether an ambiguous result of `method` (no transform: another alignment nearly as strong)
+// goes to `filter` (as may_establish false): always once it holds a transform; before, only
+// SlideGraph's. SlideMatch's confirmed wrong alignments on the place bench (realistic urban:
+// published wrong 1 -> 3; repeated rooms: a false positive).
+bool feedsAmbiguous(PlaceMethod method, const ConsensusFilter& filter);
 
 }  // namespace slide::place

@@ -68,7 +68,9 @@ LoopClosure LoopCloser::run(const ObjectMap& a, const std::vector<std::size_t>& 
   lc.method = params_.method;
   lc.result = recognizePlace(params_.method, la, lb, params_.place);
   if (lc.result.budget_exhausted) ++counts_.budget_exceeded;
-  const bool contest = contest_held && lc.result.ambiguous && filter.held();
+  // An ambiguous check's stronger alignment goes to the filter too: it may contest the held
+  // transform, or confirm a pending one (consensus_filter.h).
+  const bool contest = contest_held && lc.result.ambiguous && feedsAmbiguous(params_.method, filter);
   if (!lc.result.found && !contest) {
     last_reason_ = lc.result.reason;
     return lc;

@@ -101,9 +101,10 @@ class LoopCloser {
   std::optional<LoopClosure> checkIntra();
   // Place recognition of the sub-maps (fills result and inliers), then the consensus filter
   // over `T` (the result's transform, or what it says in another form) when found. With
-  // contest_held, an ambiguous result's stronger alignment also goes to the filter once it
-  // holds a transform (ConsensusFilter::add, may_establish false): it may replace the held one
-  // (ConsensusParams::ambiguous_may_replace). Inter-robot checks contest; intra-robot ones do not.
+  // contest_held, an ambiguous result's stronger alignment also goes to the filter
+  // (ConsensusFilter::add, may_establish false; feedsAmbiguous says when): it may replace the
+  // held transform (ConsensusParams::ambiguous_may_replace) or confirm a pending one
+  // (ambiguous_may_confirm). Inter-robot checks contest; intra-robot ones do not.
   LoopClosure run(const ObjectMap& a, const std::vector<std::size_t>& ia, const ObjectMap& b,
                   const std::vector<std::size_t>& ib, ConsensusFilter& filter,
                   const std::function<Pose(const Pose&)>& express = nullptr, bool contest_held = false);

@@ -63,6 +63,7 @@ LoopCloserParams loadLoopCloserParams(const ConfigNode& root) {
     n.read("change_confirmations", p.consensus.change_confirmations);
     n.read("window", p.consensus.window);
     n.read("ambiguous_may_replace", p.consensus.ambiguous_may_replace);
+    n.read("ambiguous_may_confirm", p.consensus.ambiguous_may_confirm);
     n.read("contest_min_offset", p.consensus.contest_min_offset);
     n.read("contest_min_yaw_deg", p.consensus.contest_min_yaw_deg);
     if (!(p.consensus.contest_min_offset >= 0)) n.fail("contest_min_offset", "must not be negative");

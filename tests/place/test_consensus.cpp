@@ -87,3 +87,42 @@ TEST(ConsensusFilter, AmbiguousResultsNeverMakeTheFirstTransformButMayReplaceAHe
   EXPECT_EQ(u.outcome, Outcome::Replaced);
   EXPECT_NEAR((u.T.translation() - kTrue.translation()).norm(), 0, 1e-9);
 }
+
+// Before anything is held, an ambiguous check whose stronger alignment is one an unambiguous
+// check found (pending) confirms it, when it has at least that result's inliers: the same
+// alignment called the stronger again (robot 1 of the held-out seed-2 urban team found robot 0
+// once with 83 inliers, then every check was ambiguous on it with 84 against a half-turn
+// rival's 62). It never starts an alignment, and disagreeing or weaker ones confirm nothing.
+TEST(ConsensusFilter, AnAmbiguousCheckConfirmsAPendingAlignmentButStartsNone) {
+  using Outcome = place::ConsensusFilter::Outcome;
+  for (const bool may_confirm : {true, false}) {
+    place::ConsensusParams p{1.0, 3.0, 2, 3, 10};
+    p.ambiguous_may_confirm = may_confirm;
+    place::ConsensusFilter f(p);
+    EXPECT_EQ(f.add(kTrue, 90, false).outcome, Outcome::Pending);
+    EXPECT_EQ(f.add(kTrue, 83).outcome, Outcome::Pending);
+    EXPECT_EQ(f.add(kTrue * poseFromXyzYaw(0.2, 0, 0, 0), 70, false).outcome, Outcome::Pending);  // weaker
+    EXPECT_EQ(f.add(kAlias, 90, false).outcome, Outcome::Pending);                                 // another
+    EXPECT_FALSE(f.held());
+    const auto u = f.add(kTrue * poseFromXyzYaw(0.2, 0, 0, 0), 84, false);
+    if (may_confirm) {
+      EXPECT_EQ(u.outcome, Outcome::Accepted);
+      EXPECT_EQ(u.support, 2);
+      // The transform is the unambiguous result's: the ambiguous one only confirms it.
+      EXPECT_NEAR((u.T.translation() - kTrue.translation()).norm(), 0, 1e-9);
+    } else {
+      EXPECT_EQ(u.outcome, Outcome::Pending);
+      EXPECT_FALSE(f.held());
+    }
+  }
+}
+
+// The loop closer gives an ambiguous result to its filter once it holds a transform, and before
+// only SlideGraph's (SlideMatch's confirmed wrong alignments on the place bench).
+TEST(ConsensusFilter, AmbiguousResultsReachTheFilterBeforeAnythingIsHeldOnlyFromSlideGraph) {
+  place::ConsensusFilter f(place::ConsensusParams{1.0, 3.0, 1, 3, 10});
+  EXPECT_TRUE(place::feedsAmbiguous(place::PlaceMethod::SlideGraph, f));
+  EXPECT_FALSE(place::feedsAmbiguous(place::PlaceMethod::SlideMatch, f));
+  ASSERT_EQ(f.add(kTrue, 30).outcome, place::ConsensusFilter::Outcome::Accepted);
+  EXPECT_TRUE(place::feedsAmbiguous(place::PlaceMethod::SlideMatch, f));
+}

@@ -242,6 +242,28 @@ ObjectMap recordedObjects(const std::string& path) {
   const std::string file = std::string(SLIDE_SOURCE_DIR) + "/tests/data/recorded/" + path;
   return io::readObjectMapText(file, ClassTable::loadDefault(), io::MissingSize::Zero).map;
 }
+
+// A robot's loop closer fed recorded pairs of its own map and one peer's, a check 5 s apart,
+// with config/loop_closer.yaml's consensus; `held` is the last transform it published.
+struct RecordedChecks {
+  RecordedChecks(int robot, int peer, const place::ConsensusParams& consensus)
+      : peer(peer), lc([&] {
+          place::LoopCloserParams p;
+          p.robot = robot;
+          p.consensus = consensus;
+          return p;
+        }()) {}
+  void check(const ObjectMap& own, const ObjectMap& peer_map) {
+    lc.setOwnMap(own, t);
+    lc.setPeerMap(peer, peer_map, t);
+    for (const place::LoopClosure& c : lc.poll(t += 5.0))
+      if (c.robot_b == peer && c.outcome != place::ConsensusFilter::Outcome::Pending) held = c.T_a_b;
+  }
+  int peer;
+  place::LoopCloser lc;
+  std::optional<Pose> held;
+  double t = 0;
+};
 }  // namespace
 
 // tests/data/recorded/urban_half_turn_alias_held/README.md: robot 0 held robot 1 through a half
@@ -253,30 +275,48 @@ TEST(LoopCloser, AHalfTurnAliasHeldFromSmallMapsIsReplacedWhenLaterChecksFindThe
   auto map = [](const std::string& name) { return recordedObjects("urban_half_turn_alias_held/" + name + ".txt"); };
   const Pose truth = poseFromXyzYaw(-55.872, -68.475, 0.0, M_PI / 2);  // the simulator's start poses
   for (const bool may_replace : {true, false}) {
-    place::LoopCloserParams p;
-    p.robot = 0;
-    p.consensus = place::ConsensusParams{1.0, 3.0, 2, 3, 10};  // config/loop_closer.yaml
-    p.consensus.ambiguous_may_replace = may_replace;
-    place::LoopCloser lc(p);
-    std::optional<Pose> held;
-    double t = 0;
-    auto check = [&](const ObjectMap& own, const ObjectMap& peer) {
-      lc.setOwnMap(own, t);
-      lc.setPeerMap(1, peer, t);
-      for (const place::LoopClosure& c : lc.poll(t += 5.0))
-        if (c.robot_b == 1 && c.outcome != place::ConsensusFilter::Outcome::Pending) held = c.T_a_b;
-    };
-    check(map("own_1"), map("peer_1"));
-    check(map("own_2"), map("peer_2"));
-    ASSERT_TRUE(held) << lc.lastReason();
-    EXPECT_GT(eval::transformError(*held, truth).translation_m, 50.0) << "the early maps' answer is the alias";
-    for (int k = 0; k < 5; ++k) check(map("own_late"), map("peer_late"));
-    const eval::TransformError e = eval::transformError(*held, truth);
+    place::ConsensusParams consensus{1.0, 3.0, 2, 3, 10};  // config/loop_closer.yaml
+    consensus.ambiguous_may_replace = may_replace;
+    RecordedChecks run(0, 1, consensus);
+    run.check(map("own_1"), map("peer_1"));
+    run.check(map("own_2"), map("peer_2"));
+    ASSERT_TRUE(run.held) << run.lc.lastReason();
+    EXPECT_GT(eval::transformError(*run.held, truth).translation_m, 50.0) << "the early maps' answer is the alias";
+    for (int k = 0; k < 5; ++k) run.check(map("own_late"), map("peer_late"));
+    const eval::TransformError e = eval::transformError(*run.held, truth);
     if (may_replace) {
       EXPECT_LT(e.translation_m, 1.0);
       EXPECT_LT(e.yaw_deg, 2.0);
     } else {
       EXPECT_GT(e.translation_m, 50.0) << "without it the alias stays";
+    }
+  }
+}
+
+// tests/data/recorded/urban_pending_confirmed_by_ambiguous/README.md: robot 1 found robot 0
+// once, unambiguously (83 inliers, pending: two agreeing results make the first transform), then
+// every check of the grown maps was ambiguous on the same alignment. With ambiguous_may_confirm
+// such a check confirms the pending alignment.
+TEST(LoopCloser, APendingAlignmentEveryLaterCheckCallsTheStrongerIsConfirmed) {
+  auto map = [](const std::string& name) {
+    return recordedObjects("urban_pending_confirmed_by_ambiguous/" + name + ".txt");
+  };
+  const Pose truth = poseFromXyzYaw(68.475, -55.872, 0.0, -M_PI / 2);  // the simulator's start poses
+  for (const bool may_confirm : {true, false}) {
+    place::ConsensusParams consensus{1.0, 3.0, 2, 3, 10};  // config/loop_closer.yaml
+    consensus.ambiguous_may_confirm = may_confirm;
+    RecordedChecks run(1, 0, consensus);
+    run.check(map("own_found"), map("peer_found"));
+    EXPECT_FALSE(run.held) << "one result is not enough for the first transform";
+    for (int k = 0; k < 3; ++k) run.check(map("own_late"), map("peer_late"));
+    EXPECT_NE(run.lc.lastReason().find("ambiguous"), std::string::npos) << run.lc.lastReason();
+    if (may_confirm) {
+      ASSERT_TRUE(run.held) << run.lc.lastReason();
+      const eval::TransformError e = eval::transformError(*run.held, truth);
+      EXPECT_LT(e.translation_m, 1.0);
+      EXPECT_LT(e.yaw_deg, 2.0);
+    } else {
+      EXPECT_FALSE(run.held) << "without it the pair stays unaligned";
     }
   }
 }

@@ -375,8 +375,9 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMet
       if (b.size() < 6) continue;  // the loop closer's minimum
       ++f.queries;
       const place::PlaceResult r = place::recognizePlace(method, p.a.lms, b, config);
-      // As the loop closer: an ambiguous result's stronger alignment may contest a held transform.
-      if (!r.found && !(r.ambiguous && filter.held())) continue;
+      // As the loop closer: an ambiguous result's stronger alignment may contest a held transform
+      // or confirm a pending one (ConsensusParams).
+      if (!r.found && !(r.ambiguous && place::feedsAmbiguous(method, filter))) continue;
       const simulator::SharedTruth t = simulator::sharedObjectTruth(p.a.lms, b);
       const auto correct = [&](const Pose& T) { return p.overlapping && t.ok && withinTolerance(errorAt(T, t)); };
       if (r.found) {
