@@ -4,7 +4,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "../../tools/demo_report/run_log.h"
+#include "run_log.h"
 #include "app/channels.h"
 #include "slide/sync_chunk_t.hpp"
 #include "slide/sync_heartbeat_t.hpp"
