@@ -78,6 +78,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "other_max_roughness", g.other_max_roughness, 0.0);
   opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
   opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
+  opt(n, "other_face_max_width", g.other_face_max_width, 0.0, 10.0);
   opt(n, "other_split_length", g.other_split_length, 0.0, 100.0);
   opt(n, "other_split_min_points", g.other_split_min_points, 1, 1000000);
   opt(n, "other_not_column", g.other_not_column);

@@ -247,11 +247,13 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
 }
 
 // Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
-// are solid and are seen whole; a long one that falls into big pieces on finer cells counts as
+// are solid and, when they could be the seen part of something larger (as tall as a car:
+// `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into big pieces on finer cells counts as
 // those pieces (furniture standing centimetres apart).
 std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                             const ScanLines& lines, const GeometricSegmenterParams& p,
-                                            const ClassInfo& other, const std::vector<char>& taken) {
+                                            const ClassInfo& other, double hidden_min_height,
+                                            const std::vector<char>& taken) {
   std::vector<int> rest;
   for (int i : above)
     if (!taken[i]) rest.push_back(i);
@@ -310,7 +312,8 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;
     if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
-    if (p.other_max_occluded < 1) {
+    const bool may_be_part = p.other_face_max_width <= 0 || height >= hidden_min_height || f.width < p.other_face_max_width;
+    if (p.other_max_occluded < 1 && may_be_part) {
       for (int i : cl) in_cluster[i] = 1;
       const double occluded = occludedFraction(cloud, lines, cl, in_cluster, p.occlusion);
       for (int i : cl) in_cluster[i] = 0;
@@ -387,7 +390,8 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
     out.back().free_space = free->near(cl, static_cast<float>(groundUnder(cloud, h, cl)), reach);
   }
   if (params_.emit_other)
-    for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class), taken))
+    for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class),
+                                        classes_.at(params_.car_class).size_min.z(), taken))
       emit(params_.other_class, cl, params_.other_confidence);
   return out;
 }

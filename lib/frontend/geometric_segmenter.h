@@ -124,8 +124,14 @@ struct GeometricSegmenterParams {
   // at most this; a crown's lower edge floats metres up).
   double other_max_bottom = 1.0;
   // ... and that are seen whole: at most this share of their beams end at a nearer occluder
-  // (a car's end seen past the car in front of it is no small object). 1 disables.
+  // (a car's end seen past the car in front of it is no small object). 1 disables. The rule
+  // judges only clusters that could be the seen part of something larger: as tall as a car
+  // (the car class's size_min height; a hidden car end shows the car's whole height) or
+  // thinner than other_face_max_width across their footprint (a strip of wall or fence seen
+  // between things in front of it is as thin as the range noise). Lower, thicker ones (a table
+  // behind its chairs, a chair behind another) stand whole behind what hides their edge.
   double other_max_occluded = 0.5;
+  double other_face_max_width = 0.0;  // 0: every cluster is judged
   // ... and that are no upright column: a cluster as tall as a column must be (column.min_top)
   // whose footprint is no longer than a column's cross-section (column.max_diameter) is a
   // trunk or pole the column step turned down (not isolated, a bush at its foot). false: off.

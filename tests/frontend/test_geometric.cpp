@@ -354,6 +354,31 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
   EXPECT_EQ(othersNear(off, {6.3f, -5}), 1);
 }
 
+// A table 0.75 m tall (0.6 x 1.2 m, 5 m off, seen at 25-35 degrees: front and side show) behind a
+// chair-sized box that hides its far end:
+// every scan line through the table ends at the nearer box, yet a thing that low and that deep
+// cannot be the end of a car, and it stands whole behind its neighbour: an "other". A low
+// strip of wall 0.15 m thick, its end hidden the same way, is as thin as a face: judged, and
+// turned down as the seen part of something larger.
+TEST(GeometricSegmenter, ATableBehindAChairIsAnOtherAHiddenStripOfWallIsNot) {
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(3.0, 2.3, -1), Eigen::Vector3d(3.4, 2.8, -0.1)),   // chair
+                    Eigen::AlignedBox3d(Eigen::Vector3d(4.0, 2.0, -1), Eigen::Vector3d(4.6, 3.2, -0.25)),  // table
+                    Eigen::AlignedBox3d(Eigen::Vector3d(5.5, -2.2, -1), Eigen::Vector3d(6.0, -1.6, -0.1)),  // box
+                    Eigen::AlignedBox3d(Eigen::Vector3d(7.0, -4.6, -1), Eigen::Vector3d(7.15, -1.6, -0.4))});  // wall
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenterParams& p = cfg.geometric;
+  const Eigen::Vector2f table(4.2f, 2.3f), wall(7.05f, -3.4f);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, table, 0.6f), 1);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, wall, 1.0f), 0);
+  frontend::GeometricSegmenterParams all = p;
+  all.other_face_max_width = 0;  // every cluster judged: the table is turned down too
+  EXPECT_EQ(instancesNear(c, all, all.other_class, table, 0.6f), 0);
+  frontend::GeometricSegmenterParams off = p;
+  off.other_max_occluded = 1;  // without the occlusion test the strip of wall is an "other"
+  EXPECT_EQ(instancesNear(c, off, off.other_class, wall, 1.0f), 1);
+}
+
 // A square pillar 3.5 m tall with flat faces fails the column step's arc test; a bin beside it
 // is a free "other". The pillar is as tall as a column and no wider than one: it is no "other"
 // either (in the forest such clusters are trunks the column step turned down).
