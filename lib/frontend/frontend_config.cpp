@@ -81,17 +81,6 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "other_face_max_width", g.other_face_max_width, 0.0, 10.0);
   opt(n, "other_split_length", g.other_split_length, 0.0, 100.0);
   opt(n, "other_split_min_points", g.other_split_min_points, 1, 1000000);
-  if (n.has("other_stacked")) {
-    const ConfigNode c = n.child("other_stacked");
-    opt(c, "max_neck_ratio", g.other_stacked.max_neck_ratio, 0.0, 1.0);
-    opt(c, "max_side_ratio", g.other_stacked.max_side_ratio, 0.0, 1.0);
-    opt(c, "min_neck_depth", g.other_stacked.min_neck_depth, 0.0, 10.0);
-    opt(c, "min_arc_points", g.other_stacked.min_arc_points, 1, 100000);
-    opt(c, "beam_tolerance_deg", g.other_stacked.beam_tolerance_deg, 0.0, 5.0);
-    opt(c, "min_points", g.other_stacked.min_points, 1, 1000000);
-    opt(c, "min_height", g.other_stacked.min_height, 0.0, 10.0);
-    opt(c, "min_neck_height", g.other_stacked.min_neck_height, 0.0, 10.0);
-  }
   opt(n, "other_not_column", g.other_not_column);
   opt(n, "other_max_height", g.other_max_height, 0.0, 10.0);
   opt(n, "other_confidence", g.other_confidence, 1e-3, 1.0);

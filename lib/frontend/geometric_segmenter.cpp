@@ -246,8 +246,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   return cars;
 }
 
-// Step 3: clusters of the untaken points `above` (one standing on another split at the neck
-// between them, stacked_split.h) whose extents fit `other`, that stand low,
+// Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
 // are solid and, when they could be the seen part of something larger (as tall as a car:
 // `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into big pieces on finer cells counts as
 // those pieces (furniture standing centimetres apart).
@@ -280,16 +279,7 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   std::vector<Candidate> todo;
   // Cells half as large: pieces of furniture standing centimetres apart fall apart.
   const GridClusterParams fine{0.5 * p.other_cluster.cell, false, 1};
-  std::vector<std::vector<int>> clusters;
   for (auto& cl : clusterGrid(cloud, rest, p.other_cluster)) {
-    if (auto parts = splitAtNeck(cloud, h, cl, p.other_stacked)) {
-      clusters.push_back(std::move(parts->first));
-      clusters.push_back(std::move(parts->second));
-    } else {
-      clusters.push_back(std::move(cl));
-    }
-  }
-  for (auto& cl : clusters) {
     const std::optional<double> height = standingHeight(cl);
     if (!height) continue;
     const Footprint f = footprintOf(cloud, cl, max_diagonal);

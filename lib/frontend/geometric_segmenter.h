@@ -15,7 +15,6 @@
 #include "frontend/grid_clustering.h"
 #include "frontend/ground_removal.h"
 #include "frontend/occlusion.h"
-#include "frontend/stacked_split.h"
 #include "frontend/view_notch.h"
 #include "frontend/segmenter.h"
 #include "objects/class_table.h"
@@ -116,9 +115,6 @@ struct GeometricSegmenterParams {
   // other_split_min_points becoming a cluster of its own when there are two or more; 0: off.
   double other_split_length = 0.0;
   int other_split_min_points = 120;
-  // An "other" cluster narrowing to a neck and widening again above it is two things, one
-  // standing on the other (a monitor on a table): split there (stacked_split.h).
-  StackedSplitParams other_stacked;
   bool emit_other = true;        // emit "other" instances for remaining compact clusters ...
   // ... whose range roughness (as CarParams::max_roughness) is at most this: solid things (bins,
   // boxes, furniture), not foliage (bushes, low crowns; real SemanticKITTI vegetation: median

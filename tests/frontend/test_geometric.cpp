@@ -15,7 +15,6 @@
 #include "frontend/column_detection.h"
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
-#include "frontend/stacked_split.h"
 #include "frontend/ground_removal.h"
 #include "frontend/shape_fit.h"
 #include "frontend/tracker.h"
@@ -378,76 +377,6 @@ TEST(GeometricSegmenter, ATableBehindAChairIsAnOtherAHiddenStripOfWallIsNot) {
   frontend::GeometricSegmenterParams off = p;
   off.other_max_occluded = 1;  // without the occlusion test the strip of wall is an "other"
   EXPECT_EQ(instancesNear(c, off, off.other_class, wall, 1.0f), 1);
-}
-
-// A round table with a monitor on it, in steps of boxes 3-4 m ahead (ground 1 m under the
-// sensor): the outline narrows from the table's 1.2 m through its top (0.8, 0.4 m) to the
-// monitor's foot (0.24 m) and widens again to its 0.6 m screen. It is split at the foot: the
-// table below, the monitor above. The table alone, narrowing and never widening, is one thing;
-// so is a column 0.3 m wide whose one beam returned only two points (a gap in foliage).
-TEST(StackedSplit, AMonitorOnATableIsSplitAtItsFootATableAloneIsNot) {
-  const std::vector<Eigen::AlignedBox3d> table = {
-      {Eigen::Vector3d(3.0, -0.6, -1), Eigen::Vector3d(4.0, 0.6, -0.45)},
-      {Eigen::Vector3d(3.2, -0.4, -0.45), Eigen::Vector3d(3.8, 0.4, -0.35)},
-      {Eigen::Vector3d(3.3, -0.2, -0.35), Eigen::Vector3d(3.7, 0.2, -0.28)}};
-  std::vector<Eigen::AlignedBox3d> with_monitor = table;
-  with_monitor.push_back({Eigen::Vector3d(3.45, -0.12, -0.28), Eigen::Vector3d(3.55, 0.12, -0.22)});
-  with_monitor.push_back({Eigen::Vector3d(3.45, -0.2, -0.22), Eigen::Vector3d(3.55, 0.2, -0.15)});
-  with_monitor.push_back({Eigen::Vector3d(3.45, -0.3, -0.15), Eigen::Vector3d(3.55, 0.3, 0.15)});
-  const frontend::StackedSplitParams p = frontend::loadDefaultFrontendConfig().geometric.other_stacked;
-  ASSERT_GT(p.max_neck_ratio, 0);
-  // The object's returns (off the synthetic ground) and their heights above it.
-  auto object = [](const frontend::Cloud& all, frontend::Cloud& c, std::vector<float>& h, std::vector<int>& idx) {
-    for (const auto& q : all)
-      if (q.z() > -0.99f) idx.push_back(static_cast<int>(c.size())), c.push_back(q), h.push_back(q.z() + 1.0f);
-  };
-  {
-    frontend::Cloud c;
-    std::vector<float> h;
-    std::vector<int> idx;
-    object(scannedBoxes(with_monitor), c, h, idx);
-    const auto parts = frontend::splitAtNeck(c, h, idx, p);
-    ASSERT_TRUE(parts);
-    float lower_top = 0, upper_bottom = 10;
-    for (int i : parts->first) lower_top = std::max(lower_top, h[i]);
-    for (int i : parts->second) upper_bottom = std::min(upper_bottom, h[i]);
-    EXPECT_NEAR(lower_top, 0.72, 0.06);     // the table's top at 0.72 m ...
-    EXPECT_NEAR(upper_bottom, 0.72, 0.06);  // ... the monitor from its foot up
-    frontend::StackedSplitParams off = p;
-    off.max_neck_ratio = 0;
-    EXPECT_FALSE(frontend::splitAtNeck(c, h, idx, off));
-  }
-  {
-    frontend::Cloud c;
-    std::vector<float> h;
-    std::vector<int> idx;
-    object(scannedBoxes(table), c, h, idx);
-    EXPECT_FALSE(frontend::splitAtNeck(c, h, idx, p));
-  }
-  {
-    // A column 0.3 m wide, 1.4 m tall, 3 m off; of the beam crossing it about 0.7 m up only two
-    // returns are left.
-    frontend::Cloud all = scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(3.0, -0.15, -1), Eigen::Vector3d(3.3, 0.15, 0.4))});
-    frontend::Cloud c;
-    std::vector<float> h;
-    std::vector<int> idx;
-    object(all, c, h, idx);
-    auto elevation = [](const Eigen::Vector3f& q) { return std::atan2(q.z(), q.head<2>().norm()); };
-    const float gap = std::atan2(-0.3f, 3.0f);  // the beam nearest 0.7 m up the front face
-    float nearest = 1e9f;
-    for (const auto& q : c) nearest = std::min(nearest, std::abs(elevation(q) - gap));
-    frontend::Cloud kept;
-    int left = 0;
-    for (const auto& q : c)
-      if (std::abs(std::abs(elevation(q) - gap) - nearest) > 1e-5f || left++ < 2) kept.push_back(q);
-    ASSERT_LT(kept.size(), c.size());
-    c.clear(), h.clear(), idx.clear();
-    object(kept, c, h, idx);
-    EXPECT_FALSE(frontend::splitAtNeck(c, h, idx, p));
-    frontend::StackedSplitParams loose = p;
-    loose.max_side_ratio = 1, loose.min_arc_points = 1, loose.min_neck_depth = 0;
-    EXPECT_TRUE(frontend::splitAtNeck(c, h, idx, loose)) << "without the tests for short arcs the gap is a neck";
-  }
 }
 
 // A square pillar 3.5 m tall with flat faces fails the column step's arc test; a bin beside it
