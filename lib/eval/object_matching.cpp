@@ -66,4 +66,14 @@ ObjectMappingScore scoreObjectMap(const std::vector<Object>& est, const std::vec
   return out;
 }
 
+std::vector<char> secondEstimates(const std::vector<Object>& est, const std::vector<Object>& gt,
+                                  const ObjectMappingScore& score, const ObjectMatchOptions& opts) {
+  std::vector<char> matched(est.size(), 0), taken(gt.size(), 0), second(est.size(), 0);
+  for (const ObjectMatch& m : score.matches) matched.at(m.est) = 1, taken.at(m.gt) = 1;
+  for (std::size_t i = 0; i < est.size(); ++i)
+    for (std::size_t j = 0; j < gt.size() && !matched[i] && !second[i]; ++j)
+      second[i] = taken[j] && est[i].class_id == gt[j].class_id && objectDistance(est[i], gt[j], opts.planar) <= opts.threshold;
+  return second;
+}
+
 }  // namespace slide::eval

@@ -46,4 +46,10 @@ struct ObjectMappingScore {
 ObjectMappingScore scoreObjectMap(const std::vector<Object>& est, const std::vector<Object>& gt,
                                   const ObjectMatchOptions& opts = {});
 
+// Per estimate of `est`: 1 when `score` (scoreObjectMap(est, gt, opts)) left it unmatched and
+// it lies within the threshold of a true object of its class that another estimate took: the
+// same object mapped twice. Unmatched estimates with no such neighbour are false objects.
+std::vector<char> secondEstimates(const std::vector<Object>& est, const std::vector<Object>& gt,
+                                  const ObjectMappingScore& score, const ObjectMatchOptions& opts = {});
+
 }  // namespace slide::eval

@@ -58,6 +58,19 @@ TEST(ObjectMatching, OneToOneGreedyByDistance) {
   EXPECT_NEAR(s.overall.f1, 2 * 0.5 / 1.5, 1e-12);
 }
 
+// An unmatched estimate within the threshold of a true object of its class that another
+// estimate took is the object mapped twice; one of another class there, or one far from every
+// truth, is a false object.
+TEST(ObjectMatching, SecondEstimatesOfATakenObject) {
+  const std::vector<Object> gt{at(71, 0, 0), at(71, 10, 0)};
+  const std::vector<Object> est{at(71, 0.2, 0), at(71, 0.7, 0), at(0, 0.5, 0), at(71, 30, 0), at(71, 10.5, 0)};
+  const eval::ObjectMappingScore s = eval::scoreObjectMap(est, gt, {1.0});
+  const std::vector<char> second = eval::secondEstimates(est, gt, s, {1.0});
+  // Estimate 4 takes truth 1 itself; the "other" at 0.5 m and the trunk 30 m off are false.
+  EXPECT_EQ(second, (std::vector<char>{0, 1, 0, 0, 0}));
+  EXPECT_EQ(eval::secondEstimates({}, gt, eval::scoreObjectMap({}, gt, {1.0}), {1.0}).size(), 0u);
+}
+
 TEST(ObjectMatching, ThresholdPlanarAndEmptyMaps) {
   const std::vector<Object> gt{at(1, 0, 0, 0)};
   const std::vector<Object> est{at(1, 0.5, 0, 2.0)};  // 0.5 m away in x-y, 2.06 m in 3D
