@@ -82,6 +82,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "other_split_length", g.other_split_length, 0.0, 100.0);
   opt(n, "other_split_min_points", g.other_split_min_points, 1, 1000000);
   opt(n, "other_not_column", g.other_not_column);
+  opt(n, "other_max_slenderness", g.other_max_slenderness, 0.0, 100.0);
   opt(n, "other_max_height", g.other_max_height, 0.0, 10.0);
   opt(n, "other_confidence", g.other_confidence, 1e-3, 1.0);
   if (n.has("occlusion")) {

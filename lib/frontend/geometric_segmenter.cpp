@@ -247,7 +247,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
 }
 
 // Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
-// are solid and, when they could be the seen part of something larger (as tall as a car:
+// are squat and solid and, when they could be the seen part of something larger (as tall as a car:
 // `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into big pieces on finer cells counts as
 // those pieces (furniture standing centimetres apart).
 std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
@@ -311,6 +311,7 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   for (auto& [cl, height, f] : todo) {
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;
+    if (p.other_max_slenderness > 0 && height > p.other_max_slenderness * f.length) continue;
     if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
     const bool may_be_part = p.other_face_max_width <= 0 || height >= hidden_min_height || f.width < p.other_face_max_width;
     if (p.other_max_occluded < 1 && may_be_part) {

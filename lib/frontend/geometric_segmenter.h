@@ -136,6 +136,11 @@ struct GeometricSegmenterParams {
   // whose footprint is no longer than a column's cross-section (column.max_diameter) is a
   // trunk or pole the column step turned down (not isolated, a bush at its foot). false: off.
   bool other_not_column = true;
+  // ... and that are no upright stub: at most this many times as tall (2nd to 98th percentile)
+  // as their footprint is long. A trunk whose crown hides its top, or a pole cut off by the
+  // view, is a column too short for the column step; furniture, bins and boxes are squat.
+  // 0: off.
+  double other_max_slenderness = 0.0;
   // ... and that are no taller than this (metres, 2nd to 98th percentile of height; 0: the
   // "other" class's size_max): a wall's piece between two doors stands from floor to
   // ceiling; furniture, bins and boxes stand lower.

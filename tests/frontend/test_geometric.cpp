@@ -350,6 +350,7 @@ TEST(GeometricSegmenter, APartHiddenByANearerObjectIsNoOtherAFreeBinIs) {
   EXPECT_EQ(othersNear(cfg.geometric, {6.3f, -5}), 1);
   frontend::GeometricSegmenterParams off = cfg.geometric;
   off.other_max_occluded = 1;  // without the test the hidden box's strip is an "other"
+  off.other_max_slenderness = 0;  // (3.3 times as tall as it shows long)
   EXPECT_EQ(othersNear(off, {14, 2}), 1);
   EXPECT_EQ(othersNear(off, {6.3f, -5}), 1);
 }
@@ -393,8 +394,25 @@ TEST(GeometricSegmenter, AnUprightColumnTurnedDownIsNoOtherABinIs) {
   EXPECT_EQ(instancesNear(c, p, p.other_class, {8.3f, 0}, 1.0f), 0);
   EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -5}, 1.0f), 1);
   frontend::GeometricSegmenterParams off = p;
-  off.other_not_column = false, off.other_max_height = 0;  // without the rules the pillar is an "other"
+  off.other_not_column = false, off.other_max_height = 0, off.other_max_slenderness = 0;  // without the rules the pillar is an "other"
   EXPECT_EQ(instancesNear(c, off, off.other_class, {8.3f, 0}, 1.0f), 1);
+}
+
+// A flat-faced stub 0.5 m across and 1.8 m tall (like a trunk whose crown hides all above it:
+// too short for the column step, and no column by its faces) is no compact object: 3.6 times as
+// tall as it is long, it is no "other". A bin 0.6 m across and 1 m tall beside it is.
+TEST(GeometricSegmenter, AnUprightStubIsNoOtherASquatBinIs) {
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(8, -0.25, -1), Eigen::Vector3d(8.5, 0.25, 0.8)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(6, -5.3, -1), Eigen::Vector3d(6.6, -4.7, 0))});
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenterParams& p = cfg.geometric;
+  ASSERT_GT(p.other_max_slenderness, 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {8.25f, 0}, 1.0f), 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, {6.3f, -5}, 1.0f), 1);
+  frontend::GeometricSegmenterParams off = p;
+  off.other_max_slenderness = 0;  // without the rule the stub is an "other"
+  EXPECT_EQ(instancesNear(c, off, off.other_class, {8.25f, 0}, 1.0f), 1);
 }
 
 // A piece of wall between two doorways (1.6 m long, 0.15 m thick, 2.8 m tall: from the floor to
