@@ -247,9 +247,9 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
 }
 
 // Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
-// are squat and solid and, when they could be the seen part of something larger (as tall as a car:
-// `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into big pieces on finer cells counts as
-// those pieces (furniture standing centimetres apart).
+// are squat and solid and, when they could be the seen part of something larger (as tall as a
+// car, `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into
+// big pieces on finer cells counts as those pieces (furniture standing centimetres apart).
 std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                             const ScanLines& lines, const GeometricSegmenterParams& p,
                                             const ClassInfo& other, double hidden_min_height,
