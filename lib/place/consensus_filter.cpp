@@ -80,9 +80,8 @@ void ConsensusFilter::remember(int id) {
 }
 
 ConsensusFilter::Update ConsensusFilter::confirm(int id) {
-  remember(id);
+  remember(id);  // just recorded: the cluster has support and stays
   Update u;
-  if (!clusters_.count(id)) return u;  // (it had fallen out of the window)
   u.support = supportOf(id);
   if (u.support >= params_.initial_confirmations) {
     held_ = id;

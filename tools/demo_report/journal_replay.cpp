@@ -13,7 +13,7 @@
 #include "app/app.h"
 #include "backend/backend_config.h"
 #include "bench/stats.h"
-#include "eval/alignment.h"
+#include "eval/ate.h"
 #include "eval/transform_error.h"
 #include "objects/class_table.h"
 #include "bundle_messages.h"
@@ -49,7 +49,7 @@ TrajectoryError trajectoryError(const backend::Optimizer& opt, int robot, const 
   TrajectoryError e;
   const Pose T_host_world = truth.robot(opt.hostRobot()).T_world_odom.inverse();
   double sq = 0;
-  std::vector<Eigen::Vector3d> est, ref;
+  std::vector<Pose> est, ref;
   for (const backend::TrajectoryPose& p : opt.trajectory(robot)) {
     const StampedPose* g = truthAt(truth.robot(robot), p.utime * 1e-6);
     if (!g) continue;
@@ -59,21 +59,15 @@ TrajectoryError trajectoryError(const backend::Optimizer& opt, int robot, const 
       if (o == odom_of->end()) continue;
       estimate = o->second;
     }
-    const Eigen::Vector3d truth_at = (T_host_world * g->pose).translation();
-    const double d = (estimate.translation() - truth_at).norm();
+    ref.push_back(T_host_world * g->pose);
+    est.push_back(estimate);
+    const double d = (estimate.translation() - ref.back().translation()).norm();
     sq += d * d;
-    est.push_back(estimate.translation());
-    ref.push_back(truth_at);
     e.last = d;
     ++e.poses;
   }
   if (e.poses) e.rmse = std::sqrt(sq / e.poses);
-  if (e.poses >= 3) {
-    const Pose T = eval::align(est, ref, eval::TrajectoryAlignment::Se3).T;
-    double asq = 0;
-    for (std::size_t i = 0; i < est.size(); ++i) asq += (T * est[i] - ref[i]).squaredNorm();
-    e.aligned_rmse = std::sqrt(asq / static_cast<double>(est.size()));
-  }
+  if (e.poses >= 3) e.aligned_rmse = eval::absoluteTrajectoryError(est, ref, eval::TrajectoryAlignment::Se3).rmse;
   return e;
 }
 
