@@ -76,6 +76,8 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "max_range", g.max_range, 1.0, 1000.0);
   opt(n, "emit_other", g.emit_other);
   opt(n, "other_max_roughness", g.other_max_roughness, 0.0);
+  opt(n, "roughness_floor_factor", g.roughness_floor_factor, 0.0);
+  opt(n, "roughness_cap_min", g.roughness_cap_min, 0.0);
   opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
   opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
   opt(n, "other_face_max_width", g.other_face_max_width, 0.0, 10.0);

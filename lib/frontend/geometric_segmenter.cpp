@@ -74,9 +74,9 @@ Footprint footprintOf(const Cloud& cloud, const std::vector<int>& idx,
   return {std::max(r.size.width, r.size.height), std::min(r.size.width, r.size.height)};
 }
 
-// Median second difference of ranges over consecutive scan-order triplets in the cluster;
-// NaN when there are too few.
-double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<int>& mark, int label) {
+// |r(i-1) - 2 r(i) + r(i+1)| over the scan-order triplets of the points marked `label` whose
+// neighbours lie within 0.5 m.
+std::vector<double> secondDifferences(const Cloud& cloud, const std::vector<int>& idx, std::vector<int>& mark, int label) {
   for (int i : idx) mark[i] = label;
   std::vector<double> d;
   const int n = static_cast<int>(cloud.size());
@@ -85,6 +85,13 @@ double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<in
     if ((cloud[i - 1] - cloud[i]).squaredNorm() > 0.25f || (cloud[i + 1] - cloud[i]).squaredNorm() > 0.25f) continue;
     d.push_back(std::abs(double(cloud[i - 1].norm()) - 2.0 * cloud[i].norm() + cloud[i + 1].norm()));
   }
+  return d;
+}
+
+// Median second difference of ranges over consecutive scan-order triplets in the cluster;
+// NaN when there are too few.
+double roughness(const Cloud& cloud, const std::vector<int>& idx, std::vector<int>& mark, int label) {
+  std::vector<double> d = secondDifferences(cloud, idx, mark, label);
   return d.size() < 10 ? std::nan("") : quantileInPlace(d, 0.5);
 }
 
@@ -163,12 +170,21 @@ bool aboveSeenGround(const Cloud& cloud, const std::vector<float>& h, const std:
   return own - best_z > kp.seen_ground_rise + kp.seen_ground_slope * d;
 }
 
+// The scan's own range noise floor: the 25th percentile of the second differences over the
+// scan-order triplets of returns above the ground (GeometricSegmenterParams::roughness_floor_factor);
+// NaN with fewer than 100 triplets.
+double rangeNoiseFloor(const Cloud& cloud, const std::vector<int>& above) {
+  std::vector<int> mark(cloud.size(), -1);
+  std::vector<double> d = secondDifferences(cloud, above, mark, 0);
+  return d.size() < 100 ? std::nan("") : quantileInPlace(d, 0.25);
+}
+
 // Step 2: clusters of the untaken points `above` (h: height above ground) below the height
 // cap that fit a car (module comment in the header) and are not the rest of a stack the view
 // cuts off (beside the points marked in `cut`); their points are marked taken.
 std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                           const ScanLines& lines, const std::vector<char>& cut, const SeenGround& seen,
-                                          const GeometricSegmenterParams& params, std::vector<char>& taken) {
+                                          const GeometricSegmenterParams& params, double roughness_cap, std::vector<char>& taken) {
   const CarParams& kp = params.car;
   const bool any_cut = params.view_cut.max_beside_share < 1 && std::find(cut.begin(), cut.end(), 1) != cut.end();
   std::vector<int> low;
@@ -205,7 +221,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     const double range = nearestRange(cloud, cl);
     if (static_cast<int>(cl.size()) < needed(range)) continue;
     const double rough = kp.max_roughness > 0 ? roughness(cloud, cl, mark, label++) : std::nan("");
-    if (rough > kp.max_roughness) continue;
+    if (rough > std::min(kp.max_roughness, roughness_cap)) continue;
     // Fewer returns than min_points pass only with a face shown smooth (far cars do; a bush's
     // scattered returns give too few scan-order triplets to measure).
     if (kp.max_roughness > 0 && std::isnan(rough) && static_cast<int>(cl.size()) < kp.min_points) continue;
@@ -252,7 +268,7 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
 // big pieces on finer cells counts as those pieces (furniture standing centimetres apart).
 std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& above,
                                             const ScanLines& lines, const GeometricSegmenterParams& p,
-                                            const ClassInfo& other, double hidden_min_height,
+                                            const ClassInfo& other, double hidden_min_height, double roughness_cap,
                                             const std::vector<char>& taken) {
   std::vector<int> rest;
   for (int i : above)
@@ -312,7 +328,7 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
     if (f.length > other.size_max.x() || f.width > other.size_max.y()) continue;
     if (p.other_not_column && height >= p.column.min_top && f.length <= p.column.max_diameter) continue;
     if (p.other_max_slenderness > 0 && height > p.other_max_slenderness * f.length) continue;
-    if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > p.other_max_roughness) continue;
+    if (p.other_max_roughness > 0 && roughness(cloud, cl, mark, label++) > std::min(p.other_max_roughness, roughness_cap)) continue;
     const bool may_be_part = p.other_face_max_width <= 0 || height >= hidden_min_height || f.width < p.other_face_max_width;
     if (p.other_max_occluded < 1 && may_be_part) {
       for (int i : cl) in_cluster[i] = 1;
@@ -381,7 +397,13 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   // Each car carries the cells near it that lines of sight passed through in a car body's height
   // band: its box is not completed over them (a hidden end lies where the view was blocked, not
   // where it went through).
-  const std::vector<std::vector<int>> cars = carClusters(cloud, h, above, lines, cut, seen, params_, taken);
+  // Roughness limits follow the sensor's range noise where it is lower than the limits assume.
+  double roughness_cap = std::numeric_limits<double>::infinity();
+  if (params_.roughness_floor_factor > 0) {
+    const double floor = rangeNoiseFloor(cloud, above);
+    if (std::isfinite(floor)) roughness_cap = std::max(params_.roughness_cap_min, params_.roughness_floor_factor * floor);
+  }
+  const std::vector<std::vector<int>> cars = carClusters(cloud, h, above, lines, cut, seen, params_, roughness_cap, taken);
   std::optional<FreeSpace> free;
   if (!cars.empty() && params_.free_space.cell > 0) free.emplace(cloud, params_.free_space);
   const double reach = classes_.at(params_.car_class).typicalSize().x();
@@ -392,7 +414,7 @@ std::vector<Instance> GeometricSegmenter::segment(const io::LabelledScan& scan, 
   }
   if (params_.emit_other)
     for (const auto& cl : otherClusters(cloud, h, above, lines, params_, classes_.at(params_.other_class),
-                                        classes_.at(params_.car_class).size_min.z(), taken))
+                                        classes_.at(params_.car_class).size_min.z(), roughness_cap, taken))
       emit(params_.other_class, cl, params_.other_confidence);
   return out;
 }

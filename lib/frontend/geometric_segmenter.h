@@ -120,6 +120,15 @@ struct GeometricSegmenterParams {
   // boxes, furniture), not foliage (bushes, low crowns; real SemanticKITTI vegetation: median
   // 0.08 m, solid surfaces 0.02 m). 0 disables.
   double other_max_roughness = 0.07;
+  // Both roughness limits (this and CarParams::max_roughness) are at most this many times the
+  // scan's own noise floor: the 25th percentile of the second differences over all returns
+  // above the ground (walls, car bodies and trunks set it; foliage lies above it). The limits
+  // were set at the simulator's 2 cm range noise, whose floor is 0.023-0.032 m; a real
+  // HDL-64E's is 0.015-0.017 m, its car bodies 0.012-0.037 m and its bushes 0.049-0.058 m.
+  // 0 disables. They are never lowered below roughness_cap_min: geometry alone (edges, sparse
+  // far returns) makes a smooth face that rough on a sensor with little or no noise.
+  double roughness_floor_factor = 0.0;
+  double roughness_cap_min = 0.04;
   // ... and that stand on the ground or on furniture (2nd percentile of height above ground
   // at most this; a crown's lower edge floats metres up).
   double other_max_bottom = 1.0;
