@@ -15,7 +15,6 @@ const char* verdictName(EstimateVerdict v) {
     case EstimateVerdict::Duplicate: return "duplicate";
     case EstimateVerdict::Small: return "small";
     case EstimateVerdict::False: return "false";
-    case EstimateVerdict::Unscored: return "unscored";
   }
   return "?";
 }
@@ -57,10 +56,19 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
   ScanScore s;
   std::map<int, std::pair<int, std::vector<int>>> cars;  // instance -> (class, points)
   std::map<int, std::vector<int>> columns;                // class -> points
-  frontend::Cloud car_points, column_points;
+  std::vector<int> others;
+  frontend::Cloud car_points, column_points, other_points;
   for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.xyz[i].allFinite()) continue;
     const auto cls = classes.fromSemanticKitti(scan.semantic[i]);
-    if (!cls || !scan.xyz[i].allFinite()) continue;
+    if (!cls) {
+      if (std::find(params.other_labels.begin(), params.other_labels.end(), static_cast<int>(scan.semantic[i])) !=
+          params.other_labels.end()) {
+        others.push_back(static_cast<int>(i));
+        other_points.push_back(scan.xyz[i]);
+      }
+      continue;
+    }
     const Shape shape = classes.at(*cls).shape;
     if (shape == Shape::Cuboid) {
       auto& c = cars[scan.instance[i]];
@@ -86,13 +94,18 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
   for (const auto& [cls, idx] : columns)
     for (const auto& cl : frontend::clusterGrid(scan.xyz, idx, {params.column_cell, false, params.min_column_points}))
       add(cls, 0, cl);
+  const std::size_t first_other = s.targets.size();
+  if (!others.empty())  // (an empty subset would cluster the whole scan)
+    for (const auto& cl : frontend::clusterGrid(scan.xyz, others, {params.column_cell, false, params.min_column_points}))
+      add(params.other_class, 0, cl);
 
-  std::vector<int> car_t, col_t, car_e, col_e;
+  std::vector<int> car_t, col_t, oth_t, car_e, col_e, oth_e;
   for (std::size_t t = 0; t < s.targets.size(); ++t)
-    (classes.at(s.targets[t].class_id).shape == Shape::Cuboid ? car_t : col_t).push_back(static_cast<int>(t));
+    (t >= first_other ? oth_t : classes.at(s.targets[t].class_id).shape == Shape::Cuboid ? car_t : col_t)
+        .push_back(static_cast<int>(t));
   for (std::size_t e = 0; e < estimates.size(); ++e) {
-    if (estimates[e].shape() == Shape::Cuboid) car_e.push_back(static_cast<int>(e));
-    if (estimates[e].shape() == Shape::Cylinder) col_e.push_back(static_cast<int>(e));
+    const Shape shape = estimates[e].shape();
+    (shape == Shape::Cuboid ? car_e : shape == Shape::Cylinder ? col_e : oth_e).push_back(static_cast<int>(e));
   }
   const int car_class = car_t.empty() ? -1 : s.targets[car_t[0]].class_id;
   auto carSized = [&](const Object& o) {
@@ -107,8 +120,10 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
              [&](const Object& o, const LabelledTarget&) { return carSized(o); });
   matchShape(s.targets, col_t, estimates, col_e, params.column_match,
              [](const Object&, const LabelledTarget&) { return true; });
+  matchShape(s.targets, oth_t, estimates, oth_e, params.other_match,
+             [](const Object&, const LabelledTarget&) { return true; });
 
-  s.verdicts.assign(estimates.size(), EstimateVerdict::Unscored);
+  s.verdicts.assign(estimates.size(), EstimateVerdict::False);  // each judged below
   for (const auto& t : s.targets)
     if (t.estimate >= 0) s.verdicts[t.estimate] = EstimateVerdict::Matched;
   auto judge = [&](const std::vector<int>& est_idx, const std::vector<int>& target_idx, const frontend::Cloud& labelled,
@@ -137,6 +152,7 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
   };
   judge(car_e, car_t, car_points, params.car_match, s.cars, true);
   judge(col_e, col_t, column_points, params.column_match, s.columns, false);
+  judge(oth_e, oth_t, other_points, params.other_match, s.others, false);
   return s;
 }
 

@@ -7,6 +7,9 @@
 //  - columns: the points labelled with a cylinder class (trunk, pole, sign), which carry no
 //    instance ids, grouped by 3-D grid clustering (cell column_cell); every group of at least
 //    min_column_points points is one target.
+//  - others: the points labelled with one of SemanticKITTI's thing classes that no class of
+//    ours holds (other_labels: bicycles, people, buses, trucks, other objects...), grouped as
+//    columns are; ellipsoid estimates are scored against them (other_match metres).
 // Each estimate of a shape is matched to at most one target of that shape (nearest first,
 // horizontal distance of the estimate's position to the target's point centroid within
 // car_match / column_match metres). A car counts as found only by a car-sized cuboid (every
@@ -30,6 +33,12 @@ struct ScanScoreParams {
   double column_cell = 0.3;
   double car_match = 2.0;     // metres
   double column_match = 1.0;  // metres
+  double other_match = 1.0;   // metres
+  // SemanticKITTI thing classes an "other" ellipsoid stands for: bicycle, bus, motorcycle,
+  // on-rails, truck, other-vehicle, person, bicyclist, motorcyclist, other-object and their
+  // moving variants (cars, trunks, poles and signs belong to classes of their own).
+  std::vector<int> other_labels{11, 13, 15, 16, 18, 20, 30, 31, 32, 99, 253, 254, 255, 256, 257, 258, 259};
+  int other_class = 0;        // our class id the other targets carry
 };
 
 struct LabelledTarget {
@@ -41,7 +50,7 @@ struct LabelledTarget {
   double distance = 0;    // of the match
 };
 
-enum class EstimateVerdict { Matched, Duplicate, Small, False, Unscored };
+enum class EstimateVerdict { Matched, Duplicate, Small, False };
 const char* verdictName(EstimateVerdict v);
 
 struct ShapeTally {
@@ -50,8 +59,8 @@ struct ShapeTally {
 
 struct ScanScore {
   std::vector<LabelledTarget> targets;
-  std::vector<EstimateVerdict> verdicts;  // one per estimate (ellipsoids: Unscored)
-  ShapeTally cars, columns;
+  std::vector<EstimateVerdict> verdicts;  // one per estimate
+  ShapeTally cars, columns, others;
   int wrong_size_cuboids = 0;  // cuboids near a car target that are not car-sized
 };
 

@@ -840,6 +840,23 @@ TEST(ScanScore, VerdictsWithoutMerging) {
   EXPECT_EQ(s.verdicts[1], eval::EstimateVerdict::Duplicate);
   EXPECT_EQ(s.verdicts[2], eval::EstimateVerdict::Small);
   EXPECT_EQ(s.verdicts[3], eval::EstimateVerdict::False);
+  // Things no class of ours holds (a bicycle, 11) are what "other" ellipsoids are scored against;
+  // building points (50) are no target: an ellipsoid there is false.
+  for (int k = 0; k < 40; ++k) add({0.0f, 8.0f + 0.02f * k, 0.02f * k}, 11, 0);
+  for (int k = 0; k < 40; ++k) add({0.0f, -8.0f, 0.05f * k}, 50, 0);
+  auto ell = [](double x, double y) {
+    Object o;
+    o.class_id = 0;
+    o.model = Ellipsoid{{x, y, 0.5}, 0.2, 0.5};
+    return o;
+  };
+  const eval::ScanScore t = eval::scoreScanAgainstLabels(scan, {cyl(5.0, 0.1), ell(0.2, 8.4), ell(0.0, -8.0)}, classes);
+  ASSERT_EQ(t.targets.size(), 2u);
+  EXPECT_EQ(t.others.targets, 1);
+  EXPECT_EQ(t.others.found, 1);
+  EXPECT_EQ(t.others.false_estimates, 1);
+  EXPECT_EQ(t.verdicts[1], eval::EstimateVerdict::Matched);
+  EXPECT_EQ(t.verdicts[2], eval::EstimateVerdict::False);
   scan.semantic.clear();
   EXPECT_THROW(eval::scoreScanAgainstLabels(scan, {}, classes), std::invalid_argument);
 }

@@ -32,10 +32,11 @@ namespace {
 void printKitti(const KittiScanResult& r, const ClassTable& classes) {
   const eval::ScanScore& sc = r.score;
   std::printf("%s %-9s: cars %d/%d found, trunks/poles %d/%d found; fitted %d cuboids, %d cylinders, %d ellipsoids; "
-              "duplicates %d cuboids %d cylinders; false %d cuboids %d cylinders; %d cylinders at small labelled columns\n",
+              "duplicates %d cuboids %d cylinders; false %d cuboids %d cylinders; %d cylinders at small labelled columns; "
+              "other things %d/%d found, %d false ellipsoids\n",
               r.scan.c_str(), r.mode.c_str(), sc.cars.found, sc.cars.targets, sc.columns.found, sc.columns.targets, r.cuboids,
               r.cylinders, r.ellipsoids, sc.cars.duplicates, sc.columns.duplicates, sc.cars.false_estimates,
-              sc.columns.false_estimates, sc.columns.small);
+              sc.columns.false_estimates, sc.columns.small, sc.others.found, sc.others.targets, sc.others.false_estimates);
   for (const auto& t : r.targets) {
     std::printf("    %-5s inst %-5d %5d pts at (%6.1f %6.1f %5.1f) range %5.1f m: %s\n", classes.at(t.class_id).name.c_str(),
                 t.instance, t.points, t.centroid.x(), t.centroid.y(), t.centroid.z(), t.centroid.head<2>().norm(),
@@ -321,6 +322,11 @@ int main(int argc, char** argv) {
             "cuboids farther than 2 m from every labelled car point";
         report.add(prefix + ".duplicate_cuboids", sc.cars.duplicates, "", true).note =
             "further cuboids within 2 m of a labelled car (second estimates or not car-sized)";
+        report.add(prefix + ".others_found", sc.others.found, "", false).note =
+            "ellipsoids within 1 m of " + std::to_string(sc.others.targets) +
+            " point groups >= 30 pts labelled as things no class of ours holds (bicycles, people, other objects...); " + gt_note;
+        report.add(prefix + ".false_others", sc.others.false_estimates, "", true).note =
+            "ellipsoids farther than 1 m from every point labelled as such a thing (walls, bushes, ground, cars called other)";
       }
       if (labeler) {
         eval::LabelIou iou;

@@ -96,6 +96,8 @@ std::string toJson(const std::string& scan_path, const std::string& mode, std::s
     tally("cars", score->cars);
     o << ",\n";
     tally("trunks_poles", score->columns);
+    o << ",\n";
+    tally("others", score->others);
     o << ",\n    \"targets\": [";
     for (std::size_t t = 0; t < score->targets.size(); ++t) {
       const auto& g = score->targets[t];
@@ -122,8 +124,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "One LiDAR scan (KITTI .bin, .pcd, or text 'x y z [intensity]' per line) through the segmenter and the shape "
       "fits: prints the objects found (class, position, size) as JSON; --plot draws them over the points (top "
-      "view); --labels (SemanticKITTI .label) scores them against the labelled cars (>= 200 points) and "
-      "trunk/pole point groups (>= 30 points). Exit code 1 for an unreadable file (the message names it)."};
+      "view); --labels (SemanticKITTI .label) scores them against the labelled cars (>= 200 points), "
+      "trunk/pole point groups and groups of other things (bicycles, people, other objects; >= 30 points each). Exit code 1 for an unreadable file (the message names it)."};
   app::CommonOptions common;
   common.log_level = "warn";
   app::addCommonOptions(app, common);
@@ -212,9 +214,9 @@ int main(int argc, char** argv) {
       std::snprintf(sub, sizeof sub, "%s mode: %zu objects from %zu points", mode.c_str(), found.size(), scan.size());
       opts.subtitle = sub;
       if (score) {
-        std::snprintf(sub, sizeof sub, "; cars %d/%d, trunks/poles %d/%d found; false: %d cuboids, %d cylinders", score->cars.found,
-                      score->cars.targets, score->columns.found, score->columns.targets, score->cars.false_estimates,
-                      score->columns.false_estimates);
+        std::snprintf(sub, sizeof sub, "; cars %d/%d, trunks/poles %d/%d, other things %d/%d found; false: %d cuboids, %d cylinders, %d ellipsoids",
+                      score->cars.found, score->cars.targets, score->columns.found, score->columns.targets, score->others.found,
+                      score->others.targets, score->cars.false_estimates, score->columns.false_estimates, score->others.false_estimates);
         opts.subtitle += sub;
         for (const auto& t : score->targets) {
           if (t.estimate >= 0) opts.overlay.matches.emplace_back(found[t.estimate].object.position(), t.centroid);
