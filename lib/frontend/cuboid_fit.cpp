@@ -181,6 +181,28 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     // away from the sensor (the bottom is what goes unseen in z). Extents within the class range
     // may be whole and are kept.
     const double c = std::cos(yaw_x), s = std::sin(yaw_x);
+    const double view_u = c * viewpoint.x() + s * viewpoint.y(), view_v = -s * viewpoint.x() + c * viewpoint.y();
+    if (p.face_band > 0) {
+      // Near edges that are faces: the median of the face's returns.
+      auto faceEdge = [&](bool along_u, double& lo, double& hi, double view) {
+        const bool near_lo = view <= 0.5 * (lo + hi);
+        const double edge = near_lo ? lo : hi;
+        std::vector<double> at;
+        double a0 = 1e30, a1 = -1e30;
+        for (const auto& q : pts) {
+          const double u = c * q.x() + s * q.y(), v = -s * q.x() + c * q.y();
+          const double along = along_u ? u : v, across = along_u ? v : u;
+          if (std::abs(along - edge) > p.face_band) continue;
+          at.push_back(along);
+          a0 = std::min(a0, across), a1 = std::max(a1, across);
+        }
+        if (at.size() < 5 || a1 - a0 < p.face_min_span) return;
+        const double m = quantileInPlace(at, 0.5);
+        (near_lo ? lo : hi) = m;
+      };
+      faceEdge(true, lu, hu, view_u);
+      faceEdge(false, lv, hv, view_v);
+    }
     const double min_u = std::max(size_min.x(), p.complete_fraction * size_typical.x());
     const double min_v = std::max(size_min.y(), p.complete_fraction * size_typical.y());
     // The cells seen empty across each axis's extent (free_space), by their coordinate along it.
@@ -196,7 +218,6 @@ std::optional<Cuboid> fitCuboid(const Cloud& pts, const CuboidFitParams& p, cons
     };
     // The length is placed across the width completed away from the viewpoint, the width across
     // the length so placed.
-    const double view_u = c * viewpoint.x() + s * viewpoint.y(), view_v = -s * viewpoint.x() + c * viewpoint.y();
     double wv0 = lv, wv1 = hv;
     completeInterval(wv0, wv1, min_v, size_typical.y(), view_v, {}, 0, 0);
     freeAlong(true, wv0, wv1, free_u);

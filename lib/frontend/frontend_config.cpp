@@ -223,6 +223,8 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     auto& p = f.cuboid;
     opt(c, "low_percentile", p.low_percentile, 0.0);
     opt(c, "high_percentile", p.high_percentile, p.low_percentile);
+    opt(c, "face_band", p.face_band, 0.0, 1.0);
+    opt(c, "face_min_span", p.face_min_span, 0.0, 100.0);
     opt(c, "footprint_cell", p.footprint_cell, 1e-3);
     opt(c, "yaw_step_deg", p.yaw_step_deg, 0.0, 45.0);
     if (p.yaw_step_deg > 0 && p.yaw_step_deg < 0.1) c.fail("yaw_step_deg", "must be 0 (off) or at least 0.1");

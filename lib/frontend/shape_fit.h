@@ -28,6 +28,11 @@ struct CylinderFitParams {
 struct CuboidFitParams {
   double low_percentile = 0.02;    // robust extents along each axis
   double high_percentile = 0.98;
+  // The near edge along each axis, when a face lies there (returns within face_band of it span
+  // face_min_span across the other axis), is the median of those returns, not the low
+  // percentile: the percentile lies about twice the range noise in front of the face (0: off).
+  double face_band = 0.1;
+  double face_min_span = 0.5;
   double footprint_cell = 0.05;    // footprint thinning before the rectangle search
   double yaw_step_deg = 1.0;       // heading search step (0: minimum-area rectangle instead)
   // Visible length / class min length required: a car's 2.5 m times 0.2 is the 0.5 m of end face
