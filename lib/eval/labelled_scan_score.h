@@ -12,7 +12,7 @@
 //    columns are; ellipsoid estimates are scored against them (other_match metres).
 // Each estimate of a shape is matched to at most one target of that shape (nearest first,
 // horizontal distance of the estimate's position to the target's point centroid within
-// car_match / column_match metres). A car counts as found only by a car-sized cuboid (every
+// car_match / column_match / other_match metres). A car counts as found only by a car-sized cuboid (every
 // extent inside the class's size range). An estimate left over is
 //  - a duplicate when it lies within the match distance of a target already taken,
 //  - small when it lies within the match distance of labelled points of its shape that form
