@@ -167,7 +167,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
   std::vector<Eigen::Vector3d> pa, pb;
   for (const Landmark& l : a) pa.push_back(l.p);
   for (const Landmark& l : b) pb.push_back(l.p);
-  const LandmarkIndex index_a(a);
+  const LandmarkIndex index_a(a), index_b(b);
   // Hypotheses: CLIPPER's densest consistent set, verified; when rejected (and not already
   // smaller than an acceptable inlier set), CLIPPER again without those associations: aliased
   // scenes can hold several consistent sets.
@@ -201,7 +201,7 @@ PlaceResult slideGraphOnce(const std::vector<Landmark>& a, const std::vector<Lan
     }
     const Alignment seed = alignXyzYawRobust(sa, sb, params.verify.robust_scale);
     if (seed.ok) {
-      refineAndDecide(a, index_a, b, seed.T_a_b, params.verify, trial);
+      refineAndDecide(a, index_a, b, index_b, seed.T_a_b, params.verify, trial);
     } else {
       trial.reason = "CLIPPER's consistent set is degenerate (all B points coincide)";
     }

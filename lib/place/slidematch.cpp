@@ -326,7 +326,7 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
   // Verify every refined candidate: the strongest accepted one wins (in aliased scenes the
   // highest grid score can belong to a wrong alignment that the acceptance test rejects), and it
   // must stand against the strongest other alignment (ambiguity test).
-  const LandmarkIndex index_a(a_in);
+  const LandmarkIndex index_a(a_in), index_b(b_in);
   std::vector<PlaceResult> trials;
   for (std::size_t k = 0; k < refined.size(); ++k) {
     const Candidate& best = refined[k];
@@ -346,7 +346,7 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     T.translation() = ca + Eigen::Vector3d(best.tx, best.ty, dz[dz.size() / 2]) - R * cb;
     PlaceResult trial = res;
     trial.score = best.score;
-    refineAndDecide(a_in, index_a, b_in, T, params.verify, trial);
+    refineAndDecide(a_in, index_a, b_in, index_b, T, params.verify, trial);
     trials.push_back(std::move(trial));
   }
   if (trials.empty()) {

@@ -40,15 +40,19 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
 }
 
 Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                  const Pose& T_a_b, double match_radius) {
+                  const LandmarkIndex& index_b, const Pose& T_a_b, double match_radius) {
   Overlap o;
-  // Coverage radius: three times A's median landmark spacing, at least four match radii.
-  const double R = std::max(3.0 * index_a.medianSpacing(), 4.0 * match_radius);
+  // Coverage radius of a map: three times its median landmark spacing, at least four match radii.
+  auto coverage = [&](const LandmarkIndex& index) { return std::max(3.0 * index.medianSpacing(), 4.0 * match_radius); };
+  const double R = coverage(index_a), R_b = coverage(index_b);
+  const Pose T_b_a = T_a_b.inverse();
+  for (const Landmark& l : a)
+    o.covered_a += index_b.nearest(T_b_a * l.p, LandmarkIndex::kAnyClass).second <= R_b;
   const double ratio = (match_radius * match_radius) / (R * R);
   for (const Landmark& l : b) {
     const Eigen::Vector3d q = T_a_b * l.p;
     if (index_a.nearest(q, LandmarkIndex::kAnyClass).second > R) continue;
-    ++o.covered;
+    ++o.covered_b;
     // Local density of A's landmarks of this class around q, times the match disc.
     const double n = static_cast<double>(index_a.countWithin(q, R, l.class_id));
     o.chance += std::min(1.0, n * ratio);
@@ -57,7 +61,8 @@ Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, 
 }
 
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                     const Pose& hypothesis, const VerifyParams& params, PlaceResult& out) {
+                     const LandmarkIndex& index_b, const Pose& hypothesis, const VerifyParams& params,
+                     PlaceResult& out) {
   out.found = false;
   Pose T = hypothesis;
   std::vector<LandmarkMatch> matches;
@@ -89,9 +94,9 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.T_a_b = T;
   out.inliers = matches;
   out.residual_rms = rms;
-  const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
+  const Overlap ov = overlapOf(a, index_a, b, index_b, T, params.match_radius);
   out.chance_inliers = ov.chance;
-  out.covered = ov.covered;
+  out.covered = ov.covered_b;
   const double n = static_cast<double>(matches.size());
   char buf[256];
   if (matches.size() < params.min_inliers) {
@@ -100,9 +105,10 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   } else if (n < ov.chance + params.significance * std::sqrt(ov.chance)) {
     std::snprintf(buf, sizeof buf, "best hypothesis has %zu inliers, not significant against %.1f expected by chance",
                   matches.size(), ov.chance);
-  } else if (n < params.min_inlier_ratio * static_cast<double>(ov.covered)) {
-    std::snprintf(buf, sizeof buf, "best hypothesis matches %zu of %zu overlapping landmarks, below the ratio %.2f",
-                  matches.size(), ov.covered, params.min_inlier_ratio);
+  } else if (n < params.min_inlier_ratio * static_cast<double>(ov.sparser())) {
+    std::snprintf(buf, sizeof buf,
+                  "best hypothesis matches %zu of %zu overlapping landmarks (%zu of B's, %zu of A's), below the ratio %.2f",
+                  matches.size(), ov.sparser(), ov.covered_b, ov.covered_a, params.min_inlier_ratio);
   } else {
     out.found = true;
     out.reason.clear();

@@ -1,6 +1,8 @@
 #pragma once
 // Turning a hypothesis T_a_b into a decision: class- and size-consistent one-to-one matches
 // under T, 4-DoF refinement on them, and an acceptance test against what chance would give.
+#include <algorithm>
+
 #include "place/landmark_index.h"
 #include "place/place_result.h"
 
@@ -15,7 +17,7 @@ struct VerifyParams {
   double match_height = 1.0;       // metres, vertical
   double size_tolerance = 1.0;     // metres, see sizesAgree()
   std::size_t min_inliers = 5;     // fewer matches never make a transform
-  double min_inlier_ratio = 0.2;   // of B's landmarks that land where A has landmarks
+  double min_inlier_ratio = 0.2;   // of the overlap as the sparser map holds it (Overlap::sparser)
   double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
@@ -30,19 +32,24 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
                                          const std::vector<Landmark>& b, const Pose& T_a_b,
                                          const VerifyParams& params);
 
-// Overlap and chance for the acceptance test: B's landmarks that land within the coverage
-// radius of some landmark of A, and the matches expected by chance among them.
+// Overlap and chance for the acceptance test: each map's landmarks that land within the coverage
+// radius of some landmark of the other, and the matches expected by chance among B's. The inlier
+// ratio is taken over the smaller count, the overlap as the sparser map holds it: a robot that
+// maps only what its short-range camera caught is covered by a LiDAR robot's map, but most of the
+// LiDAR map's landmarks around it lie where that camera never looked or detected nothing.
 struct Overlap {
-  std::size_t covered = 0;
+  std::size_t covered_b = 0, covered_a = 0;
   double chance = 0;
+  std::size_t sparser() const { return std::min(covered_a, covered_b); }
 };
 Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                  const Pose& T_a_b, double match_radius);
+                  const LandmarkIndex& index_b, const Pose& T_a_b, double match_radius);
 
 // From the hypothesis: match, refine (robust 4-DoF), repeat; then accept or reject, filling
 // out.found, T_a_b, inliers, residual_rms, chance_inliers and reason.
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                     const Pose& hypothesis, const VerifyParams& params, PlaceResult& out);
+                     const LandmarkIndex& index_b, const Pose& hypothesis, const VerifyParams& params,
+                     PlaceResult& out);
 
 // How well a hypothesis explains B where it overlaps A: inliers times the inlier fraction of the
 // covered landmarks (n^2 / covered). An alignment that matches as many landmarks only by laying B

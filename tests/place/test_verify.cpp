@@ -115,6 +115,46 @@ TEST(Verify, TwoRoomsFurnishedAlikeGiveNoTransform) {
   EXPECT_LT(eval::transformError(m2.T_a_b, truth).translation_m, 0.2);
 }
 
+// A camera robot maps only the trunks near its path that its detector caught; a LiDAR robot maps
+// every trunk around the same path. The overlap is what the sparser map holds there: the right
+// alignment is accepted whichever robot checks (counted over the dense map's landmarks around the
+// sparse one's, the camera robot would reject it).
+TEST(Verify, ASparseMapAlignsWithADenseOneInEitherRole) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(-10, 70), uy(-20, 20);
+  std::normal_distribution<double> noise(0, 0.08);
+  std::vector<place::Landmark> dense, sparse;
+  const Pose truth = poseFromXyzYaw(4.0, -3.0, 0.2, 0.4);  // T_dense_sparse
+  const Pose T_sparse_dense = truth.inverse();
+  for (int i = 0; i < 200; ++i) {
+    const double x = ux(rng), y = uy(rng);
+    dense.push_back(at(x + noise(rng), y + noise(rng), 1.0, 71, dense.size()));
+    // The camera saw it: within 6 m of the path (y = 0, x in 0..60), and one in three detected.
+    if (x >= 0 && x <= 60 && std::abs(y) <= 6 && i % 3 == 0) {
+      place::Landmark l = at(x + noise(rng), y + noise(rng), 1.0, 71, sparse.size());
+      l.p = T_sparse_dense * l.p;
+      sparse.push_back(l);
+    }
+  }
+  ASSERT_GE(sparse.size(), 12u);
+  const place::VerifyParams p;
+  const place::LandmarkIndex index_dense(dense), index_sparse(sparse);
+  place::PlaceResult sparse_checks, dense_checks;
+  place::refineAndDecide(sparse, index_sparse, dense, index_dense, T_sparse_dense, p, sparse_checks);
+  place::refineAndDecide(dense, index_dense, sparse, index_sparse, truth, p, dense_checks);
+  EXPECT_TRUE(sparse_checks.found) << sparse_checks.reason;
+  EXPECT_TRUE(dense_checks.found) << dense_checks.reason;
+  const place::Overlap ov = place::overlapOf(sparse, index_sparse, dense, index_dense, T_sparse_dense, p.match_radius);
+  EXPECT_EQ(ov.sparser(), ov.covered_a);
+  EXPECT_LE(ov.covered_a, sparse.size());
+  EXPECT_GT(ov.covered_b, 4 * ov.covered_a);  // the dense map around the sparse one: 0.2 would not be met
+  EXPECT_LT(static_cast<double>(sparse_checks.inliers.size()), p.min_inlier_ratio * static_cast<double>(ov.covered_b));
+  // And a transform found by the place-recognition methods, from the camera robot's side.
+  const place::PlaceResult g = place::slideGraph(sparse, dense, place::SlideGraphParams{});
+  ASSERT_TRUE(g.found) << g.reason;
+  EXPECT_LT(eval::transformError(g.T_a_b, T_sparse_dense).translation_m, 0.3);
+}
+
 // The grid behind the radius queries returns exactly the landmarks a brute-force scan finds,
 // with a far stray landmark stretching the extent (the grid coarsens instead of growing).
 TEST(LandmarkIndex, RadiusQueriesMatchBruteForce) {

@@ -84,7 +84,11 @@ int main(int argc, char** argv) {
   app.add_flag("--diagnose", diagnose, "Per-frame segmentation outcomes per class against the simulator's labels");
   app.add_flag("--no-learned", no_learned, "Leave out the learned LiDAR mode");
   std::vector<std::string> only_modes;
-  app.add_option("--modes", only_modes, "Only these perception modes of the simulated worlds (e.g. geometric rgbd)");
+  app.add_option("--modes", only_modes,
+                 "Only these perception modes of the simulated worlds (geometric learned emulated oracle rgbd "
+                 "rgbd.oracle; the RGBD modes run outdoors too when named here)");
+  bool aerial = false;
+  app.add_flag("--aerial", aerial, "The simulated robot flies (the worlds' aerial altitude) instead of driving");
   return app::runApp(app, common, argc, argv, [&]() {
     const ClassTable classes = classes_file.empty() ? ClassTable::loadDefault() : ClassTable::load(classes_file);
     const frontend::FrontendConfig cfg =
@@ -119,10 +123,8 @@ int main(int argc, char** argv) {
         spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "rgbd.oracle", "geometric", "emulated", "oracle"}
                                    : std::vector<std::string>{"geometric", "learned", "emulated", "oracle"};
         if (no_learned) spec.modes.erase(std::remove(spec.modes.begin(), spec.modes.end(), "learned"), spec.modes.end());
-        if (!only_modes.empty())
-          spec.modes.erase(std::remove_if(spec.modes.begin(), spec.modes.end(), [&](const std::string& m) {
-                             return std::find(only_modes.begin(), only_modes.end(), m) == only_modes.end();
-                           }), spec.modes.end());
+        if (!only_modes.empty()) spec.modes = only_modes;
+        spec.aerial = aerial;
         spdlog::info("world {} seed {}: {} m at {} Hz, modes {}", w, seed, spec.distance, rate, fmt::join(spec.modes, ", "));
         const WorldEvalResult res = evaluateWorld(spec, classes, cfg);
         frames += res.frames;

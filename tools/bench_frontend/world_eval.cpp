@@ -171,6 +171,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
   ss.world = spec.world;
   ss.robots = 1;
   ss.seed = spec.seed;
+  ss.aerial = spec.aerial;
   ss.distance = spec.distance;
   ss.rate = spec.rate;
   ss.data_dir = spec.data_dir;

@@ -31,6 +31,7 @@ struct WorldEvalSpec {
   double distance = 60.0;    // metres driven
   double rate = 3.0;         // frames per second
   std::uint64_t seed = 1;
+  bool aerial = false;       // the robot flies at the world's aerial altitude
   std::string data_dir;
   std::vector<std::string> modes{"emulated", "oracle", "geometric"};  // see above
   emulator::DetectionEmulatorConfig emulator;  // for the emulated modes (seed mixed with `seed`)
