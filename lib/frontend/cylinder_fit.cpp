@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "frontend/point_stats.h"
@@ -18,8 +19,9 @@ void setWhy(std::string* why, const std::string& s) {
   if (why) *why = s;
 }
 
-// Axis line x = a + b (z - z0), y = c + d (z - z0) through slice centres (weighted LS).
-void fitAxis(const std::vector<SliceFit>& s, double z0, Eigen::Vector2d& base, Eigen::Vector2d& slope) {
+// Axis line x = a + b (z - z0), y = c + d (z - z0) through slice centres (weighted LS); upright
+// through their weighted mean when the slices span less than min_span.
+void fitAxis(const std::vector<SliceFit>& s, double z0, double min_span, Eigen::Vector2d& base, Eigen::Vector2d& slope) {
   double sw = 0, sz = 0, szz = 0;
   Eigen::Vector2d sp = Eigen::Vector2d::Zero(), spz = Eigen::Vector2d::Zero();
   for (const auto& f : s) {
@@ -31,7 +33,8 @@ void fitAxis(const std::vector<SliceFit>& s, double z0, Eigen::Vector2d& base, E
     spz += w * dz * f.center;
   }
   const double det = sw * szz - sz * sz;
-  if (s.size() < 2 || det < 1e-9 * std::max(1.0, sw * sw)) {
+  const auto [lo, hi] = std::minmax_element(s.begin(), s.end(), [](const SliceFit& a, const SliceFit& b) { return a.z < b.z; });
+  if (s.size() < 2 || det < 1e-9 * std::max(1.0, sw * sw) || hi->z - lo->z < min_span) {
     base = sp / sw;
     slope.setZero();
     return;
@@ -97,10 +100,22 @@ std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParam
       lateral.push_back((q - mean).dot(across));
       depth.push_back((q - mean).dot(ray));
     }
-    const double spread_r = std::max(p.ransac.min_radius,
-                                     0.5 * (quantileInPlace(lateral, 0.95) - quantileInPlace(lateral, 0.05)));
-    const double near_depth = quantileInPlace(depth, 0.1);
-    f.center = mean + ray * (near_depth + spread_r);
+    std::vector<double> tmp = lateral;  // quantileInPlace reorders
+    const double spread_r =
+        std::max(p.ransac.min_radius, 0.5 * (quantileInPlace(tmp, 0.95) - quantileInPlace(tmp, 0.05)));
+    // Each return on the visible half circle, x across the line of sight from its middle, says
+    // the centre lies sqrt(r^2 - x^2) behind it; the median of what the returns say is moved
+    // neither by range noise (a near quantile moves towards the sensor with it) nor by a few
+    // returns from behind. Returns spread evenly across the circle (beams or pixels evenly
+    // spaced): the 5th-95th percentile width is 0.9 of the diameter.
+    const double r_est = spread_r / 0.9;
+    std::vector<double> says;
+    says.reserve(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double x = std::min(std::abs(lateral[i]), r_est);
+      says.push_back(depth[i] + std::sqrt(r_est * r_est - x * x));
+    }
+    f.center = mean + ray * quantileInPlace(says, 0.5);
     f.radius = spread_r;
     f.weight = static_cast<double>(s.size());
     auto c = fitCircleRansac(s, p.ransac);
@@ -118,7 +133,7 @@ std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParam
   }
 
   Eigen::Vector2d base, slope;
-  fitAxis(fits, z_low, base, slope);
+  fitAxis(fits, z_low, p.min_axis_span, base, slope);
   if (fits.size() >= 4) {  // drop the worst slice once when it is far off the axis
     std::size_t worst = 0;
     double worst_d = 0;
@@ -128,7 +143,7 @@ std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParam
     }
     if (worst_d > 0.1) {
       fits.erase(fits.begin() + static_cast<long>(worst));
-      fitAxis(fits, z_low, base, slope);
+      fitAxis(fits, z_low, p.min_axis_span, base, slope);
     }
   }
   const double lean_deg = std::atan(slope.norm()) * 180.0 / M_PI;

@@ -212,6 +212,7 @@ void loadFit(const ConfigNode& n, FitParams& f) {
     opt(c, "breast_window", p.breast_window, 0.0);
     opt(c, "min_inlier_ratio", p.min_inlier_ratio, 0.0);
     opt(c, "max_lean_deg", p.max_lean_deg, 0.0);
+    opt(c, "min_axis_span", p.min_axis_span, 0.0);
     opt(c, "min_points", p.min_points, 3);
     opt(c, "ransac_iterations", p.ransac.iterations, 1, 100000);
     opt(c, "inlier_distance", p.ransac.inlier_distance, 1e-4);

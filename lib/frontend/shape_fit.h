@@ -20,7 +20,9 @@ struct CylinderFitParams {
   double breast_height = 1.3;      // radius taken this far above the lowest point
   double breast_window = 0.6;      // slices within +-window of breast height vote
   double min_inlier_ratio = 0.5;   // slice circle inliers / slice points
-  double max_lean_deg = 20.0;      // reject clusters leaning more than this from vertical
+  double max_lean_deg = 20.0;      // reject clusters leaning more than this from vertical ...
+  double min_axis_span = 0.75;     // ... judged over slices spanning this height (metres); below it the
+                                   // centres' scatter decides the lean: the axis stands upright
   int min_points = 10;
   CircleRansacParams ransac;
 };

@@ -352,10 +352,14 @@ TEST(PlaceRecognition, RecordedHalfTurnAliasOfABlockGridIsAmbiguous) {
   EXPECT_NE(checked.reason.find("ambiguous"), std::string::npos) << checked.reason;
   EXPECT_FALSE(place::recognizePlace(place::PlaceMethod::SlideMatch, own, peer, config).found);
 
-  config.rival_search_max_landmarks = 0;  // SlideGraph alone: the alias, 88 m from the truth
+  // SlideGraph alone: a wrong transform. When recorded it was the half turn (13 inliers, 88 m from
+  // the truth); since the inlier ratio is taken over the sparser map's share of the overlap, a weaker
+  // alias passes first (6 inliers of robot 2's 29 covered landmarks, 10 degrees off). The rival
+  // search above turns both down.
+  config.rival_search_max_landmarks = 0;
   const place::PlaceResult alone = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
   ASSERT_TRUE(alone.found) << alone.reason;
   const eval::TransformError e = eval::transformError(alone.T_a_b, poseFromXyzYaw(0.0, 69.6, 0.0, 0.0));
   EXPECT_GT(e.translation_m, 50.0);
-  EXPECT_GT(e.yaw_deg, 170.0);
+  EXPECT_GT(e.yaw_deg, 5.0);
 }
