@@ -3,11 +3,16 @@
 #include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
+#include <map>
+
 #include "app/app.h"
 #include "app/clock.h"
 #include "app/robot_bus.h"
 #include "app/stop_signal.h"
 #include "config/config.h"
+#include "io/object_map_text.h"
+#include "msg/convert.h"
 #include "loop_closer_node.h"
 #include "msg/inbox.h"
 #include "msg/status_beacon.h"
@@ -19,7 +24,10 @@ namespace {
 // --replay: the recording's maps and trajectory through the node in their order, polled every
 // 100 ms of the recording's time (the daemon's loop); each found transform is logged by the
 // node with its consensus outcome.
-int replayLog(const std::string& path, const place::LoopCloserParams& params, const LoopCloserChannels& ch) {
+// With dump_dir: the last map of each robot (own and peers', each in its own frame) is written
+// there as robot<N>.txt (label x y z sx sy sz), for ./slide match and recorded test cases.
+int replayLog(const std::string& path, const place::LoopCloserParams& params, const LoopCloserChannels& ch,
+              const std::string& dump_dir) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw std::runtime_error(path + ": cannot open the LCM log");
   long published = 0;
@@ -27,6 +35,7 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
   constexpr double kCatchUpS = 10.0;
   double t0 = -1, next_poll = 0, skipped_s = 0;
   long events = 0, undecodable = 0, maps = 0, own_maps = 0;
+  std::map<int, ObjectMap> last;  // robot -> its last map in its own frame
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     const double t = ev->timestamp * 1e-6;
     if (t0 < 0) t0 = t, next_poll = t;
@@ -40,6 +49,12 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
       if (m.decode(ev->data, 0, ev->datalen) != ev->datalen) { ++undecodable; continue; }
       node.onMap(ev->channel, m, t);
       ++maps;
+      if (!dump_dir.empty() && m.frame_robot == m.robot) {
+        ObjectMap map;
+        for (const object_t& o : m.objects)
+          if (const Object obj = msg::fromLcm(o); obj.isFinite()) map.add(obj);
+        last[m.robot] = std::move(map);
+      }
       own_maps += m.robot == params.robot;
     } else if (ev->channel == ch.trajectory) {
       trajectory_t m;
@@ -54,6 +69,15 @@ int replayLog(const std::string& path, const place::LoopCloserParams& params, co
   if (skipped_s > 0) spdlog::warn("{}: {:.0f} s of gaps between recorded events were not polled", path, skipped_s);
   spdlog::info("{}: {} events over {:.1f} s, {} maps, {} undecodable; {} closures would have been published", path, events,
                t0 < 0 ? 0.0 : next_poll - t0, maps, undecodable, published);
+  if (!dump_dir.empty()) {
+    std::filesystem::create_directories(dump_dir);
+    const ClassTable classes = ClassTable::loadDefault();
+    for (const auto& [robot, map] : last) {
+      const std::string file = dump_dir + "/robot" + std::to_string(robot) + ".txt";
+      io::writeObjectMapText(file, map, classes);
+      spdlog::info("robot {}'s last map ({} objects): {}", robot, map.size(), file);
+    }
+  }
   return 0;
 }
 }  // namespace
@@ -78,6 +102,11 @@ int main(int argc, char** argv) {
                  "maps and the trajectory) as fast as it goes, on the recording's clock, printing every check's\n"
                  "outcome and publishing nothing")
       ->check(CLI::ExistingFile);
+  std::string dump_dir;
+  app.add_option("--dump-maps", dump_dir,
+                 "With --replay: write each robot's last map of the recording (own and peers', each in its own\n"
+                 "frame) to DIR/robot<N>.txt (label x y z sx sy sz), the input of slide-match")
+      ->needs("--replay");
   return app::runApp(app, common, argc, argv, [&]() {
     const ConfigNode cfg = ConfigNode::load(config_path);
     place::LoopCloserParams params = place::loadLoopCloserParams(cfg);
@@ -87,7 +116,7 @@ int main(int argc, char** argv) {
     if (robot_opt->count()) params.robot = bus.robot;
     else bus.robot = params.robot;
     if (!method.empty()) params.method = place::parsePlaceMethod(method);
-    if (!replay.empty()) return replayLog(replay, params, ch);
+    if (!replay.empty()) return replayLog(replay, params, ch, dump_dir);
     const std::string url = bus.resolve(cfg_url);
 
     lcm::LCM lcm(url);

@@ -8,8 +8,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 
+#include "io/object_map_text.h"
+#include "objects/class_table.h"
 #include "slide/loop_closure_t.hpp"
 #include "slide/object_map_t.hpp"
 #include "two_robot_maps.h"
@@ -112,6 +115,15 @@ TEST(LoopCloserDaemon, ReplaysARecordedBus) {
   EXPECT_NE(text.find("robot 0 <- robot 1: accepted (70 inliers"), std::string::npos) << text;
   EXPECT_NE(text.find("25 maps"), std::string::npos) << text;
   EXPECT_NE(text.find("were not polled"), std::string::npos) << text;
+  // --dump-maps: each robot's last map, as slide-match reads it.
+  const std::string dump = ::testing::TempDir() + "loop_closer_replay_maps";
+  std::filesystem::remove_all(dump);
+  ASSERT_EQ(std::system((bin + " --robot 0 --replay " + log_path + " --dump-maps " + dump + " > " + out + " 2>&1").c_str()), 0);
+  for (const auto& [robot, map] : {std::pair{0, &own}, std::pair{1, &peer}}) {
+    const io::ObjectMapText read =
+        io::readObjectMapText(dump + "/robot" + std::to_string(robot) + ".txt", ClassTable::loadDefault(), io::MissingSize::Zero);
+    EXPECT_EQ(read.map.size(), map->size()) << robot;
+  }
   EXPECT_NE(std::system((bin + " --robot 0 --replay /nonexistent/bus.lcmlog > " + out + " 2>&1").c_str()), 0);
   std::ifstream g(out);
   const std::string refused((std::istreambuf_iterator<char>(g)), std::istreambuf_iterator<char>());

@@ -14,6 +14,7 @@
 #include "place/map_perturb.h"
 #include "place/place_config.h"
 #include "place/slidegraph.h"
+#include "place/verify.h"
 #include "place/slidematch.h"
 
 using namespace slide;
@@ -336,6 +337,29 @@ TEST(PlaceRecognition, RecordedAlignmentAmbiguousOneWayStandsWhenTheOtherWayIsCl
   EXPECT_FALSE(one_way.found);
   EXPECT_TRUE(one_way.ambiguous) << one_way.reason;
   EXPECT_LT(eval::transformError(one_way.T_a_b, truth).translation_m, 1.0) << "the stronger alignment is the truth";
+}
+
+TEST(PlaceRecognition, RecordedCameraRobotsSparseMapAlignsFromItsOwnSide) {
+  // tests/data/recorded/forest_aerial_sparse/README.md: the flying camera robot's 29 trunks against
+  // each ground LiDAR robot's map; its checks were rejected for matching too few of the dense map's
+  // landmarks around its own.
+  const std::vector<place::Landmark> own = recordedMap("forest_aerial_sparse/robot2.txt");
+  const place::PlaceConfig config = place::loadDefaultPlaceConfig();
+  const std::pair<const char*, Pose> peers[] = {
+      {"forest_aerial_sparse/robot0.txt", poseFromXyzYaw(102.41, -66.17, -1.61, 83.96 * M_PI / 180)},
+      {"forest_aerial_sparse/robot1.txt", poseFromXyzYaw(-13.90, -125.08, -2.18, 84.04 * M_PI / 180)}};
+  for (const auto& [file, truth] : peers) {
+    const std::vector<place::Landmark> peer = recordedMap(file);
+    const place::PlaceResult r = place::recognizePlace(place::PlaceMethod::SlideGraph, own, peer, config);
+    ASSERT_TRUE(r.found) << file << ": " << r.reason;
+    const eval::TransformError e = eval::transformError(r.T_a_b, truth);
+    EXPECT_LT(e.translation_m, 1.5) << file << " (robot 2's map is bent by about 1 m)";
+    EXPECT_LT(e.yaw_deg, 1.0) << file;
+    // Counted over the ground robot's landmarks around robot 2's, the same matches fall short.
+    const place::LandmarkIndex index_own(own), index_peer(peer);
+    const place::Overlap ov = place::overlapOf(own, index_own, peer, index_peer, r.T_a_b, config.slidegraph.verify.match_radius);
+    EXPECT_LT(static_cast<double>(r.inliers.size()), config.slidegraph.verify.min_inlier_ratio * ov.covered_b) << file;
+  }
 }
 
 TEST(PlaceRecognition, RecordedHalfTurnAliasOfABlockGridIsAmbiguous) {
