@@ -144,7 +144,7 @@ std::optional<LoopClosure> LoopCloser::checkIntra() {
     return std::nullopt;
   }
   const int place = old->seq / std::max(1, params_.intra_min_keypose_gap);
-  auto [it, fresh] = intra_places_.try_emplace(place, IntraPlace{ConsensusFilter(params_.consensus)});
+  auto [it, fresh] = intra_places_.try_emplace(place, IntraPlace{ConsensusFilter(params_.consensus), -1, -1, std::nullopt});
   IntraPlace& ip = it->second;
   if (ip.seq_a < 0 || !keyPose(ip.seq_a) || !keyPose(ip.seq_b)) ip.seq_a = old->seq, ip.seq_b = cur.seq;
   // The match M moves the recent objects (placed from the recent key poses) onto the old ones
