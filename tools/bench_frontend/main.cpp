@@ -261,14 +261,15 @@ int main(int argc, char** argv) {
 
     if (!geometric_only) {
     const TlsResult tls = evaluateTls(data_dir, classes, cfg);
-    std::printf("TLS dbh_slice: fitted radius %.4f m, algebraic LS of all points %.4f m, algebraic LS of the %d trunk points %.4f m\n",
+    std::printf("TLS dbh_slice: fitted radius %.4f m, algebraic LS of all points %.4f m, reference (LMedS, LS of its %d inliers) %.4f m\n",
                 tls.fitted_radius, tls.algebraic_radius, tls.trunk_points, tls.trunk_radius);
     std::printf("TLS pine_plot: %d trunks:", tls.pine_trunks);
     for (std::size_t i = 0; i < tls.pine_radii.size(); ++i)
       std::printf(" (%.1f, %.1f) r=%.3f;", tls.pine_positions[i].x(), tls.pine_positions[i].y(), tls.pine_radii[i]);
     std::printf("\n");
     report.add("tls.dbh_radius_err_m", std::abs(tls.fitted_radius - tls.trunk_radius), "m", true, 0.01).note =
-        "vs algebraic LS of the trunk points (within 5 cm of the fit; the slice also holds a branch)";
+        "vs a reference independent of the fit: least median of squares circle, then LS of its inliers (the slice also "
+        "holds a branch)";
     report.add("tls.dbh_radius_err_all_points_m", std::abs(tls.fitted_radius - tls.algebraic_radius), "m").note =
         "vs algebraic LS of all points, branch included";
     report.add("tls.dbh_radius_m", tls.fitted_radius, "m");

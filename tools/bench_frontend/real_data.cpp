@@ -8,6 +8,7 @@
 
 #include "clock/thread_cpu.h"
 #include "eval/labelled_scan_score.h"
+#include "eval/reference_circle.h"
 #include "frontend/circle_fit.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/grid_clustering.h"
@@ -29,16 +30,10 @@ TlsResult evaluateTls(const std::string& data_dir, const ClassTable& classes, co
   const Eigen::Vector3d view = frontend::centroidOf(slice) + Eigen::Vector3d(50, 0, 0);
   const auto cyl = frontend::fitCylinder(slice, cfg.fit.cylinder, view);
   r.fitted_radius = cyl ? cyl->radius : std::nan("");
-  // Reference on the trunk's bark: algebraic LS of the points within 5 cm of the fitted circle
-  // (a trimmed LS from all points does not converge to the trunk: the branch dominates).
+  // Reference on the trunk's bark, independent of the fit scored (eval/reference_circle.h): the
+  // slice also holds a branch, which pulls an all-points least-squares circle off the trunk.
   r.trunk_radius = std::nan("");
-  if (cyl) {
-    std::vector<Eigen::Vector2d> bark;
-    for (const auto& q : xy)
-      if (std::abs((q - cyl->root.head<2>()).norm() - cyl->radius) <= 0.05) bark.push_back(q);
-    r.trunk_points = static_cast<int>(bark.size());
-    if (const auto c = frontend::fitCircleAlgebraic(bark)) r.trunk_radius = c->radius;
-  }
+  if (const auto ref = eval::referenceCircle(xy)) r.trunk_radius = ref->radius, r.trunk_points = ref->inliers;
 
   io::LabelledScan plot;
   plot.xyz = frontend::readXyzCloud(data_dir + "/tls/pine_plot.xyz");

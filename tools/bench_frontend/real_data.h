@@ -15,8 +15,8 @@ namespace slide {
 struct TlsResult {
   double fitted_radius = 0;
   double algebraic_radius = 0;  // algebraic LS circle of all slice points (trunk + branch)
-  double trunk_radius = 0;      // algebraic LS of the points within 5 cm of the fitted circle
-  int trunk_points = 0;
+  double trunk_radius = 0;      // eval::referenceCircle: least median of squares, then LS on its inliers
+  int trunk_points = 0;         // the points that refit used
   int pine_trunks = 0;               // cylinders found in pine_plot.xyz
   std::vector<double> pine_radii;
   std::vector<Eigen::Vector2d> pine_positions;
