@@ -1,6 +1,7 @@
 #include "frontend/circle_fit.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -84,6 +85,27 @@ std::optional<Circle> fitCircleRansac(const std::vector<Eigen::Vector2d>& pts, c
     refit->inliers = countInliers(pts, *refit, params.inlier_distance, nullptr);
     if (refit->inliers < best->inliers) break;
     best = refit;
+  }
+  // A surface smoother than the band (a terrestrial scan's bark, a few millimetres rough): the
+  // band's outer part holds rough bark and the base of a branch, not the ring. One more refit
+  // on the points within three robust sigmas of the inliers' residuals, when that is narrower.
+  std::vector<double> res;
+  for (const auto& p : pts)
+    if (const double e = (p - best->center).norm() - best->radius; std::abs(e) <= params.inlier_distance) res.push_back(e);
+  if (res.size() >= 10) {
+    std::nth_element(res.begin(), res.begin() + res.size() / 2, res.end());
+    const double med = res[res.size() / 2];
+    for (double& e : res) e = std::abs(e - med);
+    std::nth_element(res.begin(), res.begin() + res.size() / 2, res.end());
+    const double band = 3.0 * 1.4826 * res[res.size() / 2];
+    if (band < params.inlier_distance) {
+      std::vector<Eigen::Vector2d> in;
+      countInliers(pts, *best, band, &in);
+      if (auto refit = fitCircleAlgebraic(in); refit && refit->radius >= params.min_radius && refit->radius <= params.max_radius) {
+        refit->inliers = countInliers(pts, *refit, params.inlier_distance, nullptr);
+        best = refit;
+      }
+    }
   }
   return best;
 }

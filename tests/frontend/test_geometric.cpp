@@ -812,7 +812,9 @@ TEST(GeometricSegmenter, RealScansTrunksPolesAndCarsAgainstLabels) {
     EXPECT_EQ(s.columns.duplicates, 0) << name;
   }
   EXPECT_EQ(targets, 16);
-  EXPECT_GE(found, 15);
+  // 15 until a slice's circle was refit within three robust sigmas of its inliers when that band is
+  // narrower than the RANSAC band (circle_fit.cpp): every labelled group since.
+  EXPECT_EQ(found, 16);
 }
 
 TEST(ScanScore, VerdictsWithoutMerging) {

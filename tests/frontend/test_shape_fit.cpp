@@ -77,6 +77,27 @@ TEST(CircleFit, AlgebraicExactAndRansacWithOutliers) {
   EXPECT_FALSE(frontend::fitCircleAlgebraic({{0, 0}, {1, 1}, {2, 2}}));  // collinear
 }
 
+// A ring 3 mm rough with rougher bark 1-2 cm outside it on a third of the way round, one point in
+// seven (within the 2 cm RANSAC band): the radius is the ring's, not pulled outward by that bark.
+TEST(CircleFit, ASmoothRingIsRefitWithinItsOwnSpread) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> rough(0, 0.003);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 500; ++i) {
+    const double a = 2 * M_PI * u(rng), r = 0.15 + rough(rng);
+    pts.push_back(r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  for (int i = 0; i < 80; ++i) {
+    const double a = 2 * M_PI / 3 * u(rng), r = 0.16 + 0.01 * u(rng);
+    pts.push_back(r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  const auto c = frontend::fitCircleRansac(pts, {});
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->radius, 0.15, 0.002);
+  EXPECT_LT(c->center.norm(), 0.003);
+}
+
 TEST(CylinderFit, UprightArcGivesRadiusAndAxis) {
   const frontend::Cloud c = cylinderCloud({8, 1, -1.7}, {0, 0, 1}, 0.25, 4.0, 2.2);
   const auto cyl = frontend::fitCylinder(c, {}, Eigen::Vector3d::Zero());
@@ -142,10 +163,10 @@ TEST(CylinderFit, TwoLowSlicesTellNoLean) {
 
 // The reference comes from the slice alone (eval/reference_circle.h: least median of squares, then
 // least squares on its inliers), not from the fit it scores: the slice also holds a branch. The
-// reference ring is 0.141 m (877 points, robust sigma 3.7 mm); the fit reads 0.151 m: its slices'
-// inlier band (2 cm, for a LiDAR's noise) takes in rough bark outside the ring and a branch's base.
-// Until that is fixed the radius is held within 1.25 cm (measured 1.02 cm), the centre within 2 cm.
-TEST(CylinderFit, RealTlsTrunkSliceAgainstAReferenceIndependentOfTheFit) {
+// reference ring is 0.141 m (877 points, robust sigma 3.7 mm). The fit read 0.151 m while its
+// circles were refit over the whole RANSAC band (2 cm, for a LiDAR's noise: rough bark outside
+// the ring and a branch's base came in); refit within three robust sigmas, 0.147 m.
+TEST(CylinderFit, RealTlsTrunkSliceWithinOneCentimetreOfAReferenceIndependentOfTheFit) {
   const frontend::Cloud slice = frontend::readXyzCloud(std::string(SLIDE_DATA_DIR) + "/tls/dbh_slice.xyz");
   ASSERT_EQ(slice.size(), 1369u);
   std::vector<Eigen::Vector2d> xy;
@@ -157,7 +178,7 @@ TEST(CylinderFit, RealTlsTrunkSliceAgainstAReferenceIndependentOfTheFit) {
   const auto cyl = frontend::fitCylinder(slice, {}, view);
   ASSERT_TRUE(cyl);
   EXPECT_NEAR(ref->radius, 0.141, 0.002);
-  EXPECT_NEAR(cyl->radius, ref->radius, 0.0125);
+  EXPECT_NEAR(cyl->radius, ref->radius, 0.01);
   EXPECT_NEAR((cyl->root.head<2>() - ref->center).norm(), 0.0, 0.02);
   EXPECT_NEAR(cyl->radius, 0.15, 0.02);
 }
