@@ -87,8 +87,8 @@ std::optional<Cylinder> fitCylinderOnce(const Cloud& pts, const CylinderFitParam
     if (static_cast<int>(s.size()) < p.min_slice_points) continue;
     SliceFit f;
     f.z = z_low + (k + 0.5) * p.slice_height;
-    // Spread estimate: half the robust width across the viewing direction; the visible arc
-    // lies on the near side, so the centre sits one radius further away.
+    // Spread estimate (kept when no circle fits the slice): the radius from the robust width
+    // across the viewing direction, the centre from the depths of the visible near-side arc.
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     for (const auto& q : s) mean += q;
     mean /= static_cast<double>(s.size());

@@ -122,8 +122,8 @@ int main(int argc, char** argv) {
         spec.emulator = emulator;
         spec.modes = w == "indoor" ? std::vector<std::string>{"rgbd", "rgbd.oracle", "geometric", "emulated", "oracle"}
                                    : std::vector<std::string>{"geometric", "learned", "emulated", "oracle"};
-        if (no_learned) spec.modes.erase(std::remove(spec.modes.begin(), spec.modes.end(), "learned"), spec.modes.end());
         if (!only_modes.empty()) spec.modes = only_modes;
+        if (no_learned) spec.modes.erase(std::remove(spec.modes.begin(), spec.modes.end(), "learned"), spec.modes.end());
         spec.aerial = aerial;
         spdlog::info("world {} seed {}: {} m at {} Hz, modes {}", w, seed, spec.distance, rate, fmt::join(spec.modes, ", "));
         const WorldEvalResult res = evaluateWorld(spec, classes, cfg);
