@@ -3,7 +3,9 @@
 // least median of squares over circles through three of its points (the circle whose median
 // squared residual is least: it ignores up to half the points), then algebraic least squares
 // over the points within 2.5 robust sigmas of it. Independent of the project's trunk fit
-// (frontend/shape_fit.h), so a benchmark can score that fit against it. Deterministic (seeded).
+// (frontend/shape_fit.h: slices, RANSAC bands, spread estimates; only the textbook circle
+// primitives of frontend/circle_fit.h are shared), so a benchmark can score that fit against it.
+// Deterministic (seeded).
 #include <cstdint>
 #include <optional>
 #include <vector>

@@ -7,8 +7,6 @@
 
 namespace slide::frontend {
 
-namespace {
-// Circle through three points; nullopt when they are (nearly) collinear.
 std::optional<Circle> circleThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const Eigen::Vector2d ab = b - a, ac = c - a;
   const double d = 2.0 * (ab.x() * ac.y() - ab.y() * ac.x());
@@ -20,6 +18,8 @@ std::optional<Circle> circleThrough(const Eigen::Vector2d& a, const Eigen::Vecto
   circle.radius = u.norm();
   return circle;
 }
+
+namespace {
 
 int countInliers(const std::vector<Eigen::Vector2d>& pts, const Circle& c, double thr, std::vector<Eigen::Vector2d>* out) {
   int n = 0;

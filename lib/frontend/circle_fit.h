@@ -14,6 +14,9 @@ struct Circle {
   int inliers = 0;  // points within the RANSAC threshold (all points for the algebraic fit)
 };
 
+// The circle through three points; nullopt when they are (nearly) collinear.
+std::optional<Circle> circleThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
 // Algebraic least-squares circle (minimizes sum (|p-c|^2 - r^2)^2); nullopt for fewer than
 // 3 points or (near-)collinear points.
 std::optional<Circle> fitCircleAlgebraic(const std::vector<Eigen::Vector2d>& pts);

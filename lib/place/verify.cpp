@@ -39,25 +39,34 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
   return out;
 }
 
+namespace {
+// Coverage radius of a map: three times its median landmark spacing, at least four match radii.
+double coverageRadius(const LandmarkIndex& index, double match_radius) {
+  return std::max(3.0 * index.medianSpacing(), 4.0 * match_radius);
+}
+}  // namespace
+
 Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                  const LandmarkIndex& index_b, const Pose& T_a_b, double match_radius) {
+                  const Pose& T_a_b, double match_radius) {
   Overlap o;
-  // Coverage radius of a map: three times its median landmark spacing, at least four match radii.
-  auto coverage = [&](const LandmarkIndex& index) { return std::max(3.0 * index.medianSpacing(), 4.0 * match_radius); };
-  const double R = coverage(index_a), R_b = coverage(index_b);
-  const Pose T_b_a = T_a_b.inverse();
-  for (const Landmark& l : a)
-    o.covered_a += index_b.nearest(T_b_a * l.p, LandmarkIndex::kAnyClass).second <= R_b;
+  const double R = coverageRadius(index_a, match_radius);
   const double ratio = (match_radius * match_radius) / (R * R);
   for (const Landmark& l : b) {
     const Eigen::Vector3d q = T_a_b * l.p;
     if (index_a.nearest(q, LandmarkIndex::kAnyClass).second > R) continue;
-    ++o.covered_b;
+    ++o.covered;
     // Local density of A's landmarks of this class around q, times the match disc.
     const double n = static_cast<double>(index_a.countWithin(q, R, l.class_id));
     o.chance += std::min(1.0, n * ratio);
   }
   return o;
+}
+
+std::size_t coveredBy(const std::vector<Landmark>& pts, const Pose& T, const LandmarkIndex& index, double match_radius) {
+  const double R = coverageRadius(index, match_radius);
+  std::size_t n = 0;
+  for (const Landmark& l : pts) n += index.nearest(T * l.p, LandmarkIndex::kAnyClass).second <= R;
+  return n;
 }
 
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
@@ -94,10 +103,17 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.T_a_b = T;
   out.inliers = matches;
   out.residual_rms = rms;
-  const Overlap ov = overlapOf(a, index_a, b, index_b, T, params.match_radius);
+  const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
   out.chance_inliers = ov.chance;
-  out.covered = ov.covered_b;
+  out.covered = ov.covered;
   const double n = static_cast<double>(matches.size());
+  const bool enough = matches.size() >= params.min_inliers && n >= ov.chance + params.significance * std::sqrt(ov.chance);
+  // The overlap as the sparser map holds it; A's side is counted only when B's would reject.
+  std::size_t sparser = ov.covered, covered_a = 0;
+  if (enough && n < params.min_inlier_ratio * static_cast<double>(ov.covered)) {
+    covered_a = coveredBy(a, T.inverse(), index_b, params.match_radius);
+    sparser = std::min(sparser, covered_a);
+  }
   char buf[256];
   if (matches.size() < params.min_inliers) {
     std::snprintf(buf, sizeof buf, "best hypothesis has %zu inliers, fewer than the minimum %zu", matches.size(),
@@ -105,10 +121,10 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   } else if (n < ov.chance + params.significance * std::sqrt(ov.chance)) {
     std::snprintf(buf, sizeof buf, "best hypothesis has %zu inliers, not significant against %.1f expected by chance",
                   matches.size(), ov.chance);
-  } else if (n < params.min_inlier_ratio * static_cast<double>(ov.sparser())) {
+  } else if (n < params.min_inlier_ratio * static_cast<double>(sparser)) {
     std::snprintf(buf, sizeof buf,
                   "best hypothesis matches %zu of %zu overlapping landmarks (%zu of B's, %zu of A's), below the ratio %.2f",
-                  matches.size(), ov.sparser(), ov.covered_b, ov.covered_a, params.min_inlier_ratio);
+                  matches.size(), sparser, ov.covered, covered_a, params.min_inlier_ratio);
   } else {
     out.found = true;
     out.reason.clear();

@@ -1,8 +1,6 @@
 #pragma once
 // Turning a hypothesis T_a_b into a decision: class- and size-consistent one-to-one matches
 // under T, 4-DoF refinement on them, and an acceptance test against what chance would give.
-#include <algorithm>
-
 #include "place/landmark_index.h"
 #include "place/place_result.h"
 
@@ -17,7 +15,7 @@ struct VerifyParams {
   double match_height = 1.0;       // metres, vertical
   double size_tolerance = 1.0;     // metres, see sizesAgree()
   std::size_t min_inliers = 5;     // fewer matches never make a transform
-  double min_inlier_ratio = 0.2;   // of the overlap as the sparser map holds it (Overlap::sparser)
+  double min_inlier_ratio = 0.2;   // of the overlap as the sparser map holds it (refineAndDecide)
   double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
@@ -32,21 +30,24 @@ std::vector<LandmarkMatch> guidedMatches(const std::vector<Landmark>& a, const L
                                          const std::vector<Landmark>& b, const Pose& T_a_b,
                                          const VerifyParams& params);
 
-// Overlap and chance for the acceptance test: each map's landmarks that land within the coverage
-// radius of some landmark of the other, and the matches expected by chance among B's. The inlier
-// ratio is taken over the smaller count, the overlap as the sparser map holds it: a robot that
-// maps only what its short-range camera caught is covered by a LiDAR robot's map, but most of the
-// LiDAR map's landmarks around it lie where that camera never looked or detected nothing.
+// Overlap and chance for the acceptance test: B's landmarks that land within the coverage
+// radius of some landmark of A, and the matches expected by chance among them.
 struct Overlap {
-  std::size_t covered_b = 0, covered_a = 0;
+  std::size_t covered = 0;
   double chance = 0;
-  std::size_t sparser() const { return std::min(covered_a, covered_b); }
 };
 Overlap overlapOf(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
-                  const LandmarkIndex& index_b, const Pose& T_a_b, double match_radius);
+                  const Pose& T_a_b, double match_radius);
+// How many of `pts`, moved by T, land within the coverage radius of some landmark of the map
+// `index` holds (its radius: three times its median spacing, at least four match radii).
+std::size_t coveredBy(const std::vector<Landmark>& pts, const Pose& T, const LandmarkIndex& index, double match_radius);
 
 // From the hypothesis: match, refine (robust 4-DoF), repeat; then accept or reject, filling
-// out.found, T_a_b, inliers, residual_rms, chance_inliers and reason.
+// out.found, T_a_b, inliers, residual_rms, chance_inliers and reason. The inlier ratio is taken
+// over the overlap as the sparser map holds it: B's covered landmarks, or A's landmarks within B's
+// coverage when fewer (counted only when B's count would reject). A robot that maps only what its
+// short-range camera caught is covered by a LiDAR robot's map, but most of the LiDAR map's
+// landmarks around it lie where that camera never looked or detected nothing.
 void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_a, const std::vector<Landmark>& b,
                      const LandmarkIndex& index_b, const Pose& hypothesis, const VerifyParams& params,
                      PlaceResult& out);
