@@ -19,12 +19,14 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     n.read("min_inlier_ratio", v.min_inlier_ratio);
     n.read("significance", v.significance);
     n.read("robust_scale", v.robust_scale);
+    n.read("max_yaw_sigma_deg", v.max_yaw_sigma_deg);
     n.read("rounds", v.rounds);
     n.read("rival_separation", v.rival_separation);
     n.read("rival_ratio", v.rival_ratio);
     n.requirePositive("match_radius", v.match_radius);
     n.requirePositive("match_height", v.match_height);
     n.requirePositive("robust_scale", v.robust_scale);
+    n.requirePositive("max_yaw_sigma_deg", v.max_yaw_sigma_deg);
   }
   c.slidegraph.verify = c.slidematch.verify = v;
   if (root.has("clipper")) {
@@ -71,6 +73,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
     n.read("local_yaw_bin_deg", c.slidematch.local_yaw_bin_deg);
     n.read("tile", c.slidematch.tile);
     n.read("vote_bin", c.slidematch.vote_bin);
+    n.read("tile_votes", c.slidematch.tile_votes);
     n.requirePositive("coarse_bin", c.slidematch.coarse_bin);
     n.requirePositive("budget_ms", c.slidematch.budget_ms);
     n.requirePositive("neighbourhood_radius", c.slidematch.neighbourhood_radius);

@@ -296,6 +296,15 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
     stage("coarse_voting");
     // Fine stage on the strongest distinct peaks.
     tops = distinctTops(std::move(peaks), yaw_step, bin, params.refine_candidates);
+    // The tile votes too: where B overlaps A over a small part of its route, the exhaustive
+    // peaks are laid where most of B lies over A (its chance votes), not where it matches.
+    if (params.tile_votes && !res.budget_exhausted) {
+      bool exhausted = false;
+      std::size_t landmarks_visited = 0;
+      for (const Candidate& c : prunedPeaks(a, b, params, out_of_time, exhausted, landmarks_visited)) tops.push_back(c);
+      res.budget_exhausted = exhausted;
+      stage("pruned_voting");
+    }
   }
   const ClassGrid grid(a, params.verify.match_radius);
   std::vector<Candidate> refined;
@@ -310,8 +319,10 @@ PlaceResult slideMatch(const std::vector<Landmark>& a_in, const std::vector<Land
         if (std::hypot(l.p.x() - t.cx, l.p.y() - t.cy) <= params.tile) near.push_back(l);
       scored = &near;
     }
-    Candidate c = refineAround(grid, *scored, t, fine_yaw / 2, fine_bin / 2, 2, params.verify);
-    c = refineAround(grid, *scored, c, fine_yaw / 8, fine_bin / 8, 2, params.verify);
+    const double fy = t.local ? std::max(params.local_yaw_bin_deg, 0.1) * deg : fine_yaw;
+    const double fb = t.local ? std::max(params.vote_bin, 0.05) : fine_bin;
+    Candidate c = refineAround(grid, *scored, t, fy / 2, fb / 2, 2, params.verify);
+    c = refineAround(grid, *scored, c, fy / 8, fb / 8, 2, params.verify);
     if (t.local) c.score = exactScore(grid, b, c.yaw, c.tx, c.ty, params.verify);
     refined.push_back(c);
   }

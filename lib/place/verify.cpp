@@ -103,6 +103,19 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.T_a_b = T;
   out.inliers = matches;
   out.residual_rms = rms;
+  // How well the matches fix the yaw: the horizontal residual per axis over the root of the matched
+  // landmarks' squared distances from their centroid (a least-squares rotation's standard error).
+  double yaw_sigma_deg = 0;
+  if (matches.size() >= 2) {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const LandmarkMatch& m : matches) c += b[m.b].p.head<2>() / static_cast<double>(matches.size());
+    double spread = 0, res2 = 0;
+    for (const LandmarkMatch& m : matches) {
+      spread += (b[m.b].p.head<2>() - c).squaredNorm();
+      res2 += (a[m.a].p.head<2>() - (T * b[m.b].p).head<2>()).squaredNorm();
+    }
+    yaw_sigma_deg = std::sqrt(res2 / (2.0 * static_cast<double>(matches.size()))) / std::sqrt(std::max(spread, 1e-12)) * 180.0 / M_PI;
+  }
   const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
   out.chance_inliers = ov.chance;
   out.covered = ov.covered;
@@ -125,6 +138,9 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
     std::snprintf(buf, sizeof buf,
                   "best hypothesis matches %zu of %zu overlapping landmarks (%zu of B's, %zu of A's), below the ratio %.2f",
                   matches.size(), sparser, ov.covered, covered_a, params.min_inlier_ratio);
+  } else if (yaw_sigma_deg > params.max_yaw_sigma_deg) {
+    std::snprintf(buf, sizeof buf, "best hypothesis's %zu matches fix its yaw only to %.1f deg (limit %.1f)", matches.size(),
+                  yaw_sigma_deg, params.max_yaw_sigma_deg);
   } else {
     out.found = true;
     out.reason.clear();

@@ -17,6 +17,7 @@ struct VerifyParams {
   std::size_t min_inliers = 5;     // fewer matches never make a transform
   double min_inlier_ratio = 0.2;   // of the overlap as the sparser map holds it (refineAndDecide)
   double significance = 5.0;       // inliers >= chance + significance * sqrt(chance)
+  double max_yaw_sigma_deg = 1.0;  // the matches' standard error of yaw (residual / spread) at most this
   double robust_scale = 0.3;       // Cauchy scale of the refinement, metres
   int rounds = 3;                  // match / refine rounds
   double rival_separation = 3.0;   // metres: another alignment this far off is a rival (ambiguity test)...

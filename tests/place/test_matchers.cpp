@@ -387,3 +387,27 @@ TEST(PlaceRecognition, RecordedHalfTurnAliasOfABlockGridIsAmbiguous) {
   EXPECT_GT(e.translation_m, 50.0);
   EXPECT_GT(e.yaw_deg, 5.0);
 }
+
+TEST(SlideMatch, TileVotesFindAFifthOfABentRouteThatTheExhaustiveVoteMisses) {
+  // tests/data/simulated/forest_bent_pair/README.md: the place bench's realistic forest at its
+  // target condition (drift, noise, missed and spurious trunks), 63 trunks shared.
+  const std::string dir = std::string(SLIDE_SOURCE_DIR) + "/tests/data/simulated/forest_bent_pair/";
+  const auto load = [&](const char* name) {
+    return place::landmarksOf(io::readObjectMapText(dir + name, ClassTable::loadDefault(), io::MissingSize::Zero).map);
+  };
+  const std::vector<place::Landmark> a = load("a.txt"), b = load("b.txt");
+  const Pose truth = poseFromXyzYaw(21.437, -157.594, -1.634, -10.193 * M_PI / 180);
+  place::SlideMatchParams p = place::loadDefaultPlaceConfig().slidematch;
+  ASSERT_TRUE(p.tile_votes);
+  const place::PlaceResult r = place::slideMatch(a, b, p);
+  ASSERT_TRUE(r.found) << r.reason;
+  EXPECT_GE(r.inliers.size(), 30u);
+  // Judged where the maps overlap: B's matched landmarks moved by the result and by the truth.
+  for (const place::LandmarkMatch& m : r.inliers)
+    EXPECT_LT((r.T_a_b * b[m.b].p - truth * b[m.b].p).head<2>().norm(), 1.0);
+  EXPECT_LT(std::abs(wrapAngle(yawOf(r.T_a_b.linear()) - yawOf(truth.linear()))) * 180 / M_PI, 1.0);
+
+  p.tile_votes = false;
+  const place::PlaceResult exhaustive = place::slideMatch(a, b, p);
+  EXPECT_FALSE(exhaustive.found) << exhaustive.inliers.size() << " inliers";
+}

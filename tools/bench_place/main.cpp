@@ -19,12 +19,6 @@ using namespace slide;
 using namespace slide::bench_place;
 
 namespace {
-void writeLandmarks(const std::string& path, const std::vector<place::Landmark>& lms, const ClassTable& classes) {
-  ObjectMap map;
-  for (const place::Landmark& l : lms) map.add(io::objectFromCentre(l.class_id, l.p, l.size, classes));
-  io::writeObjectMapText(path, map, classes);
-}
-
 struct Paper {
   std::optional<double> graph_ms, match_ms, trans, yaw;
   std::optional<double> target_graph_ms, target_match_ms, target_trans, target_yaw;
@@ -179,7 +173,7 @@ int main(int argc, char** argv) {
   app.add_option("--hetero-worlds", hetero_worlds, "Worlds (seeds seed, seed+1, ...) per heterogeneous case")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  app.add_option("--dump", dump, "Write every pair's maps as DIR/<scenario>_<k>_{a,b}.txt (for ./slide match)");
+  app.add_option("--dump", dump, "Write every pair's maps as DIR/<scenario>_<k>_{a,b}.txt (for ./slide match; realistic pairs as realistic_<world>_<condition>_<k>_{a,b}.txt) and log the truth");
   return app::runApp(app, common, argc, argv, [&]() {
     const place::PlaceConfig config =
         config_path.empty() ? place::loadDefaultPlaceConfig() : place::loadPlaceConfig(config_path);
@@ -199,8 +193,8 @@ int main(int argc, char** argv) {
       for (const Scenario& s : scenarios)
         for (std::size_t k = 0; k < s.pairs.size(); ++k) {
           const std::string stem = dump + "/" + s.name + "_" + std::to_string(k);
-          writeLandmarks(stem + "_a.txt", s.pairs[k].a.lms, classes);
-          writeLandmarks(stem + "_b.txt", s.pairs[k].b.lms, classes);
+          writeLandmarks(stem + "_a.txt", s.pairs[k].a.lms);
+          writeLandmarks(stem + "_b.txt", s.pairs[k].b.lms);
           const Eigen::Vector4d t = xyzYawOf(truthBetween(s.pairs[k].a, s.pairs[k].b));
           spdlog::info("{}: truth x {:.3f} y {:.3f} z {:.3f} yaw {:.3f} deg{}", stem, t[0], t[1], t[2], t[3] * 180 / M_PI,
                        s.pairs[k].overlapping ? "" : " (disjoint: no transform expected)");
@@ -279,7 +273,7 @@ int main(int argc, char** argv) {
       const place::ConsensusParams consensus =
           place::loadLoopCloserParams(ConfigNode::load(std::string(SLIDE_SOURCE_DIR) + "/config/loop_closer.yaml"))
               .consensus;
-      runRealistic(rep, config, consensus, seed, realistic_worlds);
+      runRealistic(rep, config, consensus, seed, realistic_worlds, dump);
     }
     for (const HeteroSpec& h : {heteroLidarRgbd(seed), heteroAerialGround(seed)}) {
       if (!wanted(h.name)) continue;

@@ -296,7 +296,7 @@ std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap) {
 }
 
 RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod method,
-                          const place::PlaceConfig& config, double place_gap) {
+                          const place::PlaceConfig& config, double place_gap, bool places_count) {
   RealisticFigures f;
   for (const MapPair& p : pairs) {
     const PeakMemory memory;
@@ -328,7 +328,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod 
     }
     Error e = t.ok ? errorAt(r.T_a_b, t) : Error{};
     bool correct = t.ok && withinTolerance(e);
-    if (!correct && place_gap > 0)  // right about one of the places the maps share
+    if (!correct && place_gap > 0 && places_count)  // right about one of the places the maps share
       for (const simulator::SharedTruth& place : sharedPlaces(p, place_gap))
         if (withinTolerance(errorAt(r.T_a_b, place))) {
           correct = true;
@@ -472,7 +472,7 @@ std::string joined(const std::vector<std::string>& notes) {
 }
 
 void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, const place::ConsensusParams& consensus,
-                  unsigned seed, const std::vector<std::string>& worlds) {
+                  unsigned seed, const std::vector<std::string>& worlds, const std::string& dump) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::set<std::string> want(worlds.begin(), worlds.end());
   std::map<std::string, RouteWorld> built;
@@ -490,11 +490,25 @@ void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, con
     const RouteWorld& w = built.at(c.world);
     const std::vector<MapPair> pairs = makePairs(w, c.condition, seed * 1000 + k);
     if (c.condition.name == "target") target_pairs[c.world] = pairs;
+    for (std::size_t i = 0; !dump.empty() && i < pairs.size(); ++i) {
+      const std::string stem = fmt::format("{}/realistic_{}_{}_{}", dump, c.world, c.condition.name, i);
+      writeLandmarks(stem + "_a.txt", pairs[i].a.lms);
+      writeLandmarks(stem + "_b.txt", pairs[i].b.lms);
+      const auto truth = [](const simulator::SharedTruth& t) {
+        const Eigen::Vector4d x = xyzYawOf(t.T_a_b);
+        return fmt::format("x {:.3f} y {:.3f} z {:.3f} yaw {:.3f} deg ({} shared objects, fit {:.2f} m rms)", x[0], x[1], x[2],
+                           x[3] * 180 / M_PI, t.shared, t.rms);
+      };
+      const simulator::SharedTruth t = simulator::sharedObjectTruth(pairs[i].a.lms, pairs[i].b.lms);
+      std::string places;
+      for (const simulator::SharedTruth& q : sharedPlaces(pairs[i], 2 * w.range)) places += "; a place: " + truth(q);
+      spdlog::info("{}: {}", stem, pairs[i].overlapping && t.ok ? "truth " + truth(t) + places : "disjoint: no transform expected");
+    }
     const std::string cond = c.world + "." + c.condition.name;
     spdlog::info("realistic {}: {} overlapping + {} disjoint pairs; {}", cond, c.condition.pairs, c.condition.disjoint_pairs,
                  describe(c.condition));
     for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
-      const RealisticFigures f = runPairs(pairs, m, config);
+      const RealisticFigures f = runPairs(pairs, m, config, 2 * w.range, false);
       const std::string prefix = "realistic." + cond + "." + place::methodName(m) + ".";
       const bool headline = c.condition.name == "target" && c.world != "forest_large";
       if (f.overlapping) {

@@ -69,12 +69,13 @@ struct RealisticFigures {
   std::vector<std::string> wrong_notes;  // what each wrong / false-positive transform was
   std::vector<std::string> miss_notes;   // why each overlapping pair gave no transform
 };
-// place_gap > 0: a transform is also correct when it is right (same tolerance) about one of the
-// places the maps share: runs of shared objects no more than place_gap metres apart along A's
-// route, each with its own least-squares truth. Long routes cross each other: the whole shared
-// set then spans places the two maps bend differently, and no rigid transform fits all of them.
+// place_gap > 0: the places the maps share (runs of shared objects no more than place_gap metres
+// apart along A's route, each with its own least-squares truth) are named in the notes of wrong
+// transforms, and with places_count a transform right (same tolerance) about one of them is
+// correct. Long routes cross each other: the whole shared set then spans places the two maps
+// bend differently, and no rigid transform fits all of them.
 RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod method,
-                          const place::PlaceConfig& config, double place_gap = 0);
+                          const place::PlaceConfig& config, double place_gap = 0, bool places_count = true);
 // The places two maps share (see runPairs), each with its least-squares truth (places with fewer
 // than 3 shared objects left out).
 std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap);
@@ -99,8 +100,10 @@ namespace slide::bench_place {
 // The suite's cases (world and condition), and running them: figures per case and method into
 // `rep` (names realistic.<world>.<condition>.<method>.*) and a summary table on stdout. `worlds`
 // empty runs every world. Consensus: the loop closer's filter over growing maps (target condition).
+// `dump` (a folder, or empty): every pair's maps as realistic_<world>_<condition>_<k>_{a,b}.txt,
+// the least-squares truth logged.
 void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, const place::ConsensusParams& consensus,
-                  unsigned seed, const std::vector<std::string>& worlds);
+                  unsigned seed, const std::vector<std::string>& worlds, const std::string& dump = "");
 
 // Joined with "; " (notes of several pairs in one figure).
 std::string joined(const std::vector<std::string>& notes);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "io/kitti_poses.h"
+#include "io/object_map_text.h"
 
 namespace slide::bench_place {
 
@@ -166,6 +167,13 @@ std::size_t sharedLandmarks(const RobotMap& a, const RobotMap& b) {
   std::size_t n = 0;
   for (const place::Landmark& l : b.lms) n += ids.count(l.index);
   return n;
+}
+
+void writeLandmarks(const std::string& path, const std::vector<place::Landmark>& lms) {
+  static const ClassTable classes = ClassTable::loadDefault();
+  ObjectMap map;
+  for (const place::Landmark& l : lms) map.add(io::objectFromCentre(l.class_id, l.p, l.size, classes));
+  io::writeObjectMapText(path, map, classes);
 }
 
 }  // namespace slide::bench_place

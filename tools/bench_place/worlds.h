@@ -47,6 +47,9 @@ KittiSequence loadKitti(const std::string& data_dir, const std::string& seq);
 RobotMap kittiRobot(const KittiSequence& kitti, int first, int last, double range, const place::PerturbParams& p,
                     std::mt19937& rng);
 
+// `lms` as an object map text file (what ./slide match reads; the default class table).
+void writeLandmarks(const std::string& path, const std::vector<place::Landmark>& lms);
+
 // Number of world ids present in both maps.
 std::size_t sharedLandmarks(const RobotMap& a, const RobotMap& b);
 
