@@ -114,7 +114,8 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
       spread += (b[m.b].p.head<2>() - c).squaredNorm();
       res2 += (a[m.a].p.head<2>() - (T * b[m.b].p).head<2>()).squaredNorm();
     }
-    yaw_sigma_deg = std::sqrt(res2 / (2.0 * static_cast<double>(matches.size()))) / std::sqrt(std::max(spread, 1e-12)) * 180.0 / M_PI;
+    const double per_axis = std::sqrt(res2 / (2.0 * static_cast<double>(matches.size())));
+    yaw_sigma_deg = per_axis / std::sqrt(std::max(spread, 1e-12)) * 180.0 / M_PI;
   }
   const Overlap ov = overlapOf(a, index_a, b, T, params.match_radius);
   out.chance_inliers = ov.chance;

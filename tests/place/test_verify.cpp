@@ -156,10 +156,8 @@ TEST(Verify, ASparseMapAlignsWithADenseOneInEitherRole) {
   EXPECT_LT(eval::transformError(g.T_a_b, T_sparse_dense).translation_m, 0.3);
 }
 
-// The grid behind the radius queries returns exactly the landmarks a brute-force scan finds,
-// with a far stray landmark stretching the extent (the grid coarsens instead of growing).
 // Six trunks a metre or two apart, seen with 0.2 m of noise, fix a shift but not the yaw (its
-// standard error is about 3 deg): no transform. Spread over 20 m the same noise fixes it to 0.3 deg.
+// standard error is about 3 deg): no transform. Spread over 20 m the same noise fixes it within half a degree.
 TEST(Verify, MatchesThatCannotFixTheYawGiveNoTransform) {
   const auto ring = [](double radius) {
     std::vector<place::Landmark> out;
@@ -186,6 +184,8 @@ TEST(Verify, MatchesThatCannotFixTheYawGiveNoTransform) {
   }
 }
 
+// The grid behind the radius queries returns exactly the landmarks a brute-force scan finds,
+// with a far stray landmark stretching the extent (the grid coarsens instead of growing).
 TEST(LandmarkIndex, RadiusQueriesMatchBruteForce) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-30, 30), h(-2, 2);

@@ -9,7 +9,6 @@
 #include "bench/stats.h"
 #include "config/config.h"
 #include "hetero.h"
-#include "io/object_map_text.h"
 #include "place/loop_closer_config.h"
 #include "realistic.h"
 #include "scale.h"
@@ -189,7 +188,6 @@ int main(int argc, char** argv) {
     if (wanted("indoor_real")) scenarios.push_back(realScenario(data, "indoor", seed));
 
     if (!dump.empty()) {
-      const ClassTable classes = ClassTable::loadDefault();
       for (const Scenario& s : scenarios)
         for (std::size_t k = 0; k < s.pairs.size(); ++k) {
           const std::string stem = dump + "/" + s.name + "_" + std::to_string(k);
