@@ -87,6 +87,7 @@ PlaceConfig loadPlaceConfig(const std::string& path) {
   root.read("min_shared_class_share", c.min_shared_class_share);
   root.read("rival_search_max_landmarks", c.rival_search_max_landmarks);
   root.read("ambiguous_recheck_swapped", c.ambiguous_recheck_swapped);
+  root.read("tile_fallback_max_landmarks", c.tile_fallback_max_landmarks);
   root.rejectUnknownKeys();
   return c;
 }
@@ -110,7 +111,21 @@ PlaceResult recognizeOneWay(PlaceMethod method, const std::vector<Landmark>& a, 
   }
   if (method == PlaceMethod::SlideMatch) return slideMatch(a, b, config.slidematch);
   PlaceResult r = slideGraph(a, b, config.slidegraph);
-  if (!r.found || std::max(a.size(), b.size()) > config.rival_search_max_landmarks) return r;
+  const std::size_t larger = std::max(a.size(), b.size());
+  if (!r.found && !r.ambiguous && !r.budget_exhausted && larger <= config.tile_fallback_max_landmarks &&
+      r.cpu_ms < config.slidegraph.budget_ms) {
+    SlideMatchParams tiles = config.slidematch;
+    tiles.exhaustive_max_votes = 0;  // the pruned stage alone
+    tiles.budget_ms = config.slidegraph.budget_ms - r.cpu_ms;
+    PlaceResult m = slideMatch(a, b, tiles);
+    m.ms += r.ms;
+    m.cpu_ms += r.cpu_ms;
+    m.stage_cpu_ms.insert(m.stage_cpu_ms.begin(), r.stage_cpu_ms.begin(), r.stage_cpu_ms.end());
+    if (m.found) return m;
+    r.ms = m.ms, r.cpu_ms = m.cpu_ms, r.stage_cpu_ms = m.stage_cpu_ms;
+    return r;
+  }
+  if (!r.found || larger > config.rival_search_max_landmarks) return r;
   const double cpu0 = clock::threadCpuMs();
   std::vector<PlaceResult> rivals;
   r.ms += slideMatch(a, b, config.slidematch, &rivals).ms;

@@ -23,6 +23,13 @@ struct PlaceConfig {
   // An ambiguous result (verify.h, the rival test) is checked again with the maps' roles
   // swapped; its stronger alignment stands when that check finds the same one unambiguously.
   bool ambiguous_recheck_swapped = true;
+  // SlideGraph that finds no transform (neither ambiguous nor out of time) between maps of at
+  // most this many landmarks each tries SlideMatch's tile votes alone (neighbourhood agreement,
+  // slidematch.h) with what is left of its budget: at 0.25 m noise, a fifth of either map
+  // missed or spurious, Delaunay triangles of two maps rarely coincide ("best hypothesis has 0-4
+  // inliers") while verification at the truth accepts. 0 turns it off. Above the limit SlideGraph
+  // stays alone (its time targets on maps of thousands of objects).
+  std::size_t tile_fallback_max_landmarks = 1000;
 };
 
 // Every key is optional (defaults of the structs above); a wrong type or value throws
@@ -35,7 +42,8 @@ PlaceConfig loadDefaultPlaceConfig();
 PlaceMethod parsePlaceMethod(const std::string& name);
 
 // Matches with the configured method (SlideGraph's answer checked against SlideMatch's rivals on
-// small maps, see rival_search_max_landmarks); when the maps' classes barely overlap, by shape family
+// small maps, see rival_search_max_landmarks; its misses tried with the tile votes, see
+// tile_fallback_max_landmarks); when the maps' classes barely overlap, by shape family
 // and with SlideMatch whatever the method (the result says so through `by_shape`): with classes
 // collapsed to three families SlideGraph's class-triple descriptors no longer tell places apart
 // (an indoor LiDAR robot's "other" furniture against an RGBD robot's chairs and tables: no

@@ -360,7 +360,8 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod 
 }
 
 ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMethod method,
-                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks) {
+                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks,
+                              double place_gap) {
   ConsensusFigures f;
   for (const MapPair& p : pairs) {
     place::ConsensusFilter filter(consensus);
@@ -397,8 +398,18 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMet
         published_correct = true;
       } else if (!published_wrong) {
         published_wrong = true;
-        f.wrong_notes.push_back(fmt::format("{}published, {}, after {} detections at {:.0f} m",
-                                            p.overlapping ? "" : "disjoint pair: ", offBy(u.T, t), fed, s));
+        // Against the nearest place the two maps (B's as grown) share, as runPairs notes it.
+        std::string place;
+        if (p.overlapping) {
+          MapPair grown = p;
+          grown.b.lms = b;
+          double best = 1e300;
+          for (const simulator::SharedTruth& q : sharedPlaces(grown, place_gap))
+            if (errorAt(u.T, q).trans_m < best)
+              best = errorAt(u.T, q).trans_m, place = "; nearest shared place: " + offBy(u.T, q);
+        }
+        f.wrong_notes.push_back(fmt::format("{}published, {}, after {} detections at {:.0f} m{}",
+                                            p.overlapping ? "" : "disjoint pair: ", offBy(u.T, t), fed, s, place));
       }
     }
     if (p.overlapping) {
@@ -556,7 +567,7 @@ void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, con
   for (auto& [world, pairs] : target_pairs) {
     if (world == "forest_large") continue;
     for (place::PlaceMethod m : {place::PlaceMethod::SlideGraph, place::PlaceMethod::SlideMatch}) {
-      const ConsensusFigures f = runConsensus(pairs, m, config, consensus, 8);
+      const ConsensusFigures f = runConsensus(pairs, m, config, consensus, 8, 2 * built.at(world).range);
       const std::string prefix = "realistic." + world + ".consensus." + place::methodName(m) + ".";
       if (f.pairs) {
         rep.add(prefix + "recall", double(f.published_correct) / f.pairs, "", false).note = fmt::format(

@@ -90,8 +90,10 @@ struct ConsensusFigures {
   std::vector<double> detections_to_publish, metres_delay;
   std::vector<std::string> wrong_notes;
 };
+// place_gap: the places of a wrong publication's note (see runPairs).
 ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMethod method,
-                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks);
+                              const place::PlaceConfig& config, const place::ConsensusParams& consensus, int checks,
+                              double place_gap);
 
 }  // namespace slide::bench_place
 
