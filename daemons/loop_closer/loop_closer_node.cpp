@@ -81,9 +81,12 @@ void LoopCloserNode::poll(double now_s) {
   }
   for (const place::LoopClosure& lc : found) {
     const Eigen::Vector4d v = xyzYawOf(lc.T_a_b);
+    const char* how = lc.result.by_shape        ? ", by shape family: the maps share too few classes"
+                      : lc.result.by_tile_votes ? ", by SlideMatch's tile votes"
+                                                : "";
     spdlog::info("robot {} <- robot {}{}: {} ({} inliers{}, {:.1f} ms): x {:.3f} y {:.3f} z {:.3f} yaw {:.2f} deg",
                  lc.robot_a, lc.robot_b, lc.robot_a == lc.robot_b ? " (intra)" : "", place::outcomeName(lc.outcome),
-                 lc.inliers.size(), lc.result.by_shape ? ", by shape family: the maps share too few classes" : "", lc.result.ms, v[0], v[1], v[2], v[3] * 180.0 / M_PI);
+                 lc.inliers.size(), how, lc.result.ms, v[0], v[1], v[2], v[3] * 180.0 / M_PI);
     if (lc.outcome != place::ConsensusFilter::Outcome::Pending) publish(lc);
   }
   if (closer_.counts().budget_exceeded > budget_exceeded_) {

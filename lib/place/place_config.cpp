@@ -121,8 +121,11 @@ PlaceResult recognizeOneWay(PlaceMethod method, const std::vector<Landmark>& a, 
     m.ms += r.ms;
     m.cpu_ms += r.cpu_ms;
     m.stage_cpu_ms.insert(m.stage_cpu_ms.begin(), r.stage_cpu_ms.begin(), r.stage_cpu_ms.end());
+    m.by_tile_votes = true;
+    m.associations = r.associations;
     if (m.found) return m;
     r.ms = m.ms, r.cpu_ms = m.cpu_ms, r.stage_cpu_ms = m.stage_cpu_ms;
+    r.reason += "; tile votes: " + m.reason;
     return r;
   }
   if (!r.found || larger > config.rival_search_max_landmarks) return r;

@@ -36,6 +36,7 @@ struct PlaceResult {
   std::size_t clipper_peak_bytes = 0; // SlideGraph: peak bytes held by the consistency graph
   bool budget_exhausted = false;      // stopped on its CPU-time budget (SlideGraph: no transform; SlideMatch: best so far)
   bool by_shape = false;              // matched by shape family: the maps' classes barely overlap
+  bool by_tile_votes = false;         // SlideGraph found nothing; SlideMatch's tile votes did (place_config.h)
   // Verified, but another alignment explains the maps nearly as well (verify.h, the rival
   // test): no transform; T_a_b and inliers are the stronger hypothesis's.
   bool ambiguous = false;

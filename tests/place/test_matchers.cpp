@@ -440,6 +440,7 @@ TEST(PlaceRecognition, SlideGraphsMissIsTriedWithTheTileVotes) {
   const place::PlaceResult r = place::recognizePlace(place::PlaceMethod::SlideGraph, pair.a, pair.b, config);
   ASSERT_TRUE(r.found) << r.reason;
   expectRightWhereTheyOverlap(r, pair);
+  EXPECT_TRUE(r.by_tile_votes);
   ASSERT_FALSE(r.stage_cpu_ms.empty());
   EXPECT_EQ(r.stage_cpu_ms.back().first, "verify");
   config.tile_fallback_max_landmarks = std::min(pair.a.size(), pair.b.size());  // the larger map is over it

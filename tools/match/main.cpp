@@ -32,6 +32,8 @@ void printJson(const std::string& method, const slide::place::PlaceResult& r) {
   std::printf(", \"inliers\": %zu, \"residual_rms\": %.6f, \"chance_inliers\": %.3f, \"score\": %.1f", r.inliers.size(),
               r.residual_rms, r.chance_inliers, r.score);
   if (method == "slidegraph") std::printf(", \"associations\": %zu", r.associations);
+  if (r.by_shape) std::printf(", \"by_shape\": true");
+  if (r.found && r.by_tile_votes) std::printf(", \"by_tile_votes\": true");
   std::printf(", \"ms\": %.3f, \"budget_exhausted\": %s", r.ms, r.budget_exhausted ? "true" : "false");
   if (!r.found) std::printf(", \"reason\": \"%s\"", jsonEscape(r.reason).c_str());
   std::printf("}\n");
