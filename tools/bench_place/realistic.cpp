@@ -269,31 +269,43 @@ std::vector<MapPair> makePairs(const RouteWorld& w, const Condition& c, unsigned
   return out;
 }
 
-std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap) {
+std::vector<simulator::SharedTruth> sharedPlaces(const simulator::DriftedMap& a, const std::vector<place::Landmark>& b,
+                                                 double gap) {
   // Shared objects in the order A passed them; a gap of more than `gap` metres along A's route
   // starts another place.
   std::vector<std::size_t> in_b;
-  for (const place::Landmark& l : p.b.lms)
+  for (const place::Landmark& l : b)
     if (l.index != simulator::kSpuriousObject) in_b.push_back(l.index);
   std::sort(in_b.begin(), in_b.end());
   std::vector<std::pair<double, std::size_t>> along;  // (A's metres, A's landmark)
-  for (std::size_t i = 0; i < p.a.lms.size(); ++i)
-    if (p.a.lms[i].index != simulator::kSpuriousObject &&
-        std::binary_search(in_b.begin(), in_b.end(), p.a.lms[i].index))
-      along.emplace_back(p.a.seen_at[i], i);
+  for (std::size_t i = 0; i < a.lms.size(); ++i)
+    if (a.lms[i].index != simulator::kSpuriousObject && std::binary_search(in_b.begin(), in_b.end(), a.lms[i].index))
+      along.emplace_back(a.seen_at[i], i);
   std::sort(along.begin(), along.end());
   std::vector<simulator::SharedTruth> out;
   std::vector<place::Landmark> place;
   for (std::size_t k = 0; k <= along.size(); ++k) {
     if (k == along.size() || (k > 0 && along[k].first - along[k - 1].first > gap)) {
-      const simulator::SharedTruth t = simulator::sharedObjectTruth(place, p.b.lms);
+      const simulator::SharedTruth t = simulator::sharedObjectTruth(place, b);
       if (t.ok) out.push_back(t);
       place.clear();
     }
-    if (k < along.size()) place.push_back(p.a.lms[along[k].second]);
+    if (k < along.size()) place.push_back(a.lms[along[k].second]);
   }
   return out;
 }
+
+namespace {
+// "N shared places, nearest: X m / Y deg off of a place of M objects, fit R m rms".
+std::string nearestPlaceNote(const Pose& T, const std::vector<simulator::SharedTruth>& places) {
+  std::string nearest = "none";
+  double best = 1e300;
+  for (const simulator::SharedTruth& q : places)
+    if (const double d = errorAt(T, q).trans_m; d < best)
+      best = d, nearest = offBy(T, q) + fmt::format(" of a place of {} objects, fit {:.2f} m rms", q.shared, q.rms);
+  return fmt::format("{} shared places, nearest: {}", places.size(), nearest);
+}
+}  // namespace
 
 RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod method,
                           const place::PlaceConfig& config, double place_gap, bool places_count) {
@@ -329,7 +341,7 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod 
     Error e = t.ok ? errorAt(r.T_a_b, t) : Error{};
     bool correct = t.ok && withinTolerance(e);
     if (!correct && place_gap > 0 && places_count)  // right about one of the places the maps share
-      for (const simulator::SharedTruth& place : sharedPlaces(p, place_gap))
+      for (const simulator::SharedTruth& place : sharedPlaces(p.a, p.b.lms, place_gap))
         if (withinTolerance(errorAt(r.T_a_b, place))) {
           correct = true;
           e = errorAt(r.T_a_b, place);
@@ -341,16 +353,8 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod 
       f.yaw_err.push_back(e.yaw_deg);
     } else {
       ++f.wrong;
-      std::string places;
-      if (place_gap > 0) {
-        const std::vector<simulator::SharedTruth> ps = sharedPlaces(p, place_gap);
-        std::string nearest = "none";
-        double best = 1e300;
-        for (const simulator::SharedTruth& q : ps)
-          if (errorAt(r.T_a_b, q).trans_m < best)
-            best = errorAt(r.T_a_b, q).trans_m, nearest = offBy(r.T_a_b, q) + fmt::format(" of a place of {} objects, fit {:.2f} m rms", q.shared, q.rms);
-        places = fmt::format("; {} shared places, nearest: {}", ps.size(), nearest);
-      }
+      const std::string places =
+          place_gap > 0 ? "; " + nearestPlaceNote(r.T_a_b, sharedPlaces(p.a, p.b.lms, place_gap)) : "";
       f.wrong_notes.push_back(fmt::format("{} ({} inliers, chance {:.1f}, {} shared, the truth's own fit {:.2f} m rms, {}{})",
                                           offBy(r.T_a_b, t), r.inliers.size(), r.chance_inliers, t.shared, t.rms,
                                           p.opposite ? "opposite" : "same way", places));
@@ -398,16 +402,8 @@ ConsensusFigures runConsensus(const std::vector<MapPair>& pairs, place::PlaceMet
         published_correct = true;
       } else if (!published_wrong) {
         published_wrong = true;
-        // Against the nearest place the two maps (B's as grown) share, as runPairs notes it.
-        std::string place;
-        if (p.overlapping) {
-          MapPair grown = p;
-          grown.b.lms = b;
-          double best = 1e300;
-          for (const simulator::SharedTruth& q : sharedPlaces(grown, place_gap))
-            if (errorAt(u.T, q).trans_m < best)
-              best = errorAt(u.T, q).trans_m, place = "; nearest shared place: " + offBy(u.T, q);
-        }
+        // Against the places the two maps (B's as grown) share, as runPairs notes it.
+        const std::string place = p.overlapping ? "; " + nearestPlaceNote(u.T, sharedPlaces(p.a, b, place_gap)) : "";
         f.wrong_notes.push_back(fmt::format("{}published, {}, after {} detections at {:.0f} m{}",
                                             p.overlapping ? "" : "disjoint pair: ", offBy(u.T, t), fed, s, place));
       }
@@ -512,7 +508,8 @@ void runRealistic(bench::BenchReport& rep, const place::PlaceConfig& config, con
       };
       const simulator::SharedTruth t = simulator::sharedObjectTruth(pairs[i].a.lms, pairs[i].b.lms);
       std::string places;
-      for (const simulator::SharedTruth& q : sharedPlaces(pairs[i], 2 * w.range)) places += "; a place: " + truth(q);
+      for (const simulator::SharedTruth& q : sharedPlaces(pairs[i].a, pairs[i].b.lms, 2 * w.range))
+        places += "; a place: " + truth(q);
       spdlog::info("{}: {}", stem, pairs[i].overlapping && t.ok ? "truth " + truth(t) + places : "disjoint: no transform expected");
     }
     const std::string cond = c.world + "." + c.condition.name;

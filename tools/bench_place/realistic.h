@@ -78,7 +78,8 @@ RealisticFigures runPairs(const std::vector<MapPair>& pairs, place::PlaceMethod 
                           const place::PlaceConfig& config, double place_gap = 0, bool places_count = true);
 // The places two maps share (see runPairs), each with its least-squares truth (places with fewer
 // than 3 shared objects left out).
-std::vector<simulator::SharedTruth> sharedPlaces(const MapPair& p, double gap);
+std::vector<simulator::SharedTruth> sharedPlaces(const simulator::DriftedMap& a, const std::vector<place::Landmark>& b,
+                                                 double gap);
 
 // The loop closer's way: B's map grows along its route; it is checked `checks` times (evenly
 // along the route) against A's whole map and every found transform goes through the consensus
