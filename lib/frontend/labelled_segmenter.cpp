@@ -79,10 +79,17 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     return {};
   }
   const double r2 = params_.max_range * params_.max_range;
+  std::map<int, int> class_of_label;  // cache of the class-table lookup
+  auto classOfLabel = [&](int label) {
+    auto it = class_of_label.find(label);
+    if (it == class_of_label.end()) it = class_of_label.emplace(label, classes_.fromSemanticKitti(label).value_or(-1)).first;
+    return it->second;
+  };
+  const std::vector<uint16_t> labels =
+      voteLabels(scan, [&](uint16_t l) { return classOfLabel(l) >= 0; }, {params_.vote_radius, params_.max_range});
   // Clustering group of each class: the class itself, or -1 for every cylinder class.
   std::map<int, std::vector<int>> groups;   // group -> point indices
   std::vector<int> class_of(scan.size(), -1);
-  std::map<int, int> class_of_label;        // cache of the class-table lookup
   std::optional<LabelledGround> ground;     // built when a cuboid class shows up
   long bad = 0;
   for (std::size_t i = 0; i < scan.size(); ++i) {
@@ -92,19 +99,17 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       continue;
     }
     if (double(p.x()) * p.x() + double(p.y()) * p.y() > r2) continue;
-    const int label = scan.semantic[i];
-    auto it = class_of_label.find(label);
-    if (it == class_of_label.end()) it = class_of_label.emplace(label, classes_.fromSemanticKitti(label).value_or(-1)).first;
-    if (it->second < 0) continue;
-    const Shape shape = classes_.at(it->second).shape;
+    const int cls = classOfLabel(labels[i]);
+    if (cls < 0) continue;
+    const Shape shape = classes_.at(cls).shape;
     if (shape == Shape::Cuboid && params_.cuboid_ground_strip > 0) {
       if (!ground) ground.emplace(scan, params_.ground_labels, params_.ground_cell, params_.max_range);
       const float g = ground->lowestNear(p);
       if (std::isfinite(g) && p.z() - g <= params_.cuboid_ground_strip) continue;
     }
-    class_of[i] = it->second;
+    class_of[i] = cls;
     const bool cylinder = shape == Shape::Cylinder;
-    groups[params_.merge_cylinders && cylinder ? -1 : it->second].push_back(static_cast<int>(i));
+    groups[params_.merge_cylinders && cylinder ? -1 : cls].push_back(static_cast<int>(i));
   }
   issues.count("non-finite point", bad);
 

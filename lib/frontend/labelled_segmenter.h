@@ -5,7 +5,9 @@
 // detector gives none. Points of classes outside the ClassTable (road, building,
 // vegetation...) are not objects and are dropped.
 //
-// Robust to a real network's errors: with merge_cylinders, trunk and pole points (the classes
+// Robust to a real network's errors: each object-labelled point first takes the label most
+// points around it in 3-D carry (label_vote.h: labels bled across the range image's
+// boundaries rejoin their surface); with merge_cylinders, trunk and pole points (the classes
 // a network confuses most) are clustered together and each cluster takes the class most of
 // its points carry, so a half-confused pole stays one object; cylinder classes are clustered
 // on x, y only, so a column split in height by occlusion or bled labels stays one; boundary points bled into the
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "frontend/grid_clustering.h"
+#include "frontend/label_vote.h"
 #include "frontend/free_space.h"
 #include "frontend/view_notch.h"
 #include "frontend/segmenter.h"
@@ -30,6 +33,9 @@ struct LabelledSegmenterParams {
   double max_range = 80.0;      // metres, horizontal
   bool merge_cylinders = true;  // cluster all cylinder classes together, majority class per cluster
   double min_height_fraction = 0.5;  // clusters lower than this times their class's size_min z are dropped
+  // Each object-labelled point first takes the label most points within this radius carry
+  // (label_vote.h: labels bled across range-image boundaries; 0: off).
+  double vote_radius = 0.2;  // metres
   // Cluster cell per class name, for classes whose objects stand closer together than
   // cluster.cell joins (chairs at a table, monitors side by side); others use cluster.cell.
   std::map<std::string, double> cluster_cell_by_class;

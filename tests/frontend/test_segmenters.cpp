@@ -13,6 +13,7 @@
 #include "frontend/frontend_config.h"
 #include "frontend/geometric_segmenter.h"
 #include "frontend/grid_clustering.h"
+#include "frontend/label_vote.h"
 #include "frontend/labelled_segmenter.h"
 #include "emulator/detection_emulator.h"
 #include "synthetic_scene.h"
@@ -302,6 +303,42 @@ TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
   EXPECT_GE(pole_or_trunk, runs - 3);
   EXPECT_GE(car, runs - 2);
   EXPECT_LE(extra, runs / 2) << "bled or shadowed points formed extra objects";
+}
+
+// A wall 3 m behind a table, seen over it: a range-image labeller blurs the table's label onto
+// every third wall return along the table's upper outline (a band 1.2 m wide, 0.3 m high), as
+// the detection emulator's boundary bleeding does. Those 48 returns stand a table high and make
+// a second table 3 m behind the first; voted on by the returns within 0.2 m, they are wall
+// again and one table is left. A table return among table returns keeps its label.
+TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
+  io::LabelledScan scan;
+  for (double y = -0.5; y <= 0.5 + 1e-9; y += 0.05)  // the table's near face, x = 5
+    for (double z = -1.0; z <= -0.3 + 1e-9; z += 0.05) addLabelledPoint(scan, 5.0, y, z, 101);
+  const std::size_t table_points = scan.size();
+  int bled = 0, k = 0;
+  for (double y = -1.0; y <= 1.0 + 1e-9; y += 0.05)  // the wall, x = 8
+    for (double z = -1.0; z <= 0.5 + 1e-9; z += 0.05, ++k) {
+      const bool band = std::abs(y) <= 0.6 && z >= -0.3 && z <= 0.0 && k % 3 == 0;
+      addLabelledPoint(scan, 8.0, y, z, band ? 101 : 50);
+      bled += band;
+    }
+  ASSERT_GE(bled, 45);
+  const ClassTable classes = ClassTable::loadDefault();
+  const auto is_table = [](std::uint16_t l) { return l == 101; };
+  const std::vector<std::uint16_t> voted = frontend::voteLabels(scan, is_table, {0.2, 80.0});
+  ASSERT_EQ(voted.size(), scan.size());
+  EXPECT_EQ(std::count(voted.begin(), voted.end(), 101), static_cast<long>(table_points));
+  EXPECT_TRUE(std::all_of(voted.begin(), voted.begin() + table_points, [](std::uint16_t l) { return l == 101; }));
+  EXPECT_EQ(frontend::voteLabels(scan, is_table, {0.0, 80.0}), scan.semantic) << "radius 0: off";
+
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.vote_radius, 0.0);
+  frontend::InputIssues issues;
+  const auto voted_inst = frontend::LabelledSegmenter(classes, p).segment(scan, issues);
+  ASSERT_EQ(voted_inst.size(), 1u);
+  EXPECT_NEAR(frontend::centroidOf(voted_inst[0].points).x(), 5.0, 0.1);
+  p.vote_radius = 0;
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u) << "the bled band is a table of its own";
 }
 
 // Two cars parked side by side 0.4 m apart join on 0.3 m cells into one cluster wider than a
