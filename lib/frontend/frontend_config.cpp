@@ -286,7 +286,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       opt(c, "max_range", cfg.labelled.max_range, 1.0);
       opt(c, "merge_cylinders", cfg.labelled.merge_cylinders);
       opt(c, "min_height_fraction", cfg.labelled.min_height_fraction, 0.0);
-      opt(c, "vote_radius", cfg.labelled.vote_radius, 0.0);
+      opt(c, "vote_cell", cfg.labelled.vote_cell, 0.0);
       if (c.has("cluster")) loadCluster(c.child("cluster"), cfg.labelled.cluster);
       if (c.has("gap_cluster")) loadCluster(c.child("gap_cluster"), cfg.labelled.gap_cluster);
       opt(c, "min_split_cell", cfg.labelled.min_split_cell, 1e-3);

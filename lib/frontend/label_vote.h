@@ -4,9 +4,11 @@
 // blurs labels across the image's boundaries: pixels of a wall just above a table's edge, or
 // of a chair in front of it, come out "table" though they lie a metre away from any table in
 // 3-D, and a handful of them per frame forms a table of their own. Here each point carrying an
-// object label takes the label most of the points within `radius` of it carry (itself
-// included; a tie keeps its own): a strip of wall called table lies among wall points and
-// leaves the objects, a chair's edge called table rejoins its chair.
+// object label takes the label most of the points in the 3 x 3 x 3 cells around its own carry
+// (itself included; a tie keeps its own): a strip of wall called table lies among wall points
+// and leaves the objects, a chair's edge called table rejoins its chair. Cells, not a radius:
+// all points of one cell see the same block, so the vote costs a pass over the scan however
+// densely a near wall is sampled.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -16,7 +18,7 @@
 namespace slide::frontend {
 
 struct LabelVoteParams {
-  double radius = 0.0;      // metres; 0: off (the labels as they came)
+  double cell = 0.0;        // metres, a cell's side; 0: off (the labels as they came)
   double max_range = 80.0;  // metres, horizontal: points beyond neither vote nor are voted on
 };
 

@@ -86,7 +86,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     return it->second;
   };
   const std::vector<uint16_t> labels =
-      voteLabels(scan, [&](uint16_t l) { return classOfLabel(l) >= 0; }, {params_.vote_radius, params_.max_range});
+      voteLabels(scan, [&](uint16_t l) { return classOfLabel(l) >= 0; }, {params_.vote_cell, params_.max_range});
   // Clustering group of each class: the class itself, or -1 for every cylinder class.
   std::map<int, std::vector<int>> groups;   // group -> point indices
   std::vector<int> class_of(scan.size(), -1);

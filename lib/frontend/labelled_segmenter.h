@@ -33,9 +33,9 @@ struct LabelledSegmenterParams {
   double max_range = 80.0;      // metres, horizontal
   bool merge_cylinders = true;  // cluster all cylinder classes together, majority class per cluster
   double min_height_fraction = 0.5;  // clusters lower than this times their class's size_min z are dropped
-  // Each object-labelled point first takes the label most points within this radius carry
-  // (label_vote.h: labels bled across range-image boundaries; 0: off).
-  double vote_radius = 0.2;  // metres
+  // Each object-labelled point first takes the label most points in the 3 x 3 x 3 cells of this
+  // side around it carry (label_vote.h: labels bled across range-image boundaries; 0: off).
+  double vote_cell = 0.07;  // metres
   // Cluster cell per class name, for classes whose objects stand closer together than
   // cluster.cell joins (chairs at a table, monitors side by side); others use cluster.cell.
   std::map<std::string, double> cluster_cell_by_class;

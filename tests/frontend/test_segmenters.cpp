@@ -308,7 +308,7 @@ TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
 // A wall 3 m behind a table, seen over it: a range-image labeller blurs the table's label onto
 // every third wall return along the table's upper outline (a band 1.2 m wide, 0.3 m high), as
 // the detection emulator's boundary bleeding does. Those 48 returns stand a table high and make
-// a second table 3 m behind the first; voted on by the returns within 0.2 m, they are wall
+// a second table 3 m behind the first; voted on by the returns in the 0.1 m cells around them, they are wall
 // again and one table is left. A table return among table returns keeps its label.
 TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
   io::LabelledScan scan;
@@ -325,19 +325,19 @@ TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
   ASSERT_GE(bled, 45);
   const ClassTable classes = ClassTable::loadDefault();
   const auto is_table = [](std::uint16_t l) { return l == 101; };
-  const std::vector<std::uint16_t> voted = frontend::voteLabels(scan, is_table, {0.2, 80.0});
+  const std::vector<std::uint16_t> voted = frontend::voteLabels(scan, is_table, {0.1, 80.0});
   ASSERT_EQ(voted.size(), scan.size());
   EXPECT_EQ(std::count(voted.begin(), voted.end(), 101), static_cast<long>(table_points));
   EXPECT_TRUE(std::all_of(voted.begin(), voted.begin() + table_points, [](std::uint16_t l) { return l == 101; }));
-  EXPECT_EQ(frontend::voteLabels(scan, is_table, {0.0, 80.0}), scan.semantic) << "radius 0: off";
+  EXPECT_EQ(frontend::voteLabels(scan, is_table, {0.0, 80.0}), scan.semantic) << "cell 0: off";
 
   frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
-  ASSERT_GT(p.vote_radius, 0.0);
+  ASSERT_GT(p.vote_cell, 0.0);
   frontend::InputIssues issues;
   const auto voted_inst = frontend::LabelledSegmenter(classes, p).segment(scan, issues);
   ASSERT_EQ(voted_inst.size(), 1u);
   EXPECT_NEAR(frontend::centroidOf(voted_inst[0].points).x(), 5.0, 0.1);
-  p.vote_radius = 0;
+  p.vote_cell = 0;
   EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u) << "the bled band is a table of its own";
 }
 
