@@ -66,6 +66,8 @@ LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams
     const ClassInfo* c = classes_.findByName(name);
     if (!c) throw std::invalid_argument("cluster_cell_by_class: no class named '" + name + "' in the class table");
     cell_of_class_[c->id] = cell;
+    // Cylinder classes clustered together (merge_cylinders) take the finest of their cells.
+    if (c->shape == Shape::Cylinder && (cylinder_cell_ <= 0 || cell < cylinder_cell_)) cylinder_cell_ = cell;
   }
 }
 
@@ -121,6 +123,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     // bled labels in the middle stays one object.
     cp.planar = group == -1 || (group >= 0 && classes_.at(group).shape == Shape::Cylinder);
     if (const auto it = cell_of_class_.find(group); it != cell_of_class_.end()) cp.cell = it->second;
+    if (group == -1 && cylinder_cell_ > 0) cp.cell = cylinder_cell_;
     std::vector<std::vector<int>> clusters = clusterGrid(scan.xyz, idx, cp);
     if (group >= 0 && classes_.at(group).shape == Shape::Cuboid && params_.min_split_cell < cp.cell) {
       // Boxes parked a few decimetres apart join at cp.cell: a cluster whose footprint is

@@ -73,6 +73,7 @@ class LabelledSegmenter : public LidarSegmenter {
   ClassTable classes_;
   LabelledSegmenterParams params_;
   std::map<int, double> cell_of_class_;  // cluster_cell_by_class by class id
+  double cylinder_cell_ = 0;             // the finest cell of a cylinder class (0: none given)
 };
 
 }  // namespace slide::frontend

@@ -162,6 +162,25 @@ TEST(LabelledSegmenter, ClassCellKeepsCloseChairsApart) {
   EXPECT_THROW(frontend::LabelledSegmenter(classes, p), std::invalid_argument);
 }
 
+// Two trunks (label trunk, radius 0.18 m) whose near halves stand 0.37 m apart across the line
+// of sight: 0.3 m cells join them (one cylinder fitted across both), the cylinder classes' own
+// 0.2 m cells keep them apart. Trunk and pole points are clustered together and take the finest
+// of the cylinder classes' cells.
+TEST(LabelledSegmenter, CylinderCellKeepsCloseTrunksApart) {
+  io::LabelledScan scan;
+  for (double yc : {0.0, 0.73})
+    for (double a = M_PI / 2; a <= 3 * M_PI / 2 + 1e-9; a += M_PI / 18)  // the half facing the sensor at the origin
+      for (double z = -1.0; z <= 2.0; z += 0.1) addLabelledPoint(scan, 6.0 + 0.18 * std::cos(a), yc + 0.18 * std::sin(a), z, 71);
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_TRUE(p.merge_cylinders);
+  frontend::InputIssues issues;
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u);
+  p.cluster_cell_by_class.erase("trunk");
+  p.cluster_cell_by_class.erase("pole");
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 1u) << "0.3 m cells join the trunks";
+}
+
 // Two cars' end faces side by side (label car, each 1.8 m wide, 0.6 m apart along y = 4), seen
 // far off: one return every 0.05 m along a beam, beams 0.35 m apart in height, so each face
 // falls into strips of 37 returns on 3-D gap cells, every one under gap_cluster.min_points. Two
