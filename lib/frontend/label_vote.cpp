@@ -3,13 +3,12 @@
 #include <array>
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace slide::frontend {
 
 namespace {
-// A cell's integer coordinates packed in 21 bits each (+-1 million cells: +-100 km at 0.1 m).
+// A cell's integer coordinates packed in 21 bits each (+-1 million cells: +-70 km at 0.07 m).
 std::int64_t cellKey(int x, int y, int z) {
   constexpr std::int64_t kMask = (1 << 21) - 1;
   return ((static_cast<std::int64_t>(x) & kMask) << 42) | ((static_cast<std::int64_t>(y) & kMask) << 21) |

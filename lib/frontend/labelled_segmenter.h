@@ -37,7 +37,9 @@ struct LabelledSegmenterParams {
   // side around it carry (label_vote.h: labels bled across range-image boundaries; 0: off).
   double vote_cell = 0.07;  // metres
   // Cluster cell per class name, for classes whose objects stand closer together than
-  // cluster.cell joins (chairs at a table, monitors side by side); others use cluster.cell.
+  // cluster.cell joins (chairs at a table, monitors side by side, trunks); others use
+  // cluster.cell. With merge_cylinders the cylinder classes, clustered together, take the finest
+  // of their cells.
   std::map<std::string, double> cluster_cell_by_class;
   // A cluster of a cuboid class whose footprint exceeds the class's size_max is clustered
   // again on cells half as large, down to this cell (cars parked a few decimetres apart join

@@ -327,8 +327,8 @@ TEST(LabelledSegmenter, RobustToEmulatedDetectorErrors) {
 // A wall 3 m behind a table, seen over it: a range-image labeller blurs the table's label onto
 // every third wall return along the table's upper outline (a band 1.2 m wide, 0.3 m high), as
 // the detection emulator's boundary bleeding does. Those 48 returns stand a table high and make
-// a second table 3 m behind the first; voted on by the returns in the 0.1 m cells around them, they are wall
-// again and one table is left. A table return among table returns keeps its label.
+// a second table 3 m behind the first; voted on by the returns in the cells around them, they
+// are wall again and one table is left. A table return among table returns keeps its label.
 TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
   io::LabelledScan scan;
   for (double y = -0.5; y <= 0.5 + 1e-9; y += 0.05)  // the table's near face, x = 5
