@@ -8,7 +8,9 @@
 namespace slide::frontend {
 
 namespace {
-// A cell's integer coordinates packed in 21 bits each (+-1 million cells: +-70 km at 0.07 m).
+constexpr double kMaxCell = 1 << 20;  // cell coordinates within +-2^20 pack into 21 bits each, none aliased
+
+// A cell's integer coordinates packed in 21 bits each (+-70 km at 0.07 m).
 std::int64_t cellKey(int x, int y, int z) {
   constexpr std::int64_t kMask = (1 << 21) - 1;
   return ((static_cast<std::int64_t>(x) & kMask) << 42) | ((static_cast<std::int64_t>(y) & kMask) << 21) |
@@ -38,9 +40,10 @@ std::vector<uint16_t> voteLabels(const io::LabelledScan& scan, const std::functi
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const Eigen::Vector3f& p = scan.xyz[i];
     if (!p.allFinite() || double(p.x()) * p.x() + double(p.y()) * p.y() > range2) continue;
+    const std::array<double, 3> c{std::floor(p.x() * inv), std::floor(p.y() * inv), std::floor(p.z() * inv)};
+    if (std::abs(c[0]) >= kMaxCell || std::abs(c[1]) >= kMaxCell || std::abs(c[2]) >= kMaxCell) continue;  // a return kilometres up
     usable[i] = 1;
-    cell[i] = {static_cast<int>(std::floor(p.x() * inv)), static_cast<int>(std::floor(p.y() * inv)),
-               static_cast<int>(std::floor(p.z() * inv))};
+    cell[i] = {static_cast<int>(c[0]), static_cast<int>(c[1]), static_cast<int>(c[2])};
     if (is_object(scan.semantic[i])) objects.push_back(static_cast<int>(i));
   }
   if (objects.empty()) return out;

@@ -23,7 +23,8 @@ struct LabelVoteParams {
 };
 
 // The scan's labels after the vote. Only points for which `is_object(label)` holds are voted
-// on; every finite point within max_range votes. Same size as scan.semantic. Requires labels
+// on; every finite point within max_range votes (a point too far above or below to have a cell
+// keeps its label and has no vote). Same size as scan.semantic. Requires labels
 // (scan.hasLabels()).
 std::vector<uint16_t> voteLabels(const io::LabelledScan& scan, const std::function<bool(uint16_t)>& is_object,
                                  const LabelVoteParams& params);

@@ -349,6 +349,11 @@ TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
   EXPECT_EQ(std::count(voted.begin(), voted.end(), 101), static_cast<long>(table_points));
   EXPECT_TRUE(std::all_of(voted.begin(), voted.begin() + table_points, [](std::uint16_t l) { return l == 101; }));
   EXPECT_EQ(frontend::voteLabels(scan, is_table, {0.0, 80.0}), scan.semantic) << "cell 0: off";
+  io::LabelledScan hostile = scan;  // a return no cell holds (a broken driver): keeps its label, votes for nothing
+  addLabelledPoint(hostile, 5.0, 0.0, 3e38, 101);
+  const std::vector<std::uint16_t> hostile_voted = frontend::voteLabels(hostile, is_table, {0.1, 80.0});
+  EXPECT_EQ(hostile_voted.back(), 101);
+  EXPECT_TRUE(std::equal(voted.begin(), voted.end(), hostile_voted.begin()));
 
   frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
   ASSERT_GT(p.vote_cell, 0.0);
