@@ -62,6 +62,9 @@ struct RobotFigures {
   // took, at no real object} (one-to-one matching, as for precision).
   std::map<int, std::array<int, 5>> landmark_classes;
   int second_landmarks = 0;
+  // Per true class: recall over the real objects near the paths, precision of the landmarks
+  // that claim the class against every real object (as the overall figures).
+  std::map<int, eval::ClassScore> class_recall, class_precision;
 };
 
 // Ground-truth objects within `range` (horizontally) of any robot's true path: what the team
@@ -140,6 +143,8 @@ RobotFigures evaluateRobot(int a, const RobotRunLog& log, const TeamTruth& truth
   f.objects = eval::scoreObjectMap(in_world, visible, mo);
   const eval::ObjectMappingScore against_all = eval::scoreObjectMap(in_world, truth.objects, mo);
   f.objects.overall.precision = against_all.overall.precision;
+  for (const eval::ClassScore& c : f.objects.per_class) f.class_recall[c.class_id] = c;
+  for (const eval::ClassScore& c : against_all.per_class) f.class_precision[c.class_id] = c;
   eval::ObjectMatchOptions any = mo;
   any.match_classes = false;
   const eval::ObjectMappingScore against_any = eval::scoreObjectMap(in_world, truth.objects, any);
@@ -452,6 +457,21 @@ int main(int argc, char** argv) {
     report.add("demo.precision", bench::mean(precisions), "", false, 0.95).note = object_note;
     report.add("demo.recall", bench::mean(recalls), "", false, 0.92).note = object_note;
     report.add("demo.f1", bench::mean(f1s), "", false, 0.93).note = object_note;
+    // Per true class, pooled over robots (every robot's landmarks and its share of the objects).
+    std::map<int, std::array<std::size_t, 4>> by_class;  // {recall TP, objects, precision TP, landmarks}
+    for (const RobotFigures& f : figs) {
+      for (const auto& [c, s] : f.class_recall) by_class[c][0] += s.true_positives, by_class[c][1] += s.num_gt;
+      for (const auto& [c, s] : f.class_precision) by_class[c][2] += s.true_positives, by_class[c][3] += s.num_est;
+    }
+    for (const auto& [c, n] : by_class) {
+      if (n[1] == 0) continue;  // no real object of the class near the paths
+      const ClassInfo* info = classes.find(c);
+      const std::string name = "demo.class." + (info ? info->name : std::to_string(c));
+      report.add(name + ".precision", n[3] ? double(n[2]) / n[3] : 0.0, "").note =
+          std::to_string(n[2]) + " of " + std::to_string(n[3]) + " landmarks of the class at a real one, all robots; " + object_note;
+      report.add(name + ".recall", double(n[0]) / n[1], "").note =
+          std::to_string(n[0]) + " of " + std::to_string(n[1]) + " (robots x real objects of the class near the paths) found as the class";
+    }
     report.add("demo.second_landmarks", bench::mean(second_shares), "", true, 0.02).note =
         "share of a robot's landmarks that are a second landmark of a real object of their class (within the match "
         "distance of one another landmark took), mean over robots; scored by simulator truth";
