@@ -467,8 +467,9 @@ int main(int argc, char** argv) {
       if (n[1] == 0) continue;  // no real object of the class near the paths
       const ClassInfo* info = classes.find(c);
       const std::string name = "demo.class." + (info ? info->name : std::to_string(c));
-      report.add(name + ".precision", n[3] ? double(n[2]) / n[3] : 0.0, "").note =
-          std::to_string(n[2]) + " of " + std::to_string(n[3]) + " landmarks of the class at a real one, all robots; " + object_note;
+      if (n[3] > 0)  // (no landmark of the class: no precision to give)
+        report.add(name + ".precision", double(n[2]) / n[3], "").note =
+            std::to_string(n[2]) + " of " + std::to_string(n[3]) + " landmarks of the class at a real one, all robots; " + object_note;
       report.add(name + ".recall", double(n[0]) / n[1], "").note =
           std::to_string(n[0]) + " of " + std::to_string(n[1]) + " (robots x real objects of the class near the paths) found as the class";
     }
