@@ -471,7 +471,8 @@ int main(int argc, char** argv) {
         report.add(name + ".precision", double(n[2]) / n[3], "").note =
             std::to_string(n[2]) + " of " + std::to_string(n[3]) + " landmarks of the class at a real one, all robots; " + object_note;
       report.add(name + ".recall", double(n[0]) / n[1], "").note =
-          std::to_string(n[0]) + " of " + std::to_string(n[1]) + " (robots x real objects of the class near the paths) found as the class";
+          std::to_string(n[0]) + " of " + std::to_string(n[1]) +
+          " (robots x real objects of the class near the paths) found as the class; " + object_note;
     }
     report.add("demo.second_landmarks", bench::mean(second_shares), "", true, 0.02).note =
         "share of a robot's landmarks that are a second landmark of a real object of their class (within the match "
