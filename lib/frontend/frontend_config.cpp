@@ -331,6 +331,13 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "moving_vacated_share", p.moving_vacated_share, 0.0, 1.0);
     opt(c, "moving_vacated_min_points", p.moving_vacated_min_points, 1);
     opt(c, "moving_vacated_depth", p.moving_vacated_depth, 0.0, 2.0);
+    opt(c, "moving_shift", p.moving_shift, 0.0);
+    opt(c, "moving_shift_interval", p.moving_shift_interval, 0.0, 10.0);
+    opt(c, "moving_shift_max_interval", p.moving_shift_max_interval, 0.0, 60.0);
+    opt(c, "moving_shift_reach", p.moving_shift_reach, 0.0, 50.0);
+    opt(c, "moving_shift_similarity", p.moving_shift_similarity, 1.0);
+    opt(c, "moving_shift_quantile", p.moving_shift_quantile, 0.0, 0.5);
+    opt(c, "moving_shift_min_points", p.moving_shift_min_points, 1);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);

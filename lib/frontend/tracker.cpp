@@ -213,6 +213,49 @@ bool Tracker::vacated(const Track& t, const Observation& newest) const {
   return false;
 }
 
+bool Tracker::shifted(const Track& t, const Observation& newest, double min_interval) const {
+  if (params_.moving_shift <= 0 || classes_.at(t.class_id).shape != Shape::Cuboid) return false;
+  const auto min_points = static_cast<std::size_t>(std::max(1, params_.moving_shift_min_points));
+  if (newest.points.size() < min_points) return false;
+  const auto interval = static_cast<std::int64_t>(min_interval * 1e6);
+  const Observation* earlier = nullptr;  // the latest one at least the interval older
+  for (auto it = t.observations.rbegin(); it != t.observations.rend(); ++it)
+    if (newest.utime - it->utime >= interval) {
+      earlier = &*it;
+      break;
+    }
+  const auto max_interval = static_cast<std::int64_t>(params_.moving_shift_max_interval * 1e6);
+  if (!earlier || newest.utime - earlier->utime > max_interval) return false;
+  if (earlier->points.size() < min_points) return false;
+  const Eigen::Vector2d step = (centroidOf(newest.points) - centroidOf(earlier->points)).head<2>();
+  if (!step.allFinite() || step.norm() < params_.moving_shift) return false;
+  const Eigen::Vector2d u = step.normalized();
+  const double q = std::clamp(params_.moving_shift_quantile, 0.0, 0.5);
+  auto ends = [&](const Cloud& c) {
+    std::vector<double> d;
+    d.reserve(c.size());
+    for (const auto& p : c) d.push_back(u.dot(p.head<2>().cast<double>()));
+    const auto lo = static_cast<std::ptrdiff_t>(q * static_cast<double>(d.size() - 1));
+    const auto hi = static_cast<std::ptrdiff_t>((1 - q) * static_cast<double>(d.size() - 1));
+    std::nth_element(d.begin(), d.begin() + lo, d.end());
+    const double a = d[lo];
+    std::nth_element(d.begin(), d.begin() + hi, d.end());
+    return std::pair{a, d[hi]};
+  };
+  const auto [lo0, hi0] = ends(earlier->points);
+  const auto [lo1, hi1] = ends(newest.points);
+  // The same view of one rigid body: about as many points, about as long along the shift.
+  const double n0 = static_cast<double>(earlier->points.size()), n1 = static_cast<double>(newest.points.size());
+  const double ratio = params_.moving_shift_similarity;
+  if (std::max(n0, n1) > ratio * std::min(n0, n1)) return false;
+  const double l0 = std::max(hi0 - lo0, 0.1), l1 = std::max(hi1 - lo1, 0.1);
+  if (std::max(l0, l1) > ratio * std::min(l0, l1)) return false;
+  // Along its length: a box seen at least as long as its class's shortest along the shift (the
+  // quantiles' share of it). Not the next car of a row, seen end-on, across its width.
+  if (std::min(l0, l1) < (1 - 2 * q) * classes_.at(t.class_id).size_min.x()) return false;
+  return lo1 - lo0 >= params_.moving_shift && hi1 - hi0 >= params_.moving_shift;
+}
+
 void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   if (!frame.odom_pose.matrix().allFinite()) {
     issues.count("non-finite odometry pose");
@@ -246,6 +289,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     Obs o{inst.class_id, inst.confidence,
           {transformCloud(frame.odom_pose, subsample(pts, params_.max_points_per_observation)),
            frame.odom_pose.translation(),
+           frame.utime,
            transformCloud(frame.odom_pose, subsample(inst.free_space, kFreeCellsPerPoint * params_.max_points_per_observation))},
           {}};
     if (params_.drop_oversized) {
@@ -265,7 +309,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
 
   std::map<std::int64_t, bool> matched;
   auto apply = [&](Track& t, Obs& o) {
-    if (!t.moving && vacated(t, o.seen)) t.moving = true;
+    if (!t.moving && (vacated(t, o.seen) || shifted(t, o.seen, params_.moving_shift_interval))) t.moving = true;
     ++t.hits;
     t.missed = 0;
     t.confidence_sum += o.confidence;
@@ -298,7 +342,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   };
   // 1. Per class. 2. Leftovers against unmatched tracks of other classes of the same shape
   // (a segmenter may call one trunk a pole in some frames; the track's class is the majority
-  // of its observations). 3. New tracks for the rest.
+  // of its observations).
   std::vector<Obs> leftovers;
   for (auto& [class_id, obs] : by_class) {
     const ClassInfo& info = classes_.at(class_id);
@@ -317,6 +361,27 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
                                 info.shape, info.association_distance * params_.gate_scale)
                     : std::move(one);
     for (auto& l : left) fresh.push_back(std::move(l));
+  }
+  // 3. A box that moved beyond the gate since the previous frame: its track, now moving
+  // (TrackerParams::moving_shift_reach), rather than a new track. 4. New tracks for the rest.
+  if (params_.moving_shift > 0 && params_.moving_shift_reach > 0) {
+    std::vector<Obs> rest;
+    for (auto& o : fresh) {
+      Track* best = nullptr;
+      double best_d = params_.moving_shift_reach;
+      for (auto& [id, t] : tracks_) {
+        if (matched.count(id) || t.missed > 0 || t.class_id != o.class_id || t.observations.empty()) continue;
+        const double d = (t.last_centroid - o.centroid).head<2>().norm();
+        if (d < best_d && shifted(t, o.seen, 0.0)) best = &t, best_d = d;
+      }
+      if (!best) {
+        rest.push_back(std::move(o));
+        continue;
+      }
+      best->moving = true;
+      apply(*best, o);
+    }
+    fresh = std::move(rest);
   }
   for (auto& o : fresh) {
     Track t;

@@ -37,6 +37,22 @@ struct TrackerParams {
   double moving_vacated_share = 0.0;
   int moving_vacated_min_points = 10;
   double moving_vacated_depth = 0.3;
+  // A box track is moving also when its whole extent has shifted: between the newest observation
+  // and the latest one at least moving_shift_interval seconds older, the centroid and both ends
+  // of the points' extent along that shift (their moving_shift_quantile and 1 - that quantile)
+  // moved by at least moving_shift metres the same way. Seeing more of a parked car moves one end
+  // of its extent, not both; a car driving off moves both (on a far lane, where few lines of sight
+  // cross where it stood). 0: off.
+  double moving_shift = 0.0;
+  double moving_shift_interval = 0.3;
+  double moving_shift_max_interval = 1.0;  // a track seen again after longer is not compared
+  // An instance left without a track that shows the whole box of a track seen in the previous
+  // frame (and not in this one) shifted so, within this distance (m, x-y), beyond the gate: that
+  // car drove on; it continues its track, judged moving (0: off).
+  double moving_shift_reach = 0.0;
+  double moving_shift_similarity = 1.5;    // the two views' point counts and lengths within this ratio
+  double moving_shift_quantile = 0.1;
+  int moving_shift_min_points = 10;  // each of the two observations
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
   // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several
@@ -82,6 +98,7 @@ struct TrackerParams {
 struct Observation {
   Cloud points;
   Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();  // the body position it was seen from
+  std::int64_t utime = 0;                               // the frame's time
   Cloud free_space;  // cells near it the sensor saw through (Instance::free_space)
 };
 
@@ -128,6 +145,10 @@ class Tracker {
   // where `newest`'s lines of sight passed through (TrackerParams::moving_vacated_share).
   // `newest` may be one of t's observations (then it is not tested against itself).
   bool vacated(const Track& t, const Observation& newest) const;
+  // Whether `newest` shows a box track's whole extent shifted (TrackerParams::moving_shift),
+  // against its observations so far.
+  // `newest` is compared with the latest observation at least min_interval seconds older.
+  bool shifted(const Track& t, const Observation& newest, double min_interval) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
   // or pole (its instances alternated between them, or it was split in a frame): merged. A
   // merged track counts as matched in this frame when either half was (`matched`).
