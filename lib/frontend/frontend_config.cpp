@@ -335,6 +335,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "moving_shift_interval", p.moving_shift_interval, 0.0, 10.0);
     opt(c, "moving_shift_max_interval", p.moving_shift_max_interval, 0.0, 60.0);
     opt(c, "moving_shift_reach", p.moving_shift_reach, 0.0, 50.0);
+    opt(c, "moving_predict", p.moving_predict);
     opt(c, "moving_shift_similarity", p.moving_shift_similarity, 1.0);
     opt(c, "moving_shift_quantile", p.moving_shift_quantile, 0.0, 0.5);
     opt(c, "moving_shift_min_points", p.moving_shift_min_points, 1);

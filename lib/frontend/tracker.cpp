@@ -34,7 +34,9 @@ void absorb(Track& older, Track& younger, int max_observations) {
   for (const auto& [c, v] : younger.class_votes) older.class_votes[c] += v;
   older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
                                     [](const auto& x, const auto& y) { return x.second < y.second; })->first;
-  if (younger.missed < older.missed) older.missed = younger.missed, older.last_centroid = younger.last_centroid;
+  if (younger.missed < older.missed)
+    older.missed = younger.missed, older.last_centroid = younger.last_centroid, older.last_utime = younger.last_utime,
+    older.velocity = younger.velocity;
   for (auto& o : younger.observations) older.observations.push_back(std::move(o));
   while (static_cast<int>(older.observations.size()) > max_observations) older.observations.pop_front();
   older.moving = older.moving || younger.moving;
@@ -308,12 +310,25 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 
   std::map<std::int64_t, bool> matched;
+  // Where a track is looked for in this frame (TrackerParams::moving_predict).
+  auto expected = [&](const Track& t) -> Eigen::Vector3d {
+    const double dt = 1e-6 * static_cast<double>(frame.utime - t.last_utime);
+    if (!params_.moving_predict || !t.moving || dt <= 0 || dt > params_.moving_shift_max_interval) return t.last_centroid;
+    return t.last_centroid + dt * t.velocity;
+  };
   auto apply = [&](Track& t, Obs& o) {
     if (!t.moving && (vacated(t, o.seen) || shifted(t, o.seen, params_.moving_shift_interval))) t.moving = true;
     ++t.hits;
     t.missed = 0;
     t.confidence_sum += o.confidence;
+    const double dt = 1e-6 * static_cast<double>(o.seen.utime - t.last_utime);
+    if (t.moving && t.hits > 1 && dt > 0 && dt <= params_.moving_shift_max_interval) {
+      t.velocity = (o.centroid - t.last_centroid) / dt;
+      t.velocity.z() = 0;
+      if (!t.velocity.allFinite()) t.velocity.setZero();
+    }
     t.last_centroid = o.centroid;
+    t.last_utime = o.seen.utime;
     t.class_votes[o.class_id] += std::isfinite(o.confidence) ? std::clamp(o.confidence, 1e-3f, 1.0f) : 1e-3f;
     t.class_id = std::max_element(t.class_votes.begin(), t.class_votes.end(),
                                   [](const auto& x, const auto& y) { return x.second < y.second; })->first;
@@ -332,7 +347,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     if (cand.empty()) return obs;
     Eigen::MatrixXd cost(obs.size(), cand.size());
     for (std::size_t i = 0; i < obs.size(); ++i)
-      for (std::size_t j = 0; j < cand.size(); ++j) cost(i, j) = centroidDistance(shape, obs[i].centroid, cand[j]->last_centroid);
+      for (std::size_t j = 0; j < cand.size(); ++j) cost(i, j) = centroidDistance(shape, obs[i].centroid, expected(*cand[j]));
     const std::vector<int> assign = assignment::solveGatedAssignment(cost, gate);
     for (std::size_t i = 0; i < obs.size(); ++i) {
       if (assign[i] >= 0) apply(*cand[assign[i]], obs[i]);

@@ -50,6 +50,10 @@ struct TrackerParams {
   // frame (and not in this one) shifted so, within this distance (m, x-y), beyond the gate: that
   // car drove on; it continues its track, judged moving (0: off).
   double moving_shift_reach = 0.0;
+  // A moving track is looked for where its velocity carries it (for at most
+  // moving_shift_max_interval seconds), not where it was last seen: the next view of a passing car
+  // continues its track rather than a track another car left there.
+  bool moving_predict = false;
   double moving_shift_similarity = 1.5;    // the two views' point counts and lengths within this ratio
   double moving_shift_quantile = 0.1;
   int moving_shift_min_points = 10;  // each of the two observations
@@ -111,6 +115,10 @@ struct Track {
   double confidence_sum = 0;
   std::map<int, double> class_votes;  // observations per class weighed by confidence; class_id is the largest
   Eigen::Vector3d last_centroid = Eigen::Vector3d::Zero();  // odometry frame
+  std::int64_t last_utime = 0;                              // when last_centroid was seen
+  // A moving track's velocity (odometry frame, m/s, x-y) from its last two views: where it is
+  // looked for in the next frame (TrackerParams::moving_predict).
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   std::deque<Observation> observations;  // the latest max_observations
   Cloud accumulated() const;
   Cloud freeSpace() const;  // the observations' free_space cells together

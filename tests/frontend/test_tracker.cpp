@@ -769,6 +769,34 @@ TEST(Tracker, CarsPassingBeyondTheGateAreMovingARowGlimpsedEndOnIsNot) {
   for (const auto& [id, t] : row.tracks()) EXPECT_FALSE(t.moving) << "track " << id;
 }
 
+// A small car (its 3.6 m side along x at y = 20) drives on at 1.2 m per frame at 3 Hz; a track
+// another car left 1 m ahead of where this one was last seen (a 1 m piece of a side at y = 20.3,
+// seen once) waits there. The car's fourth view lies 0.2 m from that track and 1.2 m from its own
+// (both within the gate): looked for where it was, the car's view feeds the other track; looked
+// for where its velocity (3.6 m/s) carries it, it continues its own.
+TEST(Tracker, AMovingCarIsLookedForWhereItsVelocityCarriesIt) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_TRUE(cfg.tracker.moving_predict) << "on by default";
+  for (bool predict : {true, false}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.moving_predict = predict;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance piece = carInstance();
+    addFace(piece, 5.1, 20.3, 6.1, 20.3);
+    std::vector<std::vector<frontend::Instance>> frames;
+    for (int k = 0; k < 4; ++k) frames.push_back({carSide(1.2 * k, 3.6)});
+    frames[0].push_back(piece);
+    feedAt3Hz(tracker, 0, frames);
+    ASSERT_EQ(tracker.tracks().size(), 2u) << "predict " << predict;
+    const frontend::Track& car = tracker.tracks().begin()->second;  // the lower id: the car's
+    const frontend::Track& left = std::next(tracker.tracks().begin())->second;
+    EXPECT_TRUE(car.moving);
+    EXPECT_EQ(car.hits, predict ? 4 : 3) << "predict " << predict;
+    EXPECT_EQ(left.hits, predict ? 1 : 2) << "predict " << predict;
+  }
+}
+
 // A car driving away from the sensor, seen end-on (its 1.8 m rear face across x at y = 10, then
 // 11.6): it moved 1.6 m, beyond the 1.5 m gate, so the second view starts a track of its own,
 // and the box merge joins the two (together 1.8 x 1.6 m, one holding the other). The second
