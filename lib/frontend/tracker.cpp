@@ -23,6 +23,10 @@ Cloud subsample(const Cloud& c, int max_points) {
   return out;
 }
 
+// Seconds from utime a to utime b, in floating point: times off a bus may be anything, and their
+// integer difference may overflow.
+double secondsBetween(std::int64_t a, std::int64_t b) { return 1e-6 * (static_cast<double>(b) - static_cast<double>(a)); }
+
 // Free cells kept per observation, per point kept: a car's cells within its typical length number a
 // few thousand at most; a hostile instance may carry any number.
 constexpr int kFreeCellsPerPoint = 4;
@@ -219,15 +223,13 @@ bool Tracker::shifted(const Track& t, const Observation& newest, double min_inte
   if (params_.moving_shift <= 0 || classes_.at(t.class_id).shape != Shape::Cuboid) return false;
   const auto min_points = static_cast<std::size_t>(std::max(1, params_.moving_shift_min_points));
   if (newest.points.size() < min_points) return false;
-  const auto interval = static_cast<std::int64_t>(min_interval * 1e6);
   const Observation* earlier = nullptr;  // the latest one at least the interval older
   for (auto it = t.observations.rbegin(); it != t.observations.rend(); ++it)
-    if (newest.utime - it->utime >= interval) {
+    if (secondsBetween(it->utime, newest.utime) >= min_interval) {
       earlier = &*it;
       break;
     }
-  const auto max_interval = static_cast<std::int64_t>(params_.moving_shift_max_interval * 1e6);
-  if (!earlier || newest.utime - earlier->utime > max_interval) return false;
+  if (!earlier || secondsBetween(earlier->utime, newest.utime) > params_.moving_shift_max_interval) return false;
   if (earlier->points.size() < min_points) return false;
   const Eigen::Vector2d step = (centroidOf(newest.points) - centroidOf(earlier->points)).head<2>();
   if (!step.allFinite() || step.norm() < params_.moving_shift) return false;
@@ -312,7 +314,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   std::map<std::int64_t, bool> matched;
   // Where a track is looked for in this frame (TrackerParams::moving_predict).
   auto expected = [&](const Track& t) -> Eigen::Vector3d {
-    const double dt = 1e-6 * static_cast<double>(frame.utime - t.last_utime);
+    const double dt = secondsBetween(t.last_utime, frame.utime);
     if (!params_.moving_predict || !t.moving || dt <= 0 || dt > params_.moving_shift_max_interval) return t.last_centroid;
     return t.last_centroid + dt * t.velocity;
   };
@@ -321,7 +323,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     ++t.hits;
     t.missed = 0;
     t.confidence_sum += o.confidence;
-    const double dt = 1e-6 * static_cast<double>(o.seen.utime - t.last_utime);
+    const double dt = secondsBetween(t.last_utime, o.seen.utime);
     if (t.moving && t.hits > 1 && dt > 0 && dt <= params_.moving_shift_max_interval) {
       t.velocity = (o.centroid - t.last_centroid) / dt;
       t.velocity.z() = 0;

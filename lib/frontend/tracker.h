@@ -38,11 +38,14 @@ struct TrackerParams {
   int moving_vacated_min_points = 10;
   double moving_vacated_depth = 0.3;
   // A box track is moving also when its whole extent has shifted: between the newest observation
-  // and the latest one at least moving_shift_interval seconds older, the centroid and both ends
-  // of the points' extent along that shift (their moving_shift_quantile and 1 - that quantile)
-  // moved by at least moving_shift metres the same way. Seeing more of a parked car moves one end
-  // of its extent, not both; a car driving off moves both (on a far lane, where few lines of sight
-  // cross where it stood). 0: off.
+  // and the latest one at least moving_shift_interval (at most moving_shift_max_interval) seconds
+  // older, the centroid and both ends of the points' extent along that shift (their
+  // moving_shift_quantile and 1 - that quantile) moved by at least moving_shift metres the same
+  // way, the two views alike (point counts and lengths within moving_shift_similarity times, each
+  // of at least moving_shift_min_points) and as long along the shift as the class's shortest
+  // length allows. Seeing more of a parked car moves one end of its extent, not both; the next car
+  // of a row, glimpsed end-on, jumps across its width; a car driving off moves both ends (on a far
+  // lane, where few lines of sight cross where it stood). 0: off.
   double moving_shift = 0.0;
   double moving_shift_interval = 0.3;
   double moving_shift_max_interval = 1.0;  // a track seen again after longer is not compared
@@ -153,9 +156,8 @@ class Tracker {
   // where `newest`'s lines of sight passed through (TrackerParams::moving_vacated_share).
   // `newest` may be one of t's observations (then it is not tested against itself).
   bool vacated(const Track& t, const Observation& newest) const;
-  // Whether `newest` shows a box track's whole extent shifted (TrackerParams::moving_shift),
-  // against its observations so far.
-  // `newest` is compared with the latest observation at least min_interval seconds older.
+  // Whether `newest` shows a box track's whole extent shifted (TrackerParams::moving_shift) against
+  // the track's latest observation at least min_interval seconds older than it.
   bool shifted(const Track& t, const Observation& newest, double min_interval) const;
   // Two column tracks whose last centroids are within column_merge_distance follow one trunk
   // or pole (its instances alternated between them, or it was split in a frame): merged. A

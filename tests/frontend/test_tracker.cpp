@@ -797,6 +797,36 @@ TEST(Tracker, AMovingCarIsLookedForWhereItsVelocityCarriesIt) {
   }
 }
 
+// Frame times off a bus may be anything. A car 1.2 m on from one frame to the next, at times near
+// the two ends of int64 whose integer difference would wrap to +0.5 s (a shift within the
+// moving test's interval): the times lie 1.8e13 s apart the other way, so the views are not
+// compared, the car is not moving and no velocity is taken. Times that run backwards or jump
+// between the extremes afterwards fault nothing.
+TEST(Tracker, FrameTimesAtTheExtremesNeitherOverflowNorMoveACar) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_LT(cfg.tracker.moving_shift_interval, 0.5);
+  ASSERT_GT(cfg.tracker.moving_shift_max_interval, 0.5);
+  frontend::Tracker tracker(classes, cfg.tracker, cfg.fit);
+  frontend::InputIssues issues;
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max(), kMin = std::numeric_limits<std::int64_t>::min();
+  const std::int64_t times[] = {kMax - 249999, kMin + 250000, 0, kMax, -1};
+  for (int k = 0; k < 5; ++k) {
+    frontend::FrameInstances f;
+    f.utime = times[k];
+    f.instances = {carSide(k < 2 ? 1.2 * k : 1.2, 3.6)};
+    tracker.update(f, issues);
+    if (k == 1) {
+      ASSERT_EQ(tracker.tracks().size(), 1u);
+      EXPECT_FALSE(tracker.tracks().begin()->second.moving);
+    }
+  }
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_FALSE(tracker.tracks().begin()->second.moving);
+  EXPECT_EQ(tracker.tracks().begin()->second.hits, 5);
+  EXPECT_TRUE(tracker.tracks().begin()->second.velocity.isZero());
+}
+
 // A car driving away from the sensor, seen end-on (its 1.8 m rear face across x at y = 10, then
 // 11.6): it moved 1.6 m, beyond the 1.5 m gate, so the second view starts a track of its own,
 // and the box merge joins the two (together 1.8 x 1.6 m, one holding the other). The second
