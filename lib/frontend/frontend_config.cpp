@@ -339,6 +339,9 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "moving_shift_similarity", p.moving_shift_similarity, 1.0);
     opt(c, "moving_shift_quantile", p.moving_shift_quantile, 0.0, 0.5);
     opt(c, "moving_shift_min_points", p.moving_shift_min_points, 1);
+    opt(c, "split_distance", p.split_distance, 0.0, 5.0);
+    opt(c, "split_min_points", p.split_min_points, 1);
+    opt(c, "split_min_gap", p.split_min_gap, 0.0, 5.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);

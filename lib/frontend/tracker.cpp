@@ -30,6 +30,44 @@ double secondsBetween(std::int64_t a, std::int64_t b) { return 1e-6 * (static_ca
 // Free cells kept per observation, per point kept: a car's cells within its typical length number a
 // few thousand at most; a hostile instance may carry any number.
 constexpr int kFreeCellsPerPoint = 4;
+// Points of a track's last view a box view is split by (TrackerParams::split_distance).
+constexpr int kSplitPointsPerTrack = 300;
+// ... and how many frames before this one a track may have been missed (its view there split).
+constexpr int kSplitMaxMissed = 2;
+
+// Nearest x-y distance from p to the points of c (infinity for none).
+float nearestXy(const Eigen::Vector3f& p, const Cloud& c) {
+  float best = std::numeric_limits<float>::infinity();
+  for (const auto& q : c) best = std::min(best, (q.head<2>() - p.head<2>()).squaredNorm());
+  return std::sqrt(best);
+}
+
+// The parts of `view` on the tracks' last views `lasts` (TrackerParams::split_distance): each point
+// to the nearest last view; empty when the view is not split.
+std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<Cloud>& lasts, double claim, int min_points,
+                                 double min_gap) {
+  if (lasts.size() < 2) return {};
+  std::vector<Cloud> parts(lasts.size());
+  std::vector<int> claimed(lasts.size(), 0);
+  for (const auto& p : view) {
+    std::size_t best = 0;
+    float best_d = std::numeric_limits<float>::infinity();
+    for (std::size_t j = 0; j < lasts.size(); ++j)
+      if (const float d = nearestXy(p, lasts[j]); d < best_d) best_d = d, best = j;
+    parts[best].push_back(p);
+    claimed[best] += best_d <= claim;
+  }
+  std::vector<Cloud> out;
+  for (std::size_t j = 0; j < parts.size(); ++j)
+    if (static_cast<int>(parts[j].size()) >= min_points && claimed[j] >= min_points) out.push_back(std::move(parts[j]));
+  if (out.size() < 2) return {};
+  // Apart: every pair of parts at least min_gap from each other.
+  for (std::size_t a = 0; a < out.size(); ++a)
+    for (std::size_t b = a + 1; b < out.size(); ++b)
+      for (const auto& p : out[a])
+        if (nearestXy(p, out[b]) < min_gap) return {};
+  return out;
+}
 
 // Moves `younger`'s observations, votes and counts into `older` (the lower id).
 void absorb(Track& older, Track& younger, int max_observations) {
@@ -309,6 +347,40 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     }
     o.centroid = centroidOf(o.seen.points);
     by_class[inst.class_id].push_back(std::move(o));
+  }
+
+  // Box views on two tracks' last views: split (TrackerParams::split_distance).
+  if (params_.split_distance > 0) {
+    for (auto& [class_id, obs] : by_class) {
+      if (classes_.at(class_id).shape != Shape::Cuboid) continue;
+      std::vector<Obs> out;
+      for (auto& o : obs) {
+        Eigen::AlignedBox2f box;
+        for (const auto& p : o.seen.points) box.extend(p.head<2>());
+        box.min().array() -= static_cast<float>(params_.split_distance);
+        box.max().array() += static_cast<float>(params_.split_distance);
+        std::vector<Cloud> lasts;
+        for (const auto& [id, t] : tracks_) {
+          if (t.class_id != class_id || t.moving || t.missed > kSplitMaxMissed || t.observations.empty()) continue;
+          const Cloud& last = t.observations.back().points;
+          if (std::any_of(last.begin(), last.end(), [&](const Eigen::Vector3f& p) { return box.contains(p.head<2>()); }))
+            lasts.push_back(subsample(last, kSplitPointsPerTrack));
+        }
+        std::vector<Cloud> parts = partsOnTracks(o.seen.points, lasts, params_.split_distance, params_.split_min_points,
+                                                 params_.split_min_gap);
+        if (parts.empty()) {
+          out.push_back(std::move(o));
+          continue;
+        }
+        for (auto& part : parts) {
+          Obs piece{o.class_id, o.confidence, o.seen, {}};
+          piece.seen.points = std::move(part);
+          piece.centroid = centroidOf(piece.seen.points);
+          out.push_back(std::move(piece));
+        }
+      }
+      obs = std::move(out);
+    }
   }
 
   std::map<std::int64_t, bool> matched;

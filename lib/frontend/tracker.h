@@ -60,6 +60,16 @@ struct TrackerParams {
   double moving_shift_similarity = 1.5;    // the two views' point counts and lengths within this ratio
   double moving_shift_quantile = 0.1;
   int moving_shift_min_points = 10;  // each of the two observations
+  // A box view whose points lie on the last views of two or more static tracks of its class seen
+  // in the previous frame is those objects joined by the segmenter (the end faces of two cars
+  // parked side by side, clustered together in some frames and apart in others): it is split,
+  // each point to the track whose last view lies nearest, when each part holds at least
+  // split_min_points and lies at least split_min_gap metres (x-y) from the other, and each track
+  // claims (within split_distance) at least split_min_points of it. One car's side, seen whole
+  // after stripes of it, has no gap. 0: off.
+  double split_distance = 0.0;
+  int split_min_points = 10;
+  double split_min_gap = 0.3;
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
   // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several

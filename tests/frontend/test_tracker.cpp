@@ -296,6 +296,30 @@ frontend::Instance carInstance() {
   return inst;
 }
 
+// Frames at the odometry origin, 0.1 s apart.
+struct FrameFeed {
+  frontend::Tracker& tracker;
+  int k = 0;
+  frontend::InputIssues issues;
+  void operator()(const std::vector<frontend::Instance>& instances) {
+    frontend::FrameInstances f;
+    f.utime = 100000 * k++;
+    f.instances = instances;
+    tracker.update(f, issues);
+  }
+};
+
+// The noses of cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6
+// to 13.4, noses at y = -2.8), each alone and both as one cluster.
+std::array<frontend::Instance, 3> twoNoses() {
+  std::array<frontend::Instance, 3> n = {carInstance(), carInstance(), carInstance()};
+  addFace(n[0], 9.1, -2.8, 10.9, -2.8);
+  addFace(n[1], 11.6, -2.8, 13.4, -2.8);
+  addFace(n[2], 9.1, -2.8, 10.9, -2.8);
+  addFace(n[2], 11.6, -2.8, 13.4, -2.8);
+  return n;
+}
+
 // Four frames at the odometry origin, each with the same instances.
 void feedFourFrames(frontend::Tracker& tracker, const std::vector<frontend::Instance>& instances) {
   frontend::InputIssues issues;
@@ -381,19 +405,8 @@ TEST(Tracker, OneViewJoiningTwoNeighboursDoesNotMakeATrackHoldTheOther) {
     frontend::TrackerParams p = cfg.tracker;
     p.box_merge_view_quantile = quantile;
     frontend::Tracker tracker(classes, p, cfg.fit);
-    frontend::Instance a = carInstance(), b = carInstance(), both = carInstance();
-    addFace(a, 9.1, -2.8, 10.9, -2.8);
-    addFace(b, 11.6, -2.8, 13.4, -2.8);
-    addFace(both, 9.1, -2.8, 10.9, -2.8);
-    addFace(both, 11.6, -2.8, 13.4, -2.8);
-    frontend::InputIssues issues;
-    int k = 0;
-    auto frame = [&](const std::vector<frontend::Instance>& instances) {
-      frontend::FrameInstances f;
-      f.utime = 100000 * k++;
-      f.instances = instances;
-      tracker.update(f, issues);
-    };
+    const auto [a, b, both] = twoNoses();
+    FrameFeed frame{tracker};
     for (int i = 0; i < 5; ++i) frame({a});
     frame({both});
     ASSERT_EQ(tracker.tracks().size(), 1u) << "A's track took the joined view";
@@ -404,6 +417,57 @@ TEST(Tracker, OneViewJoiningTwoNeighboursDoesNotMakeATrackHoldTheOther) {
       for (const auto& [id, t] : tracker.tracks()) hits_b = std::max(hits_b, t.last_centroid.x() > 11.5 ? t.hits : 0);
       EXPECT_EQ(hits_b, 4) << "B's track has every view of B";
     }
+  }
+}
+
+// Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
+// noses at y = -2.8), seen end-on from far off: each nose on its own for two frames (two tracks),
+// then one view in which both noses come as one cluster, then each on its own again. The joined
+// view is split between the two tracks, which keep a view each; unsplit, one track takes it, holds
+// both noses, takes the other track in and is reported as a box laid across both cars.
+// A car's side seen in two stripes (two tracks) and then whole is not split: no gap in it.
+TEST(Tracker, AViewJoiningTwoTrackedNeighboursIsSplitBetweenThemOneCarsWholeSideIsNot) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.split_distance, 0.0) << "on by default";
+  for (double split : {cfg.tracker.split_distance, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.split_distance = split;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    const auto [a, b, both] = twoNoses();
+    FrameFeed frame{tracker};
+    for (int i = 0; i < 2; ++i) frame({a, b});
+    ASSERT_EQ(tracker.tracks().size(), 2u);
+    frame({both});
+    for (int i = 0; i < 3; ++i) frame({a, b});
+    if (split > 0) {
+      ASSERT_EQ(tracker.tracks().size(), 2u);
+      for (const auto& [id, t] : tracker.tracks()) EXPECT_EQ(t.hits, 6) << "every view of its own car, the joined one too";
+      const auto objects = tracker.objectsInBody(Pose::Identity());
+      ASSERT_EQ(objects.size(), 2u);
+      for (const auto& o : objects)
+        EXPECT_GT(std::abs(std::remainder(headingOf(std::get<Cuboid>(o.model)), M_PI)), 1.2) << "length along y";
+    } else {
+      bool across = false;
+      for (const auto& o : tracker.objectsInBody(Pose::Identity()))
+        across |= std::abs(std::remainder(headingOf(std::get<Cuboid>(o.model)), M_PI)) < 0.3;
+      EXPECT_TRUE(across) << "one track took both noses, merged the other's and reads them as one car's side";
+    }
+  }
+  for (double gap : {cfg.tracker.split_min_gap, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.split_min_gap = gap;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::Instance near = carInstance(), far = carInstance(), side = carInstance();
+    addFace(near, 9.1, -2.8, 9.1, -4.3);
+    addFace(far, 9.1, -5.7, 9.1, -7.2);
+    addFace(side, 9.1, -2.8, 9.1, -7.2);
+    FrameFeed frame{tracker};
+    for (int k = 0; k < 4; ++k) frame({near, far});
+    frame({side});
+    int hits = 0;
+    for (const auto& [id, t] : tracker.tracks()) hits += t.hits;
+    EXPECT_EQ(hits, gap > 0 ? 9 : 10) << (gap > 0 ? "the whole side went to one track, unsplit" : "split without the gap test");
   }
 }
 
