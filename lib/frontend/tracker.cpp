@@ -479,6 +479,7 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     apply(tracks_.emplace(t.id, t).first->second, o);
   }
   mergeColumnTracks(matched);
+  splitEarlierViews(matched);
   mergeBoxTracks(matched);
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (!matched.count(it->first)) ++it->second.missed;
@@ -502,6 +503,36 @@ void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
       absorb(older, younger, params_.max_observations);  // the older track (lower id) takes the younger one
       if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
       b = tracks_.erase(b);
+    }
+  }
+}
+
+void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
+  if (params_.split_distance <= 0) return;
+  const float reach = static_cast<float>(params_.split_distance);
+  auto boxOf = [](const Cloud& c) {
+    Eigen::AlignedBox2f box;
+    for (const auto& p : c) box.extend(p.head<2>());
+    return box;
+  };
+  for (auto& [id_a, a] : tracks_) {
+    if (!matched.count(id_a) || a.moving || a.observations.size() < 2 || classes_.at(a.class_id).shape != Shape::Cuboid) continue;
+    for (const auto& [id_b, b] : tracks_) {
+      if (id_b == id_a || !matched.count(id_b) || b.moving || b.class_id != a.class_id || b.observations.empty()) continue;
+      Eigen::AlignedBox2f near_b = boxOf(b.observations.back().points);
+      near_b.min().array() -= reach;
+      near_b.max().array() += reach;
+      std::vector<Cloud> lasts;
+      for (auto it = a.observations.begin(); std::next(it) != a.observations.end(); ++it) {
+        if (!near_b.intersects(boxOf(it->points))) continue;
+        if (lasts.empty())
+          lasts = {subsample(a.observations.back().points, kSplitPointsPerTrack),
+                   subsample(b.observations.back().points, kSplitPointsPerTrack)};
+        std::vector<Cloud> parts =
+            partsOnTracks(it->points, lasts, params_.split_distance, params_.split_min_points, params_.split_min_gap);
+        // Parts come in the order of `lasts`, both kept: the first is a's.
+        if (parts.size() == 2) it->points = std::move(parts[0]);
+      }
     }
   }
 }

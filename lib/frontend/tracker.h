@@ -66,7 +66,8 @@ struct TrackerParams {
   // each point to the track whose last view lies nearest, when each part holds at least
   // split_min_points and lies at least split_min_gap metres (x-y) from the other, and each track
   // claims (within split_distance) at least split_min_points of it. One car's side, seen whole
-  // after stripes of it, has no gap. 0: off.
+  // after stripes of it, has no gap. So also is an earlier view of a track that holds the newest
+  // view of a track of its class seen in the same frame: it keeps its own part. 0: off.
   double split_distance = 0.0;
   int split_min_points = 10;
   double split_min_gap = 0.3;
@@ -173,6 +174,10 @@ class Tracker {
   // or pole (its instances alternated between them, or it was split in a frame): merged. A
   // merged track counts as matched in this frame when either half was (`matched`).
   void mergeColumnTracks(std::map<std::int64_t, bool>& matched);
+  // An earlier view of a box track matched in this frame that also holds the newest view of
+  // another one matched in this frame (the two joined by the segmenter in a frame before the other
+  // had a track) keeps only its own part (TrackerParams::split_distance).
+  void splitEarlierViews(const std::map<std::int64_t, bool>& matched);
   // Two static tracks of one cuboid class whose points together fit in one footprint no
   // longer than the class's size_max, no wider than box_merge_width and no more than
   // box_merge_growth longer than the longer track's own follow one object

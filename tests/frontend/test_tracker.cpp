@@ -404,6 +404,7 @@ TEST(Tracker, OneViewJoiningTwoNeighboursDoesNotMakeATrackHoldTheOther) {
   for (double quantile : {cfg.tracker.box_merge_view_quantile, 1.0}) {
     frontend::TrackerParams p = cfg.tracker;
     p.box_merge_view_quantile = quantile;
+    p.split_distance = 0;  // the view quantile alone: the joined view stays whole
     frontend::Tracker tracker(classes, p, cfg.fit);
     const auto [a, b, both] = twoNoses();
     FrameFeed frame{tracker};
@@ -425,21 +426,24 @@ TEST(Tracker, OneViewJoiningTwoNeighboursDoesNotMakeATrackHoldTheOther) {
 // then one view in which both noses come as one cluster, then each on its own again. The joined
 // view is split between the two tracks, which keep a view each; unsplit, one track takes it, holds
 // both noses, takes the other track in and is reported as a box laid across both cars.
-// A car's side seen in two stripes (two tracks) and then whole is not split: no gap in it.
+// The joined view seen first, before B has a track, is split in A's track once B's is seen beside
+// it. A car's side seen in two stripes (two tracks) and then whole is not split: no gap in it.
 TEST(Tracker, AViewJoiningTwoTrackedNeighboursIsSplitBetweenThemOneCarsWholeSideIsNot) {
   const ClassTable classes = ClassTable::loadDefault();
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   ASSERT_GT(cfg.tracker.split_distance, 0.0) << "on by default";
-  for (double split : {cfg.tracker.split_distance, 0.0}) {
+  const auto [a, b, both] = twoNoses();
+  // A tracker with the given split_distance after the given frames.
+  auto tracked = [&](double split, const std::vector<std::vector<frontend::Instance>>& frames) {
     frontend::TrackerParams p = cfg.tracker;
     p.split_distance = split;
     frontend::Tracker tracker(classes, p, cfg.fit);
-    const auto [a, b, both] = twoNoses();
     FrameFeed frame{tracker};
-    for (int i = 0; i < 2; ++i) frame({a, b});
-    ASSERT_EQ(tracker.tracks().size(), 2u);
-    frame({both});
-    for (int i = 0; i < 3; ++i) frame({a, b});
+    for (const auto& f : frames) frame(f);
+    return tracker;
+  };
+  for (double split : {cfg.tracker.split_distance, 0.0}) {
+    const frontend::Tracker tracker = tracked(split, {{a, b}, {a, b}, {both}, {a, b}, {a, b}, {a, b}});
     if (split > 0) {
       ASSERT_EQ(tracker.tracks().size(), 2u);
       for (const auto& [id, t] : tracker.tracks()) EXPECT_EQ(t.hits, 6) << "every view of its own car, the joined one too";
@@ -453,6 +457,19 @@ TEST(Tracker, AViewJoiningTwoTrackedNeighboursIsSplitBetweenThemOneCarsWholeSide
         across |= std::abs(std::remainder(headingOf(std::get<Cuboid>(o.model)), M_PI)) < 0.3;
       EXPECT_TRUE(across) << "one track took both noses, merged the other's and reads them as one car's side";
     }
+  }
+  // The joined view first, when B has no track yet: A's track takes it whole, and keeps only A's
+  // nose of it once B's track is seen beside it.
+  for (double split : {cfg.tracker.split_distance, 0.0}) {
+    const frontend::Tracker tracker = tracked(split, {{both}, {a}, {a, b}, {a, b}, {a, b}});
+    ASSERT_EQ(tracker.tracks().size(), 2u);
+    int of_b_in_a = 0;
+    for (const auto& [id, t] : tracker.tracks())
+      if (t.last_centroid.x() < 11.2)
+        for (const auto& o : t.observations)
+          for (const auto& q : o.points) of_b_in_a += q.x() > 11.2f;
+    if (split > 0) EXPECT_EQ(of_b_in_a, 0) << "A's first view keeps A's nose only";
+    else EXPECT_GT(of_b_in_a, 0);
   }
   for (double gap : {cfg.tracker.split_min_gap, 0.0}) {
     frontend::TrackerParams p = cfg.tracker;
