@@ -185,6 +185,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
     opt(c, "gap_min_points", p.gap_min_points, 1);
     if (c.has("notch")) loadNotch(c.child("notch"), p.notch);
     opt(c, "max_roughness", p.max_roughness, 0.0);
+    opt(c, "max_edge_spread", p.max_edge_spread, 0.0);
     opt(c, "max_covered", p.max_covered, 0.0, 1.0);
     opt(c, "cover_height", p.cover_height, 0.0);
     opt(c, "max_hidden_bottom", p.max_hidden_bottom, 0.0, 1.0);

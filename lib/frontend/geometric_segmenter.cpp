@@ -224,7 +224,9 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
     if (rough > std::min(kp.max_roughness, roughness_cap)) continue;
     // Fewer returns than min_points pass only with a face shown smooth (far cars do; a bush's
     // scattered returns give too few scan-order triplets to measure).
-    if (kp.max_roughness > 0 && std::isnan(rough) && static_cast<int>(cl.size()) < kp.min_points) continue;
+    if (kp.max_roughness > 0 && std::isnan(rough) && static_cast<int>(cl.size()) < kp.min_points &&
+        !(kp.max_edge_spread > 0 && edgeSpread(cloud, cl) <= kp.max_edge_spread))
+      continue;
     const double top = quantileOf(h, cl, 0.95), bottom = quantileOf(h, cl, 0.05);
     if (top < kp.min_top || top > kp.max_top || bottom > kp.max_bottom) continue;
     if (kp.max_range > 0 && range > kp.max_range) continue;
@@ -341,6 +343,28 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
   return out;
 }
 }  // namespace
+
+double edgeSpread(const Cloud& cloud, const std::vector<int>& idx) {
+  if (idx.size() < 3) return 0.0;
+  // Headings 0-88 deg in 2-deg steps: the bounding rectangle at each, the smallest median (an L
+  // of two faces lies on two edges of the rectangle along them; the minimum-area rectangle of an
+  // L lies across its diagonal).
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> u(idx.size()), v(idx.size()), d(idx.size());
+  for (int step = 0; step < 45; ++step) {
+    const double a = step * 2.0 * M_PI / 180.0, c = std::cos(a), s = std::sin(a);
+    double u0 = 1e30, u1 = -1e30, v0 = 1e30, v1 = -1e30;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const Eigen::Vector3f& p = cloud[idx[k]];
+      u[k] = c * p.x() + s * p.y();
+      v[k] = -s * p.x() + c * p.y();
+      u0 = std::min(u0, u[k]), u1 = std::max(u1, u[k]), v0 = std::min(v0, v[k]), v1 = std::max(v1, v[k]);
+    }
+    for (std::size_t k = 0; k < idx.size(); ++k) d[k] = std::min(std::min(u[k] - u0, u1 - u[k]), std::min(v[k] - v0, v1 - v[k]));
+    best = std::min(best, quantileInPlace(d, 0.5));
+  }
+  return best;
+}
 
 GeometricSegmenter::GeometricSegmenter(ClassTable classes, GeometricSegmenterParams params)
     : classes_(std::move(classes)), params_(params) {

@@ -54,8 +54,12 @@ struct CarParams {
   // Median |r(i-1) - 2 r(i) + r(i+1)| of ranges along the scan order within the cluster:
   // car bodies are smooth (~2 cm), vegetation is not (~8 cm); simulated 2 cm range noise gives ~4 cm. 0 disables; clusters with
   // fewer than 10 consecutive triplets (unordered scans) skip the test when they hold min_points returns, and are no car
-  // when they hold fewer (min_points_far is for faces that show their smoothness).
+  // when they hold fewer (min_points_far is for faces that show their smoothness) ...
   double max_roughness = 0.07;
+  // ... unless their returns lie on the edges of their top-view rectangle (median distance to
+  // the nearest edge, edgeSpread, at most this): a far car's faces seen by a few beams, where a
+  // patch of ground or foliage fills its rectangle (0: no such exception).
+  double max_edge_spread = 0.0;
   // A car's roof is open: at most this share of the cluster's cells (cell x cell metres) may
   // hold returns from height_cap to height_cap + cover_height (a wall, a hedge under it or a
   // building's lower storey goes on above the cap; a car ends below it). 1 disables.
@@ -161,6 +165,12 @@ struct GeometricSegmenterParams {
   OcclusionParams occlusion;
   int trunk_class = 71, pole_class = 80, car_class = 10, other_class = 0;
 };
+
+// Median distance (m) of the points `idx` of `cloud` from the nearest edge of their top view's
+// bounding rectangle, at the heading (2-deg steps) where it is smallest: about the range noise
+// for faces (a car's side, its end, or both as an L), more for returns spread over an area. 0
+// for fewer than three points.
+double edgeSpread(const Cloud& cloud, const std::vector<int>& idx);
 
 class GeometricSegmenter : public LidarSegmenter {
  public:

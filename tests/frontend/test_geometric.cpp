@@ -577,31 +577,47 @@ TEST(GeometricSegmenter, ThirtyReturnsAreACarFarOffAndAScrapNear) {
 
 // Fewer returns than min_points make a car only where they show a smooth face (CarParams::
 // max_roughness measured over scan-order triplets): 20 returns of an end face 30 m off are a car
-// in scan order and no car when each stands between returns of the ground far from it (a bush's
-// scattered returns give no triplets either); 40 such returns are a car either way (an unordered
-// scan keeps the min_points rule).
+// in scan order. Scattered in the scan order (no triplets) they are a car only because they lie on
+// the edges of their footprint (max_edge_spread); without that exception they are none. 40 such
+// returns are a car either way (an unordered scan keeps the min_points rule). 20 returns filling a
+// bush's footprint, scattered in the scan order, are no car.
 TEST(GeometricSegmenter, FewFarReturnsAreACarOnlyWhenTheyShowASmoothFace) {
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   const frontend::CarParams& kp = cfg.geometric.car;
   ASSERT_LE(kp.min_points_far, 20);
   ASSERT_GT(kp.max_roughness, 0.0);
+  ASSERT_GT(kp.max_edge_spread, 0.0);
   ASSERT_LE(kp.min_points * kp.near_range * kp.near_range / (30.0 * 30.0), 20.0);
-  for (const auto& [across, up] : {std::pair{5, 4}, std::pair{8, 5}})
-    for (bool ordered : {true, false}) {
-      std::vector<Eigen::Vector3f> face;
-      for (int i = 0; i < across; ++i)
-        for (int k = 0; k < up; ++k) face.emplace_back(30.0f, -0.9f + 1.44f * i / (across - 1), 0.35f + 0.96f * k / (up - 1));
-      frontend::Cloud c;
-      std::size_t next = 0;
-      for (double x = -36; x <= 36; x += 0.25)
-        for (double y = -36; y <= 36; y += 0.25) {
-          c.emplace_back(x, y, 0.0);
-          if (!ordered && next < face.size()) c.push_back(face[next++]);
-        }
-      if (ordered) c.insert(c.end(), face.begin(), face.end());
-      EXPECT_EQ(instancesNear(c, cfg.geometric, cfg.geometric.car_class, {30, 0}, 1.0f), ordered || up * across >= kp.min_points ? 1 : 0)
-          << across * up << " returns, " << (ordered ? "in scan order" : "scattered in the scan order");
-    }
+  // The ground, with `returns` put among its points (scattered in the scan order) or after them.
+  auto scanWith = [](const std::vector<Eigen::Vector3f>& returns, bool ordered) {
+    frontend::Cloud c;
+    std::size_t next = 0;
+    for (double x = -36; x <= 36; x += 0.25)
+      for (double y = -36; y <= 36; y += 0.25) {
+        c.emplace_back(x, y, 0.0);
+        if (!ordered && next < returns.size()) c.push_back(returns[next++]);
+      }
+    if (ordered) c.insert(c.end(), returns.begin(), returns.end());
+    return c;
+  };
+  for (double edge : {kp.max_edge_spread, 0.0}) {
+    frontend::GeometricSegmenterParams p = cfg.geometric;
+    p.car.max_edge_spread = edge;
+    for (const auto& [across, up] : {std::pair{5, 4}, std::pair{8, 5}})
+      for (bool ordered : {true, false}) {
+        std::vector<Eigen::Vector3f> face;
+        for (int i = 0; i < across; ++i)
+          for (int k = 0; k < up; ++k) face.emplace_back(30.0f, -0.9f + 1.44f * i / (across - 1), 0.35f + 0.96f * k / (up - 1));
+        EXPECT_EQ(instancesNear(scanWith(face, ordered), p, cfg.geometric.car_class, {30, 0}, 1.0f),
+                  ordered || up * across >= kp.min_points || edge > 0 ? 1 : 0)
+            << across * up << " returns, " << (ordered ? "in scan order" : "scattered in the scan order") << ", edge " << edge;
+      }
+  }
+  std::vector<Eigen::Vector3f> bush;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int k = 0; k < 20; ++k) bush.emplace_back(30.0f + 1.5f * u(rng), -0.75f + 1.5f * u(rng), 0.35f + 1.0f * u(rng));
+  EXPECT_EQ(instancesNear(scanWith(bush, false), cfg.geometric, cfg.geometric.car_class, {30.7, 0}, 1.0f), 0);
 }
 
 // A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
@@ -1066,4 +1082,25 @@ TEST(GeometricSegmenter, AColumnUnderAFlatCeilingIsNoColumnUnderACrownItIs) {
   frontend::ColumnParams off = p;
   off.ceiling_max_spread = 0;
   EXPECT_EQ(columnsOf(ceiling, off).size(), 1u) << "without the rule the jamb is a column";
+}
+
+// A far car's faces seen by a few beams (an L: 1.8 m of end face and 2.5 m of side, 1 cm range
+// noise) lie on the edges of their top-view rectangle; the returns of a patch of ground or
+// foliage of the same size fill it. The default gate tells them apart.
+TEST(GeometricSegmenter, AFarCarsFacesLieOnTheEdgesOfTheirFootprintAPatchFillsIt) {
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const double gate = cfg.geometric.car.max_edge_spread;
+  ASSERT_GT(gate, 0.0) << "on by default";
+  std::mt19937 rng(5);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  frontend::Cloud faces, patch;
+  for (int k = 0; k < 12; ++k) faces.emplace_back(30.0f + noise(rng), 1.8f * u(rng), 0.5f + 0.4f * (k % 3));
+  for (int k = 0; k < 18; ++k) faces.emplace_back(30.0f + 2.5f * u(rng), 1.8f + noise(rng), 0.5f + 0.4f * (k % 3));
+  for (int k = 0; k < 30; ++k) patch.emplace_back(30.0f + 2.5f * u(rng), 1.8f * u(rng), 0.2f * u(rng));
+  std::vector<int> all(30);
+  std::iota(all.begin(), all.end(), 0);
+  EXPECT_LE(frontend::edgeSpread(faces, all), gate);
+  EXPECT_GT(frontend::edgeSpread(patch, all), 3 * gate);
+  EXPECT_EQ(frontend::edgeSpread(faces, {0, 1}), 0.0) << "too few points for a rectangle";
 }

@@ -298,6 +298,7 @@ frontend::Instance carInstance() {
 
 // Frames at the odometry origin, 0.1 s apart.
 struct FrameFeed {
+  explicit FrameFeed(frontend::Tracker& t) : tracker(t) {}
   frontend::Tracker& tracker;
   int k = 0;
   frontend::InputIssues issues;
