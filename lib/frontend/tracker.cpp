@@ -32,8 +32,11 @@ double secondsBetween(std::int64_t a, std::int64_t b) { return 1e-6 * (static_ca
 constexpr int kFreeCellsPerPoint = 4;
 // Points of a track's last view a box view is split by (TrackerParams::split_distance).
 constexpr int kSplitPointsPerTrack = 300;
-// ... and how many frames before this one a track may have been missed (its view there split).
+// ... and how many frames before this one a track may have been missed (its view there split),
+// and how many tracks (the nearest) a view is split between: a hostile frame may leave any number
+// of tracks in one place.
 constexpr int kSplitMaxMissed = 2;
+constexpr std::size_t kSplitMaxTracks = 4;
 
 // Nearest x-y distance from p to the points of c (infinity for none).
 float nearestXy(const Eigen::Vector3f& p, const Cloud& c) {
@@ -359,13 +362,17 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
         for (const auto& p : o.seen.points) box.extend(p.head<2>());
         box.min().array() -= static_cast<float>(params_.split_distance);
         box.max().array() += static_cast<float>(params_.split_distance);
-        std::vector<Cloud> lasts;
+        std::vector<std::pair<double, const Cloud*>> near;  // by centroid distance
         for (const auto& [id, t] : tracks_) {
           if (t.class_id != class_id || t.moving || t.missed > kSplitMaxMissed || t.observations.empty()) continue;
           const Cloud& last = t.observations.back().points;
           if (std::any_of(last.begin(), last.end(), [&](const Eigen::Vector3f& p) { return box.contains(p.head<2>()); }))
-            lasts.push_back(subsample(last, kSplitPointsPerTrack));
+            near.emplace_back((t.last_centroid - o.centroid).head<2>().norm(), &last);
         }
+        std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        std::vector<Cloud> lasts;
+        for (std::size_t j = 0; j < near.size() && j < kSplitMaxTracks; ++j)
+          lasts.push_back(subsample(*near[j].second, kSplitPointsPerTrack));
         std::vector<Cloud> parts = partsOnTracks(o.seen.points, lasts, params_.split_distance, params_.split_min_points,
                                                  params_.split_min_gap);
         if (parts.empty()) {
@@ -515,13 +522,20 @@ void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
     for (const auto& p : c) box.extend(p.head<2>());
     return box;
   };
+  // The newest view's box of each static box track matched in this frame, grown by the reach.
+  std::map<std::int64_t, Eigen::AlignedBox2f> newest;
+  for (const auto& [id, t] : tracks_) {
+    if (!matched.count(id) || t.moving || t.observations.empty() || classes_.at(t.class_id).shape != Shape::Cuboid) continue;
+    Eigen::AlignedBox2f box = boxOf(t.observations.back().points);
+    box.min().array() -= reach;
+    box.max().array() += reach;
+    newest.emplace(id, box);
+  }
   for (auto& [id_a, a] : tracks_) {
-    if (!matched.count(id_a) || a.moving || a.observations.size() < 2 || classes_.at(a.class_id).shape != Shape::Cuboid) continue;
-    for (const auto& [id_b, b] : tracks_) {
-      if (id_b == id_a || !matched.count(id_b) || b.moving || b.class_id != a.class_id || b.observations.empty()) continue;
-      Eigen::AlignedBox2f near_b = boxOf(b.observations.back().points);
-      near_b.min().array() -= reach;
-      near_b.max().array() += reach;
+    if (!newest.count(id_a) || a.observations.size() < 2) continue;
+    for (const auto& [id_b, near_b] : newest) {
+      const Track& b = tracks_.at(id_b);
+      if (id_b == id_a || b.class_id != a.class_id) continue;
       std::vector<Cloud> lasts;
       for (auto it = a.observations.begin(); std::next(it) != a.observations.end(); ++it) {
         if (!near_b.intersects(boxOf(it->points))) continue;

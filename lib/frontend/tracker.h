@@ -61,7 +61,7 @@ struct TrackerParams {
   double moving_shift_quantile = 0.1;
   int moving_shift_min_points = 10;  // each of the two observations
   // A box view whose points lie on the last views of two or more static tracks of its class seen
-  // in the previous frame is those objects joined by the segmenter (the end faces of two cars
+  // in one of the last three frames (the nearest four) is those objects joined by the segmenter (the end faces of two cars
   // parked side by side, clustered together in some frames and apart in others): it is split,
   // each point to the track whose last view lies nearest, when each part holds at least
   // split_min_points and lies at least split_min_gap metres (x-y) from the other, and each track
