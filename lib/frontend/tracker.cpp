@@ -38,6 +38,15 @@ constexpr int kSplitPointsPerTrack = 300;
 constexpr int kSplitMaxMissed = 2;
 constexpr std::size_t kSplitMaxTracks = 4;
 
+// The x-y bounding box of c, grown by `reach` on every side.
+Eigen::AlignedBox2f grownBox(const Cloud& c, float reach) {
+  Eigen::AlignedBox2f box;
+  for (const auto& p : c) box.extend(p.head<2>());
+  box.min().array() -= reach;
+  box.max().array() += reach;
+  return box;
+}
+
 // Nearest x-y distance from p to the points of c (infinity for none).
 float nearestXy(const Eigen::Vector3f& p, const Cloud& c) {
   float best = std::numeric_limits<float>::infinity();
@@ -354,21 +363,20 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
 
   // Box views on two tracks' last views: split (TrackerParams::split_distance).
   if (params_.split_distance > 0) {
+    // The last views' boxes of the static box tracks seen lately, found once per frame.
+    std::vector<std::pair<const Track*, Eigen::AlignedBox2f>> lately;
+    for (const auto& [id, t] : tracks_)
+      if (!t.moving && t.missed <= kSplitMaxMissed && !t.observations.empty() && classes_.at(t.class_id).shape == Shape::Cuboid)
+        lately.emplace_back(&t, grownBox(t.observations.back().points, 0.0f));
     for (auto& [class_id, obs] : by_class) {
       if (classes_.at(class_id).shape != Shape::Cuboid) continue;
       std::vector<Obs> out;
       for (auto& o : obs) {
-        Eigen::AlignedBox2f box;
-        for (const auto& p : o.seen.points) box.extend(p.head<2>());
-        box.min().array() -= static_cast<float>(params_.split_distance);
-        box.max().array() += static_cast<float>(params_.split_distance);
+        const Eigen::AlignedBox2f box = grownBox(o.seen.points, static_cast<float>(params_.split_distance));
         std::vector<std::pair<double, const Cloud*>> near;  // by centroid distance
-        for (const auto& [id, t] : tracks_) {
-          if (t.class_id != class_id || t.moving || t.missed > kSplitMaxMissed || t.observations.empty()) continue;
-          const Cloud& last = t.observations.back().points;
-          if (std::any_of(last.begin(), last.end(), [&](const Eigen::Vector3f& p) { return box.contains(p.head<2>()); }))
-            near.emplace_back((t.last_centroid - o.centroid).head<2>().norm(), &last);
-        }
+        for (const auto& [t, last_box] : lately)
+          if (t->class_id == class_id && box.intersects(last_box))
+            near.emplace_back((t->last_centroid - o.centroid).head<2>().norm(), &t->observations.back().points);
         std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         std::vector<Cloud> lasts;
         for (std::size_t j = 0; j < near.size() && j < kSplitMaxTracks; ++j)
@@ -516,21 +524,11 @@ void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
 
 void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
   if (params_.split_distance <= 0) return;
-  const float reach = static_cast<float>(params_.split_distance);
-  auto boxOf = [](const Cloud& c) {
-    Eigen::AlignedBox2f box;
-    for (const auto& p : c) box.extend(p.head<2>());
-    return box;
-  };
   // The newest view's box of each static box track matched in this frame, grown by the reach.
   std::map<std::int64_t, Eigen::AlignedBox2f> newest;
-  for (const auto& [id, t] : tracks_) {
-    if (!matched.count(id) || t.moving || t.observations.empty() || classes_.at(t.class_id).shape != Shape::Cuboid) continue;
-    Eigen::AlignedBox2f box = boxOf(t.observations.back().points);
-    box.min().array() -= reach;
-    box.max().array() += reach;
-    newest.emplace(id, box);
-  }
+  for (const auto& [id, t] : tracks_)
+    if (matched.count(id) && !t.moving && !t.observations.empty() && classes_.at(t.class_id).shape == Shape::Cuboid)
+      newest.emplace(id, grownBox(t.observations.back().points, static_cast<float>(params_.split_distance)));
   for (auto& [id_a, a] : tracks_) {
     if (!newest.count(id_a) || a.observations.size() < 2) continue;
     for (const auto& [id_b, near_b] : newest) {
@@ -538,7 +536,7 @@ void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
       if (id_b == id_a || b.class_id != a.class_id) continue;
       std::vector<Cloud> lasts;
       for (auto it = a.observations.begin(); std::next(it) != a.observations.end(); ++it) {
-        if (!near_b.intersects(boxOf(it->points))) continue;
+        if (!near_b.intersects(grownBox(it->points, 0.0f))) continue;
         if (lasts.empty())
           lasts = {subsample(a.observations.back().points, kSplitPointsPerTrack),
                    subsample(b.observations.back().points, kSplitPointsPerTrack)};

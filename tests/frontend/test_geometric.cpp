@@ -579,8 +579,8 @@ TEST(GeometricSegmenter, ThirtyReturnsAreACarFarOffAndAScrapNear) {
 // max_roughness measured over scan-order triplets): 20 returns of an end face 30 m off are a car
 // in scan order. Scattered in the scan order (no triplets) they are a car only because they lie on
 // the edges of their footprint (max_edge_spread); without that exception they are none. 40 such
-// returns are a car either way (an unordered scan keeps the min_points rule). 20 returns filling a
-// bush's footprint, scattered in the scan order, are no car.
+// returns are a car either way (an unordered scan keeps the min_points rule). 38 returns filling a
+// bush's footprint, scattered in the scan order, are no car, and would be one without the edge test.
 TEST(GeometricSegmenter, FewFarReturnsAreACarOnlyWhenTheyShowASmoothFace) {
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   const frontend::CarParams& kp = cfg.geometric.car;
@@ -616,8 +616,12 @@ TEST(GeometricSegmenter, FewFarReturnsAreACarOnlyWhenTheyShowASmoothFace) {
   std::vector<Eigen::Vector3f> bush;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (int k = 0; k < 20; ++k) bush.emplace_back(30.0f + 1.5f * u(rng), -0.75f + 1.5f * u(rng), 0.35f + 1.0f * u(rng));
-  EXPECT_EQ(instancesNear(scanWith(bush, false), cfg.geometric, cfg.geometric.car_class, {30.7, 0}, 1.0f), 0);
+  for (int k = 0; k < 38; ++k) bush.emplace_back(30.0f + 0.9f * u(rng), -0.45f + 0.9f * u(rng), 0.35f + 1.0f * u(rng));
+  EXPECT_EQ(instancesNear(scanWith(bush, false), cfg.geometric, cfg.geometric.car_class, {30.45, 0}, 1.0f), 0);
+  frontend::GeometricSegmenterParams loose = cfg.geometric;
+  loose.car.max_edge_spread = 1.0;
+  EXPECT_EQ(instancesNear(scanWith(bush, false), loose, cfg.geometric.car_class, {30.45, 0}, 1.0f), 1)
+      << "the edge spread is what turns the bush down";
 }
 
 // A car's end face (1.8 m wide, x 5.0 to 6.8 at y = 4) and, 0.35 m past its corner, a stripe of
