@@ -343,6 +343,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "split_distance", p.split_distance, 0.0, 5.0);
     opt(c, "split_min_points", p.split_min_points, 1);
     opt(c, "split_min_gap", p.split_min_gap, 0.0, 5.0);
+    opt(c, "join_share", p.join_share, 0.0, 1.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);

@@ -37,6 +37,8 @@ constexpr int kSplitPointsPerTrack = 300;
 // of tracks in one place.
 constexpr int kSplitMaxMissed = 2;
 constexpr std::size_t kSplitMaxTracks = 4;
+// Tracks whose last views pieces of one frame's box views are tested against (TrackerParams::join_share).
+constexpr std::size_t kJoinMaxTracks = 16;
 
 // The x-y bounding box of c, grown by `reach` on every side.
 Eigen::AlignedBox2f grownBox(const Cloud& c, float reach) {
@@ -79,6 +81,57 @@ std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<Cloud>& la
       for (const auto& p : out[a])
         if (nearestXy(p, out[b]) < min_gap) return {};
   return out;
+}
+
+// The one track of `lasts` (last views) that `piece` lies on: it claims (within `claim`) at least
+// `share` of the piece's points and every other track fewer than `min_points`; -1 for none.
+int soleTrack(const Cloud& piece, const std::vector<Cloud>& lasts, double claim, double share, int min_points) {
+  int owner = -1;
+  for (std::size_t j = 0; j < lasts.size(); ++j) {
+    int n = 0;
+    for (const auto& p : piece) n += nearestXy(p, lasts[j]) <= claim;
+    if (n >= share * static_cast<double>(piece.size())) {
+      if (owner >= 0) return -1;
+      owner = static_cast<int>(j);
+    } else if (n >= min_points) {
+      return -1;
+    }
+  }
+  return owner;
+}
+
+// Groups of `pieces` (one frame's views of a class) that are one object cut by the segmenter
+// (TrackerParams::join_share): pieces lying on one track's last view of `lasts` and on no other,
+// the largest first and then each within `min_gap` of those already in the group (farther apart
+// they are two objects, as the split step says: a track's view may have held two noses). Only
+// groups of two or more.
+std::vector<std::vector<std::size_t>> piecesOfOneView(const std::vector<const Cloud*>& pieces, const std::vector<Cloud>& lasts,
+                                                      double claim, double share, int min_points, double min_gap) {
+  std::map<int, std::vector<std::size_t>> on_track;
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (const int j = soleTrack(*pieces[i], lasts, claim, share, min_points); j >= 0) on_track[j].push_back(i);
+  std::vector<std::vector<std::size_t>> groups;
+  for (auto& [j, on] : on_track) {
+    if (on.size() < 2) continue;
+    std::sort(on.begin(), on.end(), [&](std::size_t a, std::size_t b) { return pieces[a]->size() > pieces[b]->size(); });
+    std::vector<std::size_t> group = {on.front()};
+    Cloud near = subsample(*pieces[on.front()], kSplitPointsPerTrack);
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t i : on) {
+        if (std::find(group.begin(), group.end(), i) != group.end()) continue;
+        const Cloud piece = subsample(*pieces[i], kSplitPointsPerTrack);
+        float gap = std::numeric_limits<float>::infinity();
+        for (const auto& q : piece) gap = std::min(gap, nearestXy(q, near));
+        if (gap >= min_gap) continue;
+        group.push_back(i);
+        near.insert(near.end(), piece.begin(), piece.end());
+        grew = true;
+      }
+    }
+    if (group.size() >= 2) groups.push_back(std::move(group));
+  }
+  return groups;
 }
 
 // Moves `younger`'s observations, votes and counts into `older` (the lower id).
@@ -395,6 +448,42 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
         }
       }
       obs = std::move(out);
+      // Pieces of one car's view (the segmenter cut it, e.g. at a gap in its returns) are joined:
+      // given to tracks one by one, a smaller piece would continue a neighbour's track.
+      if (params_.join_share <= 0 || obs.size() < 2) continue;
+      std::vector<Cloud> lasts;
+      for (const auto& [t, last_box] : lately) {
+        if (t->class_id != class_id || lasts.size() >= kJoinMaxTracks) continue;
+        bool touches = false;
+        for (const auto& o : obs)
+          touches |= grownBox(o.seen.points, static_cast<float>(params_.split_distance)).intersects(last_box);
+        if (touches) lasts.push_back(subsample(t->observations.back().points, kSplitPointsPerTrack));
+      }
+      std::vector<const Cloud*> pieces;
+      for (const auto& o : obs) pieces.push_back(&o.seen.points);
+      std::vector<char> gone(obs.size(), 0);
+      for (const auto& group : piecesOfOneView(pieces, lasts, params_.split_distance, params_.join_share,
+                                               params_.split_min_points, params_.split_min_gap)) {
+        Obs joined = obs[group.front()];
+        for (std::size_t k = 1; k < group.size(); ++k) {
+          const Observation& seen = obs[group[k]].seen;
+          joined.seen.points.insert(joined.seen.points.end(), seen.points.begin(), seen.points.end());
+          joined.seen.free_space.insert(joined.seen.free_space.end(), seen.free_space.begin(), seen.free_space.end());
+          joined.confidence = std::max(joined.confidence, obs[group[k]].confidence);
+        }
+        std::vector<cv::Point2f> xy;
+        for (const auto& p : joined.seen.points) xy.emplace_back(p.x(), p.y());
+        if (exceedsClassSize(xy, class_id)) continue;
+        joined.seen.points = subsample(joined.seen.points, params_.max_points_per_observation);
+        joined.seen.free_space = subsample(joined.seen.free_space, kFreeCellsPerPoint * params_.max_points_per_observation);
+        joined.centroid = centroidOf(joined.seen.points);
+        obs[group.front()] = std::move(joined);
+        for (std::size_t k = 1; k < group.size(); ++k) gone[group[k]] = 1;
+      }
+      std::vector<Obs> kept;
+      for (std::size_t i = 0; i < obs.size(); ++i)
+        if (!gone[i]) kept.push_back(std::move(obs[i]));
+      obs = std::move(kept);
     }
   }
 
@@ -745,15 +834,13 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
                        readings ? &other : nullptr);
     if (o) fits.emplace_back(std::move(*o), std::move(other));
   }
+  // Readings are settled by the parallel neighbours before overlapping boxes are joined: two
+  // noses side by side, each read across, overlap; settled along their neighbours they stand
+  // apart. A joint box is settled in turn.
+  if (readings) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
+  const std::size_t before = fits.size();
   if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
-  if (readings) {
-    settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
-    // A box settled into its other reading may now stand on another track's box: joined, and
-    // the joint box settled in turn.
-    const std::size_t before = fits.size();
-    if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
-    if (fits.size() < before) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
-  }
+  if (readings && fits.size() < before) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
   if (params_.box_across > 0) dropBoxesAcrossNeighbours(fits);
   std::vector<Object> out;
   out.reserve(fits.size());

@@ -71,6 +71,11 @@ struct TrackerParams {
   double split_distance = 0.0;
   int split_min_points = 10;
   double split_min_gap = 0.3;
+  // Box views of one frame of which each lies on one static track's last view (at least this
+  // share of its points within split_distance of it, fewer than split_min_points near any other
+  // track's), each within split_min_gap of another, are pieces of one object the segmenter cut:
+  // joined into one view before association. 0: off (also when split_distance is 0).
+  double join_share = 0.0;
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
   // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several

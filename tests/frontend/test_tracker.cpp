@@ -490,6 +490,47 @@ TEST(Tracker, AViewJoiningTwoTrackedNeighboursIsSplitBetweenThemOneCarsWholeSide
 }
 
 // Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
+// noses at y = -2.8): A's nose seen whole and B's left part (x 11.6 to 12.3) for three frames,
+// then A's nose cut in two by the segmenter (a gap of 0.15 m at x 10.1) while B goes unseen.
+// Given to tracks one by one, A's right piece lies within the gate of B's track and continues
+// it; joined first (both pieces lie on A's last view and on no other), A's track takes the whole
+// nose and B's track keeps B's points only.
+TEST(Tracker, PiecesOfOneCarsViewAreJoinedBeforeAssociationNotGivenToTheNeighbour) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.join_share, 0.0) << "on by default";
+  frontend::Instance a = carInstance(), b = carInstance(), left = carInstance(), right = carInstance();
+  addFace(a, 9.1, -2.8, 10.9, -2.8);
+  addFace(b, 11.6, -2.8, 12.3, -2.8);
+  addFace(left, 9.1, -2.8, 10.05, -2.8);
+  addFace(right, 10.2, -2.8, 10.9, -2.8);
+  for (double share : {cfg.tracker.join_share, 0.0}) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.join_share = share;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    FrameFeed frame{tracker};
+    for (int k = 0; k < 3; ++k) frame({a, b});
+    frame({left, right});
+    int of_a_in_b = 0, hits_a = 0;
+    for (const auto& [id, t] : tracker.tracks()) {
+      if (t.observations.front().points.front().x() > 11.2f) {
+        for (const auto& o : t.observations)
+          for (const auto& q : o.points) of_a_in_b += q.x() < 11.2f;
+      } else {
+        hits_a = t.hits;
+      }
+    }
+    if (share > 0) {
+      EXPECT_EQ(tracker.tracks().size(), 2u);
+      EXPECT_EQ(of_a_in_b, 0) << "B's track holds none of A's nose";
+      EXPECT_EQ(hits_a, 4) << "A's track took the joined view";
+    } else {
+      EXPECT_GT(of_a_in_b, 0) << "A's right piece continued B's track";
+    }
+  }
+}
+
+// Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
 // noses at y = -2.8), each seen as an L (its nose and the near part of its side). A third track
 // holds the inner parts of both noses seen as one face (x 9.9 to 12.6): a car's side, its box
 // laid across both cars. That box is not reported; A's and B's are.
@@ -560,6 +601,21 @@ TEST(Tracker, ABoxWhoseLengthWasNotSeenTakesTheHeadingOfItsParallelNeighbours) {
       }
     }
   }
+}
+
+// Cars A and B parked side by side, their lengths along y (A x 9.1 to 10.9, B x 11.6 to 13.4,
+// noses at y = -2.8), between two cars seen whole along their sides (length along y, at x = 6.5
+// and 16.5). Only a metre of each nose is seen (A x 9.9 to 10.9, B x 11.6 to 12.6): too short
+// for a width, each box is first read with its length across the nose, and the two readings
+// overlap by more than half. The neighbours settle both along y before boxes are joined: two
+// cars, each along y, not one box laid across both noses.
+TEST(Tracker, ReadingsAreSettledByParallelNeighboursBeforeOverlappingBoxesAreJoined) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const auto headings = headingsAcross(classes, cfg.tracker, cfg.fit,
+                                       {{6.5, -3.0, 6.5, -7.4}, {16.5, -3.0, 16.5, -7.4}, {9.9, -2.8, 10.9, -2.8}, {11.6, -2.8, 12.6, -2.8}});
+  ASSERT_EQ(headings.size(), 4u) << "A and B reported apart";
+  for (const auto& [x, across] : headings) EXPECT_NEAR(across, M_PI / 2, 0.1) << "length along y, at x " << x;
 }
 
 // A car's side (x 18-22.5 at y = 8.5, length along x) seen in two halves, split by a pole in
