@@ -37,8 +37,8 @@ constexpr int kSplitPointsPerTrack = 300;
 // of tracks in one place.
 constexpr int kSplitMaxMissed = 2;
 constexpr std::size_t kSplitMaxTracks = 4;
-// Tracks whose last views pieces of one frame's box views are tested against (TrackerParams::join_share).
-constexpr std::size_t kJoinMaxTracks = 16;
+// The largest pieces of one frame's views on one track that are joined (TrackerParams::join_share).
+constexpr std::size_t kJoinMaxPieces = 8;
 
 // The x-y bounding box of c, grown by `reach` on every side.
 Eigen::AlignedBox2f grownBox(const Cloud& c, float reach) {
@@ -83,13 +83,13 @@ std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<Cloud>& la
   return out;
 }
 
-// The one track of `lasts` (last views) that `piece` lies on: it claims (within `claim`) at least
-// `share` of the piece's points and every other track fewer than `min_points`; -1 for none.
-int soleTrack(const Cloud& piece, const std::vector<Cloud>& lasts, double claim, double share, int min_points) {
+// The one of `lasts` (tracks' last views) that `piece` lies on: it claims (within `claim`) at
+// least `share` of the piece's points and every other fewer than `min_points`; -1 for none.
+int soleTrack(const Cloud& piece, const std::vector<const Cloud*>& lasts, double claim, double share, int min_points) {
   int owner = -1;
   for (std::size_t j = 0; j < lasts.size(); ++j) {
     int n = 0;
-    for (const auto& p : piece) n += nearestXy(p, lasts[j]) <= claim;
+    for (const auto& p : piece) n += nearestXy(p, *lasts[j]) <= claim;
     if (n >= share * static_cast<double>(piece.size())) {
       if (owner >= 0) return -1;
       owner = static_cast<int>(j);
@@ -100,32 +100,33 @@ int soleTrack(const Cloud& piece, const std::vector<Cloud>& lasts, double claim,
   return owner;
 }
 
-// Groups of `pieces` (one frame's views of a class) that are one object cut by the segmenter
-// (TrackerParams::join_share): pieces lying on one track's last view of `lasts` and on no other,
-// the largest first and then each within `min_gap` of those already in the group (farther apart
-// they are two objects, as the split step says: a track's view may have held two noses). Only
-// groups of two or more.
-std::vector<std::vector<std::size_t>> piecesOfOneView(const std::vector<const Cloud*>& pieces, const std::vector<Cloud>& lasts,
-                                                      double claim, double share, int min_points, double min_gap) {
-  std::map<int, std::vector<std::size_t>> on_track;
+// Groups of `pieces` (one frame's views of a class, each with the track it alone lies on or -1)
+// that are one object cut by the segmenter (TrackerParams::join_share): pieces on one track, the
+// largest first and then each within `min_gap` of those already in the group (farther apart they
+// are two objects, as the split step says: a track's view may have held two noses). Only groups
+// of two or more.
+std::vector<std::vector<std::size_t>> piecesOfOneView(const std::vector<Cloud>& pieces, const std::vector<std::int64_t>& owner,
+                                                      double min_gap) {
+  std::map<std::int64_t, std::vector<std::size_t>> on_track;
   for (std::size_t i = 0; i < pieces.size(); ++i)
-    if (const int j = soleTrack(*pieces[i], lasts, claim, share, min_points); j >= 0) on_track[j].push_back(i);
+    if (owner[i] >= 0) on_track[owner[i]].push_back(i);
   std::vector<std::vector<std::size_t>> groups;
-  for (auto& [j, on] : on_track) {
+  for (auto& [id, on] : on_track) {
     if (on.size() < 2) continue;
-    std::sort(on.begin(), on.end(), [&](std::size_t a, std::size_t b) { return pieces[a]->size() > pieces[b]->size(); });
+    std::sort(on.begin(), on.end(), [&](std::size_t a, std::size_t b) { return pieces[a].size() > pieces[b].size(); });
+    if (on.size() > kJoinMaxPieces) on.resize(kJoinMaxPieces);
     std::vector<std::size_t> group = {on.front()};
-    Cloud near = subsample(*pieces[on.front()], kSplitPointsPerTrack);
+    Cloud near = pieces[on.front()];
     for (bool grew = true; grew;) {
       grew = false;
       for (std::size_t i : on) {
         if (std::find(group.begin(), group.end(), i) != group.end()) continue;
-        const Cloud piece = subsample(*pieces[i], kSplitPointsPerTrack);
         float gap = std::numeric_limits<float>::infinity();
-        for (const auto& q : piece) gap = std::min(gap, nearestXy(q, near));
+        for (const auto& q : pieces[i])
+          if ((gap = std::min(gap, nearestXy(q, near))) < min_gap) break;
         if (gap >= min_gap) continue;
         group.push_back(i);
-        near.insert(near.end(), piece.begin(), piece.end());
+        near.insert(near.end(), pieces[i].begin(), pieces[i].end());
         grew = true;
       }
     }
@@ -451,19 +452,31 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
       // Pieces of one car's view (the segmenter cut it, e.g. at a gap in its returns) are joined:
       // given to tracks one by one, a smaller piece would continue a neighbour's track.
       if (params_.join_share <= 0 || obs.size() < 2) continue;
-      std::vector<Cloud> lasts;
-      for (const auto& [t, last_box] : lately) {
-        if (t->class_id != class_id || lasts.size() >= kJoinMaxTracks) continue;
-        bool touches = false;
-        for (const auto& o : obs)
-          touches |= grownBox(o.seen.points, static_cast<float>(params_.split_distance)).intersects(last_box);
-        if (touches) lasts.push_back(subsample(t->observations.back().points, kSplitPointsPerTrack));
+      // Each piece, subsampled, and the track it alone lies on among the nearest lately seen ones
+      // whose last views its box meets.
+      std::vector<Cloud> pieces;
+      std::vector<std::int64_t> owner;
+      std::map<const Track*, Cloud> last_of;
+      for (const auto& o : obs) {
+        pieces.push_back(subsample(o.seen.points, kSplitPointsPerTrack));
+        const Eigen::AlignedBox2f box = grownBox(o.seen.points, static_cast<float>(params_.split_distance));
+        std::vector<std::pair<double, const Track*>> near;
+        for (const auto& [t, last_box] : lately)
+          if (t->class_id == class_id && box.intersects(last_box))
+            near.emplace_back((t->last_centroid - o.centroid).head<2>().norm(), t);
+        std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        if (near.size() > kSplitMaxTracks) near.resize(kSplitMaxTracks);
+        std::vector<const Cloud*> lasts;
+        for (const auto& [d, t] : near) {
+          auto it = last_of.find(t);
+          if (it == last_of.end()) it = last_of.emplace(t, subsample(t->observations.back().points, kSplitPointsPerTrack)).first;
+          lasts.push_back(&it->second);
+        }
+        const int j = soleTrack(pieces.back(), lasts, params_.split_distance, params_.join_share, params_.split_min_points);
+        owner.push_back(j >= 0 ? near[j].second->id : -1);
       }
-      std::vector<const Cloud*> pieces;
-      for (const auto& o : obs) pieces.push_back(&o.seen.points);
       std::vector<char> gone(obs.size(), 0);
-      for (const auto& group : piecesOfOneView(pieces, lasts, params_.split_distance, params_.join_share,
-                                               params_.split_min_points, params_.split_min_gap)) {
+      for (const auto& group : piecesOfOneView(pieces, owner, params_.split_min_gap)) {
         Obs joined = obs[group.front()];
         for (std::size_t k = 1; k < group.size(); ++k) {
           const Observation& seen = obs[group[k]].seen;
