@@ -58,7 +58,7 @@ float nearestXy(const Eigen::Vector3f& p, const Cloud& c) {
 
 // The parts of `view` on the tracks' last views `lasts` (TrackerParams::split_distance): each point
 // to the nearest last view; empty when the view is not split.
-std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<Cloud>& lasts, double claim, int min_points,
+std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<const Cloud*>& lasts, double claim, int min_points,
                                  double min_gap) {
   if (lasts.size() < 2) return {};
   std::vector<Cloud> parts(lasts.size());
@@ -67,7 +67,7 @@ std::vector<Cloud> partsOnTracks(const Cloud& view, const std::vector<Cloud>& la
     std::size_t best = 0;
     float best_d = std::numeric_limits<float>::infinity();
     for (std::size_t j = 0; j < lasts.size(); ++j)
-      if (const float d = nearestXy(p, lasts[j]); d < best_d) best_d = d, best = j;
+      if (const float d = nearestXy(p, *lasts[j]); d < best_d) best_d = d, best = j;
     parts[best].push_back(p);
     claimed[best] += best_d <= claim;
   }
@@ -417,24 +417,39 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
 
   // Box views on two tracks' last views: split (TrackerParams::split_distance).
   if (params_.split_distance > 0) {
-    // The last views' boxes of the static box tracks seen lately, found once per frame.
+    // The last views' boxes of the static box tracks seen lately, found once per frame, and their
+    // points subsampled when first needed.
     std::vector<std::pair<const Track*, Eigen::AlignedBox2f>> lately;
     for (const auto& [id, t] : tracks_)
       if (!t.moving && t.missed <= kSplitMaxMissed && !t.observations.empty() && classes_.at(t.class_id).shape == Shape::Cuboid)
         lately.emplace_back(&t, grownBox(t.observations.back().points, 0.0f));
+    std::map<const Track*, Cloud> last_of;
+    // The nearest (by centroid, at most kSplitMaxTracks) of those tracks of a view's class whose
+    // last view its box, grown by split_distance, meets; and their subsampled last views.
+    auto nearTracks = [&](const Obs& o, std::vector<const Track*>& near, std::vector<const Cloud*>& lasts) {
+      const Eigen::AlignedBox2f box = grownBox(o.seen.points, static_cast<float>(params_.split_distance));
+      std::vector<std::pair<double, const Track*>> by_distance;
+      for (const auto& [t, last_box] : lately)
+        if (t->class_id == o.class_id && box.intersects(last_box))
+          by_distance.emplace_back((t->last_centroid - o.centroid).head<2>().norm(), t);
+      std::sort(by_distance.begin(), by_distance.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      near.clear();
+      lasts.clear();
+      for (std::size_t j = 0; j < by_distance.size() && j < kSplitMaxTracks; ++j) {
+        const Track* t = by_distance[j].second;
+        auto it = last_of.find(t);
+        if (it == last_of.end()) it = last_of.emplace(t, subsample(t->observations.back().points, kSplitPointsPerTrack)).first;
+        near.push_back(t);
+        lasts.push_back(&it->second);
+      }
+    };
+    std::vector<const Track*> near;
+    std::vector<const Cloud*> lasts;
     for (auto& [class_id, obs] : by_class) {
       if (classes_.at(class_id).shape != Shape::Cuboid) continue;
       std::vector<Obs> out;
       for (auto& o : obs) {
-        const Eigen::AlignedBox2f box = grownBox(o.seen.points, static_cast<float>(params_.split_distance));
-        std::vector<std::pair<double, const Cloud*>> near;  // by centroid distance
-        for (const auto& [t, last_box] : lately)
-          if (t->class_id == class_id && box.intersects(last_box))
-            near.emplace_back((t->last_centroid - o.centroid).head<2>().norm(), &t->observations.back().points);
-        std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-        std::vector<Cloud> lasts;
-        for (std::size_t j = 0; j < near.size() && j < kSplitMaxTracks; ++j)
-          lasts.push_back(subsample(*near[j].second, kSplitPointsPerTrack));
+        nearTracks(o, near, lasts);
         std::vector<Cloud> parts = partsOnTracks(o.seen.points, lasts, params_.split_distance, params_.split_min_points,
                                                  params_.split_min_gap);
         if (parts.empty()) {
@@ -452,28 +467,14 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
       // Pieces of one car's view (the segmenter cut it, e.g. at a gap in its returns) are joined:
       // given to tracks one by one, a smaller piece would continue a neighbour's track.
       if (params_.join_share <= 0 || obs.size() < 2) continue;
-      // Each piece, subsampled, and the track it alone lies on among the nearest lately seen ones
-      // whose last views its box meets.
+      // Each piece, subsampled, and the track it alone lies on among its nearest lately seen ones.
       std::vector<Cloud> pieces;
       std::vector<std::int64_t> owner;
-      std::map<const Track*, Cloud> last_of;
       for (const auto& o : obs) {
         pieces.push_back(subsample(o.seen.points, kSplitPointsPerTrack));
-        const Eigen::AlignedBox2f box = grownBox(o.seen.points, static_cast<float>(params_.split_distance));
-        std::vector<std::pair<double, const Track*>> near;
-        for (const auto& [t, last_box] : lately)
-          if (t->class_id == class_id && box.intersects(last_box))
-            near.emplace_back((t->last_centroid - o.centroid).head<2>().norm(), t);
-        std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-        if (near.size() > kSplitMaxTracks) near.resize(kSplitMaxTracks);
-        std::vector<const Cloud*> lasts;
-        for (const auto& [d, t] : near) {
-          auto it = last_of.find(t);
-          if (it == last_of.end()) it = last_of.emplace(t, subsample(t->observations.back().points, kSplitPointsPerTrack)).first;
-          lasts.push_back(&it->second);
-        }
+        nearTracks(o, near, lasts);
         const int j = soleTrack(pieces.back(), lasts, params_.split_distance, params_.join_share, params_.split_min_points);
-        owner.push_back(j >= 0 ? near[j].second->id : -1);
+        owner.push_back(j >= 0 ? near[j]->id : -1);
       }
       std::vector<char> gone(obs.size(), 0);
       for (const auto& group : piecesOfOneView(pieces, owner, params_.split_min_gap)) {
@@ -642,8 +643,8 @@ void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
         if (lasts.empty())
           lasts = {subsample(a.observations.back().points, kSplitPointsPerTrack),
                    subsample(b.observations.back().points, kSplitPointsPerTrack)};
-        std::vector<Cloud> parts =
-            partsOnTracks(it->points, lasts, params_.split_distance, params_.split_min_points, params_.split_min_gap);
+        std::vector<Cloud> parts = partsOnTracks(it->points, {&lasts[0], &lasts[1]}, params_.split_distance,
+                                                 params_.split_min_points, params_.split_min_gap);
         // Parts come in the order of `lasts`, both kept: the first is a's.
         if (parts.size() == 2) it->points = std::move(parts[0]);
       }
