@@ -165,10 +165,16 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   const std::size_t count = landmarks_.size();
   for (std::size_t i = 0; i < count; ++i) {
     if (!landmarks_[i].alive || landmarks_[i].seen.size() < 2) continue;
+    const Object landmark = landmarkObject(landmarks_[i]);
     auto outlier = [&](const Observation& obs) {
       if (norms && obs.factor >= static_cast<int>(norms->size())) return false;  // made after the solve's snapshot
       const double limit = cfg_.outlier_sigmas * std::sqrt(static_cast<double>(graph_.residualCount(obs.factor)));
-      return (norms ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit;
+      if ((norms ? (*norms)[obs.factor] : graph_.residualNorm(obs.factor)) > limit) return true;
+      // Placed by the solved key pose, the detection must still pass the gate that admitted it
+      // (under the landmark's class: a confused class was admitted by its shape).
+      Object seen = transformObject(poseOf(obs.pose_var), obs.body);
+      seen.class_id = landmark.class_id;
+      return associationCost(nearestReading(seen, landmark), landmark, classes_, associationSlack(obs.body)) < 0;
     };
     const std::vector<Observation>& seen = landmarks_[i].seen;
     if (std::none_of(seen.begin(), seen.end(), outlier)) continue;  // the common case: nothing copied

@@ -55,6 +55,16 @@ const Optimizer::KeyPose* Optimizer::findKeyPose(int robot, int seq) const {
   return &keyposes_[*pos];
 }
 
+std::pair<double, double> Optimizer::positionSigmas(const Object& body) const {
+  const double rho = body.position().head<2>().norm();
+  return {std::max(cfg_.position_sigma_floor, cfg_.range_sigma), std::max(cfg_.position_sigma_floor, cfg_.bearing_sigma * rho)};
+}
+
+double Optimizer::associationSlack(const Object& body) const {
+  const auto [sr, st] = positionSigmas(body);
+  return cfg_.association_sigmas * std::max(sr, st);
+}
+
 Vector6d Optimizer::odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const {
   if (cfg_.use_message_sigma && !bridged && (b.odom_sigma.array() > 0).all()) return b.odom_sigma;
   const double d = relative.translation().norm();
@@ -145,8 +155,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   for (const Object& o : objects) {
     const Eigen::Vector2d p = o.position().head<2>();
     const double rho = p.norm();
-    const double sr = std::max(cfg_.position_sigma_floor, cfg_.range_sigma);
-    const double st = std::max(cfg_.position_sigma_floor, cfg_.bearing_sigma * rho);
+    const auto [sr, st] = positionSigmas(o);
     // Radial / tangential covariance of the detection, turned into the host frame.
     const Eigen::Vector2d u = rho > 1e-6 ? Eigen::Vector2d(p / rho) : Eigen::Vector2d::UnitX();
     Eigen::Matrix2d R;
@@ -154,7 +163,7 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     R.col(1) = Eigen::Vector2d(-u.y(), u.x());
     const Eigen::Matrix2d yaw = T_w_b.linear().topLeftCorner<2, 2>();
     const Eigen::Matrix2d cov = yaw * R * Eigen::Vector2d(sr * sr, st * st).asDiagonal() * R.transpose() * yaw.transpose();
-    world.push_back({transformObject(T_w_b, o), cfg_.association_sigmas * std::max(sr, st),
+    world.push_back({transformObject(T_w_b, o), associationSlack(o),
                      cfg_.association_gate > 0 ? cov : Eigen::Matrix2d::Zero(), cfg_.association_gate});
     grid_.near(world.back().object.position(), max_association_distance_ + world.back().slack + 1.0, near);
   }

@@ -221,6 +221,10 @@ class Optimizer {
   void settleReading(Object& seen, const Pose& T_w_b) const;
   Object landmarkObject(const Landmark& lm, const FactorGraph::Values* values = nullptr) const;
   Vector6d odometrySigma(const KeyPoseBundle& b, const Pose& relative, bool bridged) const;
+  // A detection's (body frame) range and bearing position sigmas, and the slack its association
+  // gate allows beyond its class's association distance: association_sigmas times the larger.
+  std::pair<double, double> positionSigmas(const Object& body) const;
+  double associationSlack(const Object& body) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
   // the poses, or a detector's class confusion made a second one): sameObject(), seen from
@@ -235,7 +239,8 @@ class Optimizer {
   // Adds an observation's vote (its confidence) to the landmark's class.
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their
-  // landmark (a wrong association made while the poses had drifted): each becomes a new
+  // landmark, or that the solved estimate puts outside the association gate that admitted them
+  // (a wrong association made while the poses had drifted): each becomes a new
   // landmark, which mergeDuplicates() may join to the right one. Returns how many. With
   // `norms` (by factor id, as a solved snapshot gave them) only the observations that snapshot
   // held are judged: those made since were placed by key poses that only followed the solve

@@ -496,6 +496,43 @@ TEST(BackendOptimizer, ACarFarOffIsNotJoinedToTheCarAcrossTheStreet) {
   EXPECT_EQ(landmarksOf(0.0), 1u) << "uncapped, the far car is taken for the one across the street";
 }
 
+// Two cars parked side by side, C at (12, 6) and A at (12, 2.5). Key poses 0-3 see C; at key
+// pose 4 the odometry slips 3.5 m sideways (and says so: a 5 m sigma), so key poses 4-11 place
+// A where C is and their detections join C's landmark. A loop closure 0-11 puts the key poses
+// back; the landmark then stands between the cars, 2.2 m from C's detections and 1.3 m from A's,
+// each within a few of their (range-bearing) sigmas, and no residual test would part them. C's
+// detections no longer pass the association gate that admitted them (their boxes do not meet
+// the landmark's): they are detached and make C's landmark again.
+TEST(BackendOptimizer, DetectionsTheSolvedEstimatePutsOutsideTheirGateLeaveTheLandmark) {
+  const Eigen::Vector3d car_c(12, 6, 0.75), car_a(12, 2.5, 0.75);
+  backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
+  for (int k = 0; k < 12; ++k) {
+    const Pose truth = poseFromXyzYaw(0.5 * k, 0, 0, 0);
+    Object o;
+    o.class_id = 10;
+    o.model = Cuboid{truth.inverse() * poseFromXyzYaw((k < 4 ? car_c : car_a).x(), (k < 4 ? car_c : car_a).y(), 0.75, 0),
+                     {4.5, 1.8, 1.5}};
+    KeyPoseBundle b = stepBundle(k, {o});
+    b.odom_pose = poseFromXyzYaw(0.5 * k, k < 4 ? 0.0 : 3.5, 0, 0);
+    if (k == 4) b.relative_odom = poseFromXyzYaw(0.5, 3.5, 0, 0);
+    b.odom_sigma << 0.005, 0.005, 0.005, 0.0005, 0.0005, 0.0005;
+    if (k == 4) b.odom_sigma.head<3>().setConstant(5.0);
+    const backend::UpdateResult r = opt.addBundle(b);
+    ASSERT_TRUE(r.accepted) << r.reason;
+  }
+  ASSERT_EQ(opt.numLandmarks(false), 1) << "A's detections were to join C's landmark";
+  ASSERT_TRUE(opt.addLoopClosure(0, 0, 11, poseFromXyzYaw(5.5, 0, 0, 0)).accepted);
+  opt.fullSolve();
+  EXPECT_LT((opt.trajectory(0).back().pose.translation() - Eigen::Vector3d(5.5, 0, 0)).norm(), 0.1);
+  const std::vector<Object> lms = opt.landmarks();
+  ASSERT_EQ(lms.size(), 2u);
+  for (const Eigen::Vector3d& car : {car_c, car_a}) {
+    double best = 1e9;
+    for (const Object& lm : lms) best = std::min(best, (lm.position() - car).head<2>().norm());
+    EXPECT_LT(best, 0.1) << "car at " << car.transpose();
+  }
+}
+
 // KITTI 05 under realistic observations: a peer merged last through a sound transform was
 // undone because another peer's estimate had left that peer's own odometry envelope. The
 // guard undoes the merge of the robot that left its envelope; the other peer stays merged.
