@@ -499,10 +499,10 @@ TEST(BackendOptimizer, ACarFarOffIsNotJoinedToTheCarAcrossTheStreet) {
 // Two cars parked side by side, C at (12, 6) and A at (12, 2.5). Key poses 0-3 see C; at key
 // pose 4 the odometry slips 3.5 m sideways (and says so: a 5 m sigma), so key poses 4-11 place
 // A where C is and their detections join C's landmark. A loop closure 0-11 puts the key poses
-// back; the landmark then stands between the cars, 2.2 m from C's detections and 1.3 m from A's,
-// each within a few of their (range-bearing) sigmas, and no residual test would part them. C's
-// detections no longer pass the association gate that admitted them (their boxes do not meet
-// the landmark's): they are detached and make C's landmark again.
+// back; without the gate test the landmark then stands 2.8 m from C's detections and 0.6 m from
+// A's, C's residuals 4.2-4.7 against the outlier limit of 12 (4 sigmas x sqrt(9)). C's detections
+// no longer pass the association gate that admitted them (their boxes do not meet the
+// landmark's): they are detached and make C's landmark again.
 TEST(BackendOptimizer, DetectionsTheSolvedEstimatePutsOutsideTheirGateLeaveTheLandmark) {
   const Eigen::Vector3d car_c(12, 6, 0.75), car_a(12, 2.5, 0.75);
   backend::Optimizer opt(backend::BackendConfig{}, ClassTable::loadDefault(), 0);
