@@ -354,6 +354,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "parallel_fallback_radius", p.parallel_fallback_radius, 0.0);
     opt(c, "box_overlap", p.box_overlap, 0.0, 1.0);
     opt(c, "box_same_centre", p.box_same_centre, 0.0);
+    opt(c, "ellipsoid_view_growth", p.ellipsoid_view_growth, 0.0);
     opt(c, "box_across", p.box_across, 0.0, 1.0);
   }
   if (root.has("keypose")) {

@@ -249,9 +249,24 @@ double centroidDistance(Shape shape, const Eigen::Vector3d& a, const Eigen::Vect
 }
 }  // namespace
 
-Cloud Track::accumulated() const {
+Cloud Track::accumulated(double max_growth) const {
+  std::vector<float> width;
+  if (max_growth > 0 && observations.size() >= 3)
+    for (const auto& o : observations) {
+      const Eigen::AlignedBox2f box = grownBox(o.points, 0.0f);
+      width.push_back(o.points.empty() ? 0.0f : box.sizes().maxCoeff());
+    }
+  float limit = std::numeric_limits<float>::infinity();
+  if (!width.empty()) {
+    std::vector<float> sorted = width;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    limit = static_cast<float>(max_growth) * sorted[sorted.size() / 2];
+  }
   Cloud out;
-  for (const auto& o : observations) out.insert(out.end(), o.points.begin(), o.points.end());
+  std::size_t k = 0;
+  for (const auto& o : observations) {
+    if (width.empty() || width[k++] <= limit) out.insert(out.end(), o.points.begin(), o.points.end());
+  }
   return out;
 }
 
@@ -844,7 +859,8 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     // Completion away from where the points were seen (not from the current pose: the robot
     // may have passed the object since).
     std::optional<Object> other;
-    auto o = fitPoints(t.accumulated(), t.freeSpace(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
+    const bool ellipsoid = classes_.at(t.class_id).shape == Shape::Ellipsoid;
+    auto o = fitPoints(t.accumulated(ellipsoid ? params_.ellipsoid_view_growth : 0.0), t.freeSpace(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
                        readings ? &other : nullptr);
     if (o) fits.emplace_back(std::move(*o), std::move(other));
   }

@@ -111,6 +111,9 @@ struct TrackerParams {
   // way by the other (0: off). Boxes are joined again once their readings are settled
   // (parallel_radius).
   double box_same_centre = 0.5;
+  // An ellipsoid track's report leaves out views wider than this times its median view
+  // (Track::accumulated; 0: off).
+  double ellipsoid_view_growth = 0.0;
   // A reported box of which the other reported boxes of its class cover more than this share
   // of the footprint stands across its neighbours (the end faces of two cars parked side by
   // side, read as one car's side): not reported (0: off).
@@ -139,7 +142,10 @@ struct Track {
   // looked for in the next frame (TrackerParams::moving_predict).
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
   std::deque<Observation> observations;  // the latest max_observations
-  Cloud accumulated() const;
+  // The observations' points together; with max_growth > 0 (ellipsoid classes) leaving out the
+  // views wider (x-y extent) than max_growth times the median view of at least three: a frame
+  // in which a neighbour took the track's label (a monitor on a table named "table") joined it.
+  Cloud accumulated(double max_growth = 0.0) const;
   Cloud freeSpace() const;  // the observations' free_space cells together
   // Where the accumulated points were seen from: the mean of the observations' viewpoints,
   // weighted by their points (a partly seen object is completed away from it).

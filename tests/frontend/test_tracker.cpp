@@ -1019,3 +1019,51 @@ TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
   }
 }
 
+
+// A table (1.0 m across, centre (4, 0)) tracked over six frames; in frame 2 the labeller also
+// named the monitor standing beside it "table" (0.6 m more to one side), and that wide view joins
+// the track. The report leaves it out (ellipsoid_view_growth): the table keeps its size and centre;
+// without, the fit grows towards the monitor.
+TEST(Tracker, AnEllipsoidsReportLeavesOutAViewMuchWiderThanItsOthers) {
+  const ClassTable classes = ClassTable::loadDefault();
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  ASSERT_GT(cfg.tracker.ellipsoid_view_growth, 0) << "on by default";
+  auto disc = [](float cx, float radius) {
+    frontend::Instance inst;
+    inst.class_id = 2;  // table
+    for (int i = 0; i < 40; ++i)
+      for (float z : {0.05f, 0.3f, 0.55f, 0.75f}) {
+        const float a = static_cast<float>(i) * 0.157f;
+        inst.points.emplace_back(cx + radius * std::cos(a), radius * std::sin(a), z);
+      }
+    return inst;
+  };
+  auto reportedRadius = [&](double growth, double* centre_x) {
+    frontend::TrackerParams p = cfg.tracker;
+    p.ellipsoid_view_growth = growth;
+    frontend::Tracker tracker(classes, p, cfg.fit);
+    frontend::InputIssues issues;
+    for (int k = 0; k < 6; ++k) {
+      frontend::FrameInstances f;
+      f.utime = k * 100000;
+      frontend::Instance table = disc(4.0f, 0.5f);
+      if (k == 2) {
+        const frontend::Instance monitor_too = disc(4.3f, 0.8f);  // the table and the monitor beside it
+        table.points.insert(table.points.end(), monitor_too.points.begin(), monitor_too.points.end());
+      }
+      f.instances = {table};
+      tracker.update(f, issues);
+    }
+    const std::vector<Object> out = tracker.objectsInBody(Pose::Identity());
+    EXPECT_EQ(out.size(), 1u);
+    if (out.empty()) return 0.0;
+    *centre_x = out[0].position().x();
+    return std::get<Ellipsoid>(out[0].model).radius;
+  };
+  double x_kept = 0, x_all = 0;
+  const double kept = reportedRadius(cfg.tracker.ellipsoid_view_growth, &x_kept);
+  const double all = reportedRadius(0.0, &x_all);
+  EXPECT_NEAR(kept, 0.5, 0.05);
+  EXPECT_NEAR(x_kept, 4.0, 0.05);
+  EXPECT_GT(all, kept + 0.2) << "the wide view was taken in";
+}
