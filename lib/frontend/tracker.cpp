@@ -860,8 +860,8 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
     // may have passed the object since).
     std::optional<Object> other;
     const bool ellipsoid = classes_.at(t.class_id).shape == Shape::Ellipsoid;
-    auto o = fitPoints(t.accumulated(ellipsoid ? params_.ellipsoid_view_growth : 0.0), t.freeSpace(), t.viewpoint(), t.class_id, id, t.hits, t.confidence_sum, T_body_odom,
-                       readings ? &other : nullptr);
+    auto o = fitPoints(t.accumulated(ellipsoid ? params_.ellipsoid_view_growth : 0.0), t.freeSpace(), t.viewpoint(),
+                       t.class_id, id, t.hits, t.confidence_sum, T_body_odom, readings ? &other : nullptr);
     if (o) fits.emplace_back(std::move(*o), std::move(other));
   }
   // Readings are settled by the parallel neighbours before overlapping boxes are joined: two
