@@ -1019,7 +1019,6 @@ TEST(Tracker, ABoxWithNoParallelNeighbourNearTakesTheHeadingOfThoseFartherOff) {
   }
 }
 
-
 // A table (1.0 m across, centre (4, 0)) tracked over six frames; in frame 2 the labeller also
 // named the monitor standing beside it "table" (0.6 m more to one side), and that wide view joins
 // the track. The report leaves it out (ellipsoid_view_growth): the table keeps its size and centre;
@@ -1038,7 +1037,7 @@ TEST(Tracker, AnEllipsoidsReportLeavesOutAViewMuchWiderThanItsOthers) {
       }
     return inst;
   };
-  auto reportedRadius = [&](double growth, double* centre_x) {
+  auto reported = [&](double growth) {
     frontend::TrackerParams p = cfg.tracker;
     p.ellipsoid_view_growth = growth;
     frontend::Tracker tracker(classes, p, cfg.fit);
@@ -1056,14 +1055,15 @@ TEST(Tracker, AnEllipsoidsReportLeavesOutAViewMuchWiderThanItsOthers) {
     }
     const std::vector<Object> out = tracker.objectsInBody(Pose::Identity());
     EXPECT_EQ(out.size(), 1u);
-    if (out.empty()) return 0.0;
-    *centre_x = out[0].position().x();
-    return std::get<Ellipsoid>(out[0].model).radius;
+    return out.empty() ? Object{} : out[0];
   };
-  double x_kept = 0, x_all = 0;
-  const double kept = reportedRadius(cfg.tracker.ellipsoid_view_growth, &x_kept);
-  const double all = reportedRadius(0.0, &x_all);
+  const Object table = reported(cfg.tracker.ellipsoid_view_growth);
+  ASSERT_TRUE(std::holds_alternative<Ellipsoid>(table.model));
+  const double kept = std::get<Ellipsoid>(table.model).radius;
+  const Object blob = reported(0.0);
+  ASSERT_TRUE(std::holds_alternative<Ellipsoid>(blob.model));
+  const double all = std::get<Ellipsoid>(blob.model).radius;
   EXPECT_NEAR(kept, 0.5, 0.05);
-  EXPECT_NEAR(x_kept, 4.0, 0.05);
+  EXPECT_NEAR(table.position().x(), 4.0, 0.05);
   EXPECT_GT(all, kept + 0.2) << "the wide view was taken in";
 }
