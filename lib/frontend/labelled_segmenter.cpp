@@ -58,6 +58,81 @@ class LabelledGround {
   int nx_ = 0, ny_ = 0;
   std::vector<float> low_;
 };
+// Horizontal range and azimuth of a sensor-frame point.
+double rangeXy(const Eigen::Vector3f& p) { return std::hypot(double(p.x()), double(p.y())); }
+double azimuth(const Eigen::Vector3f& p) { return std::atan2(double(p.y()), double(p.x())); }
+double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
+
+// Whether clusters a and b of one class are one object cut in two by something in front of it
+// (LabelledSegmenterParams::OccludedJoin): near each other, together within the class's size,
+// apart in azimuth, and the returns in that azimuth gap at their height nearer than both.
+bool cutByOccluder(const std::vector<Eigen::Vector3f>& xyz, const std::vector<int>& a, const std::vector<int>& b,
+                   const ClassInfo& info, const LabelledSegmenterParams::OccludedJoin& p) {
+  Eigen::AlignedBox2f box_a, box_b;
+  for (int i : a) box_a.extend(xyz[i].head<2>());
+  for (int i : b) box_b.extend(xyz[i].head<2>());
+  const Eigen::AlignedBox2f both = box_a.merged(box_b);
+  if (box_a.exteriorDistance(box_b) > p.max_gap) return false;
+  std::vector<cv::Point2f> xy;
+  xy.reserve(a.size() + b.size());
+  for (const auto* c : {&a, &b})
+    for (int i : *c) xy.emplace_back(xyz[i].x(), xyz[i].y());
+  const cv::Size2f r = cv::minAreaRect(xy).size;
+  if (std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y()) return false;
+  // Azimuths relative to the middle of both boxes (a cluster spans far less than half a turn).
+  const double mid = std::atan2(both.center().y(), both.center().x());
+  auto span = [&](const std::vector<int>& c, double& lo, double& hi, double& range, float& z_lo, float& z_hi) {
+    lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    std::vector<double> ranges;
+    for (int i : c) {
+      const double az = wrapAngle(azimuth(xyz[i]) - mid);
+      lo = std::min(lo, az), hi = std::max(hi, az);
+      ranges.push_back(rangeXy(xyz[i]));
+      z_lo = std::min(z_lo, xyz[i].z()), z_hi = std::max(z_hi, xyz[i].z());
+    }
+    range = quantileInPlace(ranges, 0.5);
+  };
+  double lo_a, hi_a, range_a, lo_b, hi_b, range_b;
+  float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
+  span(a, lo_a, hi_a, range_a, z_lo, z_hi);
+  span(b, lo_b, hi_b, range_b, z_lo, z_hi);
+  const double gap_lo = hi_a < lo_b ? hi_a : hi_b, gap_hi = hi_a < lo_b ? lo_b : lo_a;
+  if (gap_hi <= gap_lo) return false;  // they overlap in azimuth
+  const double nearer = std::min(range_a, range_b) - p.min_nearer;
+  int in_gap = 0, in_front = 0;
+  for (const auto& q : xyz) {
+    if (!q.allFinite() || q.z() < z_lo || q.z() > z_hi) continue;
+    const double az = wrapAngle(azimuth(q) - mid);
+    if (az <= gap_lo || az >= gap_hi) continue;
+    ++in_gap;
+    in_front += rangeXy(q) < nearer;
+  }
+  return in_gap >= p.min_returns && in_front >= p.min_share * in_gap;
+}
+
+// Clusters of one ellipsoid class joined where cutByOccluder says one object was cut in two.
+std::vector<std::vector<int>> joinOccludedPieces(const std::vector<Eigen::Vector3f>& xyz, std::vector<std::vector<int>> clusters,
+                                                 const ClassInfo& info, const LabelledSegmenterParams::OccludedJoin& p) {
+  std::vector<int> root(clusters.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
+  auto find = [&](int i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < clusters.size(); ++i)
+    for (std::size_t j = i + 1; j < clusters.size(); ++j) {
+      const int ri = find(static_cast<int>(i)), rj = find(static_cast<int>(j));
+      if (ri != rj && cutByOccluder(xyz, clusters[i], clusters[j], info, p)) root[rj] = ri;
+    }
+  std::vector<std::vector<int>> out;
+  std::map<int, std::size_t> slot;
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    const auto [it, added] = slot.emplace(find(static_cast<int>(i)), out.size());
+    if (added) out.emplace_back();
+    out[it->second].insert(out[it->second].end(), clusters[i].begin(), clusters[i].end());
+  }
+  return out;
+}
 }  // namespace
 
 LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
@@ -163,6 +238,8 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       }
       clusters = std::move(kept);
     }
+    if (group >= 0 && classes_.at(group).shape == Shape::Ellipsoid && params_.occluded_join.max_gap > 0 && clusters.size() >= 2)
+      clusters = joinOccludedPieces(scan.xyz, std::move(clusters), classes_.at(group), params_.occluded_join);
     for (const auto& cluster : clusters) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;

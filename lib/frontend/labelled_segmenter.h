@@ -61,6 +61,16 @@ struct LabelledSegmenterParams {
   // body's height band (Instance::free_space; cell 0: none), its ground the lowest labelled
   // ground near its points.
   FreeSpaceParams free_space{0.0};
+  // Two clusters of one ellipsoid class are one object that something in front cut in two (a
+  // table behind a chair) when they stand at most max_gap metres apart (x-y), together fit the
+  // class's size_max, and the returns between them in azimuth, at their height, lie at least
+  // min_nearer metres nearer than both (min_returns of them, min_share nearer). max_gap 0: off.
+  struct OccludedJoin {
+    double max_gap = 0.0;
+    double min_nearer = 0.3;
+    int min_returns = 5;
+    double min_share = 0.8;
+  } occluded_join;
 };
 
 class LabelledSegmenter : public LidarSegmenter {

@@ -365,6 +365,41 @@ TEST(LabelledSegmenter, LabelsBledOntoAWallBehindATableMakeNoSecondTable) {
   EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u) << "the bled band is a table of its own";
 }
 
+// A chair in front of a table hides the table's middle: the table's two visible pieces, 0.7 m
+// apart, are two clusters on the table's cells. With the returns between them (in azimuth, at
+// their height) on the chair, nearer, they are one table; with a wall seen between them, farther,
+// they stay two (nothing says they are one), as they do with the join off.
+TEST(LabelledSegmenter, ATableCutInTwoByAChairInFrontOfItIsOneTable) {
+  auto scene = [](bool chair) {
+    io::LabelledScan scan;
+    const double chair_half_width = 0.25, chair_x = 3.5;  // hides |y / x| < 0.25 / 3.5
+    for (double y = -0.6; y <= 0.6 + 1e-9; y += 0.05)     // the table's near face, x = 5
+      for (double z = -1.0; z <= -0.3 + 1e-9; z += 0.05)
+        if (std::abs(y) / 5.0 >= chair_half_width / chair_x) addLabelledPoint(scan, 5.0, y, z, 101);
+        else if (!chair) addLabelledPoint(scan, 8.0, y * 8.0 / 5.0, z, 50);  // a wall seen through the gap
+    if (chair)
+      for (double y = -chair_half_width; y <= chair_half_width + 1e-9; y += 0.05)
+        for (double z = -1.05; z <= -0.2 + 1e-9; z += 0.05) addLabelledPoint(scan, chair_x, y, z, 100);
+    return scan;
+  };
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.occluded_join.max_gap, 0.7);
+  frontend::InputIssues issues;
+  auto tables = [&](const io::LabelledScan& scan, const frontend::LabelledSegmenterParams& params) {
+    std::vector<Eigen::Vector3d> centres;
+    for (const auto& inst : frontend::LabelledSegmenter(classes, params).segment(scan, issues))
+      if (inst.class_id == 2) centres.push_back(frontend::centroidOf(inst.points));
+    return centres;
+  };
+  const auto joined = tables(scene(true), p);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_NEAR(joined[0].y(), 0.0, 0.05);
+  EXPECT_EQ(tables(scene(false), p).size(), 2u) << "a wall behind the gap hides nothing";
+  p.occluded_join.max_gap = 0;
+  EXPECT_EQ(tables(scene(true), p).size(), 2u) << "join off";
+}
+
 // Two cars parked side by side 0.4 m apart join on 0.3 m cells into one cluster wider than a
 // car; re-clustered on 0.15 m cells they are two, in both segmenters. With re-clustering off
 // (min_split_cell = cell, or max_split_length shorter than the pair) the labelled segmenter
