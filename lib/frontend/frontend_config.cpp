@@ -297,13 +297,14 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
       if (c.has("notch")) loadNotch(c.child("notch"), cfg.labelled.notch);
       if (c.has("free_space")) loadFreeSpace(c.child("free_space"), cfg.labelled.free_space);
       if (c.has("cluster_cell_by_class")) cfg.labelled.cluster_cell_by_class = loadByClass(c, "cluster_cell_by_class", 1e-3);
-      if (c.has("occluded_join")) {
-        const ConfigNode j = c.child("occluded_join");
-        auto& o = cfg.labelled.occluded_join;
+      if (c.has("ellipsoid_join")) {
+        const ConfigNode j = c.child("ellipsoid_join");
+        auto& o = cfg.labelled.ellipsoid_join;
         opt(j, "max_gap", o.max_gap, 0.0, 10.0);
         opt(j, "min_nearer", o.min_nearer, 0.0);
         opt(j, "min_returns", o.min_returns, 1);
         opt(j, "min_share", o.min_share, 0.0, 1.0);
+        opt(j, "stacked_overlap", o.stacked_overlap, 0.0, 1.0);
       }
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);

@@ -58,16 +58,21 @@ class LabelledGround {
   int nx_ = 0, ny_ = 0;
   std::vector<float> low_;
 };
+// Metres a cluster's x-y box is grown by when another's points are tested for lying in it
+// (LabelledSegmenterParams::EllipsoidJoin::stacked_overlap): the returns' own scatter.
+constexpr float kStackedMargin = 0.05f;
+
 // Horizontal range and azimuth of a sensor-frame point.
 double rangeXy(const Eigen::Vector3f& p) { return std::hypot(double(p.x()), double(p.y())); }
 double azimuth(const Eigen::Vector3f& p) { return std::atan2(double(p.y()), double(p.x())); }
 double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
 
-// Whether clusters a and b of one class are one object cut in two by something in front of it
-// (LabelledSegmenterParams::OccludedJoin): near each other, together within the class's size,
-// apart in azimuth, and the returns in that azimuth gap at their height nearer than both.
-bool cutByOccluder(const std::vector<Eigen::Vector3f>& xyz, const std::vector<int>& a, const std::vector<int>& b,
-                   const ClassInfo& info, const LabelledSegmenterParams::OccludedJoin& p) {
+// Whether clusters a and b of one class are one object seen in two pieces
+// (LabelledSegmenterParams::EllipsoidJoin): near each other and together within the class's size,
+// and either one above the other or apart in azimuth with the returns in that azimuth gap, at
+// their height, nearer than both.
+bool piecesOfOneObject(const std::vector<Eigen::Vector3f>& xyz, const std::vector<int>& a, const std::vector<int>& b,
+                   const ClassInfo& info, const LabelledSegmenterParams::EllipsoidJoin& p) {
   Eigen::AlignedBox2f box_a, box_b;
   for (int i : a) box_a.extend(xyz[i].head<2>());
   for (int i : b) box_b.extend(xyz[i].head<2>());
@@ -79,6 +84,15 @@ bool cutByOccluder(const std::vector<Eigen::Vector3f>& xyz, const std::vector<in
     for (int i : *c) xy.emplace_back(xyz[i].x(), xyz[i].y());
   const cv::Size2f r = cv::minAreaRect(xy).size;
   if (std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y()) return false;
+  if (p.stacked_overlap > 0) {  // the smaller's points within the other's box (a back is a thin slab)
+    const bool a_smaller = a.size() <= b.size();
+    const std::vector<int>& small = a_smaller ? a : b;
+    Eigen::AlignedBox2f other = a_smaller ? box_b : box_a;
+    other.min().array() -= kStackedMargin, other.max().array() += kStackedMargin;
+    int inside = 0;
+    for (int i : small) inside += other.contains(xyz[i].head<2>());
+    if (inside >= p.stacked_overlap * static_cast<double>(small.size())) return true;
+  }
   // Azimuths relative to the middle of both boxes (a cluster spans far less than half a turn).
   const double mid = std::atan2(both.center().y(), both.center().x());
   auto span = [&](const std::vector<int>& c, double& lo, double& hi, double& range, float& z_lo, float& z_hi) {
@@ -110,9 +124,9 @@ bool cutByOccluder(const std::vector<Eigen::Vector3f>& xyz, const std::vector<in
   return in_gap >= p.min_returns && in_front >= p.min_share * in_gap;
 }
 
-// Clusters of one ellipsoid class joined where cutByOccluder says one object was cut in two.
-std::vector<std::vector<int>> joinOccludedPieces(const std::vector<Eigen::Vector3f>& xyz, std::vector<std::vector<int>> clusters,
-                                                 const ClassInfo& info, const LabelledSegmenterParams::OccludedJoin& p) {
+// Clusters of one ellipsoid class joined where piecesOfOneObject says they are one object.
+std::vector<std::vector<int>> joinPieces(const std::vector<Eigen::Vector3f>& xyz, std::vector<std::vector<int>> clusters,
+                                                 const ClassInfo& info, const LabelledSegmenterParams::EllipsoidJoin& p) {
   std::vector<int> root(clusters.size());
   for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
   auto find = [&](int i) {
@@ -122,7 +136,7 @@ std::vector<std::vector<int>> joinOccludedPieces(const std::vector<Eigen::Vector
   for (std::size_t i = 0; i < clusters.size(); ++i)
     for (std::size_t j = i + 1; j < clusters.size(); ++j) {
       const int ri = find(static_cast<int>(i)), rj = find(static_cast<int>(j));
-      if (ri != rj && cutByOccluder(xyz, clusters[i], clusters[j], info, p)) root[rj] = ri;
+      if (ri != rj && piecesOfOneObject(xyz, clusters[i], clusters[j], info, p)) root[rj] = ri;
     }
   std::vector<std::vector<int>> out;
   std::map<int, std::size_t> slot;
@@ -238,8 +252,8 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       }
       clusters = std::move(kept);
     }
-    if (group >= 0 && classes_.at(group).shape == Shape::Ellipsoid && params_.occluded_join.max_gap > 0 && clusters.size() >= 2)
-      clusters = joinOccludedPieces(scan.xyz, std::move(clusters), classes_.at(group), params_.occluded_join);
+    if (group >= 0 && classes_.at(group).shape == Shape::Ellipsoid && params_.ellipsoid_join.max_gap > 0 && clusters.size() >= 2)
+      clusters = joinPieces(scan.xyz, std::move(clusters), classes_.at(group), params_.ellipsoid_join);
     for (const auto& cluster : clusters) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;

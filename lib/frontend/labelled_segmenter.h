@@ -61,16 +61,19 @@ struct LabelledSegmenterParams {
   // body's height band (Instance::free_space; cell 0: none), its ground the lowest labelled
   // ground near its points.
   FreeSpaceParams free_space{0.0};
-  // Two clusters of one ellipsoid class are one object that something in front cut in two (a
-  // table behind a chair) when they stand at most max_gap metres apart (x-y), together fit the
-  // class's size_max, and the returns between them in azimuth, at their height, lie at least
-  // min_nearer metres nearer than both (min_returns of them, min_share nearer). max_gap 0: off.
-  struct OccludedJoin {
+  // Two clusters of one ellipsoid class that together fit the class's size_max are one object
+  // seen in two pieces: one above the other (at least stacked_overlap of the smaller's points lie
+  // in the other's x-y box: a chair's seat and back), or cut in two by something in front (a table
+  // behind a chair) when they stand at most max_gap metres apart (x-y) and the returns between
+  // them in azimuth, at their height, lie at least min_nearer metres nearer than both
+  // (min_returns of them, min_share nearer). max_gap 0: off (both); stacked_overlap 0: off.
+  struct EllipsoidJoin {
     double max_gap = 0.0;
     double min_nearer = 0.3;
     int min_returns = 5;
     double min_share = 0.8;
-  } occluded_join;
+    double stacked_overlap = 0.0;
+  } ellipsoid_join;
 };
 
 class LabelledSegmenter : public LidarSegmenter {

@@ -384,7 +384,7 @@ TEST(LabelledSegmenter, ATableCutInTwoByAChairInFrontOfItIsOneTable) {
   };
   const ClassTable classes = ClassTable::loadDefault();
   frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
-  ASSERT_GT(p.occluded_join.max_gap, 0.7);
+  ASSERT_GT(p.ellipsoid_join.max_gap, 0.7);
   frontend::InputIssues issues;
   auto tables = [&](const io::LabelledScan& scan, const frontend::LabelledSegmenterParams& params) {
     std::vector<Eigen::Vector3d> centres;
@@ -396,8 +396,27 @@ TEST(LabelledSegmenter, ATableCutInTwoByAChairInFrontOfItIsOneTable) {
   ASSERT_EQ(joined.size(), 1u);
   EXPECT_NEAR(joined[0].y(), 0.0, 0.05);
   EXPECT_EQ(tables(scene(false), p).size(), 2u) << "a wall behind the gap hides nothing";
-  p.occluded_join.max_gap = 0;
+  p.ellipsoid_join.max_gap = 0;
   EXPECT_EQ(tables(scene(true), p).size(), 2u) << "join off";
+}
+
+// A chair's seat (its front and top) and its back, 0.35 m above the seat with nothing labelled
+// between, are two clusters on the chair's cells; one above the other, and together the size of
+// a chair, they are one.
+TEST(LabelledSegmenter, AChairsSeatAndBackAreOneChair) {
+  io::LabelledScan scan;
+  for (double y = -0.25; y <= 0.25 + 1e-9; y += 0.05) {
+    for (double x = 4.0; x <= 4.5 + 1e-9; x += 0.05) addLabelledPoint(scan, x, y, -0.8, 100);      // the seat's top
+    for (double z = -1.1; z <= -0.8 + 1e-9; z += 0.05) addLabelledPoint(scan, 4.0, y, z, 100);     // its front
+    for (double z = -0.45; z <= -0.1 + 1e-9; z += 0.05) addLabelledPoint(scan, 4.5, y, z, 100);    // the back
+  }
+  const ClassTable classes = ClassTable::loadDefault();
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.ellipsoid_join.stacked_overlap, 0.0);
+  frontend::InputIssues issues;
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 1u);
+  p.ellipsoid_join.stacked_overlap = 0;
+  EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u) << "join off";
 }
 
 // Two cars parked side by side 0.4 m apart join on 0.3 m cells into one cluster wider than a
