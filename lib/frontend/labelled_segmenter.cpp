@@ -61,89 +61,121 @@ class LabelledGround {
 // Metres a cluster's x-y box is grown by when another's points are tested for lying in it
 // (LabelledSegmenterParams::EllipsoidJoin::stacked_overlap): the returns' own scatter.
 constexpr float kStackedMargin = 0.05f;
+// Pairs of one class's clusters whose azimuth gap is searched, per scan: each search reads the
+// whole scan, and a hostile scan may hold thousands of clusters in reach of each other.
+constexpr int kMaxGapSearches = 64;
 
-// Horizontal range and azimuth of a sensor-frame point.
-double rangeXy(const Eigen::Vector3f& p) { return std::hypot(double(p.x()), double(p.y())); }
-double azimuth(const Eigen::Vector3f& p) { return std::atan2(double(p.y()), double(p.x())); }
 double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
 
-// Whether clusters a and b of one class are one object seen in two pieces
-// (LabelledSegmenterParams::EllipsoidJoin): near each other and together within the class's size,
-// and either one above the other or apart in azimuth with the returns in that azimuth gap, at
-// their height, nearer than both.
-bool piecesOfOneObject(const std::vector<Eigen::Vector3f>& xyz, const std::vector<int>& a, const std::vector<int>& b,
-                   const ClassInfo& info, const LabelledSegmenterParams::EllipsoidJoin& p) {
-  Eigen::AlignedBox2f box_a, box_b;
-  for (int i : a) box_a.extend(xyz[i].head<2>());
-  for (int i : b) box_b.extend(xyz[i].head<2>());
-  const Eigen::AlignedBox2f both = box_a.merged(box_b);
-  if (box_a.exteriorDistance(box_b) > p.max_gap) return false;
+// Azimuth and horizontal range of the returns of a scan, each computed when first asked for.
+class PolarScan {
+ public:
+  explicit PolarScan(const std::vector<Eigen::Vector3f>& xyz) : xyz_(xyz) {}
+  double azimuth(int i) { return at(i).first; }
+  double range(int i) { return at(i).second; }
+  std::size_t size() const { return xyz_.size(); }
+  const Eigen::Vector3f& point(int i) const { return xyz_[i]; }
+
+ private:
+  const std::pair<float, float>& at(int i) {
+    if (polar_.empty()) polar_.assign(xyz_.size(), {std::numeric_limits<float>::quiet_NaN(), 0.0f});
+    auto& a = polar_[i];
+    if (std::isnan(a.first)) a = {std::atan2(xyz_[i].y(), xyz_[i].x()), std::hypot(xyz_[i].x(), xyz_[i].y())};
+    return a;
+  }
+  const std::vector<Eigen::Vector3f>& xyz_;
+  std::vector<std::pair<float, float>> polar_;
+};
+
+// One cluster of a class, with its x-y box.
+struct Piece {
+  std::vector<int> points;
+  Eigen::AlignedBox2f box;
+};
+
+// Whether pieces a and b of one class are one object seen in two
+// (LabelledSegmenterParams::EllipsoidJoin): near each other and together within the class's
+// size, and either one above the other or apart in azimuth with the returns in that azimuth gap,
+// at their height, nearer than both. `gap_searches` counts the scans read for the latter.
+bool onePieceOfTheOther(PolarScan& scan, const Piece& a, const Piece& b, const ClassInfo& info,
+                        const LabelledSegmenterParams::EllipsoidJoin& p, int& gap_searches) {
+  if (a.box.exteriorDistance(b.box) > p.max_gap) return false;
   std::vector<cv::Point2f> xy;
-  xy.reserve(a.size() + b.size());
-  for (const auto* c : {&a, &b})
-    for (int i : *c) xy.emplace_back(xyz[i].x(), xyz[i].y());
+  xy.reserve(a.points.size() + b.points.size());
+  for (const Piece* c : {&a, &b})
+    for (int i : c->points) xy.emplace_back(scan.point(i).x(), scan.point(i).y());
   const cv::Size2f r = cv::minAreaRect(xy).size;
   if (std::max(r.width, r.height) > info.size_max.x() || std::min(r.width, r.height) > info.size_max.y()) return false;
   if (p.stacked_overlap > 0) {  // the smaller's points within the other's box (a back is a thin slab)
-    const bool a_smaller = a.size() <= b.size();
-    const std::vector<int>& small = a_smaller ? a : b;
-    Eigen::AlignedBox2f other = a_smaller ? box_b : box_a;
+    const bool a_smaller = a.points.size() <= b.points.size();
+    const Piece& small = a_smaller ? a : b;
+    Eigen::AlignedBox2f other = a_smaller ? b.box : a.box;
     other.min().array() -= kStackedMargin, other.max().array() += kStackedMargin;
     int inside = 0;
-    for (int i : small) inside += other.contains(xyz[i].head<2>());
-    if (inside >= p.stacked_overlap * static_cast<double>(small.size())) return true;
+    for (int i : small.points) inside += other.contains(scan.point(i).head<2>());
+    if (inside >= p.stacked_overlap * static_cast<double>(small.points.size())) return true;
   }
-  // Azimuths relative to the middle of both boxes (a cluster spans far less than half a turn).
-  const double mid = std::atan2(both.center().y(), both.center().x());
-  auto span = [&](const std::vector<int>& c, double& lo, double& hi, double& range, float& z_lo, float& z_hi) {
+  if (gap_searches >= kMaxGapSearches) return false;
+  ++gap_searches;
+  // Azimuths relative to the middle of both boxes (a piece of furniture spans far less than half a turn).
+  const Eigen::Vector2f centre = a.box.merged(b.box).center();
+  const double mid = std::atan2(centre.y(), centre.x());
+  float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
+  auto span = [&](const Piece& c, double& lo, double& hi, double& range) {
     lo = std::numeric_limits<double>::infinity(), hi = -lo;
     std::vector<double> ranges;
-    for (int i : c) {
-      const double az = wrapAngle(azimuth(xyz[i]) - mid);
+    for (int i : c.points) {
+      const double az = wrapAngle(scan.azimuth(i) - mid);
       lo = std::min(lo, az), hi = std::max(hi, az);
-      ranges.push_back(rangeXy(xyz[i]));
-      z_lo = std::min(z_lo, xyz[i].z()), z_hi = std::max(z_hi, xyz[i].z());
+      ranges.push_back(scan.range(i));
+      z_lo = std::min(z_lo, scan.point(i).z()), z_hi = std::max(z_hi, scan.point(i).z());
     }
     range = quantileInPlace(ranges, 0.5);
   };
   double lo_a, hi_a, range_a, lo_b, hi_b, range_b;
-  float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
-  span(a, lo_a, hi_a, range_a, z_lo, z_hi);
-  span(b, lo_b, hi_b, range_b, z_lo, z_hi);
+  span(a, lo_a, hi_a, range_a);
+  span(b, lo_b, hi_b, range_b);
   const double gap_lo = hi_a < lo_b ? hi_a : hi_b, gap_hi = hi_a < lo_b ? lo_b : lo_a;
   if (gap_hi <= gap_lo) return false;  // they overlap in azimuth
   const double nearer = std::min(range_a, range_b) - p.min_nearer;
   int in_gap = 0, in_front = 0;
-  for (const auto& q : xyz) {
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const Eigen::Vector3f& q = scan.point(static_cast<int>(i));
     if (!q.allFinite() || q.z() < z_lo || q.z() > z_hi) continue;
-    const double az = wrapAngle(azimuth(q) - mid);
+    const double az = wrapAngle(scan.azimuth(static_cast<int>(i)) - mid);
     if (az <= gap_lo || az >= gap_hi) continue;
     ++in_gap;
-    in_front += rangeXy(q) < nearer;
+    in_front += scan.range(static_cast<int>(i)) < nearer;
   }
   return in_gap >= p.min_returns && in_front >= p.min_share * in_gap;
 }
 
-// Clusters of one ellipsoid class joined where piecesOfOneObject says they are one object.
-std::vector<std::vector<int>> joinPieces(const std::vector<Eigen::Vector3f>& xyz, std::vector<std::vector<int>> clusters,
-                                                 const ClassInfo& info, const LabelledSegmenterParams::EllipsoidJoin& p) {
-  std::vector<int> root(clusters.size());
+// Clusters of one ellipsoid class, joined where onePieceOfTheOther says they are one object.
+std::vector<std::vector<int>> joinPieces(PolarScan& scan, std::vector<std::vector<int>> clusters, const ClassInfo& info,
+                                         const LabelledSegmenterParams::EllipsoidJoin& p) {
+  std::vector<Piece> pieces(clusters.size());
+  for (std::size_t k = 0; k < clusters.size(); ++k) {
+    pieces[k].points = std::move(clusters[k]);
+    for (int i : pieces[k].points) pieces[k].box.extend(scan.point(i).head<2>());
+  }
+  std::vector<int> root(pieces.size());
   for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
   auto find = [&](int i) {
     while (root[i] != i) i = root[i] = root[root[i]];
     return i;
   };
-  for (std::size_t i = 0; i < clusters.size(); ++i)
-    for (std::size_t j = i + 1; j < clusters.size(); ++j) {
+  int gap_searches = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       const int ri = find(static_cast<int>(i)), rj = find(static_cast<int>(j));
-      if (ri != rj && piecesOfOneObject(xyz, clusters[i], clusters[j], info, p)) root[rj] = ri;
+      if (ri != rj && onePieceOfTheOther(scan, pieces[i], pieces[j], info, p, gap_searches)) root[rj] = ri;
     }
   std::vector<std::vector<int>> out;
   std::map<int, std::size_t> slot;
-  for (std::size_t i = 0; i < clusters.size(); ++i) {
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto [it, added] = slot.emplace(find(static_cast<int>(i)), out.size());
     if (added) out.emplace_back();
-    out[it->second].insert(out[it->second].end(), clusters[i].begin(), clusters[i].end());
+    out[it->second].insert(out[it->second].end(), pieces[i].points.begin(), pieces[i].points.end());
   }
   return out;
 }
@@ -206,6 +238,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
 
   std::vector<Instance> out;
   std::optional<FreeSpace> free;  // built when a cuboid-class instance is emitted
+  PolarScan polar(scan.xyz);      // filled when furniture pieces are tested
   for (const auto& [group, idx] : groups) {
     GridClusterParams cp = params_.cluster;
     // Columns are vertical: cluster their points on x, y so a trunk split by occlusion or
@@ -253,7 +286,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       clusters = std::move(kept);
     }
     if (group >= 0 && classes_.at(group).shape == Shape::Ellipsoid && params_.ellipsoid_join.max_gap > 0 && clusters.size() >= 2)
-      clusters = joinPieces(scan.xyz, std::move(clusters), classes_.at(group), params_.ellipsoid_join);
+      clusters = joinPieces(polar, std::move(clusters), classes_.at(group), params_.ellipsoid_join);
     for (const auto& cluster : clusters) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
       std::map<int, int> votes;
