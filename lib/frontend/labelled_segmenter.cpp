@@ -58,11 +58,12 @@ class LabelledGround {
   int nx_ = 0, ny_ = 0;
   std::vector<float> low_;
 };
+
 // Metres a cluster's x-y box is grown by when another's points are tested for lying in it
 // (LabelledSegmenterParams::EllipsoidJoin::stacked_overlap): the returns' own scatter.
 constexpr float kStackedMargin = 0.05f;
-// Pairs of one class's clusters whose azimuth gap is searched, per scan: each search reads the
-// whole scan, and a hostile scan may hold thousands of clusters in reach of each other.
+// Pairs of one class's clusters whose azimuth gap is searched, per class and scan: each search
+// reads the whole scan, and a hostile scan may hold thousands of clusters in reach of each other.
 constexpr int kMaxGapSearches = 64;
 
 double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
