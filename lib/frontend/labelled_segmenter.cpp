@@ -8,7 +8,9 @@
 #include <stdexcept>
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/azimuth.h"
 #include "frontend/point_stats.h"
+#include "geometry/pose.h"
 
 namespace slide::frontend {
 
@@ -66,8 +68,6 @@ constexpr float kStackedMargin = 0.05f;
 // reads the whole scan, and a hostile scan may hold thousands of clusters in reach of each other.
 constexpr int kMaxGapSearches = 64;
 
-double wrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
-
 // Azimuth and horizontal range of the returns of a scan, each computed when first asked for.
 class PolarScan {
  public:
@@ -81,7 +81,7 @@ class PolarScan {
   const std::pair<float, float>& at(int i) {
     if (polar_.empty()) polar_.assign(xyz_.size(), {std::numeric_limits<float>::quiet_NaN(), 0.0f});
     auto& a = polar_[i];
-    if (std::isnan(a.first)) a = {std::atan2(xyz_[i].y(), xyz_[i].x()), std::hypot(xyz_[i].x(), xyz_[i].y())};
+    if (std::isnan(a.first)) a = {azimuthOf(xyz_[i].y(), xyz_[i].x()), std::hypot(xyz_[i].x(), xyz_[i].y())};
     return a;
   }
   const std::vector<Eigen::Vector3f>& xyz_;
@@ -120,7 +120,7 @@ bool onePieceOfTheOther(PolarScan& scan, const Piece& a, const Piece& b, const C
   ++gap_searches;
   // Azimuths relative to the middle of both boxes (a piece of furniture spans far less than half a turn).
   const Eigen::Vector2f centre = a.box.merged(b.box).center();
-  const double mid = std::atan2(centre.y(), centre.x());
+  const double mid = azimuthOf(centre.y(), centre.x());
   float z_lo = std::numeric_limits<float>::infinity(), z_hi = -z_lo;
   auto span = [&](const Piece& c, double& lo, double& hi, double& range) {
     lo = std::numeric_limits<double>::infinity(), hi = -lo;
