@@ -11,7 +11,7 @@ namespace slide::backend {
 
 double associationCost(const Object& detection, const Object& landmark, const ClassTable& classes, double slack) {
   if (!classes.sameKind(detection.class_id, landmark.class_id)) return -1;
-  const ClassInfo* c = classes.find(detection.class_id);
+  const ClassInfo* c = classes.gateClass(detection.class_id, landmark.class_id);
   if (!c) return -1;
   if (c->association_max_slack > 0) slack = std::min(slack, c->association_max_slack);
   const double d = associationDistance(detection, landmark) / (c->association_distance + slack);
@@ -26,7 +26,7 @@ double associationCost(const Object& detection, const Object& landmark, const Cl
 double associationCost(const Detection& det, const Object& landmark, const ClassTable& classes) {
   const double metric = associationCost(det.object, landmark, classes, det.slack);
   if (metric < 0 || det.covariance.isZero()) return metric;
-  const ClassInfo& c = classes.at(det.object.class_id);
+  const ClassInfo& c = *classes.gateClass(det.object.class_id, landmark.class_id);
   const Eigen::Matrix2d S =
       det.covariance + 0.25 * c.association_distance * c.association_distance * Eigen::Matrix2d::Identity();
   const Eigen::Vector2d d = (landmark.position() - det.object.position()).head<2>();

@@ -61,7 +61,8 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
   for (std::size_t i = 0; i < scan.size(); ++i) {
     if (!scan.xyz[i].allFinite()) continue;
     const auto cls = classes.fromSemanticKitti(scan.semantic[i]);
-    if (!cls) {
+    const Shape shape = cls ? classes.at(*cls).shape : Shape::Ellipsoid;
+    if (shape == Shape::Ellipsoid) {  // no class of ours, or one scored as an "other" thing
       if (std::find(params.other_labels.begin(), params.other_labels.end(), static_cast<int>(scan.semantic[i])) !=
           params.other_labels.end()) {
         others.push_back(static_cast<int>(i));
@@ -69,7 +70,6 @@ ScanScore scoreScanAgainstLabels(const io::LabelledScan& scan, const std::vector
       }
       continue;
     }
-    const Shape shape = classes.at(*cls).shape;
     if (shape == Shape::Cuboid) {
       auto& c = cars[scan.instance[i]];
       c.first = *cls;

@@ -306,6 +306,12 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
         opt(j, "min_share", o.min_share, 0.0, 1.0);
         opt(j, "stacked_overlap", o.stacked_overlap, 0.0, 1.0);
       }
+      opt(c, "other_confidence", cfg.labelled.other_confidence, 1e-3, 1.0);
+      if (c.has("catch_all_debris")) {
+        const ConfigNode j = c.child("catch_all_debris");
+        opt(j, "radius", cfg.labelled.catch_all_debris.radius, 0.0, 10.0);
+        opt(j, "max_share", cfg.labelled.catch_all_debris.max_share, 0.0, 1.0);
+      }
     }
     if (s.has("geometric")) loadGeometric(s.child("geometric"), cfg.geometric);
     if (s.has("rgbd")) {
@@ -355,6 +361,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "join_share", p.join_share, 0.0, 1.0);
     opt(c, "merge_same_shape", p.merge_same_shape);
     opt(c, "column_merge_distance", p.column_merge_distance, 0.0);
+    opt(c, "catch_all_merge_distance", p.catch_all_merge_distance, 0.0);
     opt(c, "drop_oversized", p.drop_oversized);
     opt(c, "box_merge_width", p.box_merge_width, 0.0);
     opt(c, "box_merge_growth", p.box_merge_growth, 0.0);
@@ -365,6 +372,7 @@ FrontendConfig loadFrontendConfig(const std::string& path) {
     opt(c, "box_same_centre", p.box_same_centre, 0.0);
     opt(c, "ellipsoid_view_growth", p.ellipsoid_view_growth, 0.0);
     opt(c, "box_across", p.box_across, 0.0, 1.0);
+    opt(c, "ellipsoid_same_place", p.ellipsoid_same_place, 0.0);
   }
   if (root.has("keypose")) {
     const ConfigNode c = root.child("keypose");

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <unordered_set>
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/azimuth.h"
@@ -180,6 +181,54 @@ std::vector<std::vector<int>> joinPieces(PolarScan& scan, std::vector<std::vecto
   }
   return out;
 }
+
+// The cells (side `cell`) that hold points of a named class (LabelledSegmenterParams::
+// CatchAllDebris); empty when cell is 0 or no catch-all point is there to test.
+class NamedCells {
+ public:
+  NamedCells() = default;
+  NamedCells(const Cloud& xyz, const std::vector<int>& class_of, const ClassTable& classes, double cell) : inv_(1.0 / cell) {
+    bool any_catch_all = false;
+    for (int c : class_of) any_catch_all = any_catch_all || (c >= 0 && classes.at(c).catch_all);
+    if (!any_catch_all) return;
+    for (std::size_t i = 0; i < xyz.size(); ++i)
+      if (class_of[i] >= 0 && !classes.at(class_of[i]).catch_all)
+        if (const auto k = key(xyz[i], 0, 0, 0)) cells_.insert(*k);
+  }
+  // Share of `cluster`'s points with a named point in their cell or a neighbouring one.
+  double shareBeside(const Cloud& xyz, const std::vector<int>& cluster) const {
+    if (cells_.empty() || cluster.empty()) return 0.0;
+    int beside = 0;
+    for (int i : cluster) {
+      bool hit = false;
+      for (int dx = -1; dx <= 1 && !hit; ++dx)
+        for (int dy = -1; dy <= 1 && !hit; ++dy)
+          for (int dz = -1; dz <= 1 && !hit; ++dz)
+            if (const auto k = key(xyz[i], dx, dy, dz)) hit = cells_.count(*k) > 0;
+      beside += hit;
+    }
+    return static_cast<double>(beside) / static_cast<double>(cluster.size());
+  }
+
+ private:
+  // A cell's coordinates (plus an offset) packed in 21 bits each; none for cells beyond that.
+  std::optional<std::int64_t> key(const Eigen::Vector3f& p, int dx, int dy, int dz) const {
+    constexpr double kLimit = 1 << 20;
+    const double c[3] = {std::floor(p.x() * inv_) + dx, std::floor(p.y() * inv_) + dy, std::floor(p.z() * inv_) + dz};
+    std::int64_t k = 0;
+    for (double v : c) {
+      if (!(std::abs(v) < kLimit)) return std::nullopt;
+      k = (k << 21) | (static_cast<std::int64_t>(v) & ((1 << 21) - 1));
+    }
+    return k;
+  }
+  double inv_ = 0.0;
+  std::unordered_set<std::int64_t> cells_;
+};
+
+NamedCells namedCells(const Cloud& xyz, const std::vector<int>& class_of, const ClassTable& classes, double cell) {
+  return cell > 0 ? NamedCells(xyz, class_of, classes, cell) : NamedCells();
+}
 }  // namespace
 
 LabelledSegmenter::LabelledSegmenter(ClassTable classes, LabelledSegmenterParams params)
@@ -236,6 +285,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     groups[params_.merge_cylinders && cylinder ? -1 : cls].push_back(static_cast<int>(i));
   }
   issues.count("non-finite point", bad);
+  const NamedCells named = namedCells(scan.xyz, class_of, classes_, params_.catch_all_debris.radius);
 
   std::vector<Instance> out;
   std::optional<FreeSpace> free;  // built when a cuboid-class instance is emitted
@@ -288,8 +338,10 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
     }
     if (group >= 0 && classes_.at(group).shape == Shape::Ellipsoid && params_.ellipsoid_join.max_gap > 0 && clusters.size() >= 2)
       clusters = joinPieces(polar, std::move(clusters), classes_.at(group), params_.ellipsoid_join);
+    const bool catch_all = group >= 0 && classes_.at(group).catch_all;
     for (const auto& cluster : clusters) {
       if (static_cast<int>(cluster.size()) < params_.min_points) continue;
+      if (catch_all && named.shareBeside(scan.xyz, cluster) > params_.catch_all_debris.max_share) continue;
       std::map<int, int> votes;
       for (int i : cluster) ++votes[class_of[i]];
       int best = group, most = -1;
@@ -303,6 +355,7 @@ std::vector<Instance> LabelledSegmenter::segment(const io::LabelledScan& scan, I
       Instance inst;
       inst.id = static_cast<int>(out.size()) + 1;
       inst.class_id = best;
+      if (classes_.at(best).catch_all) inst.confidence = static_cast<float>(params_.other_confidence);
       inst.points.reserve(cluster.size());
       for (int i : cluster) inst.points.push_back(scan.xyz[i]);
       const ClassInfo& info = classes_.at(best);

@@ -135,14 +135,18 @@ std::vector<std::vector<std::size_t>> piecesOfOneView(const std::vector<Cloud>& 
   return groups;
 }
 
-// Moves `younger`'s observations, votes and counts into `older` (the lower id).
+// Moves `younger`'s observations, votes and counts into `older` (the lower id). The merged
+// track is where the more recently seen of the two was; seen in the same frame, where the one
+// of the class the votes give was (a chair's view, not the back the detector called "other").
 void absorb(Track& older, Track& younger, int max_observations) {
+  const int older_class = older.class_id;
   older.hits += younger.hits;
   older.confidence_sum += younger.confidence_sum;
   for (const auto& [c, v] : younger.class_votes) older.class_votes[c] += v;
   older.class_id = std::max_element(older.class_votes.begin(), older.class_votes.end(),
                                     [](const auto& x, const auto& y) { return x.second < y.second; })->first;
-  if (younger.missed < older.missed)
+  if (younger.missed < older.missed ||
+      (younger.missed == older.missed && older_class != older.class_id && younger.class_id == older.class_id))
     older.missed = younger.missed, older.last_centroid = younger.last_centroid, older.last_utime = younger.last_utime,
     older.velocity = younger.velocity;
   for (auto& o : younger.observations) older.observations.push_back(std::move(o));
@@ -611,7 +615,17 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
     t.class_id = o.class_id;
     apply(tracks_.emplace(t.id, t).first->second, o);
   }
-  mergeColumnTracks(matched);
+  if (params_.column_merge_distance > 0)
+    mergeTracks(matched, [&](const Track& a, const Track& b) {
+      return classes_.at(a.class_id).shape == Shape::Cylinder && classes_.at(b.class_id).shape == Shape::Cylinder &&
+             centroidDistance(Shape::Cylinder, a.last_centroid, b.last_centroid) <= params_.column_merge_distance;
+    });
+  if (params_.catch_all_merge_distance > 0)
+    mergeTracks(matched, [&](const Track& a, const Track& b) {
+      const ClassInfo &ca = classes_.at(a.class_id), &cb = classes_.at(b.class_id);
+      return ca.catch_all != cb.catch_all && ca.shape == cb.shape &&
+             centroidDistance(ca.shape, a.last_centroid, b.last_centroid) <= params_.catch_all_merge_distance;
+    });
   splitEarlierViews(matched);
   mergeBoxTracks(matched);
   for (auto it = tracks_.begin(); it != tracks_.end();) {
@@ -621,23 +635,18 @@ void Tracker::update(const FrameInstances& frame, InputIssues& issues) {
   }
 }
 
-void Tracker::mergeColumnTracks(std::map<std::int64_t, bool>& matched) {
-  if (params_.column_merge_distance <= 0) return;
-  for (auto a = tracks_.begin(); a != tracks_.end(); ++a) {
-    if (classes_.at(a->second.class_id).shape != Shape::Cylinder) continue;
+void Tracker::mergeTracks(std::map<std::int64_t, bool>& matched,
+                          const std::function<bool(const Track&, const Track&)>& one_object) {
+  for (auto a = tracks_.begin(); a != tracks_.end(); ++a)
     for (auto b = std::next(a); b != tracks_.end();) {
-      Track& older = a->second;
-      Track& younger = b->second;
-      if (classes_.at(younger.class_id).shape != Shape::Cylinder ||
-          centroidDistance(Shape::Cylinder, older.last_centroid, younger.last_centroid) > params_.column_merge_distance) {
+      if (!one_object(a->second, b->second)) {
         ++b;
         continue;
       }
-      absorb(older, younger, params_.max_observations);  // the older track (lower id) takes the younger one
-      if (matched.count(b->first)) matched[a->first] = true;  // seen in this frame: not missed
+      absorb(a->second, b->second, params_.max_observations);  // the older track (lower id) takes the younger one
+      if (matched.count(b->first)) matched[a->first] = true;   // seen in this frame: not missed
       b = tracks_.erase(b);
     }
-  }
 }
 
 void Tracker::splitEarlierViews(const std::map<std::int64_t, bool>& matched) {
@@ -767,6 +776,22 @@ double overlapArea(const cv::RotatedRect& a, const cv::RotatedRect& b) {
 
 }  // namespace
 
+void Tracker::dropEllipsoidsAtOnePlace(std::vector<std::pair<Object, std::optional<Object>>>& fits) const {
+  std::vector<bool> dropped(fits.size(), false);
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    for (std::size_t j = i + 1; j < fits.size() && !dropped[i]; ++j) {
+      const Object &a = fits[i].first, &b = fits[j].first;
+      if (dropped[j] || a.shape() != Shape::Ellipsoid || b.shape() != Shape::Ellipsoid || !classes_.sameKind(a.class_id, b.class_id) ||
+          (a.position() - b.position()).norm() > params_.ellipsoid_same_place)
+        continue;
+      dropped[a.num_observations < b.num_observations ? i : j] = true;
+    }
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < fits.size(); ++i)
+    if (!dropped[i]) fits[k++] = std::move(fits[i]);
+  fits.resize(k);
+}
+
 void Tracker::dropBoxesAcrossNeighbours(std::vector<std::pair<Object, std::optional<Object>>>& fits) const {
   const std::size_t n = fits.size();
   // The share of each box's footprint that each other box of its class covers (boxes only
@@ -872,6 +897,7 @@ std::vector<Object> Tracker::objectsInBody(const Pose& T_odom_body, int frames_s
   if (params_.box_overlap > 0) joinOverlappingBoxes(fits, T_body_odom, readings);
   if (readings && fits.size() < before) settleBoxReadings(fits, params_.parallel_radius, params_.parallel_fallback_radius);
   if (params_.box_across > 0) dropBoxesAcrossNeighbours(fits);
+  if (params_.ellipsoid_same_place > 0) dropEllipsoidsAtOnePlace(fits);
   std::vector<Object> out;
   out.reserve(fits.size());
   for (auto& [o, other] : fits) {

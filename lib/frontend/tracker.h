@@ -6,6 +6,7 @@
 // accumulated points grow beyond the class's size limits; a single instance that wide is a
 // segmentation error and is dropped).
 #include <deque>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -78,6 +79,10 @@ struct TrackerParams {
   double join_share = 0.0;
   bool merge_same_shape = true;      // unmatched instances may continue a track of another class of the same shape
   double column_merge_distance = 0.25;  // column tracks this close (m, x-y) are one object: merged (0: off)
+  // A track of a catch-all class (ClassInfo::catch_all) and one of a named class of its shape
+  // whose last centroids are this close (m) follow one object the detector named in some frames
+  // and missed in others: merged, the class the votes give (0: off).
+  double catch_all_merge_distance = 0.0;
   // An instance whose own footprint exceeds its class's size (x moving_tolerance) is several
   // objects joined by the segmenter: dropped (counted), so it cannot make a track look moving.
   bool drop_oversized = true;
@@ -118,6 +123,10 @@ struct TrackerParams {
   // of the footprint stands across its neighbours (the end faces of two cars parked side by
   // side, read as one car's side): not reported (0: off).
   double box_across = 0.2;
+  // Two reported ellipsoids of one kind (ClassTable::sameKind) whose centres lie this close (m)
+  // are one object on two tracks (objects stand at least their radii apart): the one of fewer
+  // observations is not reported (0: off).
+  double ellipsoid_same_place = 0.0;
 };
 
 // One instance added to a track, in the odometry frame.
@@ -183,10 +192,11 @@ class Tracker {
   // Whether `newest` shows a box track's whole extent shifted (TrackerParams::moving_shift) against
   // the track's latest observation at least min_interval seconds older than it.
   bool shifted(const Track& t, const Observation& newest, double min_interval) const;
-  // Two column tracks whose last centroids are within column_merge_distance follow one trunk
-  // or pole (its instances alternated between them, or it was split in a frame): merged. A
+  // Every two tracks that `one_object` says follow one object are merged into the older: two
+  // column tracks within column_merge_distance (a trunk's instances alternated between them, or
+  // it was split in a frame), a catch-all and a named track within catch_all_merge_distance. A
   // merged track counts as matched in this frame when either half was (`matched`).
-  void mergeColumnTracks(std::map<std::int64_t, bool>& matched);
+  void mergeTracks(std::map<std::int64_t, bool>& matched, const std::function<bool(const Track&, const Track&)>& one_object);
   // An earlier view of a box track matched in this frame that also holds the newest view of
   // another one matched in this frame (the two joined by the segmenter in a frame before the other
   // had a track) keeps only its own part (TrackerParams::split_distance).
@@ -209,6 +219,8 @@ class Tracker {
                             bool readings) const;
   // Drops the boxes that stand across their neighbours (box_across), the most covered first.
   void dropBoxesAcrossNeighbours(std::vector<std::pair<Object, std::optional<Object>>>& fits) const;
+  // Of two ellipsoids of one kind at one place (ellipsoid_same_place), drops the one of fewer observations.
+  void dropEllipsoidsAtOnePlace(std::vector<std::pair<Object, std::optional<Object>>>& fits) const;
 
   ClassTable classes_;
   std::map<int, double> report_range_of_class_;  // report_max_range_by_class by class id

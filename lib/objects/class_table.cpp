@@ -57,6 +57,7 @@ ClassTable ClassTable::load(const std::string& path) {
     info.semantickitti = intList(c, "semantickitti");
     info.map_labels = intList(c, "map_labels");
     info.family = c.get<std::string>("family", "");
+    info.catch_all = c.get<bool>("catch_all", false);
     if (c.has("color")) {
       const auto rgb = c.getList<int>("color", 3);
       info.color = {rgb[0], rgb[1], rgb[2]};
@@ -93,7 +94,12 @@ void ClassTable::add(const ClassInfo& info) {
 bool ClassTable::sameKind(int a, int b) const {
   if (a == b) return true;
   const ClassInfo *ca = find(a), *cb = find(b);
-  return ca && cb && !ca->family.empty() && ca->family == cb->family;
+  return ca && cb && ((!ca->family.empty() && ca->family == cb->family) || (ca->shape == cb->shape && (ca->catch_all || cb->catch_all)));
+}
+
+const ClassInfo* ClassTable::gateClass(int detection_class, int landmark_class) const {
+  const ClassInfo *d = find(detection_class), *l = find(landmark_class);
+  return d && l && d->catch_all && !l->catch_all ? l : d;
 }
 
 const ClassInfo* ClassTable::find(int id) const {

@@ -32,6 +32,10 @@ struct ClassInfo {
   // (a thin trunk whose crown is out of view looks like a pole): one object may be observed
   // under any of them, and a landmark takes the class most of its observations gave.
   std::string family;
+  // A catch-all: the detector's label for things it has no class for ("other"). Its
+  // observations may be of any object of its shape (a chair the detector missed), so a
+  // catch-all track or landmark and a named one of that shape on one object are one.
+  bool catch_all = false;
 };
 
 class ClassTable {
@@ -44,8 +48,13 @@ class ClassTable {
   void add(const ClassInfo& info);  // throws std::invalid_argument on a duplicate id or name
   const ClassInfo* find(int id) const;
   const ClassInfo& at(int id) const;  // throws std::out_of_range naming the unknown id
-  // The same class, or two classes of one family: detections of either may be one object.
+  // The same class, two classes of one family, or a catch-all and a class of its shape:
+  // detections of either may be one object.
   bool sameKind(int a, int b) const;
+  // The class whose association thresholds apply to a detection of one class against a landmark
+  // of another: the landmark's when the detection's is a catch-all and the landmark's is not (the
+  // object is what that class names), else the detection's. Null when the detection's is unknown.
+  const ClassInfo* gateClass(int detection_class, int landmark_class) const;
   const ClassInfo* findByName(const std::string& name) const;
   std::optional<int> fromSemanticKitti(int semantic_label) const;
   std::optional<int> fromMapLabel(int label) const;

@@ -28,9 +28,13 @@ void furnishRoom(World& w, const Eigen::Vector2d& c, double half_w, double half_
     const double r = 0.5 + 0.2 * u(rng);
     const Eigen::Vector2d tc = c + Eigen::Vector2d(q.x() * 0.5 * half_w, q.y() * 0.5 * half_d);
     w.objects.push_back(item(2, {tc.x(), tc.y(), 0.375}, r, 0.75));
+    // A second monitor stands opposite the first (0.5 m apart, side by side): two monitors
+    // placed at random angles stood inside one another.
     const int monitors = static_cast<int>(u(rng) * 3.0);
+    double first = 0;
     for (int m = 0; m < monitors; ++m) {
-      const double a = 2 * M_PI * u(rng);
+      const double drawn = 2 * M_PI * u(rng);  // drawn for each monitor: the rest of the world stays as it was
+      const double a = m == 0 ? (first = drawn) : first + M_PI;
       w.objects.push_back(item(3, {tc.x() + 0.25 * std::cos(a), tc.y() + 0.25 * std::sin(a), 0.95}, 0.25, 0.4));
     }
     const int chairs = 2 + static_cast<int>(u(rng) * 3.0);

@@ -54,6 +54,28 @@ TEST(ClassTable, LoadsShippedTable) {
   EXPECT_THROW(t.at(12345), std::out_of_range);
 }
 
+// One kind: a class with itself, a family (trunk, pole), and the catch-all "other" with a class
+// of its shape (a chair the detector missed is an "other"), not with a car or a trunk; two named
+// furniture classes are not. A catch-all detection meets a named landmark under the named
+// class's thresholds; every other pair under the detection's.
+TEST(ClassTable, TheCatchAllIsOfOneKindWithItsShapesClasses) {
+  const ClassTable t = ClassTable::loadDefault();
+  EXPECT_EQ(t.fromSemanticKitti(99), 0);
+  EXPECT_TRUE(t.at(0).catch_all);
+  EXPECT_FALSE(t.at(1).catch_all);
+  EXPECT_TRUE(t.sameKind(71, 80));
+  EXPECT_TRUE(t.sameKind(0, 1));
+  EXPECT_TRUE(t.sameKind(3, 0));
+  EXPECT_FALSE(t.sameKind(1, 2));
+  EXPECT_FALSE(t.sameKind(0, 10));
+  EXPECT_FALSE(t.sameKind(71, 0));
+  EXPECT_EQ(t.gateClass(0, 1)->id, 1);
+  EXPECT_EQ(t.gateClass(1, 0)->id, 1);
+  EXPECT_EQ(t.gateClass(0, 0)->id, 0);
+  EXPECT_EQ(t.gateClass(80, 71)->id, 80);
+  EXPECT_EQ(t.gateClass(12345, 1), nullptr);
+}
+
 TEST(ClassTable, SizePlausibility) {
   const ClassTable t = ClassTable::loadDefault();
   Object o;

@@ -419,6 +419,46 @@ TEST(LabelledSegmenter, AChairsSeatAndBackAreOneChair) {
   EXPECT_EQ(frontend::LabelledSegmenter(classes, p).segment(scan, issues).size(), 2u) << "join off";
 }
 
+// A labeller's catch-all ("other-object", 99) scattered over a table's points (one point in
+// four, the vote off so it survives) clusters into a table-sized "other": dropped as debris, as
+// every one of its points has table points around it. A bin standing alone by a wall is an
+// "other" and votes with other_confidence. With the debris rule off the scattered labels make a
+// second "other".
+TEST(LabelledSegmenter, CatchAllLabelsScatteredOverATableAreNoObject) {
+  io::LabelledScan scan;
+  int k = 0;
+  for (double y = -0.5; y <= 0.5 + 1e-9; y += 0.05) {
+    for (double x = 4.0; x <= 5.0 + 1e-9; x += 0.05) addLabelledPoint(scan, x, y, -0.75, ++k % 4 ? 101 : 99);  // top
+    for (double z = -1.5; z < -0.75; z += 0.05) addLabelledPoint(scan, 4.0, y, z, ++k % 4 ? 101 : 99);        // front
+  }
+  for (double a = 0; a < 2 * M_PI; a += 0.1)
+    for (double z = -1.5; z <= -0.7 + 1e-9; z += 0.05) addLabelledPoint(scan, 4.5 + 0.25 * std::cos(a), 3.0 + 0.25 * std::sin(a), z, 99);
+  for (double x = 3.0; x <= 6.0 + 1e-9; x += 0.05)
+    for (double z = -1.5; z <= 1.0 + 1e-9; z += 0.1) addLabelledPoint(scan, x, 3.4, z, 50);  // the wall behind the bin
+  const ClassTable classes = ClassTable::loadDefault();
+  ASSERT_TRUE(classes.at(0).catch_all);
+  frontend::LabelledSegmenterParams p = frontend::loadDefaultFrontendConfig().labelled;
+  ASSERT_GT(p.catch_all_debris.radius, 0.0);
+  ASSERT_LT(p.other_confidence, 1.0);
+  p.vote_cell = 0;
+  frontend::InputIssues issues;
+  const auto out = frontend::LabelledSegmenter(classes, p).segment(scan, issues);
+  std::vector<const frontend::Instance*> others;
+  int tables = 0;
+  for (const auto& i : out) {
+    if (i.class_id == 0) others.push_back(&i);
+    tables += i.class_id == 2;
+  }
+  EXPECT_EQ(tables, 1);
+  ASSERT_EQ(others.size(), 1u);
+  EXPECT_NEAR(frontend::centroidOf(others[0]->points).y(), 3.0, 0.1) << "the bin";
+  EXPECT_FLOAT_EQ(others[0]->confidence, static_cast<float>(p.other_confidence));
+  p.catch_all_debris.radius = 0;
+  int others_off = 0;
+  for (const auto& i : frontend::LabelledSegmenter(classes, p).segment(scan, issues)) others_off += i.class_id == 0;
+  EXPECT_EQ(others_off, 2) << "debris rule off";
+}
+
 // Two cars parked side by side 0.4 m apart join on 0.3 m cells into one cluster wider than a
 // car; re-clustered on 0.15 m cells they are two, in both segmenters. With re-clustering off
 // (min_split_cell = cell, or max_split_length shorter than the pair) the labelled segmenter

@@ -249,6 +249,40 @@ TEST(Tracker, TwoTracksOfOneTrunkAreMergedANeighbourIsNot) {
   }
 }
 
+// A chair the detector calls "other" (a catch-all) in its first frames has an "other" track;
+// when one frame names its seat a chair and leaves its back "other", the chair instance starts a
+// track of its own beside it. The two follow one object: merged, and named by the votes (the
+// catch-all's weigh other_confidence). A bin 1 m off keeps its own "other" track.
+TEST(Tracker, ACatchAllTrackAndANamedOneOnOneObjectAreMergedABinBesideIsNot) {
+  const ClassTable classes = ClassTable::loadDefault();
+  auto blob = [](int class_id, float x, float y, float z0, float confidence) {
+    frontend::Instance inst;
+    inst.class_id = class_id;
+    inst.confidence = confidence;
+    for (int i = 0; i < 30; ++i) inst.points.emplace_back(x + 0.01f * (i % 5), y + 0.01f * (i / 5), z0 + 0.02f * i);
+    return inst;
+  };
+  for (double merge : {0.5, 0.0}) {
+    frontend::TrackerParams p;
+    p.catch_all_merge_distance = merge;
+    frontend::Tracker tracker(classes, p, {});
+    frontend::InputIssues issues;
+    for (int k = 0; k < 6; ++k) {
+      frontend::FrameInstances f;
+      f.instances = {blob(0, 5, 1.0f, 0, 0.2f)};                                       // the bin
+      if (k < 3) f.instances.push_back(blob(0, 5, 0, 0, 0.2f));                        // the chair, missed
+      if (k == 3) f.instances.push_back(blob(0, 5, 0, 0.4f, 0.2f));                    // its back, missed
+      if (k >= 3) f.instances.push_back(blob(1, 5, 0, 0, 1.0f));                       // the chair, named
+      tracker.update(f, issues);
+    }
+    ASSERT_EQ(tracker.tracks().size(), merge > 0 ? 2u : 3u) << merge;
+    int chairs = 0, others = 0;
+    for (const auto& [id, t] : tracker.tracks()) (t.class_id == 1 ? chairs : others) += 1;
+    EXPECT_EQ(chairs, 1) << merge;
+    EXPECT_EQ(others, merge > 0 ? 1 : 2) << merge;
+  }
+}
+
 TEST(Tracker, PartlySeenCarIsCompletedAwayFromWhereItWasSeen) {
   // The near side of a car (4.4 m long along x, 1.8 m wide, centre (10, 5.9)) seen from the
   // aisle at y = 0; the fit is asked for from a body pose past it, on the car's far side

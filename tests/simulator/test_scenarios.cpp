@@ -52,6 +52,24 @@ TEST(Worlds, ForestUrbanIndoorHoldTheirClasses) {
   expectIdsAreIndexPlusOne(indoor);
 }
 
+// Indoor objects stand apart: two whose heights overlap are at least their radii apart on the
+// floor (a monitor on a table stands above it; a table's two monitors stand side by side).
+TEST(Worlds, IndoorObjectsDoNotStandInsideOneAnother) {
+  for (std::uint64_t seed = 1; seed <= 9; ++seed) {
+    const simulator::World w = simulator::makeIndoorWorld(simulator::IndoorParams{}, seed);
+    for (std::size_t i = 0; i < w.objects.size(); ++i)
+      for (std::size_t j = i + 1; j < w.objects.size(); ++j) {
+        const auto& a = std::get<Ellipsoid>(w.objects[i].object.model);
+        const auto& b = std::get<Ellipsoid>(w.objects[j].object.model);
+        const double overlap_z = std::min(a.centroid.z() + 0.5 * a.height, b.centroid.z() + 0.5 * b.height) -
+                                 std::max(a.centroid.z() - 0.5 * a.height, b.centroid.z() - 0.5 * b.height);
+        if (overlap_z <= 1e-6) continue;
+        EXPECT_GE((a.centroid - b.centroid).head<2>().norm(), a.radius + b.radius - 1e-6)
+            << "seed " << seed << ": objects " << i + 1 << " and " << j + 1;
+      }
+  }
+}
+
 TEST(Worlds, RealForestInventoryLayout) {
   if (!std::filesystem::exists(std::string(SLIDE_DATA_DIR) + "/forest_inventory/longleaf.csv")) GTEST_SKIP();
   simulator::ForestParams fp;
