@@ -188,11 +188,12 @@ class NamedCells {
  public:
   NamedCells() = default;
   NamedCells(const Cloud& xyz, const std::vector<int>& class_of, const ClassTable& classes, double cell) : inv_(1.0 / cell) {
-    bool any_catch_all = false;
-    for (int c : class_of) any_catch_all = any_catch_all || (c >= 0 && classes.at(c).catch_all);
-    if (!any_catch_all) return;
+    std::map<int, bool> catch_all;  // class id -> catch-all, looked up once per class
+    for (int c : class_of)
+      if (c >= 0 && !catch_all.count(c)) catch_all[c] = classes.at(c).catch_all;
+    if (std::none_of(catch_all.begin(), catch_all.end(), [](const auto& c) { return c.second; })) return;
     for (std::size_t i = 0; i < xyz.size(); ++i)
-      if (class_of[i] >= 0 && !classes.at(class_of[i]).catch_all)
+      if (class_of[i] >= 0 && !catch_all.at(class_of[i]))
         if (const auto k = key(xyz[i], 0, 0, 0)) cells_.insert(*k);
   }
   // Share of `cluster`'s points with a named point in their cell or a neighbouring one.

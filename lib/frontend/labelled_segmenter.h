@@ -74,16 +74,16 @@ struct LabelledSegmenterParams {
     double min_share = 0.8;
     double stacked_overlap = 0.0;
   } ellipsoid_join;
+  // Class-vote weight of a catch-all instance (the geometric segmenter's other_confidence): a
+  // detector that misses a chair far off calls it "other" for many frames before it names it
+  // near; named votes outweigh that many catch-all ones (tracker; the optimizer's landmarks).
+  double other_confidence = 1.0;
   // A cluster of a catch-all class (ClassInfo::catch_all) of which more than max_share of the
   // points have a point of a named class within about `radius` metres (the same or a
   // neighbouring cell of that side) is the leftover of named objects' labels, not an object:
   // dropped. A labeller's per-point noise and boundary errors scatter catch-all labels over
   // furniture; the vote thins them, and what is left, clustered, spans a table and its
   // monitors. A bin by a wall has wall around it. radius 0: off.
-  // Class-vote weight of a catch-all instance (the geometric segmenter's other_confidence): a
-  // detector that misses a chair far off calls it "other" for many frames before it names it
-  // near; named votes outweigh that many catch-all ones (tracker; the optimizer's landmarks).
-  double other_confidence = 1.0;
   struct CatchAllDebris {
     double radius = 0.0;
     double max_share = 0.5;
