@@ -5,18 +5,11 @@
 #include <unordered_map>
 #include <utility>
 
+#include "frontend/cell_key.h"
+
 namespace slide::frontend {
 
 namespace {
-constexpr double kMaxCell = 1 << 20;  // cell coordinates within +-2^20 pack into 21 bits each, none aliased
-
-// A cell's integer coordinates packed in 21 bits each (+-70 km at 0.07 m).
-std::int64_t cellKey(int x, int y, int z) {
-  constexpr std::int64_t kMask = (1 << 21) - 1;
-  return ((static_cast<std::int64_t>(x) & kMask) << 42) | ((static_cast<std::int64_t>(y) & kMask) << 21) |
-         (static_cast<std::int64_t>(z) & kMask);
-}
-
 using Histogram = std::vector<std::pair<uint16_t, int>>;  // label -> points, a handful of labels
 
 void add(Histogram& h, uint16_t label, int n) {
@@ -40,10 +33,10 @@ std::vector<uint16_t> voteLabels(const io::LabelledScan& scan, const std::functi
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const Eigen::Vector3f& p = scan.xyz[i];
     if (!p.allFinite() || double(p.x()) * p.x() + double(p.y()) * p.y() > range2) continue;
-    const std::array<double, 3> c{std::floor(p.x() * inv), std::floor(p.y() * inv), std::floor(p.z() * inv)};
-    if (std::abs(c[0]) >= kMaxCell || std::abs(c[1]) >= kMaxCell || std::abs(c[2]) >= kMaxCell) continue;  // a return kilometres up
+    const auto c = cellOf(p, inv);
+    if (!c) continue;  // a return kilometres up
     usable[i] = 1;
-    cell[i] = {static_cast<int>(c[0]), static_cast<int>(c[1]), static_cast<int>(c[2])};
+    cell[i] = *c;
     if (is_object(scan.semantic[i])) objects.push_back(static_cast<int>(i));
   }
   if (objects.empty()) return out;

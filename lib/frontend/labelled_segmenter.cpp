@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/azimuth.h"
+#include "frontend/cell_key.h"
 #include "frontend/point_stats.h"
 #include "geometry/pose.h"
 
@@ -194,35 +195,24 @@ class NamedCells {
     if (std::none_of(catch_all.begin(), catch_all.end(), [](const auto& c) { return c.second; })) return;
     for (std::size_t i = 0; i < xyz.size(); ++i)
       if (class_of[i] >= 0 && !catch_all.at(class_of[i]))
-        if (const auto k = key(xyz[i], 0, 0, 0)) cells_.insert(*k);
+        if (const auto c = cellOf(xyz[i], inv_)) cells_.insert(cellKey((*c)[0], (*c)[1], (*c)[2]));
   }
   // Share of `cluster`'s points with a named point in their cell or a neighbouring one.
   double shareBeside(const Cloud& xyz, const std::vector<int>& cluster) const {
     if (cells_.empty() || cluster.empty()) return 0.0;
     int beside = 0;
     for (int i : cluster) {
+      const auto c = cellOf(xyz[i], inv_);
       bool hit = false;
-      for (int dx = -1; dx <= 1 && !hit; ++dx)
+      for (int dx = -1; c && dx <= 1 && !hit; ++dx)
         for (int dy = -1; dy <= 1 && !hit; ++dy)
-          for (int dz = -1; dz <= 1 && !hit; ++dz)
-            if (const auto k = key(xyz[i], dx, dy, dz)) hit = cells_.count(*k) > 0;
+          for (int dz = -1; dz <= 1 && !hit; ++dz) hit = cells_.count(cellKey((*c)[0] + dx, (*c)[1] + dy, (*c)[2] + dz)) > 0;
       beside += hit;
     }
     return static_cast<double>(beside) / static_cast<double>(cluster.size());
   }
 
  private:
-  // A cell's coordinates (plus an offset) packed in 21 bits each; none for cells beyond that.
-  std::optional<std::int64_t> key(const Eigen::Vector3f& p, int dx, int dy, int dz) const {
-    constexpr double kLimit = 1 << 20;
-    const double c[3] = {std::floor(p.x() * inv_) + dx, std::floor(p.y() * inv_) + dy, std::floor(p.z() * inv_) + dz};
-    std::int64_t k = 0;
-    for (double v : c) {
-      if (!(std::abs(v) < kLimit)) return std::nullopt;
-      k = (k << 21) | (static_cast<std::int64_t>(v) & ((1 << 21) - 1));
-    }
-    return k;
-  }
   double inv_ = 0.0;
   std::unordered_set<std::int64_t> cells_;
 };
