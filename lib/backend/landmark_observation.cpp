@@ -40,6 +40,13 @@ std::pair<Pose, Eigen::Vector3d> closestCuboidSymmetry(const Cuboid& m, const Po
   }
   return best;
 }
+
+// Horizontal radius of the solid an object model stands for (a box: half its narrower side).
+double bodyRadius(const Object& o) {
+  if (const auto* c = std::get_if<Cuboid>(&o.model)) return 0.5 * std::min(c->dims.x(), c->dims.y());
+  if (const auto* c = std::get_if<Cylinder>(&o.model)) return c->radius;
+  return std::get<Ellipsoid>(o.model).radius;
+}
 }  // namespace
 
 int Optimizer::addLandmark(const Object& w) {
@@ -140,21 +147,15 @@ void Optimizer::voteClass(Landmark& lm, int class_id, double confidence) {
     if (v > most) most = v, lm.class_id = c;
 }
 
-void Optimizer::moveObservations(Landmark& from, Landmark& to, const std::vector<Observation>& keep) {
+void Optimizer::moveObservations(Landmark& from, Landmark& to) {
   const int last_step = std::max(from.last_step, to.last_step);
   for (const Observation& obs : from.seen) {
-    if (std::any_of(keep.begin(), keep.end(), [&](const Observation& k) { return k.factor == obs.factor; })) continue;
     graph_.removeFactor(obs.factor);
     addObservation(obs.pose_var, fromPoseBlock(graph_.value(obs.pose_var)), obs.body, to);
   }
   to.last_step = last_step;
-  from.seen = keep;
-  from.observations = static_cast<int>(keep.size());
-  if (!keep.empty()) {
-    from.class_votes.clear();
-    for (const Observation& obs : keep) voteClass(from, obs.body.class_id, obs.body.confidence);
-    return;
-  }
+  from.seen.clear();
+  from.observations = 0;
   from.alive = false;
   graph_.removeVariable(from.var);
   if (from.dims_var >= 0) graph_.removeVariable(from.dims_var);
@@ -221,17 +222,25 @@ int Optimizer::mergeDuplicates() {
       Landmark& a = landmarks_[i];
       Landmark& b = landmarks_[j];
       if (j <= static_cast<int>(i) || !b.alive || !sameObject(a, oi, b)) continue;
-      // One object gives one detection per key pose: a key pose that saw both gave one of them a
-      // detection of something else (a neighbour, a false object), which is rare; two objects in
-      // view together share most of their key poses.
-      std::vector<Observation> keep;
-      for (const Observation& y : b.seen)
-        if (std::any_of(a.seen.begin(), a.seen.end(), [&](const Observation& x) { return x.pose_var == y.pose_var; }))
-          keep.push_back(y);
-      if (keep.size() > cfg_.merge_shared_fraction * std::min(a.seen.size(), b.seen.size())) continue;
-      // The older landmark (lower index) keeps its id; the class is voted again over both. b keeps
-      // its observations from key poses a has one from (and stays a landmark if there are any).
-      moveObservations(b, a, keep);
+      // One object gives one detection per key pose, so two landmarks seen from one key pose are
+      // two objects, unless they overlap: two solid objects of one kind do not stand inside one
+      // another, and a key pose that saw both then took a neighbour's or a false object's detection
+      // for one of them, or reported the object in two pieces (a table and a blob of it) - a few of
+      // their key poses, up to merge_shared_fraction of the fewer one's. Two classes of one shape
+      // seen together are two objects (a chair under a table).
+      const std::size_t shared = static_cast<std::size_t>(std::count_if(b.seen.begin(), b.seen.end(), [&](const Observation& y) {
+        return std::any_of(a.seen.begin(), a.seen.end(), [&](const Observation& x) { return x.pose_var == y.pose_var; });
+      }));
+      if (shared > 0) {
+        const Object ob = landmarkObject(b);
+        if (!classes_.sameKind(a.class_id, b.class_id) ||
+            associationDistance(ob, oi) >= std::max(bodyRadius(oi), bodyRadius(ob)) ||
+            shared > cfg_.merge_shared_fraction * std::min(a.seen.size(), b.seen.size()))
+          continue;
+      }
+      // The older landmark (lower index) keeps its id and takes every observation (one that does
+      // not fit is detached after the next solve); the class is voted again over both.
+      moveObservations(b, a);
       ++merged;
     }
   }

@@ -227,15 +227,16 @@ class Optimizer {
   double associationSlack(const Object& body) const;
   void afterSolve(const std::vector<int>& landmarks, bool all);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
-  // the poses, or a detector's class confusion made a second one): sameObject(), seen from
-  // the same key pose at most merge_shared_fraction of the fewer observations. Returns merges.
+  // the poses, or a detector's class confusion made a second one): sameObject(), never seen
+  // from one key pose, or (one kind, standing inside one another) from at most
+  // merge_shared_fraction of the fewer's key poses. Returns merges.
   int mergeDuplicates();
   // a and b are one object: one shape, and associable (same class or family), or (with
   // merge_within_shape) of two classes of that shape associable under each one's thresholds: a
   // detector's class confusion. oa: a's current model.
   bool sameObject(const Landmark& a, const Object& oa, const Landmark& b) const;
-  // All of from's observations but `keep` go to `to`; from ends (merged) when it keeps none.
-  void moveObservations(Landmark& from, Landmark& to, const std::vector<Observation>& keep = {});
+  // All of from's observations go to `to`; from ends (merged).
+  void moveObservations(Landmark& from, Landmark& to);
   // Adds an observation's vote (its confidence) to the landmark's class.
   static void voteClass(Landmark& lm, int class_id, double confidence);
   // Detaches observations whose residual exceeds outlier_sigmas * sqrt(dimension) from their

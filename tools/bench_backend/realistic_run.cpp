@@ -273,7 +273,7 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
     if (lms.size() < 2 || !spdlog::should_log(spdlog::level::debug)) continue;
     std::string t;  // each duplicated object: its landmarks' classes, observations, offsets
     for (const Object& lm : lms)
-      t += fmt::format(" [class {} obs {} off {:.2f} m]", lm.class_id, lm.num_observations,
+      t += fmt::format(" [id {} class {} obs {} off {:.2f} m]", lm.id, lm.class_id, lm.num_observations,
                        horizontalError(lm, s.landmarks[i]));
     spdlog::debug("duplicated object {} (class {}):{}", i, s.landmarks[i].class_id, t);
   }
