@@ -47,6 +47,21 @@ double bodyRadius(const Object& o) {
   if (const auto* c = std::get_if<Cylinder>(&o.model)) return c->radius;
   return std::get<Ellipsoid>(o.model).radius;
 }
+
+// One ellipsoid lies whole within the other (horizontally within its radius, vertically within
+// its height, each to a tolerance): a part of it seen alone, e.g. a chair's seat with the back
+// hidden, whose height differs from the whole by more than the class's model difference.
+bool partOfTheOther(const Object& x, const Object& y) {
+  const auto* ex = std::get_if<Ellipsoid>(&x.model);
+  const auto* ey = std::get_if<Ellipsoid>(&y.model);
+  if (!ex || !ey) return false;
+  const Ellipsoid& part = ex->height <= ey->height ? *ex : *ey;
+  const Ellipsoid& whole = ex->height <= ey->height ? *ey : *ex;
+  constexpr double kTolerance = 0.1;  // metres
+  return (part.centroid - whole.centroid).head<2>().norm() + part.radius <= whole.radius + kTolerance &&
+         part.centroid.z() - 0.5 * part.height >= whole.centroid.z() - 0.5 * whole.height - kTolerance &&
+         part.centroid.z() + 0.5 * part.height <= whole.centroid.z() + 0.5 * whole.height + kTolerance;
+}
 }  // namespace
 
 int Optimizer::addLandmark(const Object& w) {
@@ -221,7 +236,9 @@ int Optimizer::mergeDuplicates() {
     for (int j : near) {
       Landmark& a = landmarks_[i];
       Landmark& b = landmarks_[j];
-      if (j <= static_cast<int>(i) || !b.alive || !sameObject(a, oi, b)) continue;
+      if (j <= static_cast<int>(i) || !b.alive) continue;
+      const Object ob = landmarkObject(b);
+      if (!sameObject(a, oi, b) && !(classes_.sameKind(a.class_id, b.class_id) && partOfTheOther(oi, ob))) continue;
       // One object gives one detection per key pose, so two landmarks seen from one key pose are
       // two objects, unless they overlap: two solid objects of one kind do not stand inside one
       // another, and a key pose that saw both then took a neighbour's or a false object's detection
@@ -232,7 +249,6 @@ int Optimizer::mergeDuplicates() {
         return std::any_of(a.seen.begin(), a.seen.end(), [&](const Observation& x) { return x.pose_var == y.pose_var; });
       }));
       if (shared > 0) {
-        const Object ob = landmarkObject(b);
         if (!classes_.sameKind(a.class_id, b.class_id) ||
             associationDistance(ob, oi) >= std::max(bodyRadius(oi), bodyRadius(ob)) ||
             shared > cfg_.merge_shared_fraction * std::min(a.seen.size(), b.seen.size()))
