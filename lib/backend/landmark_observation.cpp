@@ -238,8 +238,9 @@ int Optimizer::mergeDuplicates() {
       Landmark& b = landmarks_[j];
       if (j <= static_cast<int>(i) || !b.alive) continue;
       const Object ob = landmarkObject(b);
-      // A catch-all's blob may hold several objects: only one class's part merges into its whole.
-      if (!sameObject(a, oi, b) && !(a.class_id == b.class_id && partOfTheOther(oi, ob))) continue;
+      // Only a named class's part merges into its whole: a catch-all's blob may hold several objects.
+      const ClassInfo* named = a.class_id == b.class_id ? classes_.find(a.class_id) : nullptr;
+      if (!sameObject(a, oi, b) && !(named && !named->catch_all && partOfTheOther(oi, ob))) continue;
       // One object gives one detection per key pose, so two landmarks seen from one key pose are
       // two objects, unless they overlap: two solid objects of one kind do not stand inside one
       // another, and a key pose that saw both then took a neighbour's or a false object's detection

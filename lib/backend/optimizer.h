@@ -228,7 +228,7 @@ class Optimizer {
   void afterSolve(const std::vector<int>& landmarks, bool all);
   // Merges landmarks that turned out to be one object (e.g. after a loop closure corrected
   // the poses, a detector's class confusion made a second one, or a part of the object was
-  // seen alone): sameObject() or (one class) one ellipsoid lying whole within the other; never
+  // seen alone): sameObject() or (one named class) one ellipsoid lying whole within the other; never
   // seen from one key pose, or (one kind, standing inside one another) from at most
   // merge_shared_fraction of the fewer's key poses. Returns merges.
   int mergeDuplicates();
