@@ -213,9 +213,8 @@ int Optimizer::detachOutliers(const std::vector<double>* norms) {
   return detached;
 }
 
-bool Optimizer::sameObject(const Landmark& a, const Object& oa, const Landmark& b) const {
+bool Optimizer::sameObject(const Landmark& a, const Object& oa, const Landmark& b, const Object& ob) const {
   if (a.shape != b.shape) return false;
-  const Object ob = landmarkObject(b);
   if (classes_.sameKind(a.class_id, b.class_id)) return associationCost(ob, oa, classes_) >= 0;
   if (!cfg_.merge_within_shape) return false;
   // Two classes: associable under each one's thresholds, i.e. the stricter's.
@@ -240,7 +239,7 @@ int Optimizer::mergeDuplicates() {
       const Object ob = landmarkObject(b);
       // Only a named class's part merges into its whole: a catch-all's blob may hold several objects.
       const ClassInfo* named = a.class_id == b.class_id ? classes_.find(a.class_id) : nullptr;
-      if (!sameObject(a, oi, b) && !(named && !named->catch_all && partOfTheOther(oi, ob))) continue;
+      if (!sameObject(a, oi, b, ob) && !(named && !named->catch_all && partOfTheOther(oi, ob))) continue;
       // One object gives one detection per key pose, so two landmarks seen from one key pose are
       // two objects, unless they overlap: two solid objects of one kind do not stand inside one
       // another, and a key pose that saw both then took a neighbour's or a false object's detection

@@ -234,8 +234,8 @@ class Optimizer {
   int mergeDuplicates();
   // a and b are one object: one shape, and associable (same class or family), or (with
   // merge_within_shape) of two classes of that shape associable under each one's thresholds: a
-  // detector's class confusion. oa: a's current model.
-  bool sameObject(const Landmark& a, const Object& oa, const Landmark& b) const;
+  // detector's class confusion. oa, ob: their current models.
+  bool sameObject(const Landmark& a, const Object& oa, const Landmark& b, const Object& ob) const;
   // All of from's observations go to `to`; from ends (merged).
   void moveObservations(Landmark& from, Landmark& to);
   // Adds an observation's vote (its confidence) to the landmark's class.
