@@ -271,7 +271,7 @@ RealisticRunResult runRealistic(const graph_scenario::GraphScenario& s, const ba
   for (const auto& [i, lms] : of_truth) {
     extra += static_cast<int>(lms.size()) - 1;
     if (lms.size() < 2 || !spdlog::should_log(spdlog::level::debug)) continue;
-    std::string t;  // each duplicated object: its landmarks' classes, observations, offsets
+    std::string t;  // each duplicated object: its landmarks' ids, classes, observations, offsets
     for (const Object& lm : lms)
       t += fmt::format(" [id {} class {} obs {} off {:.2f} m]", lm.id, lm.class_id, lm.num_observations,
                        horizontalError(lm, s.landmarks[i]));
