@@ -219,6 +219,21 @@ TEST(Tracker, ClassFlipsBetweenTrunkAndPoleKeepOneTrack) {
   EXPECT_EQ(tracker.tracks().begin()->second.hits, 5);
 }
 
+namespace {
+// Frames at 3 Hz, from `first`: each frame's instances, none with free cells (no line of sight is
+// known to pass anywhere: the vacated test cannot tell).
+void feedAt3Hz(frontend::Tracker& tracker, int first, const std::vector<std::vector<frontend::Instance>>& frames) {
+  frontend::InputIssues issues;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    frontend::FrameInstances f;
+    f.utime = (first + static_cast<std::int64_t>(k)) * 333333;
+    f.instances = frames[k];
+    tracker.update(f, issues);
+  }
+}
+
+}  // namespace
+
 // A trunk seen as two instances in one frame (its halves either side of an occluder) starts a
 // second track, which follows the same trunk: the two are merged. A second trunk 0.6 m away
 // keeps its own track.
@@ -234,13 +249,9 @@ TEST(Tracker, TwoTracksOfOneTrunkAreMergedANeighbourIsNot) {
     frontend::TrackerParams p;
     p.column_merge_distance = merge;
     frontend::Tracker tracker(classes, p, {});
-    frontend::InputIssues issues;
-    for (int k = 0; k < 6; ++k) {
-      frontend::FrameInstances f;
-      f.instances = {column(5, 0, 0.3f), column(5.6f, 0, 0.3f)};
-      if (k == 2) f.instances.push_back(column(5.1f, 0, 2.5f));  // upper half of the first trunk, apart
-      tracker.update(f, issues);
-    }
+    std::vector<std::vector<frontend::Instance>> frames(6, {column(5, 0, 0.3f), column(5.6f, 0, 0.3f)});
+    frames[2].push_back(column(5.1f, 0, 2.5f));  // upper half of the first trunk, apart
+    feedAt3Hz(tracker, 0, frames);
     ASSERT_EQ(tracker.tracks().size(), merge > 0 ? 2u : 3u) << merge;
     if (merge > 0) {
       EXPECT_EQ(tracker.tracks().begin()->second.hits, 7) << "the piece's observation is kept";
@@ -266,15 +277,13 @@ TEST(Tracker, ACatchAllTrackAndANamedOneOnOneObjectAreMergedABinBesideIsNot) {
     frontend::TrackerParams p;
     p.catch_all_merge_distance = merge;
     frontend::Tracker tracker(classes, p, {});
-    frontend::InputIssues issues;
+    std::vector<std::vector<frontend::Instance>> frames(6, {blob(0, 5, 1.0f, 0, 0.2f)});  // the bin
     for (int k = 0; k < 6; ++k) {
-      frontend::FrameInstances f;
-      f.instances = {blob(0, 5, 1.0f, 0, 0.2f)};                                       // the bin
-      if (k < 3) f.instances.push_back(blob(0, 5, 0, 0, 0.2f));                        // the chair, missed
-      if (k == 3) f.instances.push_back(blob(0, 5, 0, 0.4f, 0.2f));                    // its back, missed
-      if (k >= 3) f.instances.push_back(blob(1, 5, 0, 0, 1.0f));                       // the chair, named
-      tracker.update(f, issues);
+      if (k < 3) frames[k].push_back(blob(0, 5, 0, 0, 0.2f));      // the chair, missed
+      if (k == 3) frames[k].push_back(blob(0, 5, 0, 0.4f, 0.2f));  // its back, missed
+      if (k >= 3) frames[k].push_back(blob(1, 5, 0, 0, 1.0f));     // the chair, named
     }
+    feedAt3Hz(tracker, 0, frames);
     ASSERT_EQ(tracker.tracks().size(), merge > 0 ? 2u : 3u) << merge;
     int chairs = 0, others = 0;
     for (const auto& [id, t] : tracker.tracks()) (t.class_id == 1 ? chairs : others) += 1;
@@ -846,18 +855,6 @@ TEST(Tracker, ACarWhoseEarlierPlaceWasSeenThroughIsMovingAParkedOneIsNot) {
 }
 
 namespace {
-// Frames at 3 Hz, from `first`: each frame's instances, none with free cells (no line of sight is
-// known to pass anywhere: the vacated test cannot tell).
-void feedAt3Hz(frontend::Tracker& tracker, int first, const std::vector<std::vector<frontend::Instance>>& frames) {
-  frontend::InputIssues issues;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    frontend::FrameInstances f;
-    f.utime = (first + static_cast<std::int64_t>(k)) * 333333;
-    f.instances = frames[k];
-    tracker.update(f, issues);
-  }
-}
-
 // A car's side along x at y = 20 (`length` m), its rear end at x0.
 frontend::Instance carSide(double x0, double length = 4.4) {
   frontend::Instance car = carInstance();
