@@ -136,9 +136,11 @@ void markViewCut(const ScanLines& lines, const ViewCutParams& p, std::vector<cha
 bool floats(const Cloud& cloud, const std::vector<float>& h, const std::vector<int>& cl, const ScanLines& lines,
             const CarParams& kp) {
   int bins = 0;
-  const std::vector<int> hiding = lines.hiddenBelow(cl, static_cast<float>(kp.hidden_below), static_cast<float>(kp.hidden_margin), bins);
+  const double ground = groundUnder(cloud, h, cl);
+  const std::vector<int> hiding = lines.hiddenBelow(cl, static_cast<float>(kp.hidden_below),
+                                                    static_cast<float>(kp.hidden_margin), bins, static_cast<float>(ground));
   if (hiding.empty() || static_cast<int>(hiding.size()) <= kp.max_hidden_bottom * bins) return false;
-  return groundUnder(cloud, h, cl) - groundUnder(cloud, h, hiding) > kp.max_ground_rise;
+  return ground - groundUnder(cloud, h, hiding) > kp.max_ground_rise;
 }
 
 // Whether the cluster's ground estimate (h: height above it) lies above the ground seen nearest

@@ -109,7 +109,8 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   return false;
 }
 
-std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins) const {
+std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins,
+                                        float ground_z) const {
   std::vector<Return> lowest;  // per azimuth bin, sorted by bin
   lowest.reserve(points.size());
   for (int i : points) lowest.push_back(polar(cloud_[i], i));
@@ -123,14 +124,21 @@ std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float be
   bins = static_cast<int>(lowest.size());
   std::vector<int> out;
   for (const Return& q : lowest) {
-    const float hi = q.tan_elevation - 1e-4f, lo = hi - below / q.range;
     const int b = bin(q.azimuth);
     int found = -1;
-    for (int d = -1; d <= 1 && found < 0; ++d) {
-      const auto [first, last] = band((b + d + kBins) % kBins, lo, hi);
-      for (const Return* r = first; r != last && found < 0; ++r)
-        if (r->range < q.range - margin) found = r->index;
-    }
+    auto search = [&](float hi) {
+      const float lo = hi - below / q.range;
+      for (int d = -1; d <= 1 && found < 0; ++d) {
+        const auto [first, last] = band((b + d + kBins) % kBins, lo, hi);
+        for (const Return* r = first; r != last && found < 0; ++r)
+          if (r->range < q.range - margin) found = r->index;
+      }
+    };
+    search(q.tan_elevation - 1e-4f);
+    // Under the ground level too: returns of a face below the points that were taken for the
+    // ground (not indexed) leave the lines just under the points ending there, not nearer.
+    if (found < 0 && std::isfinite(ground_z) && ground_z / q.range < q.tan_elevation - 1e-4f)
+      search(ground_z / q.range);
     if (found >= 0) out.push_back(found);
   }
   return out;

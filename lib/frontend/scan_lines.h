@@ -6,6 +6,7 @@
 // whether a nearer return lies just above a point (its upward view is blocked), and where the
 // view ends above (the top beam, and the returns standing under it). Points are in the sensor
 // frame (sensor at the origin, z up).
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -43,8 +44,13 @@ class ScanLines {
   // What hides the bottom of `points` (indices into the cloud): for each of their azimuth bins
   // whose lowest return has an indexed return on a line of sight passing at most `below` metres
   // under it (same bin or the next one on each side) nearer by more than `margin` metres, the
-  // index of one such return. `bins` receives the number of azimuth bins of `points`.
-  std::vector<int> hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins) const;
+  // index of one such return. With a finite `ground_z` (the ground's height under `points`,
+  // sensor frame) the lines passing at most `below` metres under the ground there are searched
+  // too when the first lines hide nothing: the lowest returns of a face standing on a surface
+  // that was taken for the ground (and so left out of the index) end the first lines.
+  // `bins` receives the number of azimuth bins of `points`.
+  std::vector<int> hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins,
+                               float ground_z = std::numeric_limits<float>::quiet_NaN()) const;
 
   // The heights (z) of the indexed returns above p in elevation, in its azimuth bin and the
   // next one on each side, nearer than `range` (horizontal metres): what ends the view above p.
