@@ -476,12 +476,17 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
   const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
   auto carsNear = [&](const frontend::Cloud& c, const frontend::GeometricSegmenterParams& p, const Eigen::Vector2f& xy,
                       float d) { return instancesNear(c, p, p.car_class, xy, d); };
-  // The strip also stands above the ground seen around it (CarParams::seen_ground_search): each
-  // test alone turns it down.
-  frontend::GeometricSegmenterParams covered_only = cfg.geometric, off = cfg.geometric;
+  // The strip also stands above the ground seen around it (CarParams::seen_ground_search), and
+  // its bottom is hidden by the car, whose ground lies below the strip's (max_hidden_bottom,
+  // searched under the strip's ground level): each test alone turns it down.
+  frontend::GeometricSegmenterParams covered_only = cfg.geometric, floats_only = cfg.geometric, off = cfg.geometric;
   covered_only.car.seen_ground_search = 0;
+  covered_only.car.max_hidden_bottom = 1;
+  floats_only.car.seen_ground_search = 0;
+  floats_only.car.max_covered = 1;
   off.car.seen_ground_search = 0;
-  off.car.max_covered = 1;  // without either test
+  off.car.max_covered = 1;
+  off.car.max_hidden_bottom = 1;  // without any of the three tests
   off.car.gap_min_points = 40;  // (parts of 25 returns break the strip apart too)
   int face_cars_without = 0;
   for (double x = 26; x <= 36; x += 1.0) {
@@ -492,6 +497,7 @@ TEST(GeometricSegmenter, AFaceBehindACarIsNoCarTheCarIs) {
     EXPECT_EQ(carsNear(c, cfg.geometric, {10, 0}, 1.0f), 1) << x;
     EXPECT_EQ(carsNear(c, cfg.geometric, {static_cast<float>(x), 0}, 2.0f), 0) << x;
     EXPECT_EQ(carsNear(c, covered_only, {static_cast<float>(x), 0}, 2.0f), 0) << x;
+    EXPECT_EQ(carsNear(c, floats_only, {static_cast<float>(x), 0}, 2.0f), 0) << x;
     face_cars_without += carsNear(c, off, {static_cast<float>(x), 0}, 2.0f);
   }
   EXPECT_GE(face_cars_without, 1);
