@@ -25,6 +25,8 @@ struct PlaceResult {
   Pose T_a_b = Pose::Identity();
   std::vector<LandmarkMatch> inliers;
   double residual_rms = 0;     // metres, over the inliers after refinement
+  double support = 0;          // the inliers weighted by how well each fits: sum of 1 - (d / match radius)^2,
+                               // d its horizontal residual (verify.h, strengthOf)
   double score = 0;            // method-specific: SlideMatch grid score, SlideGraph clique size
   double chance_inliers = 0;   // inliers expected by chance at this overlap (acceptance test)
   std::size_t covered = 0;     // B's landmarks that land where A has landmarks (acceptance test)

@@ -96,9 +96,15 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
       pa.push_back(a[m.a].p);
       pb.push_back(b[m.b].p);
     }
-    double sum = 0;
-    for (std::size_t i = 0; i < pa.size(); ++i) sum += (pa[i] - T * pb[i]).squaredNorm();
+    double sum = 0, support = 0;
+    const double r2 = params.match_radius * params.match_radius;
+    for (std::size_t i = 0; i < pa.size(); ++i) {
+      const Eigen::Vector3d e = pa[i] - T * pb[i];
+      sum += e.squaredNorm();
+      support += std::max(0.0, 1.0 - e.head<2>().squaredNorm() / r2);
+    }
     rms = pa.empty() ? 0 : std::sqrt(sum / pa.size());
+    out.support = support;
   }
   out.T_a_b = T;
   out.inliers = matches;
@@ -150,9 +156,16 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
   out.reason = buf;
 }
 
-double strengthOf(const PlaceResult& r) {
-  const double n = static_cast<double>(r.inliers.size());
+double strengthOf(const PlaceResult& r, bool by_fit) {
+  const double n = by_fit ? r.support : static_cast<double>(r.inliers.size());
   return n * n / static_cast<double>(std::max<std::size_t>(1, r.covered));
+}
+
+bool fitDecides(const PlaceResult& best, const VerifyParams& params) {
+  const double n = static_cast<double>(best.inliers.size());
+  if (n < 1) return false;
+  // 1 - u for u uniform on [0, 1): mean 1/2, standard deviation 1 / sqrt(12).
+  return best.support / n >= 0.5 + params.significance / std::sqrt(12.0 * n);
 }
 
 const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
@@ -165,24 +178,32 @@ const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResul
   }
   std::sort(mine.begin(), mine.end());
   const double yaw = yawOf(best.T_a_b.linear());
+  const bool by_fit = fitDecides(best, params);
   const PlaceResult* rival = nullptr;
   for (const PlaceResult& h : hypotheses) {
     std::size_t common = 0;
     for (const LandmarkMatch& m : h.inliers) common += std::binary_search(mine.begin(), mine.end(), std::pair{m.a, m.b});
     const bool elsewhere = (h.T_a_b * c - best.T_a_b * c).head<2>().norm() > params.rival_separation ||
                            std::abs(wrapAngle(yawOf(h.T_a_b.linear()) - yaw)) > 5.0 * M_PI / 180.0;
-    if (2 * common < h.inliers.size() && elsewhere && (!rival || strengthOf(h) > strengthOf(*rival))) rival = &h;
+    if (2 * common < h.inliers.size() && elsewhere && (!rival || strengthOf(h, by_fit) > strengthOf(*rival, by_fit)))
+      rival = &h;
   }
   return rival;
 }
 
 bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best) {
-  if (!best.found || !rival || strengthOf(best) >= params.rival_ratio * strengthOf(*rival)) return best.found;
+  if (!best.found || !rival) return best.found;
+  const bool by_fit = fitDecides(best, params);
+  const double ratio = strengthOf(best, by_fit) / std::max(1e-12, strengthOf(*rival, by_fit));
+  if (ratio >= params.rival_ratio) return best.found;
   best.found = false;
   best.ambiguous = true;
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "ambiguous: best hypothesis matches %zu of %zu covered landmarks, another alignment %zu of %zu",
-                best.inliers.size(), best.covered, rival->inliers.size(), rival->covered);
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "ambiguous: best hypothesis matches %zu of %zu covered landmarks, another alignment %zu of %zu (strength "
+                "ratio %.2f%s, below %.2f)",
+                best.inliers.size(), best.covered, rival->inliers.size(), rival->covered, ratio,
+                by_fit ? " by fit" : "", params.rival_ratio);
   best.reason = buf;
   return false;
 }

@@ -55,17 +55,26 @@ void refineAndDecide(const std::vector<Landmark>& a, const LandmarkIndex& index_
 
 // How well a hypothesis explains B where it overlaps A: inliers times the inlier fraction of the
 // covered landmarks (n^2 / covered). An alignment that matches as many landmarks only by laying B
-// over much more of A (a street grid shifted by a block) is weaker.
-double strengthOf(const PlaceResult& r);
+// over much more of A (a street grid shifted by a block) is weaker. By fit, n is the support: each
+// inlier weighted by 1 - (d / match radius)^2 for its horizontal residual d, so that an alignment
+// whose matches merely fall somewhere in the match disc (an alias of a block grid: 0.34 m off) is
+// weaker than one whose matches sit where the map put them (the truth between two good maps:
+// 0.16 m off).
+double strengthOf(const PlaceResult& r, bool by_fit = false);
+// Whether the ambiguity test weighs by fit: only when best's matches fit significantly tighter
+// than matches landing anywhere in the disc (their weights average 1/2, spread 1/sqrt(12) each;
+// verify.significance standard errors). Between noisy maps (0.25 m per object) the truth's own fit
+// is no tighter than an alias's and the weights would only add chance to the test.
+bool fitDecides(const PlaceResult& best, const VerifyParams& params);
 // Ambiguity: the strongest of the verified `hypotheses` (accepted or not) that are another
 // alignment than `best`: they share fewer than half of their matches with it and move the centroid of best's
 // inliers in B by more than params.rival_separation (or turn B by more than 5 degrees against
 // it); a variant of the same alignment (a bent map aligned on another part of the overlap) is no
-// rival. Null when there is none.
+// rival. Strongest by fit when fitDecides(best). Null when there is none.
 const PlaceResult* rivalOf(const PlaceResult& best, const std::vector<PlaceResult>& hypotheses,
                            const std::vector<Landmark>& b, const VerifyParams& params);
 // A scene that aligns nearly as well another way (rooms furnished alike) gives no transform: best
-// needs rival_ratio times the rival's strength. Clears best.found and sets the reason when it
+// needs rival_ratio times the rival's strength (by fit when fitDecides). Clears best.found and sets the reason when it
 // falls short; true when best stands (or has no rival).
 bool standsAgainstRival(const PlaceResult* rival, const VerifyParams& params, PlaceResult& best);
 

@@ -26,6 +26,7 @@ place::PlaceResult withInliers(const Pose& T, std::vector<std::pair<std::size_t,
   r.found = true;
   r.T_a_b = T;
   for (const auto& [a, b] : pairs) r.inliers.push_back({a, b});
+  r.support = static_cast<double>(pairs.size());  // every match a perfect fit
   return r;
 }
 }  // namespace
@@ -71,9 +72,13 @@ TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
   turned.T_a_b = poseFromXyzYaw(4.5, 0, 0, 0) * poseFromXyzYaw(0, 0, 0, 10 * M_PI / 180) * poseFromXyzYaw(-4.5, 0, 0, 0);
   EXPECT_NE(place::rivalOf(best, {best, turned}, b, p), nullptr);
 
-  // Strength: inliers times the inlier fraction of the covered landmarks.
+  // Strength: support times the support's fraction of the covered landmarks.
   EXPECT_DOUBLE_EQ(place::strengthOf(best), 10.0);
   EXPECT_DOUBLE_EQ(place::strengthOf(far), 4.5);
+  place::PlaceResult loose = best;
+  loose.support = 5.0;  // ten matches spread over the match disc
+  EXPECT_DOUBLE_EQ(place::strengthOf(loose), 10.0);
+  EXPECT_DOUBLE_EQ(place::strengthOf(loose, true), 2.5);
   place::PlaceResult stands = best;
   EXPECT_TRUE(place::standsAgainstRival(&far, p, stands));  // 10 >= 2 x 4.5
   EXPECT_TRUE(place::standsAgainstRival(nullptr, p, stands));
@@ -83,6 +88,37 @@ TEST(Verify, ARivalIsAnotherAlignmentElsewhere) {
   EXPECT_FALSE(place::standsAgainstRival(&strong, p, falls));
   EXPECT_FALSE(falls.found);
   EXPECT_NE(falls.reason.find("ambiguous"), std::string::npos);
+}
+
+// Each match weighs 1 - (d / match radius)^2 for its horizontal residual d after refinement: 40
+// landmarks on a circle matched to a circle 0.3 m wider (no rigid transform takes the offsets out)
+// support 40 x 0.75; matched to themselves, 40. The fit decides the ambiguity test only when it is
+// significantly tighter than chance's (mean weight 1/2): at 40 matches, a mean weight of 0.728.
+TEST(Verify, SupportWeighsEachMatchByItsFit) {
+  auto circle = [](double radius) {
+    std::vector<place::Landmark> c;
+    for (int k = 0; k < 40; ++k) c.push_back(at(radius * std::cos(k * M_PI / 20), radius * std::sin(k * M_PI / 20), 0, 71, c.size()));
+    return c;
+  };
+  const std::vector<place::Landmark> b = circle(10.0);
+  const place::LandmarkIndex index_b(b);
+  const place::VerifyParams p;  // 0.6 m radius, significance 5
+  auto verified = [&](double radius) {
+    const std::vector<place::Landmark> a = circle(radius);
+    place::PlaceResult r;
+    place::refineAndDecide(a, place::LandmarkIndex(a), b, index_b, Pose::Identity(), p, r);
+    EXPECT_EQ(r.inliers.size(), 40u);
+    return r;
+  };
+  const place::PlaceResult exact = verified(10.0), loose = verified(10.3), looser = verified(10.4);
+  EXPECT_NEAR(exact.support, 40.0, 1e-9);
+  EXPECT_NEAR(loose.support, 40 * (1 - 0.09 / 0.36), 1e-6);
+  EXPECT_NEAR(looser.support, 40 * (1 - 0.16 / 0.36), 1e-6);
+  EXPECT_DOUBLE_EQ(place::strengthOf(exact), place::strengthOf(looser)) << "by count they are alike";
+  EXPECT_LT(place::strengthOf(looser, true), 0.35 * place::strengthOf(exact, true));
+  EXPECT_TRUE(place::fitDecides(exact, p));
+  EXPECT_TRUE(place::fitDecides(loose, p));
+  EXPECT_FALSE(place::fitDecides(looser, p));
 }
 
 // Two rooms furnished alike: B saw one of them; either would fit, so no transform may be given.
