@@ -80,6 +80,7 @@ void loadGeometric(const ConfigNode& n, GeometricSegmenterParams& g) {
   opt(n, "roughness_cap_min", g.roughness_cap_min, 0.0);
   opt(n, "other_max_bottom", g.other_max_bottom, 0.0);
   opt(n, "other_max_occluded", g.other_max_occluded, 0.0, 1.0);
+  opt(n, "other_max_continued", g.other_max_continued, 0.0, 1.0);
   opt(n, "other_face_max_width", g.other_face_max_width, 0.0, 10.0);
   opt(n, "other_split_length", g.other_split_length, 0.0, 100.0);
   opt(n, "other_split_min_points", g.other_split_min_points, 1, 1000000);

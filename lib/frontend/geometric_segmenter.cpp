@@ -266,6 +266,12 @@ std::vector<std::vector<int>> carClusters(const Cloud& cloud, const std::vector<
   return cars;
 }
 
+// A face goes on past a cluster when the next beam beyond its top or bottom, within this
+// elevation window, returns within this horizontal range of the end's: an upright face's
+// returns keep their range to within the range noise and its tilt over one beam step.
+constexpr float kContinuedRangeTolerance = 0.15f;
+constexpr double kContinuedWindowDeg = 2.0;
+
 // Step 3: clusters of the untaken points `above` whose extents fit `other`, that stand low,
 // are squat and solid and, when they could be the seen part of something larger (as tall as a
 // car, `hidden_min_height`, or as thin as a face), are seen whole; a long one that falls into
@@ -339,6 +345,14 @@ std::vector<std::vector<int>> otherClusters(const Cloud& cloud, const std::vecto
       const double occluded = occludedFraction(cloud, lines, cl, in_cluster, p.occlusion);
       for (int i : cl) in_cluster[i] = 0;
       if (occluded > p.other_max_occluded) continue;
+    }
+    // Its face goes on past its top or bottom (returns taken by earlier steps or cut off with
+    // the top of the view are of unknown extent: they do not count).
+    if (p.other_max_continued < 1) {
+      for (int i : cl) in_cluster[i] = 1;
+      const double continued = lines.continuedFraction(cl, in_cluster, taken, kContinuedRangeTolerance, kContinuedWindowDeg);
+      for (int i : cl) in_cluster[i] = 0;
+      if (continued > p.other_max_continued) continue;
     }
     out.push_back(std::move(cl));
   }

@@ -145,6 +145,11 @@ struct GeometricSegmenterParams {
   // behind its chairs, a chair behind another) stand whole behind what hides their edge.
   double other_max_occluded = 0.5;
   double other_face_max_width = 0.0;  // 0: every cluster is judged
+  // ... and that end where they seem to: at most this share of their azimuth bins show the
+  // face going on past their top or bottom (the next beam up or down at their range,
+  // ScanLines::continuedFraction): a wall far off, its beams farther apart than the fine
+  // clustering cells, falls into bands of furniture height. 1 disables.
+  double other_max_continued = 1.0;
   // ... and that are no upright column: a cluster as tall as a column must be (column.min_top)
   // whose footprint is no longer than a column's cross-section (column.max_diameter) is a
   // trunk or pole the column step turned down (not isolated, a bush at its foot). false: off.

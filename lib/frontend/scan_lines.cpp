@@ -144,6 +144,60 @@ std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float be
   return out;
 }
 
+double ScanLines::continuedFraction(const std::vector<int>& points, const std::vector<char>& in_set,
+                                    const std::vector<char>& unknown, float range_tolerance, double window_deg) const {
+  struct Ends {
+    Return low, high;
+  };
+  std::vector<std::pair<int, Ends>> ends;  // per azimuth bin
+  ends.reserve(points.size());
+  for (int i : points) {
+    const Return q = polar(cloud_[i], i);
+    ends.push_back({bin(q.azimuth), {q, q}});
+  }
+  std::sort(ends.begin(), ends.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t bins = 0;
+  int continued = 0;
+  const float w = static_cast<float>(std::tan(window_deg * M_PI / 180.0));
+  for (std::size_t k = 0; k < ends.size();) {
+    Ends e = ends[k].second;
+    const int b = ends[k].first;
+    for (++k; k < ends.size() && ends[k].first == b; ++k) {
+      const Return& q = ends[k].second.low;
+      if (q.tan_elevation < e.low.tan_elevation) e.low = q;
+      if (q.tan_elevation > e.high.tan_elevation) e.high = q;
+    }
+    ++bins;
+    auto goesOn = [&](const Return* r, const Return& from) {
+      return !unknown[r->index] && std::abs(r->range - from.range) <= range_tolerance;
+    };
+    // tan(elevation +- window) from tan(elevation), as in hiddenAbove.
+    const float up = (e.high.tan_elevation + w) / (1.0f - e.high.tan_elevation * w);
+    const float down = (e.low.tan_elevation - w) / (1.0f + e.low.tan_elevation * w);
+    bool on = false;
+    {
+      const auto [first, last] = band(b, e.high.tan_elevation + 1e-5f, up);
+      for (const Return* r = first; r != last; ++r)
+        if (!in_set[r->index]) {
+          on = goesOn(r, e.high);
+          break;
+        }
+    }
+    if (!on) {
+      const auto [first, last] = band(b, down, e.low.tan_elevation - 1e-5f);
+      for (const Return* r = last; r != first;) {
+        --r;
+        if (!in_set[r->index]) {
+          on = goesOn(r, e.low);
+          break;
+        }
+      }
+    }
+    continued += on;
+  }
+  return bins ? static_cast<double>(continued) / bins : 0.0;
+}
+
 std::vector<float> ScanLines::heightsAbove(const Eigen::Vector3f& p, float range) const {
   const Return q = polar(p, -1);
   const int b = bin(q.azimuth);

@@ -52,6 +52,18 @@ class ScanLines {
   std::vector<int> hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins,
                                float ground_z = std::numeric_limits<float>::quiet_NaN()) const;
 
+  // The share of the azimuth bins of `points` (indices into the cloud) where the face they show
+  // goes on past them: the next indexed return above their highest one in the bin (within
+  // window_deg of elevation) that is no point of theirs (`in_set`, sized like the cloud), or the
+  // next such below their lowest, lies within range_tolerance metres of that return's
+  // horizontal range and is not marked `unknown` (sized like the cloud: e.g. returns cut off
+  // with the top of the view, whose surface is of unknown extent). A wall far off, whose beams
+  // lie farther apart than fine clustering cells, falls into bands that each go on this way; a
+  // thing standing free ends at its top (the next beam passes over it to what lies behind) and
+  // at its bottom (the ground, not indexed, or its support).
+  double continuedFraction(const std::vector<int>& points, const std::vector<char>& in_set,
+                           const std::vector<char>& unknown, float range_tolerance, double window_deg) const;
+
   // The heights (z) of the indexed returns above p in elevation, in its azimuth bin and the
   // next one on each side, nearer than `range` (horizontal metres): what ends the view above p.
   std::vector<float> heightsAbove(const Eigen::Vector3f& p, float range) const;

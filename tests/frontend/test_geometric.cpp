@@ -380,6 +380,27 @@ TEST(GeometricSegmenter, ATableBehindAChairIsAnOtherAHiddenStripOfWallIsNot) {
   EXPECT_EQ(instancesNear(c, off, off.other_class, wall, 1.0f), 1);
 }
 
+// A corridor's end wall 13.3 m off, 2.7 m tall, 2.4 m wide: its beams lie 0.12 m apart
+// there, more than the "other" step's 0.1-m cells, so the wall falls into bands of one to a few
+// beams, each as low as furniture (the recorded indoor case: 138 returns 0.37 m high, mapped by
+// every robot as a 4-m "other" for 3-6 key poses at a time). Each band's face goes on past its
+// top and bottom (the next beam returns at its range): no "other". A bin 6 m off stands free.
+TEST(GeometricSegmenter, AFarWallCutIntoBandsIsNoOtherABinIs) {
+  const frontend::Cloud c =
+      scannedBoxes({Eigen::AlignedBox3d(Eigen::Vector3d(13.28, -1.2, -1), Eigen::Vector3d(13.48, 1.2, 1.7)),
+                    Eigen::AlignedBox3d(Eigen::Vector3d(6.0, -4.3, -1), Eigen::Vector3d(6.5, -3.8, -0.3))});
+  const frontend::FrontendConfig cfg = frontend::loadDefaultFrontendConfig();
+  const frontend::GeometricSegmenterParams& p = cfg.geometric;
+  ASSERT_LT(p.other_max_continued, 1.0);
+  const Eigen::Vector2f wall(13.3f, 0), bin(6.25f, -4.05f);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, wall, 2.0f), 0);
+  EXPECT_EQ(instancesNear(c, p, p.other_class, bin, 0.5f), 1);
+  frontend::GeometricSegmenterParams off = p;
+  off.other_max_continued = 1;  // without the test the wall's bands are "other"
+  EXPECT_GE(instancesNear(c, off, off.other_class, wall, 2.0f), 1);
+  EXPECT_EQ(instancesNear(c, off, off.other_class, bin, 0.5f), 1);
+}
+
 // A square pillar 3.5 m tall with flat faces fails the column step's arc test; a bin beside it
 // is a free "other". The pillar is as tall as a column and no wider than one: it is no "other"
 // either (in the forest such clusters are trunks the column step turned down).
