@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "frontend/azimuth.h"
@@ -109,15 +110,20 @@ bool ScanLines::hiddenAbove(const Eigen::Vector3f& p, float range) const {
   return false;
 }
 
-std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins,
-                                        float ground_z) const {
-  std::vector<Return> lowest;  // per azimuth bin, sorted by bin
-  lowest.reserve(points.size());
-  for (int i : points) lowest.push_back(polar(cloud_[i], i));
-  std::sort(lowest.begin(), lowest.end(), [](const Return& a, const Return& b) {
+std::vector<ScanLines::Return> ScanLines::byBin(const std::vector<int>& points) const {
+  std::vector<Return> out;
+  out.reserve(points.size());
+  for (int i : points) out.push_back(polar(cloud_[i], i));
+  std::sort(out.begin(), out.end(), [](const Return& a, const Return& b) {
     const int ba = bin(a.azimuth), bb = bin(b.azimuth);
     return ba != bb ? ba < bb : a.tan_elevation < b.tan_elevation;
   });
+  return out;
+}
+
+std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float below, float margin, int& bins,
+                                        float ground_z) const {
+  std::vector<Return> lowest = byBin(points);  // then the lowest per bin
   lowest.erase(std::unique(lowest.begin(), lowest.end(),
                            [](const Return& a, const Return& b) { return bin(a.azimuth) == bin(b.azimuth); }),
                lowest.end());
@@ -146,52 +152,31 @@ std::vector<int> ScanLines::hiddenBelow(const std::vector<int>& points, float be
 
 double ScanLines::continuedFraction(const std::vector<int>& points, const std::vector<char>& in_set,
                                     const std::vector<char>& unknown, float range_tolerance, double window_deg) const {
-  struct Ends {
-    Return low, high;
-  };
-  std::vector<std::pair<int, Ends>> ends;  // per azimuth bin
-  ends.reserve(points.size());
-  for (int i : points) {
-    const Return q = polar(cloud_[i], i);
-    ends.push_back({bin(q.azimuth), {q, q}});
-  }
-  std::sort(ends.begin(), ends.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::size_t bins = 0;
-  int continued = 0;
+  const std::vector<Return> sorted = byBin(points);
   const float w = static_cast<float>(std::tan(window_deg * M_PI / 180.0));
-  for (std::size_t k = 0; k < ends.size();) {
-    Ends e = ends[k].second;
-    const int b = ends[k].first;
-    for (++k; k < ends.size() && ends[k].first == b; ++k) {
-      const Return& q = ends[k].second.low;
-      if (q.tan_elevation < e.low.tan_elevation) e.low = q;
-      if (q.tan_elevation > e.high.tan_elevation) e.high = q;
-    }
+  auto goesOn = [&](const Return& r, const Return& from) {
+    return !unknown[r.index] && std::abs(r.range - from.range) <= range_tolerance;
+  };
+  int bins = 0, continued = 0;
+  for (std::size_t k = 0; k < sorted.size();) {
+    const int b = bin(sorted[k].azimuth);
+    const Return& low = sorted[k];
+    while (k + 1 < sorted.size() && bin(sorted[k + 1].azimuth) == b) ++k;
+    const Return& high = sorted[k++];
     ++bins;
-    auto goesOn = [&](const Return* r, const Return& from) {
-      return !unknown[r->index] && std::abs(r->range - from.range) <= range_tolerance;
-    };
-    // tan(elevation +- window) from tan(elevation), as in hiddenAbove.
-    const float up = (e.high.tan_elevation + w) / (1.0f - e.high.tan_elevation * w);
-    const float down = (e.low.tan_elevation - w) / (1.0f + e.low.tan_elevation * w);
+    // The nearest other return past each end within the window (tan(elevation +- window) from
+    // tan(elevation), as in hiddenAbove).
     bool on = false;
     {
-      const auto [first, last] = band(b, e.high.tan_elevation + 1e-5f, up);
-      for (const Return* r = first; r != last; ++r)
-        if (!in_set[r->index]) {
-          on = goesOn(r, e.high);
-          break;
-        }
+      const auto [first, last] = band(b, high.tan_elevation + 1e-5f, (high.tan_elevation + w) / (1.0f - high.tan_elevation * w));
+      const Return* r = std::find_if(first, last, [&](const Return& x) { return !in_set[x.index]; });
+      on = r != last && goesOn(*r, high);
     }
     if (!on) {
-      const auto [first, last] = band(b, down, e.low.tan_elevation - 1e-5f);
-      for (const Return* r = last; r != first;) {
-        --r;
-        if (!in_set[r->index]) {
-          on = goesOn(r, e.low);
-          break;
-        }
-      }
+      const auto [first, last] = band(b, (low.tan_elevation - w) / (1.0f + low.tan_elevation * w), low.tan_elevation - 1e-5f);
+      const auto r = std::find_if(std::make_reverse_iterator(last), std::make_reverse_iterator(first),
+                                  [&](const Return& x) { return !in_set[x.index]; });
+      on = r != std::make_reverse_iterator(first) && goesOn(*r, low);
     }
     continued += on;
   }

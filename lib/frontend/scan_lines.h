@@ -102,6 +102,8 @@ class ScanLines {
   static constexpr int kBins = 1440;
   static int bin(float azimuth);
   static Return polar(const Eigen::Vector3f& p, int index);
+  // The cloud points `points` as returns, sorted by azimuth bin, then by elevation.
+  std::vector<Return> byBin(const std::vector<int>& points) const;
   // Returns of bin b with tan_elevation in [lo, hi].
   std::pair<const Return*, const Return*> band(int b, float lo, float hi) const;
   const Cloud& cloud_;
