@@ -16,6 +16,8 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("rotation_floor", c.odom_rotation_floor);
     n.read("max_step_m", c.max_step_m);
     n.read("max_step_rad", c.max_step_rad);
+    n.read("scale_sigma", c.odom_scale_sigma);
+    if (!(c.odom_scale_sigma >= 0 && c.odom_scale_sigma < 0.5)) n.fail("scale_sigma", "must be in [0, 0.5)");
     for (const char* k : {"translation_floor", "rotation_floor", "max_step_m", "max_step_rad"})
       if (n.has(k)) n.requirePositive(k, n.get<double>(k));
   }

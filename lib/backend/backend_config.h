@@ -16,6 +16,9 @@ struct BackendConfig {
   double odom_rotation_per_m = 0.001;
   double odom_translation_floor = 0.005;
   double odom_rotation_floor = 0.0005;
+  // Each robot's odometry scale (true distance over measured: wheel radius, visual scale) is
+  // estimated with this prior sigma about 1; 0: the odometry's translation is taken as it is.
+  double odom_scale_sigma = 0.0;
   // Input gates: steps longer or turns larger than these are rejected as absurd.
   double max_step_m = 25.0;
   double max_step_rad = 1.2;

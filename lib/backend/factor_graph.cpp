@@ -13,7 +13,7 @@
 namespace slide::backend {
 
 namespace {
-int blockSize(BlockKind k) { return k == BlockKind::Vector3 ? 3 : 7; }
+int blockSize(BlockKind k) { return k == BlockKind::Vector3 ? 3 : k == BlockKind::Scalar ? 1 : 7; }
 
 ceres::Problem::Options sharedOptions() {
   ceres::Problem::Options o;
@@ -50,7 +50,8 @@ ceres::Manifold* manifoldOf(BlockKind kind, const FactorGraph::Snapshot& s) {
   switch (kind) {
     case BlockKind::Pose: return s.pose_manifold.get();
     case BlockKind::Cylinder: return s.cylinder_manifold.get();
-    case BlockKind::Vector3: return nullptr;
+    case BlockKind::Vector3:
+    case BlockKind::Scalar: return nullptr;
   }
   return nullptr;
 }
@@ -83,7 +84,8 @@ ceres::Manifold* FactorGraph::manifoldFor(BlockKind kind) const {
   switch (kind) {
     case BlockKind::Pose: return pose_manifold_.get();
     case BlockKind::Cylinder: return cylinder_manifold_.get();
-    case BlockKind::Vector3: return nullptr;
+    case BlockKind::Vector3:
+    case BlockKind::Scalar: return nullptr;
   }
   return nullptr;
 }

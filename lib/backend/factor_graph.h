@@ -21,7 +21,7 @@ class Problem;
 
 namespace slide::backend {
 
-enum class BlockKind { Pose, Cylinder, Vector3 };  // sizes 7, 7, 3
+enum class BlockKind { Pose, Cylinder, Vector3, Scalar };  // sizes 7, 7, 3, 1
 
 struct SolveReport {
   double initial_cost = 0;

@@ -5,7 +5,8 @@
 // Residuals are whitened (divided by their standard deviations).
 //
 // Parameter blocks: poses as in pose_block.h ([t, q], 7 values); cuboid landmark pose (7)
-// and dims (3); cylinder landmark [root(3), unit axis(3), radius(1)]; ellipsoid centroid (3).
+// and dims (3); cylinder landmark [root(3), unit axis(3), radius(1)]; ellipsoid centroid (3);
+// a robot's odometry scale (1).
 #include "geometry/pose.h"
 
 namespace ceres {
@@ -25,6 +26,15 @@ using PoseSigma = Vector6d;
 // key poses and intra-robot loop closures both use it. 6 residuals.
 ceres::CostFunction* relativePoseFactor(const Pose& measured_a_b, const PoseSigma& sigma,
                                         Differentiation d = Differentiation::Automatic);
+
+// Odometry between consecutive key poses of a robot whose odometry scale is estimated (blocks:
+// A, B, the robot's scale s, one value): log(M_s^-1 A^-1 B), M_s the measurement with its
+// translation times s. 6 residuals.
+ceres::CostFunction* scaledOdometryFactor(const Pose& measured_a_b, const PoseSigma& sigma,
+                                          Differentiation d = Differentiation::Automatic);
+
+// Prior on a robot's odometry scale (block: s): (s - 1) / sigma. 1 residual.
+ceres::CostFunction* scalePriorFactor(double sigma, Differentiation d = Differentiation::Automatic);
 
 // Prior on one pose (block: pose): log(M^-1 T). 6 residuals.
 ceres::CostFunction* posePriorFactor(const Pose& measured, const PoseSigma& sigma,

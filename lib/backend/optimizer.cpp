@@ -45,6 +45,17 @@ Pose Optimizer::poseOf(int var, const FactorGraph::Values* values) const {
   return fromPoseBlock(values ? (*values)[var].data() : graph_.value(var));
 }
 
+double Optimizer::odometryScale(int robot) const {
+  const auto it = robots_.find(robot);
+  return it == robots_.end() || it->second.scale_var < 0 ? 1.0 : *graph_.value(it->second.scale_var);
+}
+
+Pose Optimizer::scaledOdometry(int robot, const Pose& odom_a_b) const {
+  Pose T = odom_a_b;
+  T.translation() *= odometryScale(robot);
+  return T;
+}
+
 const Optimizer::KeyPose* Optimizer::findKeyPose(int robot, int seq) const {
   const auto it = robots_.find(robot);
   if (it == robots_.end()) return nullptr;
@@ -124,7 +135,12 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
       r.warnings.push_back("gap: robot " + std::to_string(b.robot) + " key poses " + std::to_string(last.seq + 1) + ".." +
                            std::to_string(b.seq - 1) + " missing, bridged with odometry poses");
     }
-    T_w_b = poseOf(prev_var) * relative;
+    if (cfg_.odom_scale_sigma > 0 && robot.scale_var < 0) {
+      const double one = 1.0;
+      robot.scale_var = graph_.addVariable(BlockKind::Scalar, &one, false);
+      graph_.addFactor(scalePriorFactor(cfg_.odom_scale_sigma), {robot.scale_var}, false);
+    }
+    T_w_b = poseOf(prev_var) * scaledOdometry(b.robot, relative);
   }
   const int var = graph_.addVariable(BlockKind::Pose, toPoseBlock(T_w_b).data(), false);
   OdometryStep step;
@@ -134,7 +150,8 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
     robot.anchor_factor = graph_.addFactor(posePriorFactor(T_w_b, s), {var}, false);
   } else {
     const Vector6d sigma = odometrySigma(b, relative, bridged);
-    graph_.addFactor(relativePoseFactor(relative, sigma), {prev_var, var}, false);
+    if (robot.scale_var >= 0) graph_.addFactor(scaledOdometryFactor(relative, sigma), {prev_var, var, robot.scale_var}, false);
+    else graph_.addFactor(relativePoseFactor(relative, sigma), {prev_var, var}, false);
     step = {relative.translation().norm(), sigma.head<3>().maxCoeff(), sigma[5]};
   }
   // The odometry's attitude, taken into the host frame, gives the key pose's roll and pitch

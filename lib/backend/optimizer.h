@@ -116,6 +116,8 @@ class Optimizer {
   std::vector<int> robots() const;  // the host and every merged peer, ascending
   std::vector<TrajectoryPose> trajectory(int robot) const;
   bool merged(int robot) const;
+  // The robot's odometry scale as the graph estimates it (1 when it is not estimated).
+  double odometryScale(int robot) const;
 
   int numKeyPoses() const { return static_cast<int>(keyposes_.size()); }
   int numLandmarks(bool confirmed_only = true) const;
@@ -178,6 +180,7 @@ class Optimizer {
     bool merged = false;
     Pose T_host_robot = Pose::Identity();
     int anchor_factor = -1;
+    int scale_var = -1;                       // its odometry scale (odometry.scale_sigma > 0)
     std::vector<int> keyposes;                // indices into keyposes_
     std::map<int, KeyPoseBundle> held;        // by seq, before the transform
   };
@@ -252,6 +255,9 @@ class Optimizer {
   const KeyPose* findKeyPose(int robot, int seq) const;
   Vector6d loopSigma() const;  // of an intra-robot loop closure's factor (config)
   Pose poseOf(int var, const FactorGraph::Values* values = nullptr) const;
+  // A relative pose the robot's odometry measured, its translation times the robot's estimated
+  // odometry scale (unchanged when the scale is not estimated).
+  Pose scaledOdometry(int robot, const Pose& odom_a_b) const;
   // Soundness (optimizer_guard.cpp). The odometry envelope check of a robot's key poses
   // (indices into its list) i..j against T_i_j; the frame of a merged peer as the graph holds it.
   EnvelopeCheck envelopeOf(int robot, std::size_t i, std::size_t j, const Pose& T_i_j) const;

@@ -1,4 +1,5 @@
-// Soundness of the optimizer's estimate: the odometry envelope of every robot's trajectory,
+// Soundness of the optimizer's estimate: the odometry envelope of every robot's trajectory
+// (about its odometry times the scale the graph estimates for it, when it estimates one),
 // un-merging a peer (rebuilding the graph from the recorded inputs without its transform),
 // and undoing merges after which some robot's trajectory left its envelope.
 #include <cmath>
@@ -12,7 +13,8 @@ EnvelopeCheck Optimizer::envelopeOf(int robot, std::size_t i, std::size_t j, con
   const std::vector<int>& list = robots_.at(robot).keyposes;
   std::vector<OdometryStep> steps;
   for (std::size_t k = i + 1; k <= j && k < list.size(); ++k) steps.push_back(keyposes_[list[k]].step);
-  const Pose odom = keyposes_[list[i]].odom_pose.inverse() * keyposes_[list[std::min(j, list.size() - 1)]].odom_pose;
+  const Pose odom = scaledOdometry(
+      robot, keyposes_[list[i]].odom_pose.inverse() * keyposes_[list[std::min(j, list.size() - 1)]].odom_pose);
   return checkAgainstOdometry(steps, odom, T_i_j, cfg_.envelope);
 }
 
@@ -27,7 +29,8 @@ int Optimizer::robotOutsideEnvelope(std::string* why) const {
       drift.add(kp.step);
       if (k % 5 != 0 && k + 1 != robot.keyposes.size()) continue;  // every fifth and the last
       const EnvelopeCheck c =
-          checkAgainstOdometry(drift, first.odom_pose.inverse() * kp.odom_pose, est0.inverse() * poseOf(kp.var), cfg_.envelope);
+          checkAgainstOdometry(drift, scaledOdometry(id, first.odom_pose.inverse() * kp.odom_pose),
+                               est0.inverse() * poseOf(kp.var), cfg_.envelope);
       if (!c.inside) {
         if (why)
           *why = "robot " + std::to_string(id) + " key pose " + std::to_string(kp.seq) + " is " +

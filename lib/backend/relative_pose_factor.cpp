@@ -1,4 +1,4 @@
-// Relative pose and pose prior functors.
+// Relative pose (odometry, loop closure), scaled odometry, and prior functors.
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/numeric_diff_cost_function.h>
 
@@ -15,7 +15,13 @@ struct RelativePoseError {
 
   template <typename T>
   bool operator()(const T* a, const T* b, T* residual) const {
-    const jet::Vec6<T> e = jet::relativePoseError(a, b, q_m, t_m);
+    return whitened(a, b, t_m, residual);
+  }
+
+  // With the measured translation `t` (the measurement's, or a function of other blocks).
+  template <typename T, typename S>
+  bool whitened(const T* a, const T* b, const Eigen::Matrix<S, 3, 1>& t, T* residual) const {
+    const jet::Vec6<T> e = jet::relativePoseError(a, b, q_m, t);
     for (int i = 0; i < 6; ++i) residual[i] = e[i] * inv_sigma[i];
     return true;
   }
@@ -23,6 +29,32 @@ struct RelativePoseError {
   Eigen::Quaterniond q_m;
   Eigen::Vector3d t_m;
   Vector6d inv_sigma;
+};
+
+// Odometry whose translation is off by an unknown factor (wheel radius, visual scale): the
+// step's translation times the robot's scale block before the between error.
+struct ScaledOdometryError {
+  ScaledOdometryError(const Pose& m, const PoseSigma& sigma) : between(m, sigma) {}
+
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* scale, T* residual) const {
+    const jet::Vec3<T> t = between.t_m.cast<T>() * scale[0];
+    return between.whitened(a, b, t, residual);
+  }
+
+  RelativePoseError between;
+};
+
+struct ScalePriorError {
+  explicit ScalePriorError(double sigma) : inv_sigma(1.0 / sigma) {}
+
+  template <typename T>
+  bool operator()(const T* scale, T* residual) const {
+    residual[0] = (scale[0] - T(1)) * inv_sigma;
+    return true;
+  }
+
+  double inv_sigma;
 };
 
 struct PosePriorError {
@@ -44,6 +76,19 @@ ceres::CostFunction* relativePoseFactor(const Pose& measured_a_b, const PoseSigm
   if (d == Differentiation::Numeric)
     return new ceres::NumericDiffCostFunction<RelativePoseError, ceres::CENTRAL, 6, 7, 7>(f);
   return new ceres::AutoDiffCostFunction<RelativePoseError, 6, 7, 7>(f);
+}
+
+ceres::CostFunction* scaledOdometryFactor(const Pose& measured_a_b, const PoseSigma& sigma, Differentiation d) {
+  auto* f = new ScaledOdometryError(measured_a_b, sigma);
+  if (d == Differentiation::Numeric)
+    return new ceres::NumericDiffCostFunction<ScaledOdometryError, ceres::CENTRAL, 6, 7, 7, 1>(f);
+  return new ceres::AutoDiffCostFunction<ScaledOdometryError, 6, 7, 7, 1>(f);
+}
+
+ceres::CostFunction* scalePriorFactor(double sigma, Differentiation d) {
+  auto* f = new ScalePriorError(sigma);
+  if (d == Differentiation::Numeric) return new ceres::NumericDiffCostFunction<ScalePriorError, ceres::CENTRAL, 1, 1>(f);
+  return new ceres::AutoDiffCostFunction<ScalePriorError, 1, 1>(f);
 }
 
 ceres::CostFunction* posePriorFactor(const Pose& measured, const PoseSigma& sigma, Differentiation d) {

@@ -49,14 +49,15 @@ Vec6<T> logSE3(const Eigen::Quaternion<T>& q, const Vec3<T>& t) {
 
 // log(M^-1 * A^-1 * B) for poses A, B (blocks) and a constant measurement M (q_m, t_m):
 // zero when B seen from A equals M.
-template <typename T>
-Vec6<T> relativePoseError(const T* a, const T* b, const Eigen::Quaterniond& q_m, const Eigen::Vector3d& t_m) {
+// The measured translation may itself depend on a variable (an odometry scale): S is double or T.
+template <typename T, typename S>
+Vec6<T> relativePoseError(const T* a, const T* b, const Eigen::Quaterniond& q_m, const Eigen::Matrix<S, 3, 1>& t_m) {
   const Eigen::Quaternion<T> qa_inv = rotationOf(a).conjugate();
   const Eigen::Quaternion<T> q_ab = qa_inv * rotationOf(b);
   const Vec3<T> t_ab = qa_inv * (translationOf(b) - translationOf(a));
   const Eigen::Quaternion<T> qm_inv = q_m.conjugate().cast<T>();
   const Eigen::Quaternion<T> q_err = qm_inv * q_ab;
-  const Vec3<T> t_err = qm_inv * (t_ab - t_m.cast<T>());
+  const Vec3<T> t_err = qm_inv * (t_ab - t_m.template cast<T>());
   return logSE3(q_err, t_err);
 }
 

@@ -78,6 +78,32 @@ TEST(BackendFactors, RelativePoseMatchesNumeric) {
   }
 }
 
+TEST(BackendFactors, ScaledOdometryMatchesNumericAndTakesTheScaleToTheTranslationOnly) {
+  std::mt19937 rng(6);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Pose A = randomPose(rng), B = randomPose(rng);
+    const backend::PoseBlock a = backend::toPoseBlock(A), b = backend::toPoseBlock(B);
+    // The odometry measured the step 3 % short: the estimated scale 1/0.97 explains it.
+    Pose M = A.inverse() * B;
+    M.translation() *= 0.97;
+    const double right = 1.0 / 0.97, one = 1.0;
+    EXPECT_LT(residualNorm(backend::scaledOdometryFactor(M, sigma(0.1, 0.01)), {a.data(), b.data(), &right}), 1e-9);
+    if (M.translation().norm() > 0.5)
+      EXPECT_GT(residualNorm(backend::scaledOdometryFactor(M, sigma(0.1, 0.01)), {a.data(), b.data(), &one}), 0.1);
+    // At scale 1 it is the relative pose factor.
+    EXPECT_NEAR(residualNorm(backend::scaledOdometryFactor(M, sigma(0.1, 0.01)), {a.data(), b.data(), &one}),
+                residualNorm(backend::relativePoseFactor(M, sigma(0.1, 0.01)), {a.data(), b.data()}), 1e-12);
+    const double s = 1.02;
+    expectSameJacobians(backend::scaledOdometryFactor(M, sigma(0.1, 0.01)),
+                        backend::scaledOdometryFactor(M, sigma(0.1, 0.01), backend::Differentiation::Numeric),
+                        {a.data(), b.data(), &s});
+  }
+  const double s = 1.03;
+  EXPECT_NEAR(residualNorm(backend::scalePriorFactor(0.02), {&s}), 1.5, 1e-12);
+  expectSameJacobians(backend::scalePriorFactor(0.02), backend::scalePriorFactor(0.02, backend::Differentiation::Numeric),
+                      {&s});
+}
+
 TEST(BackendFactors, PosePriorMatchesNumeric) {
   std::mt19937 rng(2);
   const Pose T = randomPose(rng);

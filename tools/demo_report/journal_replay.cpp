@@ -6,6 +6,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -89,11 +90,14 @@ void printState(const backend::Optimizer& opt, const TeamTruth& truth,
               "landmarks %d",
               prefix, own.poses, own.rmse, own.last, own.aligned_rmse, odom.rmse, odom.last, odom.aligned_rmse,
               opt.numLandmarks());
+  std::printf("; odometry scale %.4f", opt.odometryScale(opt.hostRobot()));
   for (int r : opt.robots()) {
     if (r == opt.hostRobot()) continue;
     const auto e = mergedFrameError(opt, r, truth, odom_of);
     const TrajectoryError te = trajectoryError(opt, r, truth);
-    if (e) std::printf("; peer %d frame %.2f m / %.2f deg, poses rmse %.2f m", r, e->translation_m, e->yaw_deg, te.rmse);
+    if (e)
+      std::printf("; peer %d frame %.2f m / %.2f deg, poses rmse %.2f m, scale %.4f", r, e->translation_m, e->yaw_deg,
+                  te.rmse, opt.odometryScale(r));
   }
   std::printf("\n");
 }
@@ -126,6 +130,7 @@ class ObservationErrors {
       const Eigen::Vector2d ray = (p - g->pose.translation()).head<2>().normalized();
       const Eigen::Vector2d d = (p - best->position()).head<2>();
       e.along.push_back(d.dot(ray));
+      e.range.push_back(o.position().head<2>().norm());
       e.across.push_back(std::abs(ray.x() * d.y() - ray.y() * d.x()));
     }
   }
@@ -135,18 +140,29 @@ class ObservationErrors {
       const ClassInfo* info = classes_.find(c);
       std::printf(
           "observations of %s: %zu within 2 m of a true one (%d not): along the line of sight median %+.3f m "
-          "(p10 %+.3f, p90 %+.3f), across median %.3f m\n",
+          "(p10 %+.3f, p90 %+.3f, %+.4f m per metre of range), across median %.3f m\n",
           info ? info->name.c_str() : std::to_string(c).c_str(), e.along.size(), e.unmatched,
           e.along.empty() ? NAN : bench::quantile(e.along, 0.5), e.along.empty() ? NAN : bench::quantile(e.along, 0.1),
-          e.along.empty() ? NAN : bench::quantile(e.along, 0.9),
+          e.along.empty() ? NAN : bench::quantile(e.along, 0.9), e.slope(),
           e.across.empty() ? NAN : bench::quantile(e.across, 0.5));
     }
   }
 
  private:
   struct Errors {
-    std::vector<double> along, across;
+    std::vector<double> along, across, range;
     int unmatched = 0;
+    // Least-squares slope of the error along the line of sight over the range: a bias that
+    // grows with range tells the graph the robot moved less (negative) or more than it did.
+    double slope() const {
+      const std::size_t n = along.size();
+      if (n < 3) return NAN;
+      double mr = 0, ma = 0;
+      for (std::size_t i = 0; i < n; ++i) mr += range[i] / n, ma += along[i] / n;
+      double sxy = 0, sxx = 0;
+      for (std::size_t i = 0; i < n; ++i) sxy += (range[i] - mr) * (along[i] - ma), sxx += (range[i] - mr) * (range[i] - mr);
+      return sxx > 0 ? sxy / sxx : NAN;
+    }
   };
   const ClassTable& classes_;
   std::map<int, Errors> errors_;
@@ -278,6 +294,9 @@ int main(int argc, char** argv) {
       ->expected(2);
   bool own_only = false, observation_errors = false;
   app.add_flag("--own-only", own_only, "Replay only the host's own inputs (no peer bundles, no inter-robot transforms)");
+  std::vector<int> without;
+  app.add_option("--without-peer", without,
+                 "Leave out this peer's bundles and the transforms to it (repeatable): what merging it did to the host");
   app.add_flag("--observation-errors", observation_errors,
                "Also print, per class, how far the host's own observations lie from their true objects (placed by the "
                "true key poses) along and across the line of sight");
@@ -298,6 +317,7 @@ int main(int argc, char** argv) {
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable loop closure");
         const Pose T = poseFromXyzYaw(m.x, m.y, m.z, m.yaw);
         if (own_only && m.robot_a != m.robot_b) continue;
+        if (std::count(without.begin(), without.end(), m.robot_b) && m.robot_a != m.robot_b) continue;
         std::printf("#%d after %d bundles: ", index, bundles);
         if (m.robot_a == m.robot_b) {
           std::string err = "truth n/a";
@@ -328,6 +348,7 @@ int main(int argc, char** argv) {
         keypose_bundle_t m;
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable bundle");
         const KeyPoseBundle b = msg::fromLcm(m, nullptr);
+        if (b.robot != robot && std::count(without.begin(), without.end(), b.robot)) continue;
         odom_of[{b.robot, b.seq}] = b.odom_pose;
         if (observation_errors && b.robot == robot) obs_errors.add(b, truth.robot(robot), truth.objects);
         if (votes_near.size() == 2 && b.robot == robot)
