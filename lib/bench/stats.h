@@ -1,5 +1,5 @@
 #pragma once
-// Order statistics for timing figures.
+// Order statistics for timing figures, and a least-squares slope.
 #include <vector>
 
 namespace slide::bench {
@@ -8,5 +8,7 @@ namespace slide::bench {
 double quantile(std::vector<double> values, double q);
 inline double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 double mean(const std::vector<double>& v);
+// Least-squares slope of y over x (same length); NaN for fewer than 3 pairs or constant x.
+double slope(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace slide::bench

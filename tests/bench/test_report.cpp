@@ -18,6 +18,13 @@ TEST(BenchStats, Quantiles) {
   EXPECT_DOUBLE_EQ(bench::mean({1, 2, 3, 6}), 3);
 }
 
+TEST(BenchStats, SlopeOfALine) {
+  EXPECT_NEAR(bench::slope({1, 2, 3, 4}, {-0.01, -0.02, -0.03, -0.04}), -0.01, 1e-12);
+  EXPECT_NEAR(bench::slope({0, 1, 2, 3}, {5, 5.5, 4.5, 5}), -0.1, 1e-12);
+  EXPECT_TRUE(std::isnan(bench::slope({1, 2}, {1, 2})));
+  EXPECT_TRUE(std::isnan(bench::slope({2, 2, 2}, {1, 2, 3})));
+}
+
 TEST(BenchReport, JsonFollowsConvention) {
   bench::BenchReport r("backend");
   r.add("forest.update_ms.median", 3.2, "ms", true, 5.0, 36.46);

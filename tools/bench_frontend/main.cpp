@@ -142,8 +142,9 @@ int main(int argc, char** argv) {
             std::vector<double> a = v;
             std::printf(
                 "    %-8s along the line of sight (ground truth, evaluation only): median %+.3f m, p10 %+.3f, p90 "
-                "%+.3f, %zu observations\n",
-                name.c_str(), bench::quantile(a, 0.5), bench::quantile(a, 0.1), bench::quantile(a, 0.9), a.size());
+                "%+.3f, %+.4f m per metre of range, %zu observations\n",
+                name.c_str(), bench::quantile(a, 0.5), bench::quantile(a, 0.1), bench::quantile(a, 0.9),
+                bench::slope(m.along_ray_range.at(name), v), a.size());
           }
           for (const auto& [name, v] : m.centre_error) {
             std::vector<double> a = v;
@@ -158,6 +159,8 @@ int main(int argc, char** argv) {
           else {
             ModeResult& t = total[i];
             for (const auto& [name, v] : m.along_ray) t.along_ray[name].insert(t.along_ray[name].end(), v.begin(), v.end());
+            for (const auto& [name, v] : m.along_ray_range)
+              t.along_ray_range[name].insert(t.along_ray_range[name].end(), v.begin(), v.end());
             t.estimated += m.estimated, t.ground_truth += m.ground_truth, t.matched += m.matched;
             t.duplicates += m.duplicates, t.false_objects += m.false_objects, t.ignored += m.ignored;
             t.confirmed_estimated += m.confirmed_estimated, t.confirmed_matched += m.confirmed_matched;
@@ -220,6 +223,9 @@ int main(int argc, char** argv) {
                 " along the line of sight (negative: short); scored with ground truth (evaluation only), " +
                 std::to_string(a.size()) + " observations, " + seeds_text + "; p10 " +
                 std::to_string(bench::quantile(a, 0.1)) + ", p90 " + std::to_string(bench::quantile(a, 0.9));
+            report.add(prefix + ".along_ray_m." + name + ".slope", bench::slope(m.along_ray_range.at(name), v), "m/m").note =
+                "least-squares slope of the same offsets over the observation's range (negative: the farther, the "
+                "shorter: a back end that estimates odometry scale reads it as travel that was not)";
           }
         report.add(prefix + ".false_objects", m.false_objects, "", true).note = "estimates of no object, " + seeds_text;
         for (const auto& [name, v] : m.iou) {

@@ -338,6 +338,7 @@ WorldEvalResult evaluateWorld(const WorldEvalSpec& spec, const ClassTable& class
           if (!best || !info) continue;
           const Eigen::Vector2d ray = (p - T_world_body.translation()).head<2>().normalized();
           r.result.along_ray[info->name].push_back((p - best->position()).head<2>().dot(ray));
+          r.result.along_ray_range[info->name].push_back(o.position().head<2>().norm());
           r.result.centre_error[info->name].push_back(best_d);
         }
       }

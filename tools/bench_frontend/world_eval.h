@@ -64,6 +64,7 @@ struct ModeResult {
   // of its class within 2 m (scored with ground truth, evaluation only): its offset along the
   // horizontal line of sight from the key pose (negative: short of the real centre), per class.
   std::map<std::string, std::vector<double>> along_ray;
+  std::map<std::string, std::vector<double>> along_ray_range;  // each along_ray entry's range from the key pose
   // The same observations' horizontal distance to that real object (metres), per class.
   std::map<std::string, std::vector<double>> centre_error;
   long issues = 0;

@@ -143,26 +143,15 @@ class ObservationErrors {
           "(p10 %+.3f, p90 %+.3f, %+.4f m per metre of range), across median %.3f m\n",
           info ? info->name.c_str() : std::to_string(c).c_str(), e.along.size(), e.unmatched,
           e.along.empty() ? NAN : bench::quantile(e.along, 0.5), e.along.empty() ? NAN : bench::quantile(e.along, 0.1),
-          e.along.empty() ? NAN : bench::quantile(e.along, 0.9), e.slope(),
+          e.along.empty() ? NAN : bench::quantile(e.along, 0.9), bench::slope(e.range, e.along),
           e.across.empty() ? NAN : bench::quantile(e.across, 0.5));
     }
   }
 
  private:
   struct Errors {
-    std::vector<double> along, across, range;
+    std::vector<double> along, across, range;  // range: the observation's, for the error's slope over it
     int unmatched = 0;
-    // Least-squares slope of the error along the line of sight over the range: a bias that
-    // grows with range tells the graph the robot moved less (negative) or more than it did.
-    double slope() const {
-      const std::size_t n = along.size();
-      if (n < 3) return NAN;
-      double mr = 0, ma = 0;
-      for (std::size_t i = 0; i < n; ++i) mr += range[i] / n, ma += along[i] / n;
-      double sxy = 0, sxx = 0;
-      for (std::size_t i = 0; i < n; ++i) sxy += (range[i] - mr) * (along[i] - ma), sxx += (range[i] - mr) * (range[i] - mr);
-      return sxx > 0 ? sxy / sxx : NAN;
-    }
   };
   const ClassTable& classes_;
   std::map<int, Errors> errors_;
