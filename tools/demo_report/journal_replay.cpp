@@ -306,7 +306,8 @@ int main(int argc, char** argv) {
         if (m.decode(e->data, 0, e->datalen) < 0) throw std::runtime_error(journal + ": undecodable loop closure");
         const Pose T = poseFromXyzYaw(m.x, m.y, m.z, m.yaw);
         if (own_only && m.robot_a != m.robot_b) continue;
-        if (std::count(without.begin(), without.end(), m.robot_b) && m.robot_a != m.robot_b) continue;
+        auto left_out = [&](int r) { return r != robot && std::count(without.begin(), without.end(), r) > 0; };
+        if (m.robot_a != m.robot_b && (left_out(m.robot_a) || left_out(m.robot_b))) continue;
         std::printf("#%d after %d bundles: ", index, bundles);
         if (m.robot_a == m.robot_b) {
           std::string err = "truth n/a";
