@@ -225,7 +225,8 @@ int main(int argc, char** argv) {
                 std::to_string(bench::quantile(a, 0.1)) + ", p90 " + std::to_string(bench::quantile(a, 0.9));
             report.add(prefix + ".along_ray_m." + name + ".slope", bench::slope(m.along_ray_range.at(name), v), "m/m").note =
                 "least-squares slope of the same offsets over the observation's range (negative: the farther, the "
-                "shorter: a back end that estimates odometry scale reads it as travel that was not)";
+                "shorter: a back end that estimates odometry scale reads it as travel that was not); scored with "
+                "ground truth (evaluation only), " + seeds_text;
           }
         report.add(prefix + ".false_objects", m.false_objects, "", true).note = "estimates of no object, " + seeds_text;
         for (const auto& [name, v] : m.iou) {
