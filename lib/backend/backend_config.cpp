@@ -68,11 +68,13 @@ BackendConfig loadBackendConfig(const std::string& path) {
     n.read("outlier_sigmas", c.outlier_sigmas);
     n.read("merge_within_shape", c.merge_within_shape);
     n.read("merge_shared_fraction", c.merge_shared_fraction);
+    n.read("revisit_sigmas", c.revisit_sigmas);
     n.read("reading_vote_radius", c.reading_vote_radius);
     if (!(c.reading_vote_radius >= 0)) n.fail("reading_vote_radius", "must not be negative (0 turns it off)");
     if (!(c.merge_shared_fraction >= 0 && c.merge_shared_fraction < 1))
       n.fail("merge_shared_fraction", "must lie in [0, 1)");
     if (c.association_sigmas < 0) n.fail("association_sigmas", "must not be negative");
+    if (!(c.revisit_sigmas >= 0)) n.fail("revisit_sigmas", "must not be negative");
     if (c.min_observations < 1) n.fail("min_observations", "must be at least 1");
   }
   if (root.has("peers")) {

@@ -86,6 +86,12 @@ struct BackendConfig {
   // pieces. (0.25 without the overlap and kind tests cost KITTI 05 a wrong peer merge: team ATE
   // 6.6 -> 11.8 m; with them KITTI 05, 07 and urban are unchanged; BENCHMARKS.md, issue 20.)
   double merge_shared_fraction = 0.35;
+  // Revisits: a robot is associated by nearness with a landmark it saw before, and two
+  // landmarks it saw at different times are merged, only while this many sigmas of its odometry
+  // drift between the two sightings (through a loop closure where one shortens it) stay within
+  // the class's association distance; beyond, it may stand anywhere in that drift, nearness
+  // says nothing, and the revisit waits for a loop closure. 0: nearness decides at any drift.
+  double revisit_sigmas = 2.0;
   // A box read two ways takes the reading that the landmarks seen whole within this radius (m)
   // agree with (Optimizer::settleReading); 0: the front-end's choice.
   double reading_vote_radius = 30.0;

@@ -240,6 +240,8 @@ int Optimizer::mergeDuplicates() {
       // Only a named class's part merges into its whole: a catch-all's blob may hold several objects.
       const ClassInfo* named = a.class_id == b.class_id ? classes_.find(a.class_id) : nullptr;
       if (!sameObject(a, oi, b, ob) && !(named && !named->catch_all && partOfTheOther(oi, ob))) continue;
+      // A robot that saw one long before the other may have drifted by more than their distance.
+      if (revisitUnsure(a, driftBetween(a, &b), &b)) continue;
       // One object gives one detection per key pose, so two landmarks seen from one key pose are
       // two objects, unless they overlap: two solid objects of one kind do not stand inside one
       // another, and a key pose that saw both then took a neighbour's or a false object's detection
@@ -257,6 +259,9 @@ int Optimizer::mergeDuplicates() {
       }
       // The older landmark (lower index) keeps its id and takes every observation (one that does
       // not fit is detached after the next solve); the class is voted again over both.
+      const std::map<int, Span> span_a = spansOf(a);
+      for (const auto& [robot, y] : spansOf(b))
+        if (const auto it = span_a.find(robot); it != span_a.end()) tie(robot, it->second, y, a);
       moveObservations(b, a);
       ++merged;
     }

@@ -11,6 +11,24 @@ void OdometryDrift::add(const OdometryStep& s) {
   yaw_var += s.yaw_sigma * s.yaw_sigma;
 }
 
+void OdometryTotals::add(const OdometryStep& s) {
+  translation_var += s.translation_sigma * s.translation_sigma;
+  yaw_var += s.yaw_sigma * s.yaw_sigma;
+  length_m += s.length_m;
+}
+
+OdometryTotals OdometryTotals::operator-(const OdometryTotals& o) const {
+  return {translation_var - o.translation_var, yaw_var - o.yaw_var, length_m - o.length_m};
+}
+
+OdometryTotals OdometryTotals::operator+(const OdometryTotals& o) const {
+  return {translation_var + o.translation_var, yaw_var + o.yaw_var, length_m + o.length_m};
+}
+
+double driftRadius(const OdometryTotals& s) {
+  return std::sqrt(std::max(0.0, s.translation_var + s.yaw_var * s.length_m * s.length_m / 3.0));
+}
+
 EnvelopeCheck checkAgainstOdometry(const OdometryDrift& drift, const Pose& odom_a_b, const Pose& T_a_b,
                                    const OdometryEnvelope& envelope) {
   EnvelopeCheck c;

@@ -35,6 +35,20 @@ struct OdometryDrift {
   void add(const OdometryStep& s);
 };
 
+// Sums over a robot's odometry steps from its first key pose: a stretch's are the difference
+// of its two ends' (and a stretch joined to another through a loop closure, their sum).
+struct OdometryTotals {
+  double translation_var = 0, yaw_var = 0, length_m = 0;
+  void add(const OdometryStep& s);
+  OdometryTotals operator-(const OdometryTotals& o) const;
+  OdometryTotals operator+(const OdometryTotals& o) const;
+};
+
+// One sigma of how far the odometry may have put one end of a stretch from the other: the
+// translation random walk, and the sideways shift of a heading error that grows as a random
+// walk along it (length times the end's yaw sigma over sqrt 3), added in quadrature.
+double driftRadius(const OdometryTotals& stretch);
+
 // drift: of the odometry steps from key pose a to key pose b; odom_a_b: the relative pose
 // odometry gives; T_a_b: the relative pose to check (a loop closure or an estimate).
 EnvelopeCheck checkAgainstOdometry(const OdometryDrift& drift, const Pose& odom_a_b, const Pose& T_a_b,

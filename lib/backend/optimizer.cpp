@@ -1,5 +1,7 @@
 #include "backend/optimizer.h"
 
+#include <climits>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -160,8 +162,12 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   if (cfg_.gravity_sigma > 0)
     graph_.addFactor(gravityFactor(Eigen::Quaterniond((robot.T_host_robot * b.odom_pose).linear()), cfg_.gravity_sigma),
                      {var}, false);
-  keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose, step});
+  OdometryTotals totals;
+  if (!robot.keyposes.empty()) (totals = keyposes_[robot.keyposes.back()].totals).add(step);
+  keyposes_.push_back({b.robot, b.seq, b.utime, var, b.odom_pose, step, static_cast<int>(robot.keyposes.size()), totals});
   robot.keyposes.push_back(static_cast<int>(keyposes_.size()) - 1);
+  if (var >= static_cast<int>(keypose_of_var_.size())) keypose_of_var_.resize(var + 1, -1);
+  keypose_of_var_[var] = robot.keyposes.back();
   ++step_;
 
   for (Object& o : objects) settleReading(o, T_w_b);
@@ -190,16 +196,22 @@ int Optimizer::insertBundle(const KeyPoseBundle& b, UpdateResult& r, std::vector
   candidate_objects.reserve(near.size());
   for (int i : near) candidate_objects.push_back(landmarkObject(landmarks_[i]));
   std::vector<LandmarkCandidate> candidates;
-  for (std::size_t k = 0; k < near.size(); ++k)
-    if (landmarks_[near[k]].alive) candidates.push_back({near[k], &candidate_objects[k]});
+  const int at = static_cast<int>(robot.keyposes.size()) - 1;
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const Landmark& lm = landmarks_[near[k]];
+    if (lm.alive && !revisitUnsure(lm, driftBetween(lm, nullptr, b.robot, at)))
+      candidates.push_back({near[k], &candidate_objects[k]});
+  }
   const std::vector<int> match = associateDetections(world, candidates, classes_);
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
     int index = match[i];
     if (index < 0) {
       index = addLandmark(world[i].object);
-    } else if (step_ - landmarks_[index].last_step > cfg_.loop_gap) {
-      loop = true;
+    } else {
+      if (step_ - landmarks_[index].last_step > cfg_.loop_gap) loop = true;
+      const std::map<int, Span> spans = spansOf(landmarks_[index]);
+      if (const auto it = spans.find(b.robot); it != spans.end()) tie(b.robot, it->second, {at, at}, landmarks_[index]);
     }
     addObservation(var, T_w_b, objects[i], landmarks_[index]);
     r.landmark_ids[objects[i].id] = landmarks_[index].id;
@@ -368,6 +380,88 @@ std::vector<Object> Optimizer::landmarks(bool confirmed_only) const {
   for (const Landmark& lm : landmarks_)
     if (lm.alive && (!confirmed_only || lm.observations >= cfg_.min_observations)) out.push_back(landmarkObject(lm));
   return out;
+}
+
+namespace {
+// Key poses (either end) within which an older tie makes a new one needless.
+constexpr int kTieSpacing = 5;
+}  // namespace
+
+double Optimizer::driftBetween(int robot, Span x, Span y) const {
+  const Robot& rb = robots_.at(robot);
+  // The steps from key pose k to the nearest of a span (none from within it).
+  auto to = [&](Span s, int k) {
+    const int end = std::clamp(k, s.first, s.second);
+    return keyposes_[rb.keyposes[std::max(k, end)]].totals - keyposes_[rb.keyposes[std::min(k, end)]].totals;
+  };
+  double best = driftRadius(y.first > x.second ? to(y, x.second) : to(y, x.first));
+  const PoseSigma loop = loopSigma();
+  const OdometryTotals tied{loop[0] * loop[0], loop[5] * loop[5], 0.0};
+  for (const auto& [a, b] : rb.ties)
+    best = std::min({best, driftRadius(to(x, a) + tied + to(y, b)), driftRadius(to(x, b) + tied + to(y, a))});
+  return best;
+}
+
+std::map<int, Optimizer::Span> Optimizer::spansOf(const Landmark& lm) const {
+  std::map<int, Span> out;
+  for (const Observation& o : lm.seen) {
+    const KeyPose& kp = keyposes_[keypose_of_var_[o.pose_var]];
+    const auto [it, added] = out.emplace(kp.robot, Span{kp.index, kp.index});
+    if (!added) it->second = {std::min(it->second.first, kp.index), std::max(it->second.second, kp.index)};
+  }
+  return out;
+}
+
+double Optimizer::driftBetween(const Landmark& a, const Landmark* b, int robot, int at) const {
+  const std::map<int, Span> span_a = spansOf(a);
+  const std::map<int, Span> span_b = b ? spansOf(*b) : std::map<int, Span>{{robot, {at, at}}};
+  double best = -1;
+  for (const auto& [r, x] : span_a) {
+    const auto it = span_b.find(r);
+    if (it == span_b.end()) continue;
+    const double d = driftBetween(r, x, it->second);
+    if (best < 0 || d < best) best = d;
+  }
+  return best;
+}
+
+void Optimizer::tie(int robot, Span x, Span y, const Landmark& lm) {
+  if (cfg_.revisit_sigmas <= 0 || !(y.first > x.second || y.second < x.first)) return;
+  const int i = y.first > x.second ? x.second : x.first, j = y.first > x.second ? y.first : y.second;
+  Robot& rb = robots_.at(robot);
+  const OdometryTotals along = keyposes_[rb.keyposes[std::max(i, j)]].totals - keyposes_[rb.keyposes[std::min(i, j)]].totals;
+  if (!driftedApart(lm, driftRadius(along))) return;
+  for (const auto& [a, b] : rb.ties)
+    if ((std::abs(a - i) <= kTieSpacing && std::abs(b - j) <= kTieSpacing) ||
+        (std::abs(a - j) <= kTieSpacing && std::abs(b - i) <= kTieSpacing))
+      return;
+  rb.ties.emplace_back(i, j);
+}
+
+bool Optimizer::driftedApart(const Landmark& lm, double drift) const {
+  if (cfg_.revisit_sigmas <= 0 || drift <= 0) return false;
+  const ClassInfo* c = classes_.find(lm.class_id);
+  return c && cfg_.revisit_sigmas * drift > c->association_distance;
+}
+
+namespace {
+// Beyond this drift radius no object is taken as alone (a search too wide to be worth its cost).
+constexpr double kMaxAloneRadius = 15.0;
+}  // namespace
+
+bool Optimizer::revisitUnsure(const Landmark& lm, double drift, const Landmark* other) const {
+  if (!driftedApart(lm, drift)) return false;
+  const double radius = cfg_.revisit_sigmas * drift;
+  if (radius > kMaxAloneRadius) return true;
+  std::vector<int> near;
+  const Eigen::Vector3d p = landmarkObject(lm).position();
+  grid_.near(p, radius, near);
+  for (int i : near) {
+    const Landmark& o = landmarks_[i];
+    if (&o == &lm || &o == other || !o.alive || !classes_.sameKind(o.class_id, lm.class_id)) continue;
+    if ((landmarkObject(o).position() - p).head<2>().norm() <= radius) return true;
+  }
+  return false;
 }
 
 std::unordered_map<int, int> Optimizer::robotOfPoseVar() const {

@@ -151,6 +151,8 @@ class Optimizer {
     int var;
     Pose odom_pose;
     OdometryStep step;  // from the previous key pose of the robot (zero for its first)
+    int index = 0;          // in its robot's list
+    OdometryTotals totals;  // of the robot's steps up to this key pose
   };
   // Every accepted input, in order, so that the graph can be rebuilt without a merge.
   struct Input {
@@ -183,9 +185,33 @@ class Optimizer {
     int scale_var = -1;                       // its odometry scale (odometry.scale_sigma > 0)
     std::vector<int> keyposes;                // indices into keyposes_
     std::map<int, KeyPoseBundle> held;        // by seq, before the transform
+    // Pairs of its key poses (indices into its list) held together, beyond its odometry, by a
+    // loop closure in the graph or a landmark seen from both (association.revisit_sigmas).
+    std::vector<std::pair<int, int>> ties;
   };
 
   std::unordered_map<int, int> robotOfPoseVar() const;  // key-pose variable -> its robot
+  // Revisits (association.revisit_sigmas). One sigma of the odometry drift between two spans of
+  // a robot's key poses (first and last index into its list): along its odometry from the one to
+  // the other, or through one of its ties, whichever is less (none when they overlap).
+  using Span = std::pair<int, int>;
+  double driftBetween(int robot, Span x, Span y) const;
+  // Per robot, the span of the key poses that observed lm.
+  std::map<int, Span> spansOf(const Landmark& lm) const;
+  // lm, seen by the robot over x, is now seen over y too (an association or a merge): when its
+  // odometry alone would leave the two drifted apart, they are tied (unless a tie within
+  // kTieSpacing key poses at both ends holds them already).
+  void tie(int robot, Span x, Span y, const Landmark& lm);
+  // The least drift, for some robot that observed both, between its observations of a and its
+  // observations of b (of a and its key pose `at`, when b is null); -1 when no robot did.
+  double driftBetween(const Landmark& a, const Landmark* b, int robot = -1, int at = -1) const;
+  // Whether revisit_sigmas of that drift exceed the landmark class's association distance.
+  bool driftedApart(const Landmark& lm, double drift) const;
+  // Whether nearness can no longer tell that the robot sees lm again (or that `other` is lm):
+  // drifted apart, and another landmark of its kind lies within revisit_sigmas of the drift of
+  // it, where the robot may as well be seeing that one. A loop closure must first bring the two
+  // sightings together (a tie); an object alone of its kind within the drift is still known.
+  bool revisitUnsure(const Landmark& lm, double drift, const Landmark* other = nullptr) const;
   UpdateResult reject(UpdateResult r, const std::string& reason);
   std::string checkBundle(const KeyPoseBundle& b, const Robot& robot) const;
   std::vector<Object> usableObjects(const KeyPoseBundle& b, UpdateResult& r) const;
@@ -283,6 +309,7 @@ class Optimizer {
   int host_;
   FactorGraph graph_;
   std::vector<KeyPose> keyposes_;
+  std::vector<int> keypose_of_var_;  // graph variable -> index into keyposes_ (-1: not a key pose)
   std::vector<Landmark> landmarks_;
   std::map<int, Robot> robots_;
   struct LoopFactor {

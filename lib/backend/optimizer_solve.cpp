@@ -163,6 +163,8 @@ void Optimizer::addLoopFactors(const FullSolveJob& job) {
     const auto it = loop_factors_.find(key);
     if (it != loop_factors_.end()) graph_.removeFactor(it->second.factor);  // repeated while the solve ran
     loop_factors_[key] = {graph_.addFactor(relativePoseFactor(l.T_a_b, job.loop_sigma), {a->var, b->var}, false), l.T_a_b};
+    std::vector<Span>& ties = robots_[l.robot].ties;
+    if (std::find(ties.begin(), ties.end(), Span{a->index, b->index}) == ties.end()) ties.emplace_back(a->index, b->index);
   }
 }
 
