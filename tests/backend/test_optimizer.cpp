@@ -209,6 +209,8 @@ TEST(BackendConfig, LoadsShippedFileAndNamesBadKeys) {
   };
   expectError("objects:\n  range_sigma: -1\n", "range_sigma");
   expectError("odometry:\n  scale_sigma: 0.7\n", "scale_sigma");
+  expectError("association:\n  revisit_sigmas: -1\n", "revisit_sigmas");
+  EXPECT_DOUBLE_EQ(c.revisit_sigmas, 2.0);
 }
 
 // Issue 15, urban: a peer merged through an aliased transform (a half turn of the scene, as a
