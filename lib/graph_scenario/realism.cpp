@@ -12,6 +12,7 @@ std::string ScenarioRealism::describe() const {
   s.precision(2);
   s << std::fixed << "miss " << miss_rate << ", clutter " << clutter_fraction << ", confusion " << confusion_rate
     << ", noise x" << std::setprecision(1) << noise_scale;
+  if (odom_scale_error > 0) s << ", odometry scale " << 100 * odom_scale_error << " %";
   return s.str();
 }
 
@@ -45,6 +46,8 @@ GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& r, cons
     if (!(v >= 0 && v < 1)) throw std::invalid_argument("withRealism: rates must lie in [0, 1)");
   if (!(r.noise_scale > 0) || r.clutter_max_views < 1)
     throw std::invalid_argument("withRealism: noise_scale must be > 0 and clutter_max_views >= 1");
+  if (!(r.odom_scale_error >= 0 && r.odom_scale_error < 0.2))
+    throw std::invalid_argument("withRealism: odom_scale_error must lie in [0, 0.2)");
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   GraphScenario out = s;
@@ -55,6 +58,15 @@ GraphScenario withRealism(const GraphScenario& s, const ScenarioRealism& r, cons
     robot = simulateRobot(ideal.id, ideal.truth, s.landmarks, applied, rng, utime0);
     // The odometry reports the nominal sigmas (those of the idealised bundles at the same steps).
     for (std::size_t k = 0; k < robot.bundles.size(); ++k) robot.bundles[k].odom_sigma = ideal.bundles[k].odom_sigma;
+    if (r.odom_scale_error > 0) {
+      std::mt19937 scale_rng(seed * 7919u + 104729u + static_cast<std::uint32_t>(robot.id));
+      const double factor = 1.0 + r.odom_scale_error * std::normal_distribution<double>(0.0, 1.0)(scale_rng);
+      for (std::size_t k = 1; k < robot.bundles.size(); ++k) {
+        KeyPoseBundle& b = robot.bundles[k];
+        b.relative_odom.translation() *= factor;
+        b.odom_pose = robot.bundles[k - 1].odom_pose * b.relative_odom;
+      }
+    }
 
     // Missed and confused detections of true landmarks.
     std::size_t detections = 0;

@@ -1,4 +1,7 @@
 // The realistic detections laid over a back-end scenario (lib/graph_scenario/realism.h).
+#include <cmath>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "graph_scenario/realism.h"
@@ -69,6 +72,38 @@ TEST(ScenarioRealism, NoiseTheEstimatorIsNotToldOf) {
   EXPECT_NEAR(std::sqrt(sq / sq_ideal), 2.0, 0.2);
 }
 
+// Odometry that reads distance wrong: each robot's path length times one factor of its own (the
+// factors of a 5 % error differ between robots and from 1), its headings and every detection as
+// without the error.
+TEST(ScenarioRealism, OdometryThatReadsDistanceWrongByOneFactorPerRobot) {
+  graph_scenario::GraphScenario ideal = graph_scenario::makeIndoorScenario();
+  ideal.robots.push_back(ideal.robots[0]);
+  ideal.robots[1].id = 1;
+  const ClassTable classes = ClassTable::loadDefault();
+  graph_scenario::ScenarioRealism r;
+  const graph_scenario::GraphScenario plain = graph_scenario::withRealism(ideal, r, classes);
+  r.odom_scale_error = 0.05;
+  const graph_scenario::GraphScenario scaled = graph_scenario::withRealism(ideal, r, classes);
+  std::vector<double> factors;
+  for (std::size_t i = 0; i < plain.robots.size(); ++i) {
+    const auto& a = plain.robots[i].bundles;
+    const auto& b = scaled.robots[i].bundles;
+    ASSERT_EQ(a.size(), b.size());
+    const double factor = b[1].relative_odom.translation().norm() / a[1].relative_odom.translation().norm();
+    for (std::size_t k = 1; k < a.size(); ++k) {
+      EXPECT_NEAR(b[k].relative_odom.translation().norm(), factor * a[k].relative_odom.translation().norm(), 1e-9);
+      EXPECT_TRUE(b[k].relative_odom.linear().isApprox(a[k].relative_odom.linear()));
+      EXPECT_TRUE(b[k].odom_pose.isApprox(b[k - 1].odom_pose * b[k].relative_odom, 1e-9));
+      ASSERT_EQ(b[k].objects.size(), a[k].objects.size());
+      for (std::size_t j = 0; j < a[k].objects.size(); ++j)
+        EXPECT_EQ(b[k].objects[j].position(), a[k].objects[j].position());
+    }
+    factors.push_back(factor);
+  }
+  EXPECT_GT(std::abs(factors[0] - 1.0), 1e-4);
+  EXPECT_NE(factors[0], factors[1]);
+}
+
 TEST(ScenarioRealism, RatesOutsideTheirRangeAreRefused) {
   const graph_scenario::GraphScenario ideal = graph_scenario::makeIndoorScenario();
   const ClassTable classes = ClassTable::loadDefault();
@@ -80,6 +115,9 @@ TEST(ScenarioRealism, RatesOutsideTheirRangeAreRefused) {
   EXPECT_THROW(graph_scenario::withRealism(ideal, r, classes), std::invalid_argument);
   r = {};
   r.clutter_fraction = -0.1;
+  EXPECT_THROW(graph_scenario::withRealism(ideal, r, classes), std::invalid_argument);
+  r = {};
+  r.odom_scale_error = 0.5;
   EXPECT_THROW(graph_scenario::withRealism(ideal, r, classes), std::invalid_argument);
 }
 

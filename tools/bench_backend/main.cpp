@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", only,
                  "run only these scenarios (indoor urban forest kitti05 kitti07, idealised; each with _realistic "
                  "appended: the realistic case)");
-  graph_scenario::ScenarioRealism realism{0.2, 0.15, 2, 0.1, 2.0};
+  graph_scenario::ScenarioRealism realism{0.2, 0.15, 2, 0.1, 2.0, 0.01};
   app.add_option("--miss", realism.miss_rate, "realistic cases: missed-detection rate")->capture_default_str();
   app.add_option("--clutter", realism.clutter_fraction, "realistic cases: fraction of detections that are false objects")
       ->capture_default_str();
@@ -217,6 +217,11 @@ int main(int argc, char** argv) {
   app.add_option("--noise-scale", realism.noise_scale,
                  "realistic cases: applied noise over the sigmas the estimator is given")
       ->capture_default_str();
+  app.add_option("--scale-error", realism.odom_scale_error,
+                 "realistic cases: each robot's odometry reads distance wrong by one factor, 1 + this x N(0,1) "
+                 "(0: odometry with white noise only)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.19));
   std::uint32_t seed = 0;
   app.add_option("--seed", seed,
                  "simulation seed of the KITTI scenarios and of the realistic cases' detections (0: their defaults, 5 "
