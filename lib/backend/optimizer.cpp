@@ -1,9 +1,8 @@
 #include "backend/optimizer.h"
 
-#include <climits>
-
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <unordered_map>
 
@@ -394,6 +393,7 @@ double Optimizer::driftBetween(int robot, Span x, Span y) const {
     const int end = std::clamp(k, s.first, s.second);
     return keyposes_[rb.keyposes[std::max(k, end)]].totals - keyposes_[rb.keyposes[std::min(k, end)]].totals;
   };
+  if (!(y.first > x.second || y.second < x.first)) return 0.0;  // seen in turns: no drift between them
   double best = driftRadius(y.first > x.second ? to(y, x.second) : to(y, x.first));
   const PoseSigma loop = loopSigma();
   const OdometryTotals tied{loop[0] * loop[0], loop[5] * loop[5], 0.0};
