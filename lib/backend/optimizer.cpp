@@ -386,7 +386,7 @@ namespace {
 constexpr int kTieSpacing = 5;
 }  // namespace
 
-double Optimizer::driftBetween(int robot, Span x, Span y) const {
+double Optimizer::driftBetween(int robot, Span x, Span y, double enough) const {
   const Robot& rb = robots_.at(robot);
   // The steps from key pose k to the nearest of a span (none from within it).
   auto to = [&](Span s, int k) {
@@ -397,8 +397,9 @@ double Optimizer::driftBetween(int robot, Span x, Span y) const {
   double best = driftRadius(y.first > x.second ? to(y, x.second) : to(y, x.first));
   const PoseSigma loop = loopSigma();
   const OdometryTotals tied{loop[0] * loop[0], loop[5] * loop[5], 0.0};
-  for (const auto& [a, b] : rb.ties)
-    best = std::min({best, driftRadius(to(x, a) + tied + to(y, b)), driftRadius(to(x, b) + tied + to(y, a))});
+  for (auto t = rb.ties.begin(); t != rb.ties.end() && best > enough; ++t)
+    best = std::min({best, driftRadius(to(x, t->first) + tied + to(y, t->second)),
+                     driftRadius(to(x, t->second) + tied + to(y, t->first))});
   return best;
 }
 
@@ -413,14 +414,18 @@ std::map<int, Optimizer::Span> Optimizer::spansOf(const Landmark& lm) const {
 }
 
 double Optimizer::driftBetween(const Landmark& a, const Landmark* b, int robot, int at) const {
+  const ClassInfo* c = classes_.find(a.class_id);
+  if (cfg_.revisit_sigmas <= 0 || !c) return -1;  // nothing to decide
+  const double enough = c->association_distance / cfg_.revisit_sigmas;  // within it, never drifted apart
   const std::map<int, Span> span_a = spansOf(a);
   const std::map<int, Span> span_b = b ? spansOf(*b) : std::map<int, Span>{{robot, {at, at}}};
   double best = -1;
   for (const auto& [r, x] : span_a) {
     const auto it = span_b.find(r);
     if (it == span_b.end()) continue;
-    const double d = driftBetween(r, x, it->second);
+    const double d = driftBetween(r, x, it->second, enough);
     if (best < 0 || d < best) best = d;
+    if (best <= enough) break;
   }
   return best;
 }

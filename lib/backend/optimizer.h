@@ -193,9 +193,10 @@ class Optimizer {
   std::unordered_map<int, int> robotOfPoseVar() const;  // key-pose variable -> its robot
   // Revisits (association.revisit_sigmas). One sigma of the odometry drift between two spans of
   // a robot's key poses (first and last index into its list): along its odometry from the one to
-  // the other, or through one of its ties, whichever is less (none when they overlap).
+  // the other, or through one of its ties, whichever is less (none when they overlap); the
+  // search stops once it is within `enough`.
   using Span = std::pair<int, int>;
-  double driftBetween(int robot, Span x, Span y) const;
+  double driftBetween(int robot, Span x, Span y, double enough = 0) const;
   // Per robot, the span of the key poses that observed lm.
   std::map<int, Span> spansOf(const Landmark& lm) const;
   // lm, seen by the robot over x, is now seen over y too (an association or a merge): when its
@@ -203,7 +204,8 @@ class Optimizer {
   // kTieSpacing key poses at both ends holds them already).
   void tie(int robot, Span x, Span y, const Landmark& lm);
   // The least drift, for some robot that observed both, between its observations of a and its
-  // observations of b (of a and its key pose `at`, when b is null); -1 when no robot did.
+  // observations of b (of a and its key pose `at`, when b is null), or any within which a's gate
+  // holds; -1 when no robot did (or revisit_sigmas is 0).
   double driftBetween(const Landmark& a, const Landmark* b, int robot = -1, int at = -1) const;
   // Whether revisit_sigmas of that drift exceed the landmark class's association distance.
   bool driftedApart(const Landmark& lm, double drift) const;
