@@ -89,8 +89,9 @@ struct BackendConfig {
   // Revisits: a robot is associated by nearness with a landmark it saw before, and two
   // landmarks it saw at different times are merged, only while this many sigmas of its odometry
   // drift between the two sightings (through a loop closure where one shortens it) stay within
-  // the class's association distance; beyond, it may stand anywhere in that drift, nearness
-  // says nothing, and the revisit waits for a loop closure. 0: nearness decides at any drift.
+  // the class's association distance, or while no other landmark of its kind lies within that
+  // drift of it; beyond, the robot may be seeing any of them, nearness says nothing, and the
+  // revisit waits for a loop closure. 0: nearness decides at any drift.
   double revisit_sigmas = 2.0;
   // A box read two ways takes the reading that the landmarks seen whole within this radius (m)
   // agree with (Optimizer::settleReading); 0: the front-end's choice.
