@@ -4,7 +4,6 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
-#include <unordered_map>
 
 #include "backend/data_association.h"
 #include "backend/factors.h"
@@ -406,7 +405,7 @@ double Optimizer::driftBetween(int robot, Span x, Span y, double enough) const {
 std::map<int, Optimizer::Span> Optimizer::spansOf(const Landmark& lm) const {
   std::map<int, Span> out;
   for (const Observation& o : lm.seen) {
-    const KeyPose& kp = keyposes_[keypose_of_var_[o.pose_var]];
+    const KeyPose& kp = keyPoseOfVar(o.pose_var);
     const auto [it, added] = out.emplace(kp.robot, Span{kp.index, kp.index});
     if (!added) it->second = {std::min(it->second.first, kp.index), std::max(it->second.second, kp.index)};
   }
@@ -469,27 +468,15 @@ bool Optimizer::revisitUnsure(const Landmark& lm, double drift, const Landmark* 
   return false;
 }
 
-std::unordered_map<int, int> Optimizer::robotOfPoseVar() const {
-  std::unordered_map<int, int> out;
-  for (const KeyPose& k : keyposes_) out[k.var] = k.robot;
-  return out;
-}
-
-namespace {
-int robotOf(const std::unordered_map<int, int>& robot_of_var, int var) {
-  const auto it = robot_of_var.find(var);
-  return it == robot_of_var.end() ? -1 : it->second;
-}
-}  // namespace
+const Optimizer::KeyPose& Optimizer::keyPoseOfVar(int var) const { return keyposes_[keypose_of_var_[var]]; }
 
 // The alive landmarks the host observed and those `peer` observed (one landmark may be in both).
 void Optimizer::observedBy(int peer, std::vector<const Landmark*>& host, std::vector<const Landmark*>& other) const {
-  const auto robot_of = robotOfPoseVar();
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive) continue;
     bool by_host = false, by_peer = false;
     for (const Observation& o : lm.seen) {
-      const int r = robotOf(robot_of, o.pose_var);
+      const int r = keyPoseOfVar(o.pose_var).robot;
       by_host = by_host || r == host_;
       by_peer = by_peer || r == peer;
     }
@@ -528,12 +515,11 @@ int Optimizer::sharedLandmarks(int peer) const {
 }
 
 std::vector<Object> Optimizer::ownLandmarks() const {
-  const auto robot_of = robotOfPoseVar();
   std::vector<Object> out;
   for (const Landmark& lm : landmarks_) {
     if (!lm.alive) continue;
     const auto own = std::count_if(lm.seen.begin(), lm.seen.end(),
-                                   [&](const Observation& o) { return robotOf(robot_of, o.pose_var) == host_; });
+                                   [&](const Observation& o) { return keyPoseOfVar(o.pose_var).robot == host_; });
     if (own >= cfg_.min_observations) out.push_back(landmarkObject(lm));
   }
   return out;

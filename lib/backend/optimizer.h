@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <unordered_map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -190,7 +189,7 @@ class Optimizer {
     std::vector<std::pair<int, int>> ties;
   };
 
-  std::unordered_map<int, int> robotOfPoseVar() const;  // key-pose variable -> its robot
+  const KeyPose& keyPoseOfVar(int var) const;  // of an observation's pose variable
   // Revisits (association.revisit_sigmas). One sigma of the odometry drift between two spans of
   // a robot's key poses (first and last index into its list): along its odometry from the one to
   // the other, or through one of its ties, whichever is less (none when they overlap); the
